@@ -1,0 +1,141 @@
+//! Built-in shapes of our own making.
+//!
+//! The default shape is a waving gingerbread figure: a smooth outline through hand-placed
+//! control points (a centripetal Catmull-Rom spline, which neither overshoots nor forms
+//! cusps), with eyes and buttons as holes.
+
+use crate::geometry::{distance, Point};
+use crate::outline::Outline;
+
+/// Control points of the figure's outline, counter-clockwise with y pointing up, from the
+/// crotch round the right leg, right arm, head, raised left arm and left leg. About 1.4
+/// units tall.
+const FIGURE: [Point; 46] = [
+    [0.0, 0.36],
+    [0.06, 0.20],
+    [0.09, 0.05],
+    [0.13, -0.01],
+    [0.29, -0.02],
+    [0.34, 0.04],
+    [0.28, 0.09],
+    [0.22, 0.22],
+    [0.21, 0.40],
+    [0.23, 0.53],
+    [0.32, 0.61],
+    [0.46, 0.58],
+    [0.56, 0.55],
+    [0.63, 0.61],
+    [0.59, 0.69],
+    [0.46, 0.72],
+    [0.31, 0.80],
+    [0.17, 0.86],
+    [0.08, 0.90],
+    [0.17, 0.98],
+    [0.21, 1.12],
+    [0.15, 1.26],
+    [0.0, 1.31],
+    [-0.15, 1.26],
+    [-0.21, 1.12],
+    [-0.17, 0.98],
+    [-0.08, 0.90],
+    [-0.17, 0.86],
+    [-0.28, 0.93],
+    [-0.37, 1.05],
+    [-0.41, 1.17],
+    [-0.48, 1.23],
+    [-0.54, 1.16],
+    [-0.50, 1.06],
+    [-0.43, 0.93],
+    [-0.34, 0.79],
+    [-0.24, 0.66],
+    [-0.23, 0.53],
+    [-0.21, 0.40],
+    [-0.22, 0.22],
+    [-0.28, 0.09],
+    [-0.34, 0.04],
+    [-0.29, -0.02],
+    [-0.13, -0.01],
+    [-0.09, 0.05],
+    [-0.06, 0.20],
+];
+
+/// The default shape: a waving gingerbread figure with two eyes and two buttons as holes.
+/// Boundary points are spaced about 0.025 apart along the outline.
+pub fn gingerbread() -> Outline {
+    let mut outline = Outline::new(closed_spline(&FIGURE, 0.025));
+    for (cx, cy, rx, ry) in
+        [(-0.07, 1.14, 0.028, 0.04), (0.07, 1.14, 0.028, 0.04), (0.0, 0.74, 0.03, 0.03), (0.0, 0.60, 0.03, 0.03)]
+    {
+        outline = outline.with_hole(ellipse([cx, cy], rx, ry, 16));
+    }
+    outline
+}
+
+/// An axis-aligned ellipse as a counter-clockwise polygon of `n` points.
+pub fn ellipse(centre: Point, rx: f64, ry: f64, n: usize) -> Vec<Point> {
+    (0..n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            [centre[0] + rx * t.cos(), centre[1] + ry * t.sin()]
+        })
+        .collect()
+}
+
+/// Samples the closed centripetal Catmull-Rom spline through `control`, with about
+/// `spacing` between consecutive samples; every control point is a sample.
+pub fn closed_spline(control: &[Point], spacing: f64) -> Vec<Point> {
+    let n = control.len();
+    let mut out = Vec::new();
+    for i in 0..n {
+        let p = [control[(i + n - 1) % n], control[i], control[(i + 1) % n], control[(i + 2) % n]];
+        let steps = (distance(p[1], p[2]) / spacing).ceil().max(1.0) as usize;
+        for s in 0..steps {
+            out.push(catmull_rom(p, s as f64 / steps as f64));
+        }
+    }
+    out
+}
+
+/// Point at parameter `u` in [0, 1] on the centripetal Catmull-Rom segment from `p[1]` to
+/// `p[2]` (Barry-Goldman pyramidal evaluation with knot spacing |chord|^0.5).
+fn catmull_rom(p: [Point; 4], u: f64) -> Point {
+    let knot = |a: Point, b: Point| distance(a, b).sqrt().max(1e-12);
+    let t0 = 0.0;
+    let t1 = t0 + knot(p[0], p[1]);
+    let t2 = t1 + knot(p[1], p[2]);
+    let t3 = t2 + knot(p[2], p[3]);
+    let t = t1 + u * (t2 - t1);
+    let lerp = |a: Point, b: Point, ta: f64, tb: f64| {
+        let w = (t - ta) / (tb - ta);
+        [a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])]
+    };
+    let a1 = lerp(p[0], p[1], t0, t1);
+    let a2 = lerp(p[1], p[2], t1, t2);
+    let a3 = lerp(p[2], p[3], t2, t3);
+    let b1 = lerp(a1, a2, t0, t2);
+    let b2 = lerp(a2, a3, t1, t3);
+    lerp(b1, b2, t1, t2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::polygon_area;
+
+    #[test]
+    fn spline_passes_through_its_control_points() {
+        let control = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let samples = closed_spline(&control, 0.1);
+        for c in control {
+            assert!(samples.contains(&c));
+        }
+    }
+
+    #[test]
+    fn figure_is_a_valid_counter_clockwise_outline() {
+        let figure = gingerbread();
+        assert!(polygon_area(&figure.outer) > 0.0);
+        let rings = figure.validated(10_000).expect("the default shape is valid");
+        assert_eq!(rings.len(), 5);
+    }
+}

@@ -1,0 +1,247 @@
+//! Outline to mesh: constrained Delaunay triangulation with Ruppert-style refinement.
+//!
+//! This is the only module that touches spade. The outline's segments become constraint
+//! edges; refinement inserts Steiner points until every triangle inside the shape is below
+//! the area limit and above the minimum angle (near sharp input corners no triangulation can
+//! promise the angle, and refinement leaves those corners alone). Constraint edges may be
+//! split, never moved, so the boundary of the mesh traces the outline exactly.
+
+use std::fmt;
+
+use spade::{
+    AngleLimit, ConstrainedDelaunayTriangulation, InsertionError, Point2, RefinementParameters, Triangulation,
+};
+
+use crate::mesh::{Mesh, MeshError, MAX_MESH_ELEMENTS};
+use crate::outline::{Outline, OutlineError, Ring};
+
+/// The largest minimum angle accepted, in degrees. Delaunay refinement is only guaranteed
+/// to terminate below about 20.7 degrees and works well in practice up to about 33.
+pub const MAX_MIN_ANGLE_DEGREES: f64 = 34.0;
+
+/// Triangulation settings, with builders: `TriangulationOptions::default().with_target_edge_length(0.1)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriangulationOptions {
+    /// Upper bound on triangle area; `None` for no bound.
+    pub max_area: Option<f64>,
+    /// Desired edge length; becomes an area bound of an equilateral triangle with this
+    /// edge (`sqrt(3)/4 h^2`). When both are set, the smaller area bound applies.
+    pub target_edge_length: Option<f64>,
+    /// Smallest angle in degrees that refinement enforces (0 disables angle refinement).
+    pub min_angle_degrees: f64,
+    /// Largest number of vertices of the result, outline points included.
+    pub max_vertices: usize,
+}
+
+impl Default for TriangulationOptions {
+    fn default() -> Self {
+        Self { max_area: None, target_edge_length: None, min_angle_degrees: 25.0, max_vertices: 100_000 }
+    }
+}
+
+impl TriangulationOptions {
+    /// Sets the area bound.
+    pub fn with_max_area(mut self, area: f64) -> Self {
+        self.max_area = Some(area);
+        self
+    }
+
+    /// Sets the target edge length.
+    pub fn with_target_edge_length(mut self, length: f64) -> Self {
+        self.target_edge_length = Some(length);
+        self
+    }
+
+    /// Sets the minimum angle in degrees.
+    pub fn with_min_angle_degrees(mut self, degrees: f64) -> Self {
+        self.min_angle_degrees = degrees;
+        self
+    }
+
+    /// Sets the vertex limit.
+    pub fn with_max_vertices(mut self, count: usize) -> Self {
+        self.max_vertices = count;
+        self
+    }
+
+    /// The area bound that refinement enforces, combining `max_area` and
+    /// `target_edge_length`.
+    pub fn effective_max_area(&self) -> Option<f64> {
+        let from_edge = self.target_edge_length.map(|h| 3f64.sqrt() / 4.0 * h * h);
+        match (self.max_area, from_edge) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+
+    fn validate(&self) -> Result<(), TriangulationError> {
+        let positive = |name, value: Option<f64>| match value {
+            Some(v) if !(v.is_finite() && v > 0.0) => {
+                Err(TriangulationError::InvalidOption { name, value: v, expected: "a finite number above 0" })
+            }
+            _ => Ok(()),
+        };
+        positive("maxArea", self.max_area)?;
+        positive("targetEdgeLength", self.target_edge_length)?;
+        let angle = self.min_angle_degrees;
+        if !(0.0..=MAX_MIN_ANGLE_DEGREES).contains(&angle) {
+            return Err(TriangulationError::InvalidOption {
+                name: "minAngle",
+                value: angle,
+                expected: "an angle in degrees from 0 to 34",
+            });
+        }
+        if self.max_vertices < 3 || self.max_vertices > MAX_MESH_ELEMENTS {
+            return Err(TriangulationError::InvalidOption {
+                name: "maxVertices",
+                value: self.max_vertices as f64,
+                expected: "a count from 3 to 16777216",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Why triangulation failed.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum TriangulationError {
+    /// The outline is invalid.
+    Outline(OutlineError),
+    /// An option is out of range.
+    InvalidOption {
+        /// The option's name as the JavaScript API spells it.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What would be accepted.
+        expected: &'static str,
+    },
+    /// Exact arithmetic found a segment crossing another one that the outline check, in
+    /// floating point, let through (nearly touching segments).
+    ConstraintConflict {
+        /// The ring of the segment.
+        ring: Ring,
+        /// The segment's index in the ring (after repeated points are dropped).
+        segment: usize,
+    },
+    /// A coordinate is too large or too close to zero for exact geometric predicates.
+    CoordinateOutOfRange,
+    /// Meeting the area and angle bounds needs more vertices than the limit.
+    TooManyVertices {
+        /// The vertex limit.
+        limit: usize,
+    },
+    /// The triangulation produced an invalid mesh (a bug: please report it).
+    Mesh(MeshError),
+}
+
+impl fmt::Display for TriangulationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Outline(e) => e.fmt(f),
+            Self::InvalidOption { name, value, expected } => {
+                write!(f, "option {name} is {value}, expected {expected}")
+            }
+            Self::ConstraintConflict { ring, segment } => {
+                write!(f, "segment {segment} of {ring} touches or crosses another segment of the outline")
+            }
+            Self::CoordinateOutOfRange => write!(
+                f,
+                "a coordinate is too large (above 1e60) or too close to zero (below 1e-42 but not 0) to triangulate"
+            ),
+            Self::TooManyVertices { limit } => write!(
+                f,
+                "the requested triangle size and angle need more than {limit} vertices; \
+                 raise maxVertices, or ask for larger triangles or a smaller minimum angle"
+            ),
+            Self::Mesh(e) => write!(f, "triangulation produced an invalid mesh (a bug): {e}"),
+        }
+    }
+}
+
+impl std::error::Error for TriangulationError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Outline(e) => Some(e),
+            Self::Mesh(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<OutlineError> for TriangulationError {
+    fn from(e: OutlineError) -> Self {
+        Self::Outline(e)
+    }
+}
+
+impl From<InsertionError> for TriangulationError {
+    fn from(_: InsertionError) -> Self {
+        // NaN is ruled out by outline validation, leaving the range errors.
+        Self::CoordinateOutOfRange
+    }
+}
+
+/// Triangulates an outline (with its holes) into a validated mesh.
+///
+/// ```
+/// use akap::{triangulate, Outline, TriangulationOptions};
+/// let square = Outline::new(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+/// let mesh = triangulate(&square, &TriangulationOptions::default().with_target_edge_length(0.2)).unwrap();
+/// assert!((mesh.area() - 1.0).abs() < 1e-12);
+/// ```
+pub fn triangulate(outline: &Outline, options: &TriangulationOptions) -> Result<Mesh, TriangulationError> {
+    options.validate()?;
+    let rings = outline.validated(options.max_vertices)?;
+
+    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
+    for (k, ring) in rings.iter().enumerate() {
+        let mut handles = Vec::with_capacity(ring.len());
+        for p in ring {
+            handles.push(cdt.insert(Point2::new(p[0], p[1]))?);
+        }
+        for i in 0..handles.len() {
+            let (a, b) = (handles[i], handles[(i + 1) % handles.len()]);
+            // Outline validation rules out crossings; spade's exact predicates are the last word.
+            if a == b || !cdt.can_add_constraint(a, b) {
+                return Err(TriangulationError::ConstraintConflict { ring: Ring(k), segment: i });
+            }
+            cdt.add_constraint(a, b);
+        }
+    }
+
+    let mut params = RefinementParameters::<f64>::new()
+        .exclude_outer_faces(true)
+        .with_angle_limit(AngleLimit::from_deg(options.min_angle_degrees))
+        .with_max_additional_vertices(options.max_vertices.saturating_sub(cdt.num_vertices()));
+    if let Some(area) = options.effective_max_area() {
+        params = params.with_max_allowed_area(area);
+    }
+    let result = cdt.refine(params);
+    if !result.refinement_complete {
+        return Err(TriangulationError::TooManyVertices { limit: options.max_vertices });
+    }
+
+    let mut outside = vec![false; cdt.num_all_faces()];
+    for face in &result.excluded_faces {
+        outside[face.index()] = true;
+    }
+    // Keep the vertices of inside faces only, numbered in order of first use.
+    let mut new_index = vec![u32::MAX; cdt.num_vertices()];
+    let mut positions = Vec::with_capacity(cdt.num_vertices());
+    let mut triangles = Vec::with_capacity(cdt.num_inner_faces());
+    for face in cdt.inner_faces().filter(|f| !outside[f.fix().index()]) {
+        let corners = face.vertices().map(|v| {
+            let slot = &mut new_index[v.fix().index()];
+            if *slot == u32::MAX {
+                *slot = positions.len() as u32;
+                let p = v.position();
+                positions.push([p.x, p.y]);
+            }
+            *slot
+        });
+        triangles.push(corners);
+    }
+    Mesh::new(positions, triangles).map_err(TriangulationError::Mesh)
+}
