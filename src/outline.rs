@@ -316,7 +316,8 @@ mod tests {
     #[test]
     fn reports_a_pair_of_segments_that_really_cross() {
         let outline = Outline::new(square(0.0, 0.0, 10.0)).with_hole(square(5.0, 5.0, 10.0));
-        let Err(OutlineError::SelfIntersection { ring_a, segment_a, ring_b, segment_b }) = outline.validated(100) else {
+        let Err(OutlineError::SelfIntersection { ring_a, segment_a, ring_b, segment_b }) = outline.validated(100)
+        else {
             panic!("expected an intersection");
         };
         assert_ne!(ring_a, ring_b);
