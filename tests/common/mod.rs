@@ -5,7 +5,7 @@ use akap::geometry::{angle_at, distance, orient, polygon_area, triangle_area, Po
 use akap::{Mesh, Outline};
 
 /// Rotates every point of an outline by `angle` about the origin and shifts it by `offset`.
-pub fn moved(outline: &Outline, angle: f64, offset: Point) -> Outline {
+pub(crate) fn moved(outline: &Outline, angle: f64, offset: Point) -> Outline {
     let (s, c) = angle.sin_cos();
     let map = |ring: &Vec<Point>| -> Vec<Point> {
         ring.iter().map(|p| [c * p[0] - s * p[1] + offset[0], s * p[0] + c * p[1] + offset[1]]).collect()
@@ -14,7 +14,7 @@ pub fn moved(outline: &Outline, angle: f64, offset: Point) -> Outline {
 }
 
 /// Every triangle is counter-clockwise with positive area.
-pub fn assert_positive_triangles(mesh: &Mesh) {
+pub(crate) fn assert_positive_triangles(mesh: &Mesh) {
     let p = mesh.positions();
     for (t, &[a, b, c]) in mesh.triangles().iter().enumerate() {
         let area = triangle_area(p[a as usize], p[b as usize], p[c as usize]);
@@ -23,7 +23,7 @@ pub fn assert_positive_triangles(mesh: &Mesh) {
 }
 
 /// The triangles cover the outline's area minus its holes (to rounding).
-pub fn assert_area_matches(mesh: &Mesh, outline: &Outline) {
+pub(crate) fn assert_area_matches(mesh: &Mesh, outline: &Outline) {
     let p = mesh.positions();
     let sum: f64 =
         mesh.triangles().iter().map(|&[a, b, c]| triangle_area(p[a as usize], p[b as usize], p[c as usize])).sum();
@@ -34,7 +34,7 @@ pub fn assert_area_matches(mesh: &Mesh, outline: &Outline) {
 
 /// Every segment of the outline is covered by boundary edges of the mesh lying on it, and
 /// the boundary has no other edges.
-pub fn assert_outline_edges_survive(mesh: &Mesh, outline: &Outline) {
+pub(crate) fn assert_outline_edges_survive(mesh: &Mesh, outline: &Outline) {
     let p = mesh.positions();
     let scale = outline.outer.iter().map(|q| q[0].abs().max(q[1].abs())).fold(0.0, f64::max);
     let tol = 1e-9 * scale;
@@ -74,7 +74,7 @@ pub fn assert_outline_edges_survive(mesh: &Mesh, outline: &Outline) {
 
 /// The segments of every outline corner whose interior angle is below `below_degrees`, as
 /// `(previous point, corner, next point)`.
-pub fn sharp_corners(outline: &Outline, below_degrees: f64) -> Vec<[Point; 3]> {
+pub(crate) fn sharp_corners(outline: &Outline, below_degrees: f64) -> Vec<[Point; 3]> {
     let mut sharp = Vec::new();
     for ring in outline.rings() {
         let n = ring.len();
@@ -99,7 +99,7 @@ pub fn sharp_corners(outline: &Outline, below_degrees: f64) -> Vec<[Point; 3]> {
 }
 
 /// The smallest angle of a triangle, in degrees.
-pub fn min_angle_degrees(a: Point, b: Point, c: Point) -> f64 {
+pub(crate) fn min_angle_degrees(a: Point, b: Point, c: Point) -> f64 {
     angle_at(c, a, b).min(angle_at(a, b, c)).min(angle_at(b, c, a)).to_degrees()
 }
 
@@ -115,7 +115,7 @@ fn on_segment(q: Point, a: Point, b: Point) -> bool {
 /// triangle whose shortest edge spans the two segments of the corner cannot be improved
 /// without cutting the input. So: every triangle with an angle below `limit` must have its
 /// shortest edge joining the two sides of one of the `sharp` corners.
-pub fn assert_min_angle_away_from(mesh: &Mesh, limit: f64, sharp: &[[Point; 3]]) {
+pub(crate) fn assert_min_angle_away_from(mesh: &Mesh, limit: f64, sharp: &[[Point; 3]]) {
     let p = mesh.positions();
     for (t, &[a, b, c]) in mesh.triangles().iter().enumerate() {
         let q = [p[a as usize], p[b as usize], p[c as usize]];
