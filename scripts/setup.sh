@@ -145,7 +145,7 @@ fi
 # --- npm packages ----------------------------------------------------------------------------
 if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   step "npm ci"
-  npm ci --no-audit --no-fund --loglevel=error || fail "npm ci failed" "check access to the npm registry; delete node_modules and re-run"
+  npm ci --no-audit --no-fund --loglevel=error 2>&1 | tail -n 20 || fail "npm ci failed" "check access to the npm registry; delete node_modules and re-run"
 else
   step "npm packages: up to date"
 fi

@@ -29,7 +29,7 @@ pub mod shapes;
 pub mod triangulate;
 
 #[cfg(target_arch = "wasm32")]
-mod wasm;
+pub mod wasm;
 
 pub use error::Error;
 pub use mesh::{Mesh, MeshError};

@@ -2,3 +2,5 @@
 
 mod common;
 mod triangulation;
+#[cfg(target_arch = "wasm32")]
+mod wasm_api;

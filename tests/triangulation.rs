@@ -3,7 +3,11 @@
 use akap::geometry::{triangle_area, Point};
 use akap::shapes::{ellipse, gingerbread};
 use akap::{triangulate, Outline, OutlineError, TriangulationError, TriangulationOptions};
+#[cfg(not(target_arch = "wasm32"))]
 use proptest::prelude::*;
+// On wasm32 the same tests run under wasm-bindgen-test in Node.
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use crate::common::*;
 
@@ -115,6 +119,7 @@ fn coordinates_out_of_exact_range_are_reported() {
     assert_eq!(triangulate(&huge, &TriangulationOptions::default()), Err(TriangulationError::CoordinateOutOfRange));
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// A star-shaped polygon: vertices at sorted angles with radii in [0.3, 1]; always simple.
 fn star_shaped() -> impl Strategy<Value = Vec<Point>> {
     prop::collection::vec((0.0..1.0f64, 0.3..1.0f64), 3..40).prop_map(|mut v| {
@@ -124,6 +129,7 @@ fn star_shaped() -> impl Strategy<Value = Vec<Point>> {
     })
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 

@@ -1,0 +1,11 @@
+import js from "@eslint/js";
+import tseslint from "typescript-eslint";
+
+export default tseslint.config(
+  { ignores: ["dist", "www/pkg", "www/lib", "target", "node_modules", "test-results", "playwright-report"] },
+  js.configs.recommended,
+  ...tseslint.configs.strict,
+  {
+    languageOptions: { globals: { window: "readonly", document: "readonly", console: "readonly" } },
+  },
+);

@@ -1,0 +1,49 @@
+/**
+ * The mapping between shape coordinates (y up) and canvas pixels (y down): the shape's
+ * bounding box fitted into the canvas with a margin, centred, aspect ratio kept.
+ */
+
+/** `pixel = (offsetX + scale * x, offsetY - scale * y)`, in device pixels. */
+export interface View {
+  scale: number;
+  offsetX: number;
+  offsetY: number;
+}
+
+/** Bounding box of xy-interleaved positions; throws for an empty list. */
+export function bounds(positions: ArrayLike<number>): { minX: number; minY: number; maxX: number; maxY: number } {
+  if (positions.length < 2) throw new Error("bounds of an empty point list");
+  let minX = Infinity;
+  let minY = Infinity;
+  let maxX = -Infinity;
+  let maxY = -Infinity;
+  for (let i = 0; i + 1 < positions.length; i += 2) {
+    const x = positions[i]!;
+    const y = positions[i + 1]!;
+    minX = Math.min(minX, x);
+    maxX = Math.max(maxX, x);
+    minY = Math.min(minY, y);
+    maxY = Math.max(maxY, y);
+  }
+  return { minX, minY, maxX, maxY };
+}
+
+/**
+ * Fits the box of `positions` into a `width` x `height` pixel canvas, leaving `margin`
+ * (a fraction of the smaller side) free on every side.
+ */
+export function fitView(positions: ArrayLike<number>, width: number, height: number, margin = 0.05): View {
+  const b = bounds(positions);
+  const pad = margin * Math.min(width, height);
+  const spanX = Math.max(b.maxX - b.minX, Number.EPSILON);
+  const spanY = Math.max(b.maxY - b.minY, Number.EPSILON);
+  const scale = Math.max(Math.min((width - 2 * pad) / spanX, (height - 2 * pad) / spanY), Number.MIN_VALUE);
+  const cx = (b.minX + b.maxX) / 2;
+  const cy = (b.minY + b.maxY) / 2;
+  return { scale, offsetX: width / 2 - scale * cx, offsetY: height / 2 + scale * cy };
+}
+
+/** Shape coordinates to pixels. */
+export function toPixel(view: View, x: number, y: number): [number, number] {
+  return [view.offsetX + view.scale * x, view.offsetY - view.scale * y];
+}
