@@ -174,18 +174,21 @@ impl Outline {
             if clean.len() < 3 {
                 return Err(OutlineError::TooFewPoints { ring: Ring(k), count: clean.len() });
             }
-            let (lo, hi) = bounding_box(clean.iter().copied()).expect("ring has points");
-            let diagonal2 = (hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2);
-            if polygon_area(&clean).abs() <= ZERO_AREA_RELATIVE * diagonal2 {
-                return Err(OutlineError::ZeroArea { ring: Ring(k) });
-            }
             rings.push(clean);
         }
         let count: usize = rings.iter().map(Vec::len).sum();
         if count > max_points {
             return Err(OutlineError::TooManyPoints { count, limit: max_points });
         }
+        // Crossings first: a figure-eight has zero signed area, but its problem is the crossing.
         check_no_intersections(&rings)?;
+        for (k, ring) in rings.iter().enumerate() {
+            let (lo, hi) = bounding_box(ring.iter().copied()).expect("ring has points");
+            let diagonal2 = (hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2);
+            if polygon_area(ring).abs() <= ZERO_AREA_RELATIVE * diagonal2 {
+                return Err(OutlineError::ZeroArea { ring: Ring(k) });
+            }
+        }
         // Rings do not meet, so one point decides containment for a whole ring.
         for k in 1..rings.len() {
             if !point_in_polygon(rings[k][0], &rings[0]) {
@@ -290,7 +293,7 @@ mod tests {
                 Outline::new(vec![[0.0, 0.0], [f64::INFINITY, 0.0], [0.0, 1.0]]),
                 OutlineError::NonFinite { ring: Ring(0), point: 1 },
             ),
-            (Outline::new(vec![[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]), OutlineError::ZeroArea { ring: Ring(0) }),
+            (Outline::new(vec![[0.0, 0.0], [1.0, 0.0], [0.5, 1e-13]]), OutlineError::ZeroArea { ring: Ring(0) }),
             (
                 Outline::new(bowtie),
                 OutlineError::SelfIntersection { ring_a: Ring(0), segment_a: 0, ring_b: Ring(0), segment_b: 2 },
@@ -325,6 +328,12 @@ mod tests {
         let seg = |r: Ring, i: usize| (rings[r.0][i], rings[r.0][(i + 1) % rings[r.0].len()]);
         let ((a, b), (c, d)) = (seg(ring_a, segment_a), seg(ring_b, segment_b));
         assert!(segments_intersect(a, b, c, d));
+    }
+
+    #[test]
+    fn collinear_ring_folds_back_on_itself() {
+        let line = Outline::new(vec![[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]);
+        assert!(matches!(line.validated(100), Err(OutlineError::SelfIntersection { .. })));
     }
 
     #[test]

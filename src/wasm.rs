@@ -82,7 +82,7 @@ impl JsMesh {
 
 /// Triangulation options as JavaScript passes them; every field optional.
 #[derive(Deserialize, Default)]
-#[serde(rename_all = "camelCase", deny_unknown_fields)]
+#[serde(rename_all = "camelCase")]
 struct JsTriangulationOptions {
     max_area: Option<f64>,
     target_edge_length: Option<f64>,
@@ -91,10 +91,25 @@ struct JsTriangulationOptions {
 }
 
 impl JsTriangulationOptions {
+    const NAMES: [&'static str; 4] = ["maxArea", "targetEdgeLength", "minAngle", "maxVertices"];
+
     fn parse(value: JsValue) -> Result<TriangulationOptions, JsError> {
         let given: Self = if value.is_undefined() || value.is_null() {
             Self::default()
         } else {
+            // serde-wasm-bindgen reads only the fields it knows, so a misspelt option
+            // would pass silently: check the keys here.
+            if let Some(object) = value.dyn_ref::<Object>() {
+                for key in Object::keys(object).iter() {
+                    let key = key.as_string().unwrap_or_default();
+                    if !Self::NAMES.contains(&key.as_str()) {
+                        return Err(JsError::new(&format!(
+                            "unknown triangulation option `{key}`; the options are {}",
+                            Self::NAMES.join(", ")
+                        )));
+                    }
+                }
+            }
             serde_wasm_bindgen::from_value(value)
                 .map_err(|e| JsError::new(&format!("invalid triangulation options: {e}")))?
         };

@@ -1,6 +1,8 @@
 //! Triangulation: the invariants any correct triangulation of an outline must satisfy.
 
-use akap::geometry::{triangle_area, Point};
+use akap::geometry::triangle_area;
+#[cfg(not(target_arch = "wasm32"))]
+use akap::geometry::Point;
 use akap::shapes::{ellipse, gingerbread};
 use akap::{triangulate, Outline, OutlineError, TriangulationError, TriangulationOptions};
 #[cfg(not(target_arch = "wasm32"))]

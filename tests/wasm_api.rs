@@ -52,7 +52,7 @@ fn bad_input_becomes_a_javascript_error() {
         (triangulate_outline(&[0.0, 0.0, 1.0, 0.0], JsValue::UNDEFINED, JsValue::UNDEFINED), "at least 3"),
         (triangulate_outline(&[0.0, 0.0, 1.0, f64::NAN, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED), "not a finite"),
         (triangulate_outline(&[0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED), "intersects itself"),
-        (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"maxArae": 1}"#)), "unknown field"),
+        (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"maxArae": 1}"#)), "unknown triangulation option"),
         (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"minAngle": 50}"#)), "minAngle"),
         (triangulate_outline(&square, "nope".into(), JsValue::UNDEFINED), "holes must be an array"),
         (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"targetEdgeLength": 0.0001, "maxVertices": 100}"#)), "more than 100 vertices"),

@@ -35,8 +35,8 @@ export function bounds(positions: ArrayLike<number>): { minX: number; minY: numb
 export function fitView(positions: ArrayLike<number>, width: number, height: number, margin = 0.05): View {
   const b = bounds(positions);
   const pad = margin * Math.min(width, height);
-  const spanX = Math.max(b.maxX - b.minX, Number.EPSILON);
-  const spanY = Math.max(b.maxY - b.minY, Number.EPSILON);
+  const spanX = b.maxX - b.minX || 1;
+  const spanY = b.maxY - b.minY || 1;
   const scale = Math.max(Math.min((width - 2 * pad) / spanX, (height - 2 * pad) / spanY), Number.MIN_VALUE);
   const cx = (b.minX + b.maxX) / 2;
   const cy = (b.minY + b.maxY) / 2;

@@ -1,0 +1,71 @@
+/** The public API in Node, through the real wasm package (built by scripts/build.sh). */
+import { beforeAll, describe, expect, it } from "vitest";
+import { defaultShape, init, meshFromArrays, triangulate } from "../../www/src/index.js";
+
+beforeAll(async () => {
+  await init();
+});
+
+function ringArea(ring: ArrayLike<number>): number {
+  let twice = 0;
+  const n = ring.length / 2;
+  for (let i = 0; i < n; i++) {
+    const j = (i + 1) % n;
+    twice += ring[2 * i]! * ring[2 * j + 1]! - ring[2 * j]! * ring[2 * i + 1]!;
+  }
+  return twice / 2;
+}
+
+describe("triangulate", () => {
+  it("covers a square with a hole exactly, with counter-clockwise triangles", () => {
+    const mesh = triangulate(
+      { outer: [0, 0, 4, 0, 4, 4, 0, 4], holes: [[1, 1, 1, 2, 2, 2, 2, 1]] },
+      { targetEdgeLength: 0.3, minAngle: 25 },
+    );
+    expect(mesh.positions.length).toBe(2 * mesh.vertexCount);
+    expect(mesh.triangles.length).toBe(3 * mesh.triangleCount);
+    let sum = 0;
+    const p = mesh.positions;
+    for (let i = 0; i < mesh.triangles.length; i += 3) {
+      const [a, b, c] = [mesh.triangles[i]!, mesh.triangles[i + 1]!, mesh.triangles[i + 2]!];
+      const area = ringArea([p[2 * a]!, p[2 * a + 1]!, p[2 * b]!, p[2 * b + 1]!, p[2 * c]!, p[2 * c + 1]!]);
+      expect(area).toBeGreaterThan(0);
+      sum += area;
+    }
+    expect(sum).toBeCloseTo(15, 10);
+    expect(mesh.area).toBeCloseTo(15, 10);
+    // Area bound from the edge length: sqrt(3)/4 h^2 per triangle at most.
+    expect(mesh.triangleCount).toBeGreaterThanOrEqual(15 / ((Math.sqrt(3) / 4) * 0.09));
+  });
+
+  it("triangulates the default shape to its outline's area", () => {
+    const shape = defaultShape();
+    const expected = Math.abs(ringArea(shape.outer)) - shape.holes.reduce((s, h) => s + Math.abs(ringArea(h)), 0);
+    const mesh = triangulate(shape, { targetEdgeLength: 0.05 });
+    expect(mesh.area).toBeCloseTo(expected, 9);
+    expect(mesh.boundaryEdges.length / 2).toBe(mesh.boundaryVertices.length);
+  });
+
+  it("throws Errors that name the problem", () => {
+    expect(() => triangulate({ outer: [0, 0, 1, 0] })).toThrow(/at least 3/);
+    expect(() => triangulate({ outer: [0, 0, 2, 2, 2, 0, 0, 1] })).toThrow(/intersects itself/);
+    expect(() => triangulate({ outer: [0, 0, 1, 0, NaN, 1] })).toThrow(/not a finite number/);
+    expect(() => triangulate({ outer: [0, 0, 1, 0, 0, 1] }, { minAngle: 60 })).toThrow(/minAngle/);
+    expect(() => triangulate({ outer: [0, 0, 1, 0, 0, 1] }, { typo: 1 } as never)).toThrow(/unknown triangulation option/);
+    expect(() => triangulate({ outer: "0,0" as never })).toThrow(TypeError);
+  });
+});
+
+describe("meshFromArrays", () => {
+  it("accepts a valid mesh and finds its boundary", () => {
+    const mesh = meshFromArrays([0, 0, 1, 0, 1, 1, 0, 1], [0, 1, 2, 0, 2, 3]);
+    expect(Array.from(mesh.boundaryVertices)).toEqual([0, 1, 2, 3]);
+    expect(mesh.area).toBe(1);
+  });
+
+  it("rejects clockwise triangles and bad indices", () => {
+    expect(() => meshFromArrays([0, 0, 1, 0, 0, 1], [0, 2, 1])).toThrow(/counter-clockwise/);
+    expect(() => meshFromArrays([0, 0, 1, 0, 0, 1], [0, 1, 5])).toThrow(/refers to vertex 5/);
+    expect(() => meshFromArrays([0, 0, 1, 0, 0, 1], [0, 1, -1])).toThrow(RangeError);
+  });
+});

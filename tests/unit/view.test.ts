@@ -1,0 +1,30 @@
+import { describe, expect, it } from "vitest";
+import { bounds, fitView, toPixel } from "../../www/app/view.js";
+
+describe("fitView", () => {
+  it("centres the box and fits its limiting side inside the margin", () => {
+    // A 2 x 1 box in a 1000 x 1000 canvas with a 5% margin: width limits, 900 px for 2 units.
+    const positions = [-1, 0, 1, 0, 1, 1, -1, 1];
+    const view = fitView(positions, 1000, 1000, 0.05);
+    expect(view.scale).toBeCloseTo(450, 12);
+    expect(toPixel(view, -1, 0)).toEqual([50, 725]);
+    expect(toPixel(view, 1, 1)).toEqual([950, 275]);
+  });
+
+  it("flips y so that shapes stand upright", () => {
+    const view = fitView([0, 0, 1, 1], 100, 100, 0);
+    const [, top] = toPixel(view, 0, 1);
+    const [, bottom] = toPixel(view, 0, 0);
+    expect(top).toBeLessThan(bottom);
+  });
+
+  it("keeps a finite scale for a single point", () => {
+    const view = fitView([3, 4], 200, 100);
+    expect(Number.isFinite(view.scale)).toBe(true);
+    expect(toPixel(view, 3, 4)).toEqual([100, 50]);
+  });
+
+  it("rejects an empty list", () => {
+    expect(() => bounds([])).toThrow(/empty/);
+  });
+});
