@@ -113,9 +113,11 @@ impl JsTriangulationOptions {
             serde_wasm_bindgen::from_value(value)
                 .map_err(|e| JsError::new(&format!("invalid triangulation options: {e}")))?
         };
-        let mut options = TriangulationOptions::default();
-        options.max_area = given.max_area;
-        options.target_edge_length = given.target_edge_length;
+        let mut options = TriangulationOptions {
+            max_area: given.max_area,
+            target_edge_length: given.target_edge_length,
+            ..TriangulationOptions::default()
+        };
         if let Some(angle) = given.min_angle {
             options.min_angle_degrees = angle;
         }

@@ -21,7 +21,8 @@ fn message(result: Result<impl Sized, wasm_bindgen::JsError>) -> String {
 fn square_with_hole_covers_its_area() {
     let outer = [0.0, 0.0, 3.0, 0.0, 3.0, 3.0, 0.0, 3.0];
     let holes = Array::of1(&Float64Array::from(&[1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0, 1.0][..]));
-    let mesh = triangulate_outline(&outer, holes.into(), options(r#"{"targetEdgeLength": 0.25, "minAngle": 28}"#)).unwrap();
+    let mesh =
+        triangulate_outline(&outer, holes.into(), options(r#"{"targetEdgeLength": 0.25, "minAngle": 28}"#)).unwrap();
     assert!((mesh.area() - 8.0).abs() < 1e-12);
     let positions = mesh.positions();
     let triangles = mesh.triangles();
@@ -50,12 +51,28 @@ fn bad_input_becomes_a_javascript_error() {
     let square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
     let cases: Vec<(Result<JsMesh, wasm_bindgen::JsError>, &str)> = vec![
         (triangulate_outline(&[0.0, 0.0, 1.0, 0.0], JsValue::UNDEFINED, JsValue::UNDEFINED), "at least 3"),
-        (triangulate_outline(&[0.0, 0.0, 1.0, f64::NAN, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED), "not a finite"),
-        (triangulate_outline(&[0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED), "intersects itself"),
-        (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"maxArae": 1}"#)), "unknown triangulation option"),
+        (
+            triangulate_outline(&[0.0, 0.0, 1.0, f64::NAN, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED),
+            "not a finite",
+        ),
+        (
+            triangulate_outline(&[0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED),
+            "intersects itself",
+        ),
+        (
+            triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"maxArae": 1}"#)),
+            "unknown triangulation option",
+        ),
         (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"minAngle": 50}"#)), "minAngle"),
         (triangulate_outline(&square, "nope".into(), JsValue::UNDEFINED), "holes must be an array"),
-        (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"targetEdgeLength": 0.0001, "maxVertices": 100}"#)), "more than 100 vertices"),
+        (
+            triangulate_outline(
+                &square,
+                JsValue::UNDEFINED,
+                options(r#"{"targetEdgeLength": 0.0001, "maxVertices": 100}"#),
+            ),
+            "more than 100 vertices",
+        ),
         (JsMesh::new(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0], &[0, 2, 1]), "counter-clockwise"),
         (JsMesh::new(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0], &[0, 1, 3]), "refers to vertex 3"),
     ];

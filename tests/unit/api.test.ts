@@ -51,7 +51,9 @@ describe("triangulate", () => {
     expect(() => triangulate({ outer: [0, 0, 2, 2, 2, 0, 0, 1] })).toThrow(/intersects itself/);
     expect(() => triangulate({ outer: [0, 0, 1, 0, NaN, 1] })).toThrow(/not a finite number/);
     expect(() => triangulate({ outer: [0, 0, 1, 0, 0, 1] }, { minAngle: 60 })).toThrow(/minAngle/);
-    expect(() => triangulate({ outer: [0, 0, 1, 0, 0, 1] }, { typo: 1 } as never)).toThrow(/unknown triangulation option/);
+    expect(() => triangulate({ outer: [0, 0, 1, 0, 0, 1] }, { typo: 1 } as never)).toThrow(
+      /unknown triangulation option/,
+    );
     expect(() => triangulate({ outer: "0,0" as never })).toThrow(TypeError);
   });
 });

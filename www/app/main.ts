@@ -49,7 +49,12 @@ async function main(): Promise<void> {
   const elapsed = performance.now() - started;
   status.textContent = `${mesh.vertexCount} vertices, ${mesh.triangleCount} triangles (triangulated in ${elapsed.toFixed(1)} ms)`;
 
-  const state: State = { mesh, view: { scale: 1, offsetX: 0, offsetY: 0 }, wireframe: wireframe.checked, pixelRatio: 1 };
+  const state: State = {
+    mesh,
+    view: { scale: 1, offsetX: 0, offsetY: 0 },
+    wireframe: wireframe.checked,
+    pixelRatio: 1,
+  };
   window.akapDemo = { state };
 
   const redraw = (): void => {

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# npm test: installs what is missing, builds, and runs every check. All checks run even
+# when one fails; the summary at the end lists each, and the exit code is non-zero if any
+# failed. CHECKS="fmt clippy ..." runs a subset (names as in the summary).
+set -uo pipefail
+here="$(dirname "${BASH_SOURCE[0]}")"
+bash "$here/setup.sh" --test || exit 1
+. "$here/env.sh"
+bash "$here/build.sh" || { say "build failed"; echo "checks: 0 passed, 1 failed"; exit 1; }
+
+passed=()
+failed=()
+check() { # name, command...
+  local name="$1"
+  shift
+  if [ -n "${CHECKS:-}" ] && [[ " $CHECKS " != *" $name "* ]]; then return; fi
+  say "── $name: $*"
+  local start=$SECONDS
+  if "$@"; then
+    passed+=("$name")
+    say "── $name passed ($((SECONDS - start)) s)"
+  else
+    failed+=("$name")
+    say "── $name FAILED ($((SECONDS - start)) s)"
+  fi
+}
+
+check fmt cargo fmt --all --check
+check clippy cargo clippy --all-targets --quiet -- -D warnings
+check clippy-wasm with_wasm_toolchain cargo clippy --target wasm32-unknown-unknown --all-targets --quiet -- -D warnings
+check cargo-test cargo test --quiet
+check wasm-test with_wasm_toolchain wasm-pack test --node --release --mode no-install
+check typecheck tsc --noEmit -p tsconfig.json
+check lint bash -c 'eslint . && prettier --check . --log-level warn'
+check unit vitest run
+check browser env CHROMIUM_PATH="${CHROMIUM_PATH:-/usr/bin/chromium}" playwright test
+
+echo
+for name in "${passed[@]}"; do echo "  ok      $name"; done
+for name in "${failed[@]}"; do echo "  FAILED  $name"; done
+echo "checks: ${#passed[@]} passed, ${#failed[@]} failed"
+[ ${#failed[@]} -eq 0 ]
