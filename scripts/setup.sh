@@ -70,15 +70,18 @@ wasm_std_present() { # $1 = rustc
 }
 
 wasm_path=""
-if wasm_std_present rustc; then
+# AKAP_WASM_TOOLCHAIN=debian skips rustup (to test the fallback, or to prefer Debian's).
+prefer_debian=0
+[ "${AKAP_WASM_TOOLCHAIN:-auto}" = debian ] && prefer_debian=1
+if [ "$prefer_debian" = 0 ] && wasm_std_present rustc; then
   step "wasm32 target: present in $(rustc --version)"
-elif command -v rustup >/dev/null && [ ! -f "$cache/rustup-offline" ] &&
+elif [ "$prefer_debian" = 0 ] && command -v rustup >/dev/null && [ ! -f "$cache/rustup-offline" ] &&
   { step "rustup target add wasm32-unknown-unknown (up to 60 s)"; timeout 60 rustup target add wasm32-unknown-unknown >/dev/null 2>&1; } &&
   wasm_std_present rustc; then
   step "wasm32 target: installed by rustup"
 else
   # rustup cannot download here: remember that so that later runs do not wait 60 s again.
-  touch "$cache/rustup-offline"
+  [ "$prefer_debian" = 1 ] || touch "$cache/rustup-offline"
   step "wasm32 target: using Debian's rustc-web toolchain"
   need=()
   for p in rustc-web cargo-web rust-web-src rust-web-clippy lld-22; do
