@@ -21,11 +21,13 @@
 //! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes), and
 //! `wasm` (the JavaScript bindings, compiled for wasm32 only).
 
+pub mod deform;
 pub mod error;
 pub mod geometry;
 pub mod mesh;
 pub mod outline;
 pub mod shapes;
+pub mod sparse;
 pub mod triangulate;
 
 #[cfg(target_arch = "wasm32")]

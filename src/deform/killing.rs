@@ -1,0 +1,152 @@
+//! The Killing energy of a piecewise-linear vector field on a triangle mesh, as a sparse
+//! symmetric matrix (the paper's eq. (6), read as the finite-element integral of
+//! `||J + J^T||_F^2`; see `shared/papers/README.md`).
+//!
+//! Unknowns are interleaved per vertex: `U = [u1_0, u2_0, u1_1, u2_1, ...]`. On triangle f
+//! with area `A_f`, the Jacobian `J = [grad U1; grad U2] = [a b; c d]` is constant and
+//! `E_f(U) = A_f (4a^2 + 2(b + c)^2 + 4d^2)`, so `E(U) = U^T K U` with
+//! `K = sum_f A_f R_f^T R_f`, `R_f` the 3 x 6 matrix of rows `2 gx.U1`,
+//! `sqrt2 (gy.U1 + gx.U2)`, `2 gy.U2` over the triangle's six unknowns.
+//!
+//! The pattern (a 2 x 2 block for every vertex and every pair of vertices sharing an
+//! edge) is fixed by the mesh; values depend on the current positions and are recomputed
+//! every frame by [`KillingMatrix::assemble`] without allocating.
+
+use sprs::CsMat;
+
+use crate::geometry::Point;
+use crate::mesh::Mesh;
+
+/// The Killing-energy matrix of a mesh: fixed pattern, values for given positions.
+#[derive(Debug, Clone)]
+pub struct KillingMatrix {
+    /// Full symmetric storage (both triangles), compressed sparse columns, `2n x 2n`.
+    matrix: CsMat<f64>,
+    triangles: Vec<[u32; 3]>,
+    /// For triangle t and local vertices (i, j): the slots in `matrix.data()` of the entries
+    /// `(2 v_i + k, 2 v_j)` for k = 0, 1 (`[t][3 i + j][0]`) and `(2 v_i + k, 2 v_j + 1)`
+    /// (`[t][3 i + j][1]`); row k = 1 is the slot after row k = 0.
+    slots: Vec<[[usize; 2]; 9]>,
+}
+
+impl KillingMatrix {
+    /// Builds the pattern for a mesh (values are zero until [`Self::assemble`]).
+    pub fn new(mesh: &Mesh) -> Self {
+        let n = mesh.vertex_count();
+        // Column 2v and 2v + 1 hold rows 2w, 2w + 1 for w in N(v) and v itself, ascending.
+        let mut indptr = Vec::with_capacity(2 * n + 1);
+        let mut indices = Vec::new();
+        indptr.push(0);
+        let mut block_rows: Vec<u32> = Vec::new();
+        let mut block_start = Vec::with_capacity(n + 1);
+        block_start.push(0);
+        for v in 0..n {
+            let mut rows: Vec<u32> = mesh.neighbors(v).to_vec();
+            rows.push(v as u32);
+            rows.sort_unstable();
+            for _ in 0..2 {
+                for &w in &rows {
+                    indices.push(2 * w as usize);
+                    indices.push(2 * w as usize + 1);
+                }
+                indptr.push(indices.len());
+            }
+            block_rows.extend_from_slice(&rows);
+            block_start.push(block_rows.len());
+        }
+        let nnz = indices.len();
+        let matrix = CsMat::new_csc((2 * n, 2 * n), indptr, indices, vec![0.0; nnz]);
+
+        let slot = |row: u32, col: u32| -> [usize; 2] {
+            let list = &block_rows[block_start[col as usize]..block_start[col as usize + 1]];
+            let pos = list.binary_search(&row).expect("triangle vertices are neighbours");
+            let first = matrix.indptr().index(2 * col as usize);
+            let second = matrix.indptr().index(2 * col as usize + 1);
+            [first + 2 * pos, second + 2 * pos]
+        };
+        let slots = mesh
+            .triangles()
+            .iter()
+            .map(|t| {
+                let mut s = [[0; 2]; 9];
+                for i in 0..3 {
+                    for j in 0..3 {
+                        s[3 * i + j] = slot(t[i], t[j]);
+                    }
+                }
+                s
+            })
+            .collect();
+        Self { matrix, triangles: mesh.triangles().to_vec(), slots }
+    }
+
+    /// Recomputes the values for vertex positions `positions` (same vertex count as the
+    /// mesh; triangles must keep positive area for the energy to be meaningful).
+    pub fn assemble(&mut self, positions: &[Point]) {
+        let data = self.matrix.data_mut();
+        data.fill(0.0);
+        for (t, slots) in self.triangles.iter().zip(&self.slots) {
+            let local = local_matrix([positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    let [c0, c1] = slots[3 * i + j];
+                    // Rows (2 v_i, 2 v_i + 1), columns (2 v_j, 2 v_j + 1).
+                    data[c0] += local[2 * i][2 * j];
+                    data[c0 + 1] += local[2 * i + 1][2 * j];
+                    data[c1] += local[2 * i][2 * j + 1];
+                    data[c1 + 1] += local[2 * i + 1][2 * j + 1];
+                }
+            }
+        }
+    }
+
+    /// The matrix (full symmetric storage, CSC).
+    pub fn matrix(&self) -> &CsMat<f64> {
+        &self.matrix
+    }
+
+    /// Slots in the matrix's data of the 2 x 2 block at vertices `(row, col)`, as
+    /// `[[(2r, 2c), (2r + 1, 2c)], [(2r, 2c + 1), (2r + 1, 2c + 1)]]`, if the block is in the
+    /// pattern (the vertices are equal or share an edge).
+    pub fn block_slots(&self, row: usize, col: usize) -> Option<[[usize; 2]; 2]> {
+        let indptr = self.matrix.indptr();
+        let (start, end) = (indptr.index(2 * col), indptr.index(2 * col + 1));
+        let rows = &self.matrix.indices()[start..end];
+        let pos = rows.binary_search(&(2 * row)).ok()?;
+        let second = indptr.index(2 * col + 1) + pos;
+        Some([[start + pos, start + pos + 1], [second, second + 1]])
+    }
+}
+
+/// The gradients of the three barycentric basis functions of a counter-clockwise
+/// triangle, and its area: `grad phi_a = rot90(p_c - p_b) / (2A)`, and so on.
+pub fn basis_gradients(p: [Point; 3]) -> ([Point; 3], f64) {
+    let twice_area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+    let mut g = [[0.0; 2]; 3];
+    for i in 0..3 {
+        let (b, c) = (p[(i + 1) % 3], p[(i + 2) % 3]);
+        g[i] = [-(c[1] - b[1]) / twice_area, (c[0] - b[0]) / twice_area];
+    }
+    (g, 0.5 * twice_area)
+}
+
+/// The 6 x 6 matrix `A R^T R` of one triangle over `[u1_a, u2_a, u1_b, u2_b, u1_c, u2_c]`.
+fn local_matrix(p: [Point; 3]) -> [[f64; 6]; 6] {
+    let (g, area) = basis_gradients(p);
+    let s2 = std::f64::consts::SQRT_2;
+    // Rows of R: 2 gx.U1, sqrt2 (gy.U1 + gx.U2), 2 gy.U2.
+    let mut r = [[0.0; 6]; 3];
+    for i in 0..3 {
+        r[0][2 * i] = 2.0 * g[i][0];
+        r[1][2 * i] = s2 * g[i][1];
+        r[1][2 * i + 1] = s2 * g[i][0];
+        r[2][2 * i + 1] = 2.0 * g[i][1];
+    }
+    let mut k = [[0.0; 6]; 6];
+    for (a, row_a) in k.iter_mut().enumerate() {
+        for (b, entry) in row_a.iter_mut().enumerate() {
+            *entry = area * (r[0][a] * r[0][b] + r[1][a] * r[1][b] + r[2][a] * r[2][b]);
+        }
+    }
+    k
+}

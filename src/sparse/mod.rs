@@ -1,0 +1,104 @@
+//! Sparse Cholesky factorisation `P A P^T = L L^T` of symmetric positive definite matrices,
+//! split the way a per-frame solver needs it:
+//!
+//! 1. [`Symbolic::analyse`], once per sparsity pattern: a fill-reducing ordering
+//!    ([`Ordering`]: approximate minimum degree, a given order such as a geometric
+//!    [`nested_dissection_order`], or natural), the elimination
+//!    tree and its postorder, column counts, supernodes and the row pattern of every
+//!    supernode of `L`, and a map from each entry of `A` to its slot in `L`.
+//! 2. [`Numeric::factor`] / [`Numeric::refactor`], for every new set of values on that
+//!    pattern: a left-looking supernodal factorisation that allocates nothing when
+//!    refactoring, and reports a non-positive pivot with its column instead of producing
+//!    NaNs.
+//! 3. [`Numeric::solve_in_place`]: the two triangular solves with the permutation applied,
+//!    in place and without allocating.
+//!
+//! The module knows nothing about meshes: matrices are sprs [`CsMatView`]s in compressed
+//! sparse column form, of which only the lower triangle (row >= column) is read, so either
+//! a full symmetric matrix or its lower half can be passed.
+
+mod amd;
+mod dense;
+mod nested_dissection;
+mod numeric;
+mod symbolic;
+
+#[cfg(test)]
+pub(crate) mod tests;
+
+use std::fmt;
+
+pub use amd::amd_order;
+pub use nested_dissection::{expand_blocks, nested_dissection_order};
+pub use numeric::Numeric;
+pub use symbolic::Symbolic;
+
+/// A matrix view in compressed sparse column form with `usize` indices.
+pub type CsMatView<'a> = sprs::CsMatView<'a, f64>;
+
+/// How [`Symbolic::analyse`] orders the unknowns.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Ordering {
+    /// Keep the given order (for tests and for matrices that are already well ordered).
+    Natural,
+    /// Approximate minimum degree on the pattern of `A` (Amestoy, Davis and Duff 1996).
+    #[default]
+    Amd,
+    /// Eliminate the unknowns in this order: `order[k]` is the original index of the k-th.
+    Given(Vec<usize>),
+}
+
+/// Why a factorisation could not be computed.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum FactorError {
+    /// The matrix is not square, or not in compressed sparse column form.
+    NotSquareCsc {
+        /// Rows of the matrix.
+        rows: usize,
+        /// Columns of the matrix.
+        cols: usize,
+    },
+    /// The matrix's sparsity pattern differs from the analysed one.
+    PatternMismatch,
+    /// A given ordering is not a permutation of `0..n`.
+    InvalidOrdering,
+    /// A pivot was not positive (the matrix is not positive definite) or not finite.
+    NotPositiveDefinite {
+        /// The column of the original (unpermuted) matrix whose pivot failed.
+        column: usize,
+        /// The pivot value found.
+        pivot: f64,
+    },
+    /// A solve was asked of a factor whose last factorisation failed or never ran.
+    NotFactored,
+    /// A right-hand side has the wrong length.
+    DimensionMismatch {
+        /// Expected length.
+        expected: usize,
+        /// Given length.
+        found: usize,
+    },
+}
+
+impl fmt::Display for FactorError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NotSquareCsc { rows, cols } => {
+                write!(f, "expected a square matrix in compressed sparse column form, got {rows} x {cols}")
+            }
+            Self::PatternMismatch => write!(f, "the matrix's sparsity pattern differs from the analysed one"),
+            Self::InvalidOrdering => write!(f, "the given ordering is not a permutation of the unknowns"),
+            Self::NotPositiveDefinite { column, pivot } => write!(
+                f,
+                "the matrix is not positive definite: pivot {pivot} at column {column} (of the original matrix)"
+            ),
+            Self::NotFactored => write!(f, "no valid factorisation: the last one failed or none was computed"),
+            Self::DimensionMismatch { expected, found } => {
+                write!(f, "right-hand side has length {found}, expected {expected}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for FactorError {}

@@ -1,0 +1,288 @@
+//! Tests of the factorisation against dense linear algebra (nalgebra): the permuted
+//! reconstruction, solves, refactorisation, error reporting.
+
+use std::sync::Arc;
+
+use nalgebra::DMatrix;
+use sprs::{CsMat, TriMat};
+
+use super::*;
+
+/// A small deterministic generator (xorshift64*), so tests need no extra crates.
+pub(crate) struct Rng(u64);
+
+impl Rng {
+    pub(crate) fn new(seed: u64) -> Self {
+        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    pub(crate) fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    /// Uniform in [0, 1).
+    pub(crate) fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub(crate) fn below(&mut self, n: usize) -> usize {
+        (self.next_u64() % n as u64) as usize
+    }
+}
+
+/// A random sparse symmetric positive definite matrix (strictly diagonally dominant),
+/// stored in full (both triangles) CSC.
+pub(super) fn random_spd(n: usize, off_diagonal: usize, rng: &mut Rng) -> CsMat<f64> {
+    let mut tri = TriMat::new((n, n));
+    let mut row_sum = vec![0.0; n];
+    for _ in 0..off_diagonal {
+        let (i, j) = (rng.below(n), rng.below(n));
+        if i == j {
+            continue;
+        }
+        let v = rng.unit() * 2.0 - 1.0;
+        tri.add_triplet(i, j, v);
+        tri.add_triplet(j, i, v);
+        row_sum[i] += v.abs();
+        row_sum[j] += v.abs();
+    }
+    for (i, s) in row_sum.iter().enumerate() {
+        tri.add_triplet(i, i, s + 0.5 + rng.unit());
+    }
+    tri.to_csc()
+}
+
+fn dense(a: &CsMat<f64>) -> DMatrix<f64> {
+    let mut d = DMatrix::zeros(a.rows(), a.cols());
+    for (v, (i, j)) in a.iter() {
+        d[(i, j)] += v;
+    }
+    d
+}
+
+/// `||L L^T - P A P^T||_F / ||A||_F`.
+fn reconstruction_error(numeric: &Numeric, a: &CsMat<f64>) -> f64 {
+    let n = a.rows();
+    let l = DMatrix::from_row_slice(n, n, &numeric.to_dense_lower());
+    let perm = numeric.symbolic().permutation();
+    let ad = dense(a);
+    let pap = DMatrix::from_fn(n, n, |i, j| ad[(perm[i], perm[j])]);
+    (&l * l.transpose() - pap).norm() / ad.norm()
+}
+
+#[test]
+fn factor_reconstructs_and_solves_random_spd_matrices() {
+    let mut rng = Rng::new(7);
+    for case in 0..60 {
+        let n = 1 + rng.below(80);
+        let a = random_spd(n, rng.below(4 * n + 1), &mut rng);
+        for ordering in [Ordering::Natural, Ordering::Amd] {
+            let symbolic = Arc::new(Symbolic::analyse(a.view(), &ordering).unwrap());
+            let mut numeric = Numeric::factor(symbolic, a.view()).unwrap();
+            let err = reconstruction_error(&numeric, &a);
+            assert!(err <= 1e-12, "case {case}, n {n}, {ordering:?}: reconstruction error {err}");
+
+            let x_true: Vec<f64> = (0..n).map(|_| rng.unit() - 0.5).collect();
+            let mut b = vec![0.0; n];
+            for (v, (i, j)) in a.iter() {
+                b[i] += v * x_true[j];
+            }
+            let b0 = b.clone();
+            numeric.solve_in_place(&mut b).unwrap();
+            let mut residual = b0.clone();
+            for (v, (i, j)) in a.iter() {
+                residual[i] -= v * b[j];
+            }
+            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let rel = norm(&residual) / norm(&b0).max(f64::MIN_POSITIVE);
+            assert!(rel <= 1e-10, "case {case}: relative residual {rel}");
+        }
+    }
+}
+
+#[test]
+fn lower_triangle_alone_gives_the_same_factor() {
+    let mut rng = Rng::new(11);
+    let a = random_spd(40, 120, &mut rng);
+    let mut tri = TriMat::new((40, 40));
+    for (v, (i, j)) in a.iter() {
+        if i >= j {
+            tri.add_triplet(i, j, *v);
+        }
+    }
+    let lower: CsMat<f64> = tri.to_csc();
+    let full = Numeric::factor(Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap()), a.view()).unwrap();
+    let half =
+        Numeric::factor(Arc::new(Symbolic::analyse(lower.view(), &Ordering::Amd).unwrap()), lower.view()).unwrap();
+    assert_eq!(full.to_dense_lower(), half.to_dense_lower());
+}
+
+#[test]
+fn refactorisation_equals_a_fresh_factorisation() {
+    let mut rng = Rng::new(3);
+    let a = random_spd(60, 200, &mut rng);
+    let symbolic = Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap());
+    let mut numeric = Numeric::factor(symbolic.clone(), a.view()).unwrap();
+    for round in 0..5 {
+        // Same pattern, new values: scale off-diagonals and shift the diagonal.
+        let s = 0.5 + rng.unit();
+        let mut b = a.clone();
+        let diagonal: Vec<bool> = a.iter().map(|(_, (i, j))| i == j).collect();
+        for (v, &on_diagonal) in b.data_mut().iter_mut().zip(&diagonal) {
+            *v = if on_diagonal { *v + round as f64 } else { *v * s };
+        }
+        numeric.refactor(b.view()).unwrap();
+        let fresh = Numeric::factor(symbolic.clone(), b.view()).unwrap();
+        assert_eq!(numeric.to_dense_lower(), fresh.to_dense_lower(), "round {round}");
+    }
+}
+
+#[test]
+fn non_positive_pivots_name_their_column() {
+    // Diagonal with one negative entry: whatever the order, that column fails.
+    let n = 12;
+    let mut tri = TriMat::new((n, n));
+    for i in 0..n {
+        tri.add_triplet(i, i, if i == 7 { -2.0 } else { 3.0 });
+    }
+    let a: CsMat<f64> = tri.to_csc();
+    for ordering in [Ordering::Natural, Ordering::Amd] {
+        let symbolic = Arc::new(Symbolic::analyse(a.view(), &ordering).unwrap());
+        let err = Numeric::factor(symbolic, a.view()).unwrap_err();
+        assert_eq!(err, FactorError::NotPositiveDefinite { column: 7, pivot: -2.0 });
+    }
+
+    // A singular 2 x 2 block [[1, 1], [1, 1]] on unknowns 3 and 8 of an otherwise SPD
+    // matrix: the pivot of whichever of the two comes second in the order is 0.
+    let mut tri = TriMat::new((n, n));
+    for i in 0..n {
+        if i != 3 && i != 8 {
+            tri.add_triplet(i, i, 2.0);
+        }
+    }
+    for (i, j) in [(3, 3), (3, 8), (8, 3), (8, 8)] {
+        tri.add_triplet(i, j, 1.0);
+    }
+    let a: CsMat<f64> = tri.to_csc();
+    let symbolic = Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap());
+    let perm = symbolic.permutation();
+    let later = if perm.iter().position(|&i| i == 3) > perm.iter().position(|&i| i == 8) { 3 } else { 8 };
+    let mut numeric = Numeric::new(symbolic);
+    assert_eq!(numeric.refactor(a.view()), Err(FactorError::NotPositiveDefinite { column: later, pivot: 0.0 }));
+    // A failed factor is never used.
+    assert_eq!(numeric.solve_in_place(&mut [0.0; 12]), Err(FactorError::NotFactored));
+}
+
+#[test]
+fn bad_arguments_are_reported() {
+    let mut rng = Rng::new(5);
+    let a = random_spd(10, 20, &mut rng);
+    let rect: CsMat<f64> = TriMat::<f64>::new((3, 4)).to_csc();
+    assert!(matches!(Symbolic::analyse(rect.view(), &Ordering::Amd), Err(FactorError::NotSquareCsc { .. })));
+    assert!(matches!(Symbolic::analyse(a.to_csr().view(), &Ordering::Amd), Err(FactorError::NotSquareCsc { .. })));
+    for bad in [vec![0, 1, 2], vec![0; 10], (1..=10).collect()] {
+        assert_eq!(Symbolic::analyse(a.view(), &Ordering::Given(bad)).unwrap_err(), FactorError::InvalidOrdering);
+    }
+    let symbolic = Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap());
+    let other = random_spd(10, 25, &mut rng);
+    assert_eq!(Numeric::factor(symbolic.clone(), other.view()).unwrap_err(), FactorError::PatternMismatch);
+    let mut numeric = Numeric::factor(symbolic, a.view()).unwrap();
+    assert_eq!(
+        numeric.solve_in_place(&mut [0.0; 3]),
+        Err(FactorError::DimensionMismatch { expected: 10, found: 3 })
+    );
+}
+
+#[test]
+fn given_ordering_is_respected_up_to_postorder() {
+    // A path 0-1-2-...: eliminating from one end gives no fill whatever the labels.
+    let n = 30;
+    let mut tri = TriMat::new((n, n));
+    for i in 0..n {
+        tri.add_triplet(i, i, 4.0);
+        if i + 1 < n {
+            tri.add_triplet(i + 1, i, -1.0);
+            tri.add_triplet(i, i + 1, -1.0);
+        }
+    }
+    let a: CsMat<f64> = tri.to_csc();
+    let symbolic = Symbolic::analyse(a.view(), &Ordering::Given((0..n).collect())).unwrap();
+    assert_eq!(symbolic.nnz_l(), 2 * n - 1);
+    // Eliminating from alternate ends fills in nothing either.
+    let from_both_ends: Vec<usize> = (0..n).map(|k| if k % 2 == 0 { k / 2 } else { n - 1 - k / 2 }).collect();
+    let symbolic = Symbolic::analyse(a.view(), &Ordering::Given(from_both_ends)).unwrap();
+    assert_eq!(symbolic.nnz_l(), 2 * n - 1);
+}
+
+/// The vertex graph of a triangulated `k x k` grid (each square split by a diagonal) with
+/// its positions, and the matching 2-unknowns-per-vertex SPD matrix (Laplacian blocks plus
+/// identity).
+fn grid(k: usize) -> (Vec<usize>, Vec<usize>, Vec<[f64; 2]>, CsMat<f64>) {
+    let n = k * k;
+    let id = |i: usize, j: usize| i * k + j;
+    let mut lists: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut link = |a: usize, b: usize| {
+        lists[a].push(b);
+        lists[b].push(a);
+    };
+    for i in 0..k {
+        for j in 0..k {
+            if j + 1 < k {
+                link(id(i, j), id(i, j + 1));
+            }
+            if i + 1 < k {
+                link(id(i, j), id(i + 1, j));
+            }
+            if i + 1 < k && j + 1 < k {
+                link(id(i, j), id(i + 1, j + 1));
+            }
+        }
+    }
+    let mut ptr = vec![0];
+    let mut adj = Vec::new();
+    let mut tri = TriMat::new((2 * n, 2 * n));
+    for (v, list) in lists.iter().enumerate() {
+        adj.extend_from_slice(list);
+        ptr.push(adj.len());
+        for c in 0..2 {
+            tri.add_triplet(2 * v + c, 2 * v + c, list.len() as f64 + 1.0);
+            for &w in list {
+                tri.add_triplet(2 * w + c, 2 * v + c, -1.0);
+            }
+        }
+    }
+    let positions = (0..n).map(|v| [(v % k) as f64, (v / k) as f64]).collect();
+    (ptr, adj, positions, tri.to_csc())
+}
+
+#[test]
+fn nested_dissection_is_a_permutation_with_little_fill() {
+    for k in [1, 2, 7, 20, 45] {
+        let (ptr, adj, positions, a) = grid(k);
+        let order = nested_dissection_order(&ptr, &adj, &positions);
+        let mut sorted = order.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..k * k).collect::<Vec<_>>());
+        let expanded = expand_blocks(&order, 2);
+        let nd = Symbolic::analyse(a.view(), &Ordering::Given(expanded)).unwrap();
+        let natural = Symbolic::analyse(a.view(), &Ordering::Natural).unwrap();
+        if k >= 45 {
+            // Banded natural order: about n * 2k entries; nested dissection O(n log n).
+            assert!(9 * nd.nnz_l() < 5 * natural.nnz_l(), "k {k}: {} vs {}", nd.nnz_l(), natural.nnz_l());
+        }
+        let mut numeric = Numeric::factor(Arc::new(nd), a.view()).unwrap();
+        let mut b = vec![1.0; 2 * k * k];
+        numeric.solve_in_place(&mut b).unwrap();
+        let mut residual = vec![1.0; 2 * k * k];
+        for (v, (i, j)) in a.iter() {
+            residual[i] -= v * b[j];
+        }
+        assert!(residual.iter().all(|r| r.abs() < 1e-10));
+    }
+}
+
+#[test]
+fn expand_blocks_keeps_each_vertex_together() {
+    assert_eq!(expand_blocks(&[2, 0, 1], 2), vec![4, 5, 0, 1, 2, 3]);
+}
+
