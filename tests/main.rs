@@ -1,6 +1,8 @@
 //! Integration tests: one binary, one module per area, shared checks in `common`.
 
 mod common;
+mod killing;
+mod sparse;
 mod triangulation;
 #[cfg(target_arch = "wasm32")]
 mod wasm_api;

@@ -4,6 +4,3 @@
 //! is fixed by the mesh and whose values change every frame.
 
 pub mod killing;
-
-#[cfg(test)]
-mod killing_tests;

@@ -23,9 +23,6 @@ mod nested_dissection;
 mod numeric;
 mod symbolic;
 
-#[cfg(test)]
-pub(crate) mod tests;
-
 use std::fmt;
 
 pub use amd::amd_order;

@@ -15,11 +15,12 @@ use super::amd_order;
 const LEAF_SIZE: usize = 128;
 
 /// Directions tried for each bisection (unit vectors: x, y and the two diagonals).
-const DIRECTIONS: [[f64; 2]; 4] =
-    [[1.0, 0.0], [0.0, 1.0], [std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::FRAC_1_SQRT_2], [
-        std::f64::consts::FRAC_1_SQRT_2,
-        -std::f64::consts::FRAC_1_SQRT_2,
-    ]];
+const DIRECTIONS: [[f64; 2]; 4] = [
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [std::f64::consts::FRAC_1_SQRT_2, std::f64::consts::FRAC_1_SQRT_2],
+    [std::f64::consts::FRAC_1_SQRT_2, -std::f64::consts::FRAC_1_SQRT_2],
+];
 
 /// A nested-dissection elimination order of a graph with vertex positions: `order[k]` is
 /// the k-th vertex to eliminate. The neighbours of vertex `i` are
@@ -90,11 +91,7 @@ impl State<'_> {
         let separator: Vec<usize> = sep_side[keep..].to_vec();
         // Children get fresh labels far from this part's (labels grow with depth).
         let (lower, upper) = part.split_at_mut(half);
-        let (lower_len, upper_len) = if separator_in_lower {
-            (keep, upper.len())
-        } else {
-            (lower.len(), keep)
-        };
+        let (lower_len, upper_len) = if separator_in_lower { (keep, upper.len()) } else { (lower.len(), keep) };
         self.relabel(&lower[..lower_len], 2 * label + 2);
         self.dissect(&mut lower[..lower_len], 2 * label + 2);
         self.relabel(&upper[..upper_len], 2 * label + 4);

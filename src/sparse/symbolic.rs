@@ -405,10 +405,8 @@ fn supernode_rows(
     for s in 0..ns {
         let (first, end) = (super_start[s], super_start[s + 1]);
         let begin = rows.len();
-        for c in first..end {
-            mark[c] = s;
-            rows.push(c);
-        }
+        mark[first..end].fill(s);
+        rows.extend(first..end);
         for c in first..end {
             for &r in lower.col(c) {
                 if mark[r] != s {

@@ -1,13 +1,17 @@
 //! The Killing matrix against the energy computed straight from its definition.
 
-use super::killing::KillingMatrix;
-use crate::geometry::Point;
-use crate::shapes::ellipse;
-use crate::sparse::tests::Rng;
-use crate::{triangulate, Mesh, Outline, TriangulationOptions};
+use akap::deform::killing::KillingMatrix;
+use akap::geometry::Point;
+use akap::shapes::ellipse;
+use akap::{triangulate, Mesh, Outline, TriangulationOptions};
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+use crate::common::Rng;
 
 fn mesh() -> Mesh {
-    let outline = Outline::new(vec![[0.0, 0.0], [3.0, 0.0], [3.0, 1.0], [0.0, 1.0]]).with_hole(ellipse([1.5, 0.5], 0.2, 0.3, 9));
+    let outline =
+        Outline::new(vec![[0.0, 0.0], [3.0, 0.0], [3.0, 1.0], [0.0, 1.0]]).with_hole(ellipse([1.5, 0.5], 0.2, 0.3, 9));
     triangulate(&outline, &TriangulationOptions::default().with_target_edge_length(0.3)).unwrap()
 }
 
@@ -17,7 +21,10 @@ fn energy_by_definition(mesh: &Mesh, positions: &[Point], u: &[f64]) -> f64 {
     let mut total = 0.0;
     for t in mesh.triangles() {
         let [a, b, c] = t.map(|v| v as usize);
-        let (e1, e2) = ([positions[b][0] - positions[a][0], positions[b][1] - positions[a][1]], [positions[c][0] - positions[a][0], positions[c][1] - positions[a][1]]);
+        let (e1, e2) = (
+            [positions[b][0] - positions[a][0], positions[b][1] - positions[a][1]],
+            [positions[c][0] - positions[a][0], positions[c][1] - positions[a][1]],
+        );
         let det = e1[0] * e2[1] - e2[0] * e1[1];
         let du = |w: usize, k: usize| u[2 * w + k] - u[2 * a + k];
         // Row k of J solves J_k . e1 = du_b, J_k . e2 = du_c.
@@ -41,7 +48,11 @@ fn energy_matches_the_definition_for_random_fields_and_positions() {
     let mut k = KillingMatrix::new(&mesh);
     for _ in 0..5 {
         // Move the vertices a little (keeping triangles positive) and use those positions.
-        let positions: Vec<Point> = mesh.positions().iter().map(|p| [p[0] + 0.01 * (rng.unit() - 0.5), p[1] + 0.01 * (rng.unit() - 0.5)]).collect();
+        let positions: Vec<Point> = mesh
+            .positions()
+            .iter()
+            .map(|p| [p[0] + 0.01 * (rng.unit() - 0.5), p[1] + 0.01 * (rng.unit() - 0.5)])
+            .collect();
         k.assemble(&positions);
         let u: Vec<f64> = (0..2 * mesh.vertex_count()).map(|_| rng.unit() - 0.5).collect();
         let expected = energy_by_definition(&mesh, &positions, &u);
@@ -57,7 +68,8 @@ fn rigid_fields_have_zero_energy_and_the_matrix_is_symmetric() {
     k.assemble(mesh.positions());
     // u = a i (p - c) + d in complex notation: U1 = -a (y - cy) + d1, U2 = a (x - cx) + d2.
     let (a, c, d) = (0.7, [1.2, -0.4], [0.3, -2.0]);
-    let u: Vec<f64> = mesh.positions().iter().flat_map(|p| [-a * (p[1] - c[1]) + d[0], a * (p[0] - c[0]) + d[1]]).collect();
+    let u: Vec<f64> =
+        mesh.positions().iter().flat_map(|p| [-a * (p[1] - c[1]) + d[0], a * (p[0] - c[0]) + d[1]]).collect();
     let scale: f64 = k.matrix().data().iter().map(|v| v.abs()).sum::<f64>() * u.iter().map(|x| x * x).sum::<f64>();
     assert!(quadratic_form(&k, &u).abs() <= 1e-14 * scale);
     // A uniform scaling is not Killing: its energy is 8 times the area (J = I, ||2I||^2 = 8).

@@ -1,38 +1,20 @@
-//! Tests of the factorisation against dense linear algebra (nalgebra): the permuted
-//! reconstruction, solves, refactorisation, error reporting.
+//! The sparse Cholesky against dense linear algebra (nalgebra): the permuted
+//! reconstruction, solves, refactorisation, orderings and error reporting. Runs natively
+//! and, under wasm-bindgen-test, as wasm in Node.
 
 use std::sync::Arc;
 
+use akap::sparse::*;
 use nalgebra::DMatrix;
 use sprs::{CsMat, TriMat};
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
 
-use super::*;
-
-/// A small deterministic generator (xorshift64*), so tests need no extra crates.
-pub(crate) struct Rng(u64);
-
-impl Rng {
-    pub(crate) fn new(seed: u64) -> Self {
-        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-    pub(crate) fn next_u64(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    /// Uniform in [0, 1).
-    pub(crate) fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    pub(crate) fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-}
+use crate::common::Rng;
 
 /// A random sparse symmetric positive definite matrix (strictly diagonally dominant),
 /// stored in full (both triangles) CSC.
-pub(super) fn random_spd(n: usize, off_diagonal: usize, rng: &mut Rng) -> CsMat<f64> {
+fn random_spd(n: usize, off_diagonal: usize, rng: &mut Rng) -> CsMat<f64> {
     let mut tri = TriMat::new((n, n));
     let mut row_sum = vec![0.0; n];
     for _ in 0..off_diagonal {
@@ -187,10 +169,7 @@ fn bad_arguments_are_reported() {
     let other = random_spd(10, 25, &mut rng);
     assert_eq!(Numeric::factor(symbolic.clone(), other.view()).unwrap_err(), FactorError::PatternMismatch);
     let mut numeric = Numeric::factor(symbolic, a.view()).unwrap();
-    assert_eq!(
-        numeric.solve_in_place(&mut [0.0; 3]),
-        Err(FactorError::DimensionMismatch { expected: 10, found: 3 })
-    );
+    assert_eq!(numeric.solve_in_place(&mut [0.0; 3]), Err(FactorError::DimensionMismatch { expected: 10, found: 3 }));
 }
 
 #[test]
@@ -285,4 +264,3 @@ fn nested_dissection_is_a_permutation_with_little_fill() {
 fn expand_blocks_keeps_each_vertex_together() {
     assert_eq!(expand_blocks(&[2, 0, 1], 2), vec![4, 5, 0, 1, 2, 3]);
 }
-
