@@ -124,9 +124,8 @@ impl Numeric {
             }
 
             let width = end - first;
-            dense::cholesky_trapezoid(block, height, width).map_err(|(col, pivot)| {
-                FactorError::NotPositiveDefinite { column: sym.perm[first + col], pivot }
-            })?;
+            dense::cholesky_trapezoid(block, height, width)
+                .map_err(|(col, pivot)| FactorError::NotPositiveDefinite { column: sym.perm[first + col], pivot })?;
             self.next_row[j] = width;
             if width < height {
                 let next = sym.col_to_super[j_rows[width]];
