@@ -192,10 +192,10 @@ impl Mesh {
     /// Builds a mesh from flat arrays: positions `x0 y0 x1 y1 ...` and triangles
     /// `a0 b0 c0 a1 b1 c1 ...` (the layout the JavaScript API uses).
     pub fn from_flat(positions: &[f64], triangles: &[u32]) -> Result<Self, MeshError> {
-        if positions.len() % 2 != 0 {
+        if !positions.len().is_multiple_of(2) {
             return Err(MeshError::PositionsLength { len: positions.len() });
         }
-        if triangles.len() % 3 != 0 {
+        if !triangles.len().is_multiple_of(3) {
             return Err(MeshError::TrianglesLength { len: triangles.len() });
         }
         let points = positions.chunks_exact(2).map(|p| [p[0], p[1]]).collect();

@@ -133,7 +133,7 @@ impl Outline {
     /// trailing coordinate is reported as a non-finite point.
     pub fn from_flat(outer: &[f64], holes: &[Vec<f64>]) -> Result<Self, OutlineError> {
         let ring = |k: usize, flat: &[f64]| -> Result<Vec<Point>, OutlineError> {
-            if flat.len() % 2 != 0 {
+            if !flat.len().is_multiple_of(2) {
                 return Err(OutlineError::NonFinite { ring: Ring(k), point: flat.len() / 2 });
             }
             Ok(flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect())

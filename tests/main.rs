@@ -1,6 +1,7 @@
 //! Integration tests: one binary, one module per area, shared checks in `common`.
 
 mod common;
+mod deformer;
 mod killing;
 mod sparse;
 mod triangulation;

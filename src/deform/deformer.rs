@@ -1,0 +1,664 @@
+//! The As-Killing-As-Possible deformer (Solomon et al. 2011, Section 3).
+//!
+//! Each step, with handle velocities `u_i` at handle points `h_i`:
+//! 1. (eq. 3) `U0 = argmin E_K(U) + lambda sum_i |U(h_i) - u_i|^2`, i.e. the SPD system
+//!    `(K + lambda sum_i W_i^T W_i) U0 = lambda sum_i W_i^T u_i`, where `W_i` blends the
+//!    vertex values of the handle's triangle with its barycentric weights;
+//! 2. (eq. 4) `U = argmin E_K(U)` with `U = U0` on the boundary: `K_II U_I = -K_IB U0_B`
+//!    over the interior unknowns (skipped when switched off or when no vertex is interior);
+//! 3. (eqs. 14-16, corrected) every vertex moves along the logarithmic spirals fitted to
+//!    its edges ([`super::spiral`]), or by `U` itself with the linear integrator.
+//!
+//! `K` ([`KillingMatrix`]) depends on the current positions, so both systems are factored
+//! anew every step, but their patterns are fixed by the mesh (a barycentric handle only
+//! touches blocks of one triangle, which exist already): orderings and symbolic analyses
+//! run once, in [`Deformer::new`]. Handles can change between any two steps. Buffers are
+//! sized when the mesh or the handle set changes; [`Deformer::step`] allocates nothing.
+//! A step that fails (a pivot that is not positive, a non-finite result) leaves the
+//! deformer as it was.
+
+use std::fmt;
+use std::sync::Arc;
+
+use sprs::CsMat;
+
+use super::killing::KillingMatrix;
+use super::metrics::{metrics, Metrics};
+use super::spiral::{linear_step, spiral_step};
+use crate::geometry::Point;
+use crate::mesh::Mesh;
+use crate::sparse::{amd_order, expand_blocks, nested_dissection_order, FactorError, Numeric, Ordering, Symbolic};
+
+const NONE: usize = usize::MAX;
+
+/// How vertices follow the velocity field.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Integrator {
+    /// Along logarithmic spirals (the paper's method; reproduces rigid motions exactly).
+    #[default]
+    Spiral,
+    /// Straight along the velocity, `p <- p + U` (the paper's ablation; dilates rotations).
+    Linear,
+}
+
+/// Deformer settings, with builders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeformerOptions {
+    /// Weight of the soft handle constraints of step 1.
+    pub lambda: f64,
+    /// Whether step 2 (the Dirichlet re-solve) runs.
+    pub dirichlet: bool,
+    /// How vertices move.
+    pub integrator: Integrator,
+}
+
+impl Default for DeformerOptions {
+    fn default() -> Self {
+        Self { lambda: 100.0, dirichlet: true, integrator: Integrator::Spiral }
+    }
+}
+
+impl DeformerOptions {
+    /// Sets lambda.
+    pub fn with_lambda(mut self, lambda: f64) -> Self {
+        self.lambda = lambda;
+        self
+    }
+    /// Switches the Dirichlet step on or off.
+    pub fn with_dirichlet(mut self, on: bool) -> Self {
+        self.dirichlet = on;
+        self
+    }
+    /// Sets the integrator.
+    pub fn with_integrator(mut self, integrator: Integrator) -> Self {
+        self.integrator = integrator;
+        self
+    }
+}
+
+/// Why the deformer refused an input or a step. The deformer is unchanged after any error.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum DeformError {
+    /// The mesh is split into several pieces; deform each piece on its own.
+    Disconnected {
+        /// The number of pieces.
+        components: usize,
+    },
+    /// An option is out of range.
+    InvalidOption {
+        /// The option's name as the JavaScript API spells it.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A handle names a vertex that does not exist.
+    VertexOutOfRange {
+        /// Which handle.
+        handle: usize,
+        /// The vertex given.
+        vertex: u32,
+        /// The number of vertices.
+        vertex_count: usize,
+    },
+    /// A handle names a triangle that does not exist.
+    TriangleOutOfRange {
+        /// Which handle.
+        handle: usize,
+        /// The triangle given.
+        triangle: u32,
+        /// The number of triangles.
+        triangle_count: usize,
+    },
+    /// A handle's barycentric coordinates are not finite, negative, or do not sum to 1.
+    InvalidBarycentric {
+        /// Which handle.
+        handle: usize,
+        /// The coordinates given.
+        coordinates: [f64; 3],
+    },
+    /// The number of values does not match.
+    Length {
+        /// What was given.
+        what: &'static str,
+        /// Expected length.
+        expected: usize,
+        /// Given length.
+        found: usize,
+    },
+    /// A velocity is NaN or infinite.
+    NonFiniteVelocity {
+        /// Which handle.
+        handle: usize,
+    },
+    /// A factorisation failed: the mesh has collapsed or flipped triangles.
+    Factor(FactorError),
+    /// The step produced a non-finite position (a velocity too large for the mesh).
+    NonFiniteResult,
+}
+
+impl fmt::Display for DeformError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Disconnected { components } => {
+                write!(f, "the mesh has {components} separate pieces; the deformer needs one connected piece")
+            }
+            Self::InvalidOption { name, value } => {
+                write!(f, "option {name} is {value}, expected a finite number above 0")
+            }
+            Self::VertexOutOfRange { handle, vertex, vertex_count } => {
+                write!(f, "handle {handle} is at vertex {vertex}, but the mesh has only {vertex_count} vertices")
+            }
+            Self::TriangleOutOfRange { handle, triangle, triangle_count } => {
+                write!(f, "handle {handle} is in triangle {triangle}, but the mesh has only {triangle_count} triangles")
+            }
+            Self::InvalidBarycentric { handle, coordinates } => write!(
+                f,
+                "handle {handle} has barycentric coordinates {coordinates:?}; they must be finite, \
+                 at least 0 and sum to 1"
+            ),
+            Self::Length { what, expected, found } => write!(f, "{what} has length {found}, expected {expected}"),
+            Self::NonFiniteVelocity { handle } => write!(f, "the velocity of handle {handle} is not a finite number"),
+            Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
+            Self::NonFiniteResult => write!(f, "the step produced positions that are not finite; use smaller steps"),
+        }
+    }
+}
+
+impl std::error::Error for DeformError {}
+
+impl From<FactorError> for DeformError {
+    fn from(e: FactorError) -> Self {
+        Self::Factor(e)
+    }
+}
+
+/// Milliseconds spent in each stage of the last step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Assembling the Killing matrix and both systems.
+    pub assembly: f64,
+    /// Numeric factorisations (both systems).
+    pub factorisation: f64,
+    /// Triangular solves (both systems).
+    pub solve: f64,
+    /// Moving the vertices.
+    pub integration: f64,
+}
+
+/// A clock in milliseconds, for [`Timings`].
+pub type Clock = fn() -> f64;
+
+fn default_clock() -> f64 {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+        START.get_or_init(std::time::Instant::now).elapsed().as_secs_f64() * 1e3
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        0.0
+    }
+}
+
+/// A handle: a point of the mesh given by a triangle's vertices and barycentric weights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Handle {
+    vertices: [u32; 3],
+    weights: [f64; 3],
+}
+
+/// A sparse SPD system whose values are gathered from the Killing matrix, with its factor.
+#[derive(Debug, Clone)]
+struct System {
+    matrix: CsMat<f64>,
+    /// For each entry of `matrix`, the slot of the Killing matrix it copies.
+    from_killing: Vec<usize>,
+    numeric: Numeric,
+}
+
+impl System {
+    /// Orders the unknowns (two per vertex of a graph with positions) by whichever of
+    /// approximate minimum degree and nested dissection needs fewer flops, and analyses.
+    fn new(matrix: CsMat<f64>, from_killing: Vec<usize>, ptr: &[usize], adj: &[usize], points: &[Point]) -> Self {
+        let analyse = |order: Vec<usize>| {
+            Symbolic::analyse(matrix.view(), &Ordering::Given(expand_blocks(&order, 2)))
+                .expect("a vertex order expanded to blocks is a valid ordering of a square CSC matrix")
+        };
+        let by_degree = analyse(amd_order(points.len(), ptr, adj));
+        let by_dissection = analyse(nested_dissection_order(ptr, adj, points));
+        let best = if by_dissection.flops() < by_degree.flops() { by_dissection } else { by_degree };
+        let numeric = Numeric::new(Arc::new(best));
+        Self { matrix, from_killing, numeric }
+    }
+
+    fn gather(&mut self, killing: &[f64]) {
+        for (value, &slot) in self.matrix.data_mut().iter_mut().zip(&self.from_killing) {
+            *value = killing[slot];
+        }
+    }
+}
+
+/// The AKAP deformer for one mesh.
+#[derive(Debug, Clone)]
+pub struct Deformer {
+    mesh: Mesh,
+    positions: Vec<Point>,
+    options: DeformerOptions,
+    clock: Clock,
+    killing: KillingMatrix,
+    /// Step 1: K plus the handle penalties (same pattern as K).
+    soft: System,
+    /// Step 2: K restricted to interior unknowns; `None` when no vertex is interior.
+    dirichlet: Option<System>,
+    /// Interior vertex index of each vertex, or `NONE` on the boundary.
+    interior_index: Vec<usize>,
+    /// K entries coupling interior rows to boundary columns: (slot, interior row, column).
+    coupling: Vec<(usize, usize, usize)>,
+    handles: Vec<Handle>,
+    /// Per handle, for each of its 9 vertex pairs, the two diagonal slots of the block.
+    penalty_slots: Vec<[[usize; 2]; 9]>,
+    distinct_points: usize,
+    /// Last field of step 1 and of step 2, interleaved `u1 u2` per vertex.
+    soft_field: Vec<f64>,
+    field: Vec<f64>,
+    // Scratch for a step, committed only on success.
+    next_positions: Vec<Point>,
+    next_soft: Vec<f64>,
+    next_field: Vec<f64>,
+    interior_rhs: Vec<f64>,
+    timings: Timings,
+}
+
+impl Deformer {
+    /// Prepares a deformer for a connected mesh: orderings, symbolic analyses and buffers.
+    pub fn new(mesh: Mesh, options: DeformerOptions) -> Result<Self, DeformError> {
+        check_options(&options)?;
+        let components = mesh.connected_components();
+        if components != 1 {
+            return Err(DeformError::Disconnected { components });
+        }
+        let n = mesh.vertex_count();
+        let killing = KillingMatrix::new(&mesh);
+        let k = killing.matrix();
+
+        let (ptr, adj) = vertex_graph(&mesh, |_| true);
+        let soft = System::new(k.clone(), (0..k.nnz()).collect(), &ptr, &adj, mesh.positions());
+
+        let mut interior_index = vec![NONE; n];
+        let mut interior_points = Vec::new();
+        for v in (0..n).filter(|&v| !mesh.is_boundary_vertex(v)) {
+            interior_index[v] = interior_points.len();
+            interior_points.push(mesh.positions()[v]);
+        }
+        let (dirichlet, coupling) = if interior_points.is_empty() {
+            (None, Vec::new())
+        } else {
+            let (matrix, from_killing, coupling) = interior_system(k, &interior_index, interior_points.len());
+            let (ptr, adj) = vertex_graph(&mesh, |v| interior_index[v] != NONE);
+            let (ptr, adj) = renumber(&ptr, &adj, &interior_index);
+            (Some(System::new(matrix, from_killing, &ptr, &adj, &interior_points)), coupling)
+        };
+
+        Ok(Self {
+            positions: mesh.positions().to_vec(),
+            next_positions: mesh.positions().to_vec(),
+            options,
+            clock: default_clock,
+            killing,
+            soft,
+            dirichlet,
+            interior_rhs: vec![0.0; 2 * interior_points.len()],
+            interior_index,
+            coupling,
+            handles: Vec::new(),
+            penalty_slots: Vec::new(),
+            distinct_points: 0,
+            soft_field: vec![0.0; 2 * n],
+            field: vec![0.0; 2 * n],
+            next_soft: vec![0.0; 2 * n],
+            next_field: vec![0.0; 2 * n],
+            timings: Timings::default(),
+            mesh,
+        })
+    }
+
+    /// Sets the clock used for [`Self::timings`] (milliseconds).
+    pub fn set_clock(&mut self, clock: Clock) {
+        self.clock = clock;
+    }
+
+    /// The mesh in its rest pose.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// Current options.
+    pub fn options(&self) -> DeformerOptions {
+        self.options
+    }
+
+    /// Changes the options (they apply from the next step).
+    pub fn set_options(&mut self, options: DeformerOptions) -> Result<(), DeformError> {
+        check_options(&options)?;
+        self.options = options;
+        Ok(())
+    }
+
+    /// Puts one handle on each of these vertices (replacing any handles).
+    pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        let n = self.mesh.vertex_count();
+        let mut corner_of = vec![NONE; n];
+        for (t, tri) in self.mesh.triangles().iter().enumerate() {
+            for &v in tri {
+                corner_of[v as usize] = t;
+            }
+        }
+        let mut handles = Vec::with_capacity(vertices.len());
+        for (handle, &vertex) in vertices.iter().enumerate() {
+            if vertex as usize >= n {
+                return Err(DeformError::VertexOutOfRange { handle, vertex, vertex_count: n });
+            }
+            let tri = self.mesh.triangles()[corner_of[vertex as usize]];
+            let weights = tri.map(|v| if v == vertex { 1.0 } else { 0.0 });
+            handles.push(Handle { vertices: tri, weights });
+        }
+        self.install(handles);
+        Ok(())
+    }
+
+    /// Puts handles at points inside triangles, given by triangle index and barycentric
+    /// coordinates (replacing any handles).
+    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        if barycentric.len() != triangles.len() {
+            return Err(DeformError::Length {
+                what: "barycentric",
+                expected: 3 * triangles.len(),
+                found: 3 * barycentric.len(),
+            });
+        }
+        let m = self.mesh.triangle_count();
+        let mut handles = Vec::with_capacity(triangles.len());
+        for (handle, (&triangle, &w)) in triangles.iter().zip(barycentric).enumerate() {
+            if triangle as usize >= m {
+                return Err(DeformError::TriangleOutOfRange { handle, triangle, triangle_count: m });
+            }
+            let valid = w.iter().all(|x| x.is_finite() && *x >= -1e-12) && (w.iter().sum::<f64>() - 1.0).abs() <= 1e-9;
+            if !valid {
+                return Err(DeformError::InvalidBarycentric { handle, coordinates: w });
+            }
+            handles.push(Handle { vertices: self.mesh.triangles()[triangle as usize], weights: w });
+        }
+        self.install(handles);
+        Ok(())
+    }
+
+    fn install(&mut self, handles: Vec<Handle>) {
+        self.penalty_slots = handles
+            .iter()
+            .map(|h| {
+                let mut slots = [[0; 2]; 9];
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let block = self
+                            .killing
+                            .block_slots(h.vertices[i] as usize, h.vertices[j] as usize)
+                            .expect("vertices of one triangle share an edge");
+                        slots[3 * i + j] = [block[0][0], block[1][1]];
+                    }
+                }
+                slots
+            })
+            .collect();
+        let scale = self.scale();
+        let points: Vec<Point> = handles.iter().map(|h| self.point_of(h)).collect();
+        self.distinct_points = (0..points.len())
+            .filter(|&i| points[..i].iter().all(|q| (q[0] - points[i][0]).hypot(q[1] - points[i][1]) > 1e-12 * scale))
+            .count();
+        self.handles = handles;
+    }
+
+    fn scale(&self) -> f64 {
+        let (lo, hi) = crate::geometry::bounding_box(self.positions.iter().copied()).expect("mesh has vertices");
+        (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+    }
+
+    fn point_of(&self, h: &Handle) -> Point {
+        let mut p = [0.0, 0.0];
+        for (v, w) in h.vertices.iter().zip(h.weights) {
+            p[0] += w * self.positions[*v as usize][0];
+            p[1] += w * self.positions[*v as usize][1];
+        }
+        p
+    }
+
+    /// Number of handles.
+    pub fn handle_count(&self) -> usize {
+        self.handles.len()
+    }
+
+    /// Current positions of the handle points.
+    pub fn handle_positions(&self) -> Vec<Point> {
+        self.handles.iter().map(|h| self.point_of(h)).collect()
+    }
+
+    /// One deformation step with a velocity per handle (in handle order).
+    pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+        if velocities.len() != self.handles.len() {
+            return Err(DeformError::Length {
+                what: "velocities",
+                expected: 2 * self.handles.len(),
+                found: 2 * velocities.len(),
+            });
+        }
+        if let Some(handle) = velocities.iter().position(|v| !v[0].is_finite() || !v[1].is_finite()) {
+            return Err(DeformError::NonFiniteVelocity { handle });
+        }
+        let clock = self.clock;
+        let mut timings = Timings::default();
+        if self.distinct_points < 2 {
+            // No handle: nothing moves. One handle point: the whole shape follows it rigidly.
+            let mut mean = [0.0, 0.0];
+            for v in velocities {
+                mean[0] += v[0] / velocities.len() as f64;
+                mean[1] += v[1] / velocities.len() as f64;
+            }
+            for k in 0..self.mesh.vertex_count() {
+                self.next_soft[2 * k] = mean[0];
+                self.next_soft[2 * k + 1] = mean[1];
+            }
+            self.next_field.copy_from_slice(&self.next_soft);
+        } else {
+            self.solve_fields(velocities, &mut timings)?;
+        }
+
+        let t_move = clock();
+        let field: &[[f64; 2]] = as_pairs(&self.next_field);
+        match self.options.integrator {
+            Integrator::Spiral => {
+                let mesh = &self.mesh;
+                spiral_step(&self.positions, field, |v| mesh.neighbors(v), &mut self.next_positions)
+            }
+            Integrator::Linear => linear_step(&self.positions, field, &mut self.next_positions),
+        }
+        if self.next_positions.iter().any(|p| !p[0].is_finite() || !p[1].is_finite()) {
+            return Err(DeformError::NonFiniteResult);
+        }
+        timings.integration = clock() - t_move;
+        std::mem::swap(&mut self.positions, &mut self.next_positions);
+        std::mem::swap(&mut self.soft_field, &mut self.next_soft);
+        std::mem::swap(&mut self.field, &mut self.next_field);
+        self.timings = timings;
+        Ok(())
+    }
+
+    /// Steps 1 and 2 into `next_soft` and `next_field`.
+    fn solve_fields(&mut self, velocities: &[[f64; 2]], timings: &mut Timings) -> Result<(), DeformError> {
+        let clock = self.clock;
+        let lambda = self.options.lambda;
+        let t0 = clock();
+        self.killing.assemble(&self.positions);
+        let k = self.killing.matrix().data();
+        self.soft.gather(k);
+        let data = self.soft.matrix.data_mut();
+        let rhs = &mut self.next_soft;
+        rhs.fill(0.0);
+        for ((h, slots), u) in self.handles.iter().zip(&self.penalty_slots).zip(velocities) {
+            for i in 0..3 {
+                for j in 0..3 {
+                    let c = lambda * h.weights[i] * h.weights[j];
+                    data[slots[3 * i + j][0]] += c;
+                    data[slots[3 * i + j][1]] += c;
+                }
+                let v = h.vertices[i] as usize;
+                rhs[2 * v] += lambda * h.weights[i] * u[0];
+                rhs[2 * v + 1] += lambda * h.weights[i] * u[1];
+            }
+        }
+        if let Some(system) = &mut self.dirichlet {
+            system.gather(k);
+        }
+        let t1 = clock();
+        self.soft.numeric.refactor(self.soft.matrix.view())?;
+        let t2 = clock();
+        self.soft.numeric.solve_in_place(&mut self.next_soft)?;
+        let t3 = clock();
+        timings.assembly = t1 - t0;
+        timings.factorisation = t2 - t1;
+        timings.solve = t3 - t2;
+
+        self.next_field.copy_from_slice(&self.next_soft);
+        if !self.options.dirichlet {
+            return Ok(());
+        }
+        let Some(system) = &mut self.dirichlet else { return Ok(()) };
+        let t4 = clock();
+        let rhs = &mut self.interior_rhs;
+        rhs.fill(0.0);
+        for &(slot, row, col) in &self.coupling {
+            rhs[row] -= k[slot] * self.next_soft[col];
+        }
+        let t5 = clock();
+        system.numeric.refactor(system.matrix.view())?;
+        let t6 = clock();
+        system.numeric.solve_in_place(rhs)?;
+        for (v, &i) in self.interior_index.iter().enumerate() {
+            if i != NONE {
+                self.next_field[2 * v] = rhs[2 * i];
+                self.next_field[2 * v + 1] = rhs[2 * i + 1];
+            }
+        }
+        let t7 = clock();
+        timings.assembly += t5 - t4;
+        timings.factorisation += t6 - t5;
+        timings.solve += t7 - t6;
+        Ok(())
+    }
+
+    /// Back to the rest pose; handles stay.
+    pub fn reset(&mut self) {
+        self.positions.copy_from_slice(self.mesh.positions());
+        self.soft_field.fill(0.0);
+        self.field.fill(0.0);
+    }
+
+    /// Current vertex positions.
+    pub fn positions(&self) -> &[Point] {
+        &self.positions
+    }
+
+    /// The velocity field of the last step after step 2 (`U_opt`), per vertex.
+    pub fn field(&self) -> &[[f64; 2]] {
+        as_pairs(&self.field)
+    }
+
+    /// The velocity field of the last step after step 1 (`U0`), per vertex.
+    pub fn soft_field(&self) -> &[[f64; 2]] {
+        as_pairs(&self.soft_field)
+    }
+
+    /// Stage timings of the last step.
+    pub fn timings(&self) -> Timings {
+        self.timings
+    }
+
+    /// Distortion of the current pose against the rest pose.
+    pub fn metrics(&self) -> Metrics {
+        metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
+    }
+
+    /// Factor statistics of step 1's system: (nnz(L), flops).
+    pub fn factor_stats(&self) -> (usize, f64) {
+        let s = self.soft.numeric.symbolic();
+        (s.nnz_l(), s.flops())
+    }
+}
+
+fn check_options(options: &DeformerOptions) -> Result<(), DeformError> {
+    if !(options.lambda.is_finite() && options.lambda > 0.0) {
+        return Err(DeformError::InvalidOption { name: "lambda", value: options.lambda });
+    }
+    Ok(())
+}
+
+/// Views an interleaved `[x0, y0, x1, y1, ...]` buffer as pairs.
+fn as_pairs(flat: &[f64]) -> &[[f64; 2]] {
+    let (pairs, rest) = flat.as_chunks::<2>();
+    debug_assert!(rest.is_empty());
+    pairs
+}
+
+/// The vertex adjacency of the vertices that `keep`, in CSR form (indices still global).
+fn vertex_graph(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> (Vec<usize>, Vec<usize>) {
+    let mut ptr = vec![0];
+    let mut adj = Vec::new();
+    for v in (0..mesh.vertex_count()).filter(|&v| keep(v)) {
+        adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize).filter(|&w| keep(w)));
+        ptr.push(adj.len());
+    }
+    (ptr, adj)
+}
+
+/// Renumbers global vertex indices in an adjacency list through `index`.
+fn renumber(ptr: &[usize], adj: &[usize], index: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    (ptr.to_vec(), adj.iter().map(|&w| index[w]).collect())
+}
+
+/// The interior block `K_II` of the Killing matrix (pattern and source slots) and the
+/// entries coupling interior rows to boundary columns.
+#[allow(clippy::type_complexity)]
+fn interior_system(
+    k: &CsMat<f64>,
+    interior_index: &[usize],
+    interior_count: usize,
+) -> (CsMat<f64>, Vec<usize>, Vec<(usize, usize, usize)>) {
+    let unknown = |g: usize| {
+        let i = interior_index[g / 2];
+        (i != NONE).then(|| 2 * i + g % 2)
+    };
+    let mut indptr = vec![0];
+    let mut indices = Vec::new();
+    let mut from = Vec::new();
+    let mut coupling = Vec::new();
+    for col in 0..k.cols() {
+        let range = k.indptr().outer_inds_sz(col);
+        let col_interior = unknown(col);
+        for p in range {
+            let row = k.indices()[p];
+            match (unknown(row), col_interior) {
+                (Some(r), Some(_)) => {
+                    indices.push(r);
+                    from.push(p);
+                }
+                (Some(r), None) => coupling.push((p, r, col)),
+                _ => {}
+            }
+        }
+        if col_interior.is_some() {
+            indptr.push(indices.len());
+        }
+    }
+    let nnz = indices.len();
+    let m = 2 * interior_count;
+    (CsMat::new_csc((m, m), indptr, indices, vec![0.0; nnz]), from, coupling)
+}

@@ -1,0 +1,121 @@
+//! Moving vertices along a velocity field: the paper's logarithmic-spiral step (eqs. 14-16,
+//! with the sign of eq. (15) corrected, see `shared/papers/README.md`) and the plain linear
+//! step it is compared with.
+//!
+//! In complex numbers, the spiral through `p_v` whose velocity field `U(p) = s (p - c)`
+//! matches `U_v` at `p_v` and `U_w` at `p_w` has `s = (U_v - U_w) / (p_v - p_w)`; following
+//! it for unit time moves `p_v` to `p_v + U_v (e^s - 1) / s`. Each vertex takes the mean of
+//! that factor over its edge neighbours. For a Killing field `U = a i (p - c) + d` every `s`
+//! equals `a i`, so the step is exactly the rotation by `a` about the field's centre.
+
+use crate::geometry::Point;
+
+/// `(e^s - 1) / s` for a complex `s = [re, im]`, accurate for all `s` (1 at `s = 0`).
+pub fn exp_ratio(s: [f64; 2]) -> [f64; 2] {
+    let [x, y] = s;
+    let norm2 = x * x + y * y;
+    if norm2 < 1e-6 {
+        // 1 + s/2 + s^2/6 + s^3/24 + s^4/120: the next term is below 1e-17 for |s| < 1e-3.
+        let s2 = mul(s, s);
+        let s3 = mul(s2, s);
+        let s4 = mul(s2, s2);
+        return [
+            1.0 + x / 2.0 + s2[0] / 6.0 + s3[0] / 24.0 + s4[0] / 120.0,
+            y / 2.0 + s2[1] / 6.0 + s3[1] / 24.0 + s4[1] / 120.0,
+        ];
+    }
+    // e^s - 1 = (e^x cos y - 1) + i e^x sin y, with the real part written without
+    // cancellation: e^x cos y - 1 = expm1(x) cos y - 2 sin^2(y / 2).
+    let half = (0.5 * y).sin();
+    let numerator = [x.exp_m1() * y.cos() - 2.0 * half * half, x.exp() * y.sin()];
+    div(numerator, s)
+}
+
+#[inline]
+fn mul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
+}
+
+#[inline]
+fn div(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let d = b[0] * b[0] + b[1] * b[1];
+    [(a[0] * b[0] + a[1] * b[1]) / d, (a[1] * b[0] - a[0] * b[1]) / d]
+}
+
+/// The spiral step: writes the new position of every vertex into `out`. Neighbours of `v`
+/// are `neighbors(v)`; `field[v]` is the velocity of vertex v.
+pub fn spiral_step<'a>(
+    positions: &[Point],
+    field: &[[f64; 2]],
+    neighbors: impl Fn(usize) -> &'a [u32],
+    out: &mut [Point],
+) {
+    for (v, (p, u)) in positions.iter().zip(field).enumerate() {
+        let around = neighbors(v);
+        let mut sum = [0.0, 0.0];
+        for &w in around {
+            let w = w as usize;
+            let du = [u[0] - field[w][0], u[1] - field[w][1]];
+            let dp = [p[0] - positions[w][0], p[1] - positions[w][1]];
+            let ratio = exp_ratio(div(du, dp));
+            sum[0] += ratio[0];
+            sum[1] += ratio[1];
+        }
+        let k = around.len().max(1) as f64;
+        let factor = if around.is_empty() { [1.0, 0.0] } else { [sum[0] / k, sum[1] / k] };
+        let step = mul(*u, factor);
+        out[v] = [p[0] + step[0], p[1] + step[1]];
+    }
+}
+
+/// The linear step `p <- p + U`.
+pub fn linear_step(positions: &[Point], field: &[[f64; 2]], out: &mut [Point]) {
+    for ((o, p), u) in out.iter_mut().zip(positions).zip(field) {
+        *o = [p[0] + u[0], p[1] + u[1]];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: [f64; 2], b: [f64; 2], tol: f64) -> bool {
+        (a[0] - b[0]).abs() <= tol && (a[1] - b[1]).abs() <= tol
+    }
+
+    #[test]
+    fn exp_ratio_matches_the_definition_and_is_smooth_at_zero() {
+        // Away from 0, compare with e^s = e^x (cos y + i sin y) directly.
+        for s in [[0.5f64, 0.0], [0.0, 1.0], [-1.2, 0.7], [2.0, -3.0], [0.01, 0.02]] {
+            let e = [s[0].exp() * s[1].cos() - 1.0, s[0].exp() * s[1].sin()];
+            assert!(close(exp_ratio(s), div(e, s), 1e-13), "{s:?}");
+        }
+        assert_eq!(exp_ratio([0.0, 0.0]), [1.0, 0.0]);
+        // Both branches agree where they meet (|s| = 1e-3).
+        let (inside, outside) = (exp_ratio([0.0, 0.999_999e-3]), exp_ratio([0.0, 1.000_001e-3]));
+        assert!(close(inside, outside, 1e-9));
+        // Pure imaginary s = i a: (e^{ia} - 1) / (ia) has modulus |2 sin(a/2) / a|.
+        let a: f64 = 0.3;
+        let r = exp_ratio([0.0, a]);
+        assert!((r[0].hypot(r[1]) - (2.0 * (a / 2.0).sin() / a).abs()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rigid_field_step_is_an_exact_rotation() {
+        let positions = [[0.0, 0.0], [1.0, 0.0], [0.3, 0.8], [1.4, 1.1]];
+        let neighbors: [&[u32]; 4] = [&[1, 2], &[0, 2, 3], &[0, 1, 3], &[1, 2]];
+        let (a, c, d) = (0.4, [0.5, -0.2], [0.1, 0.3]);
+        // U = a i (p - c) + d; the motion is the rotation by a about c' = c + i d / a.
+        let field: Vec<[f64; 2]> =
+            positions.iter().map(|p| [-a * (p[1] - c[1]) + d[0], a * (p[0] - c[0]) + d[1]]).collect();
+        let centre = [c[0] - d[1] / a, c[1] + d[0] / a];
+        let mut out = [[0.0; 2]; 4];
+        spiral_step(&positions, &field, |v| neighbors[v], &mut out);
+        let (sin, cos) = a.sin_cos();
+        for (p, q) in positions.iter().zip(out) {
+            let r = [p[0] - centre[0], p[1] - centre[1]];
+            let expected = [centre[0] + cos * r[0] - sin * r[1], centre[1] + sin * r[0] + cos * r[1]];
+            assert!(close(q, expected, 1e-14), "{q:?} vs {expected:?}");
+        }
+    }
+}

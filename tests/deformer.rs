@@ -1,0 +1,308 @@
+//! The AKAP deformer against the mathematics of the paper: rigid motions reproduced
+//! exactly (Appendix A), optimality conditions of both solves, near-isometric bending,
+//! handle edge cases and untouched state after bad input. Runs natively and as wasm.
+
+use akap::deform::killing::KillingMatrix;
+use akap::deform::{DeformError, Deformer, DeformerOptions, Integrator};
+use akap::geometry::Point;
+use akap::shapes::{ellipse, gingerbread};
+use akap::{triangulate, Mesh, Outline, TriangulationOptions};
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+use crate::common::Rng;
+
+fn bar_with_holes() -> Mesh {
+    let outline = Outline::new(vec![[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [0.0, 1.0]])
+        .with_hole(ellipse([1.0, 0.5], 0.2, 0.25, 10))
+        .with_hole(ellipse([2.8, 0.4], 0.3, 0.2, 12));
+    triangulate(&outline, &TriangulationOptions::default().with_target_edge_length(0.2)).unwrap()
+}
+
+fn figure() -> Mesh {
+    triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.08)).unwrap()
+}
+
+/// The infinitesimal rigid motion `u(p) = a i (p - c) + d` in complex notation.
+fn killing_field(a: f64, c: Point, d: [f64; 2]) -> impl Fn(Point) -> [f64; 2] {
+    move |p| [-a * (p[1] - c[1]) + d[0], a * (p[0] - c[0]) + d[1]]
+}
+
+fn scale(points: &[Point]) -> f64 {
+    points.iter().map(|p| p[0].abs().max(p[1].abs())).fold(0.0, f64::max)
+}
+
+/// Handles on a few vertices and a few barycentric points spread over the mesh.
+fn place_handles(deformer: &mut Deformer, barycentric: bool, rng: &mut Rng) {
+    let mesh = deformer.mesh().clone();
+    if barycentric {
+        let tris: Vec<u32> = (0..4).map(|_| rng.below(mesh.triangle_count()) as u32).collect();
+        let weights: Vec<[f64; 3]> = (0..4)
+            .map(|_| {
+                let (x, y) = (rng.unit(), rng.unit());
+                let (x, y) = if x + y > 1.0 { (1.0 - x, 1.0 - y) } else { (x, y) };
+                [1.0 - x - y, x, y]
+            })
+            .collect();
+        deformer.set_handle_points(&tris, &weights).unwrap();
+    } else {
+        let vertices: Vec<u32> = (0..5).map(|_| rng.below(mesh.vertex_count()) as u32).collect();
+        deformer.set_handle_vertices(&vertices).unwrap();
+    }
+}
+
+#[test]
+fn rigid_motions_are_reproduced_exactly() {
+    let mut rng = Rng::new(2011);
+    for mesh in [bar_with_holes(), figure()] {
+        let size = scale(mesh.positions());
+        for (a, c, d, lambda, dirichlet, barycentric) in [
+            (0.3, [1.0, 0.2], [0.0, 0.0], 100.0, true, false),
+            (-0.7, [-2.0, 3.0], [0.5, -0.25], 100.0, false, true),
+            (0.05, [0.5, 0.5], [1.0, 2.0], 1.0, true, true),
+            (1.2, [0.0, 0.0], [-0.3, 0.1], 1e4, true, false),
+        ] {
+            let options = DeformerOptions::default().with_lambda(lambda).with_dirichlet(dirichlet);
+            let mut deformer = Deformer::new(mesh.clone(), options).unwrap();
+            place_handles(&mut deformer, barycentric, &mut rng);
+            let u = killing_field(a, c, d);
+            let velocities: Vec<[f64; 2]> = deformer.handle_positions().iter().map(|&p| u(p)).collect();
+            deformer.step(&velocities).unwrap();
+
+            // The field is the rigid motion itself.
+            let speed = mesh.positions().iter().map(|&p| u(p)[0].hypot(u(p)[1])).fold(0.0, f64::max);
+            for (p, f) in mesh.positions().iter().zip(deformer.field()) {
+                let e = u(*p);
+                assert!((f[0] - e[0]).hypot(f[1] - e[1]) <= 1e-9 * speed, "field {f:?} vs {e:?}");
+            }
+            // One spiral step is the rotation by a about the field's centre c + i d / a.
+            let centre = [c[0] - d[1] / a, c[1] + d[0] / a];
+            let (sin, cos) = a.sin_cos();
+            let tol = 1e-9 * (size + scale(&[centre]));
+            for (p, q) in mesh.positions().iter().zip(deformer.positions()) {
+                let r = [p[0] - centre[0], p[1] - centre[1]];
+                let expected = [centre[0] + cos * r[0] - sin * r[1], centre[1] + sin * r[0] + cos * r[1]];
+                assert!((q[0] - expected[0]).hypot(q[1] - expected[1]) <= tol, "{q:?} vs {expected:?}");
+            }
+            let m = deformer.metrics();
+            assert!((m.area_distortion - 2.0).abs() < 1e-8 && (m.angle_distortion - 2.0).abs() < 1e-8);
+        }
+    }
+}
+
+#[test]
+fn linear_steps_dilate_rotations_by_the_expected_factor() {
+    let mesh = bar_with_holes();
+    let options = DeformerOptions::default().with_integrator(Integrator::Linear);
+    let mut deformer = Deformer::new(mesh.clone(), options).unwrap();
+    deformer.set_handle_vertices(&[0, 7, 20]).unwrap();
+    let (a, c) = (0.4, [2.0, 0.5]);
+    let u = killing_field(a, c, [0.0, 0.0]);
+    let velocities: Vec<[f64; 2]> = deformer.handle_positions().iter().map(|&p| u(p)).collect();
+    deformer.step(&velocities).unwrap();
+    // p + a i (p - c) = c + (1 + a i)(p - c): distances from c grow by sqrt(1 + a^2).
+    let growth = (1.0 + a * a).sqrt();
+    for (p, q) in mesh.positions().iter().zip(deformer.positions()) {
+        let before = (p[0] - c[0]).hypot(p[1] - c[1]);
+        let after = (q[0] - c[0]).hypot(q[1] - c[1]);
+        assert!((after - growth * before).abs() <= 1e-9 * (1.0 + before));
+    }
+    assert!(deformer.metrics().area_distortion > 2.0 + 1e-3);
+}
+
+/// `K u` for the Killing matrix at `positions`.
+fn killing_times(mesh: &Mesh, positions: &[Point], u: &[f64]) -> Vec<f64> {
+    let mut k = KillingMatrix::new(mesh);
+    k.assemble(positions);
+    let mut out = vec![0.0; u.len()];
+    for (v, (i, j)) in k.matrix().iter() {
+        out[i] += v * u[j];
+    }
+    out
+}
+
+#[test]
+fn both_solves_satisfy_their_optimality_conditions() {
+    let mesh = figure();
+    let mut rng = Rng::new(4);
+    let lambda = 100.0;
+    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default().with_lambda(lambda)).unwrap();
+    let tris = [3u32, 100, 250, 400];
+    let weights = [[0.2, 0.3, 0.5], [1.0, 0.0, 0.0], [0.6, 0.2, 0.2], [0.1, 0.1, 0.8]];
+    deformer.set_handle_points(&tris, &weights).unwrap();
+    let velocities: Vec<[f64; 2]> = (0..4).map(|_| [rng.unit() - 0.5, rng.unit() - 0.5]).collect();
+    let positions = deformer.positions().to_vec();
+    deformer.step(&velocities).unwrap();
+
+    // Step 1: K U0 + lambda sum_i W_i^T (W_i U0 - u_i) = 0.
+    let u0: Vec<f64> = deformer.soft_field().iter().flatten().copied().collect();
+    let mut gradient = killing_times(&mesh, &positions, &u0);
+    for ((&t, w), vel) in tris.iter().zip(&weights).zip(&velocities) {
+        let verts = mesh.triangles()[t as usize];
+        for k in 0..2 {
+            let at_handle: f64 = (0..3).map(|i| w[i] * u0[2 * verts[i] as usize + k]).sum();
+            for i in 0..3 {
+                gradient[2 * verts[i] as usize + k] += lambda * w[i] * (at_handle - vel[k]);
+            }
+        }
+    }
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!(norm(&gradient) <= 1e-9 * lambda * norm(&velocities.concat()), "{}", norm(&gradient));
+
+    // Step 2: U = U0 on the boundary and (K U)_I = 0 at interior unknowns.
+    let u: Vec<f64> = deformer.field().iter().flatten().copied().collect();
+    let ku = killing_times(&mesh, &positions, &u);
+    let mut interior = 0.0;
+    for v in 0..mesh.vertex_count() {
+        if mesh.is_boundary_vertex(v) {
+            assert_eq!([u[2 * v], u[2 * v + 1]], [u0[2 * v], u0[2 * v + 1]]);
+        } else {
+            interior += ku[2 * v].powi(2) + ku[2 * v + 1].powi(2);
+        }
+    }
+    let reference = norm(&killing_times(&mesh, &positions, &u0));
+    assert!(interior.sqrt() <= 1e-9 * reference, "{} vs {reference}", interior.sqrt());
+}
+
+#[test]
+fn bending_a_bar_along_a_quarter_circle_stays_near_isometric() {
+    let (length, width) = (8.0, 1.0);
+    let outline = Outline::new(vec![[0.0, 0.0], [length, 0.0], [length, width], [0.0, width]]);
+    let mesh = triangulate(&outline, &TriangulationOptions::default().with_target_edge_length(0.2)).unwrap();
+    let left: Vec<u32> = (0..mesh.vertex_count() as u32).filter(|&v| mesh.positions()[v as usize][0] == 0.0).collect();
+    let right: Vec<u32> =
+        (0..mesh.vertex_count() as u32).filter(|&v| mesh.positions()[v as usize][0] == length).collect();
+    let handles: Vec<u32> = left.iter().chain(&right).copied().collect();
+    let rest: Vec<Point> = handles.iter().map(|&v| mesh.positions()[v as usize]).collect();
+    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    deformer.set_handle_vertices(&handles).unwrap();
+    // The bar's centre line bent into a circular arc of angle phi keeps its length: the
+    // right end goes to R (sin phi, 1 - cos phi) with R = length / phi, turned by phi.
+    let steps = 60;
+    for k in 1..=steps {
+        let phi = std::f64::consts::FRAC_PI_2 * k as f64 / steps as f64;
+        let radius = length / phi;
+        let end = [radius * phi.sin(), width / 2.0 + radius * (1.0 - phi.cos())];
+        let (s, c) = phi.sin_cos();
+        let current = deformer.handle_positions();
+        let velocities: Vec<[f64; 2]> = rest
+            .iter()
+            .zip(&current)
+            .enumerate()
+            .map(|(i, (r, now))| {
+                let target = if i < left.len() {
+                    *r
+                } else {
+                    let y = r[1] - width / 2.0;
+                    [end[0] - s * y, end[1] + c * y]
+                };
+                [target[0] - now[0], target[1] - now[1]]
+            })
+            .collect();
+        deformer.step(&velocities).unwrap();
+    }
+    let m = deformer.metrics();
+    assert_eq!(m.flipped, 0);
+    assert!(m.area_distortion < 2.05 && m.angle_distortion < 2.05, "{m:?}");
+}
+
+#[test]
+fn zero_one_and_coincident_handles() {
+    let mesh = bar_with_holes();
+    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    deformer.step(&[]).unwrap();
+    assert_eq!(deformer.positions(), mesh.positions());
+
+    deformer.set_handle_vertices(&[5]).unwrap();
+    deformer.step(&[[0.25, -0.5]]).unwrap();
+    for (p, q) in mesh.positions().iter().zip(deformer.positions()) {
+        assert!((q[0] - p[0] - 0.25).abs() < 1e-15 && (q[1] - p[1] + 0.5).abs() < 1e-15);
+    }
+    // The same vertex twice is one point: a rigid translation by the mean velocity.
+    deformer.reset();
+    deformer.set_handle_vertices(&[5, 5]).unwrap();
+    deformer.step(&[[1.0, 0.0], [0.0, 1.0]]).unwrap();
+    for (p, q) in mesh.positions().iter().zip(deformer.positions()) {
+        assert!((q[0] - p[0] - 0.5).abs() < 1e-15 && (q[1] - p[1] - 0.5).abs() < 1e-15);
+    }
+}
+
+#[test]
+fn bad_input_is_refused_and_changes_nothing() {
+    let mesh = bar_with_holes();
+    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    deformer.set_handle_vertices(&[0, 10]).unwrap();
+    deformer.step(&[[0.0, 0.0], [0.1, 0.1]]).unwrap();
+    let before = deformer.positions().to_vec();
+    let field = deformer.field().to_vec();
+    let n = mesh.vertex_count() as u32;
+    let m = mesh.triangle_count() as u32;
+
+    assert!(matches!(deformer.set_handle_vertices(&[0, n]), Err(DeformError::VertexOutOfRange { handle: 1, .. })));
+    assert!(matches!(
+        deformer.set_handle_points(&[m], &[[1.0, 0.0, 0.0]]),
+        Err(DeformError::TriangleOutOfRange { .. })
+    ));
+    assert!(matches!(
+        deformer.set_handle_points(&[0], &[[0.5, 0.4, 0.0]]),
+        Err(DeformError::InvalidBarycentric { .. })
+    ));
+    assert!(matches!(
+        deformer.set_handle_points(&[0], &[[1.5, -0.5, 0.0]]),
+        Err(DeformError::InvalidBarycentric { .. })
+    ));
+    assert!(matches!(
+        deformer.set_handle_points(&[0], &[[f64::NAN, 0.5, 0.5]]),
+        Err(DeformError::InvalidBarycentric { .. })
+    ));
+    assert!(matches!(deformer.step(&[[0.0, 0.0]]), Err(DeformError::Length { expected: 4, found: 2, .. })));
+    assert!(matches!(
+        deformer.step(&[[0.0, 0.0], [f64::INFINITY, 0.0]]),
+        Err(DeformError::NonFiniteVelocity { handle: 1 })
+    ));
+    assert!(matches!(
+        deformer.set_options(DeformerOptions::default().with_lambda(-1.0)),
+        Err(DeformError::InvalidOption { name: "lambda", .. })
+    ));
+    assert_eq!(deformer.handle_count(), 2);
+    assert_eq!(deformer.positions(), before.as_slice());
+    assert_eq!(deformer.field(), field.as_slice());
+    // The handles set before the errors still work.
+    deformer.step(&[[0.0, 0.0], [0.1, 0.1]]).unwrap();
+
+    let two = Mesh::new(
+        vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [5.0, 0.0], [6.0, 0.0], [5.0, 1.0]],
+        vec![[0, 1, 2], [3, 4, 5]],
+    )
+    .unwrap();
+    assert_eq!(
+        Deformer::new(two, DeformerOptions::default()).unwrap_err(),
+        DeformError::Disconnected { components: 2 }
+    );
+}
+
+#[test]
+fn long_random_runs_stay_finite() {
+    let mesh = triangulate(
+        &Outline::new(vec![[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]),
+        &TriangulationOptions::default().with_target_edge_length(0.3),
+    )
+    .unwrap();
+    let mut rng = Rng::new(99);
+    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    for step in 0..10_000 {
+        if step % 500 == 0 {
+            deformer.reset();
+            let handles: Vec<u32> = (0..3).map(|_| rng.below(mesh.vertex_count()) as u32).collect();
+            deformer.set_handle_vertices(&handles).unwrap();
+        }
+        let velocities: Vec<[f64; 2]> =
+            (0..deformer.handle_count()).map(|_| [0.02 * (rng.unit() - 0.5), 0.02 * (rng.unit() - 0.5)]).collect();
+        let before = deformer.positions().to_vec();
+        match deformer.step(&velocities) {
+            Ok(()) => assert!(deformer.positions().iter().all(|p| p[0].is_finite() && p[1].is_finite())),
+            // A collapsed mesh may refuse a step; then nothing changed.
+            Err(_) => assert_eq!(deformer.positions(), before.as_slice()),
+        }
+    }
+}
