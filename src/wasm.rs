@@ -9,6 +9,7 @@ use js_sys::{Array, Float64Array, Object, Reflect};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
+use crate::deform::{Deformer, DeformerOptions, Integrator};
 use crate::mesh::Mesh;
 use crate::outline::Outline;
 use crate::shapes;
@@ -174,6 +175,193 @@ pub fn default_shape() -> Result<Object, JsValue> {
     Reflect::set(&object, &"outer".into(), &flat(&outline.outer))?;
     Reflect::set(&object, &"holes".into(), &holes)?;
     Ok(object)
+}
+
+/// The AKAP deformer for one mesh (see `crate::deform::Deformer`).
+#[wasm_bindgen(js_name = Deformer)]
+pub struct JsDeformer {
+    inner: Deformer,
+}
+
+#[wasm_bindgen(js_class = Deformer)]
+impl JsDeformer {
+    /// Validates the mesh (xy-interleaved positions, counter-clockwise index triples) and
+    /// prepares the solver. `options`: `{ lambda?: number, dirichlet?: boolean,
+    /// integrator?: "spiral" | "linear" }`.
+    #[wasm_bindgen(constructor)]
+    pub fn new(positions: &[f64], triangles: &[u32], options: JsValue) -> Result<JsDeformer, JsError> {
+        let options = parse_deformer_options(options, DeformerOptions::default())?;
+        let mesh = Mesh::from_flat(positions, triangles).map_err(to_js)?;
+        let mut inner = Deformer::new(mesh, options).map_err(to_js)?;
+        inner.set_clock(performance_now);
+        Ok(Self { inner })
+    }
+
+    /// Changes some options; the others keep their values.
+    #[wasm_bindgen(js_name = setOptions)]
+    pub fn set_options(&mut self, options: JsValue) -> Result<(), JsError> {
+        let options = parse_deformer_options(options, self.inner.options())?;
+        self.inner.set_options(options).map_err(to_js)
+    }
+
+    /// One handle on each of these vertices (replacing the handles).
+    #[wasm_bindgen(js_name = setHandles)]
+    pub fn set_handles(&mut self, vertices: &[u32]) -> Result<(), JsError> {
+        self.inner.set_handle_vertices(vertices).map_err(to_js)
+    }
+
+    /// Handles at points in triangles: triangle indices and three barycentric coordinates
+    /// per point (replacing the handles).
+    #[wasm_bindgen(js_name = setHandlePoints)]
+    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[f64]) -> Result<(), JsError> {
+        if barycentric.len() != 3 * triangles.len() {
+            return Err(JsError::new(&format!(
+                "barycentric has length {}, expected 3 per triangle ({})",
+                barycentric.len(),
+                3 * triangles.len()
+            )));
+        }
+        let (weights, _) = barycentric.as_chunks::<3>();
+        self.inner.set_handle_points(triangles, weights).map_err(to_js)
+    }
+
+    /// One step with two velocity components per handle, in handle order.
+    pub fn step(&mut self, velocities: &[f64]) -> Result<(), JsError> {
+        let (pairs, rest) = velocities.as_chunks::<2>();
+        if !rest.is_empty() {
+            return Err(JsError::new(&format!(
+                "velocities has length {}, expected 2 per handle ({})",
+                velocities.len(),
+                2 * self.inner.handle_count()
+            )));
+        }
+        self.inner.step(pairs).map_err(to_js)
+    }
+
+    /// A copy of the current positions, x and y interleaved.
+    pub fn positions(&self) -> Vec<f64> {
+        self.inner.positions().iter().flatten().copied().collect()
+    }
+
+    /// The last velocity field after the Dirichlet step (`U_opt`), interleaved.
+    pub fn field(&self) -> Vec<f64> {
+        self.inner.field().iter().flatten().copied().collect()
+    }
+
+    /// The last velocity field after the soft-constraint step (`U0`), interleaved.
+    #[wasm_bindgen(js_name = softField)]
+    pub fn soft_field(&self) -> Vec<f64> {
+        self.inner.soft_field().iter().flatten().copied().collect()
+    }
+
+    /// Current positions of the handle points, interleaved.
+    #[wasm_bindgen(js_name = handlePositions)]
+    pub fn handle_positions(&self) -> Vec<f64> {
+        self.inner.handle_positions().iter().flatten().copied().collect()
+    }
+
+    /// Number of handles.
+    #[wasm_bindgen(getter, js_name = handleCount)]
+    pub fn handle_count(&self) -> usize {
+        self.inner.handle_count()
+    }
+
+    /// Number of vertices.
+    #[wasm_bindgen(getter, js_name = vertexCount)]
+    pub fn vertex_count(&self) -> usize {
+        self.inner.mesh().vertex_count()
+    }
+
+    /// `{ areaDistortion, angleDistortion, flipped }` of the current pose.
+    pub fn metrics(&self) -> Result<Object, JsValue> {
+        let m = self.inner.metrics();
+        object(&[
+            ("areaDistortion", m.area_distortion.into()),
+            ("angleDistortion", m.angle_distortion.into()),
+            ("flipped", (m.flipped as f64).into()),
+        ])
+    }
+
+    /// `{ assembly, factorisation, solve, integration }`: milliseconds of the last step.
+    pub fn timings(&self) -> Result<Object, JsValue> {
+        let t = self.inner.timings();
+        object(&[
+            ("assembly", t.assembly.into()),
+            ("factorisation", t.factorisation.into()),
+            ("solve", t.solve.into()),
+            ("integration", t.integration.into()),
+        ])
+    }
+
+    /// Back to the rest pose (handles stay).
+    pub fn reset(&mut self) {
+        self.inner.reset();
+    }
+}
+
+fn object(entries: &[(&str, JsValue)]) -> Result<Object, JsValue> {
+    let object = Object::new();
+    for (key, value) in entries {
+        Reflect::set(&object, &JsValue::from_str(key), value)?;
+    }
+    Ok(object)
+}
+
+/// Reads `{ lambda?, dirichlet?, integrator? }` over `base`, refusing unknown keys.
+fn parse_deformer_options(value: JsValue, base: DeformerOptions) -> Result<DeformerOptions, JsError> {
+    const NAMES: [&str; 3] = ["lambda", "dirichlet", "integrator"];
+    if value.is_undefined() || value.is_null() {
+        return Ok(base);
+    }
+    let Some(object) = value.dyn_ref::<Object>() else {
+        return Err(JsError::new("deformer options must be an object"));
+    };
+    let mut options = base;
+    for key in Object::keys(object).iter() {
+        let key = key.as_string().unwrap_or_default();
+        let field = Reflect::get(object, &JsValue::from_str(&key)).map_err(|_| JsError::new("unreadable option"))?;
+        match key.as_str() {
+            "lambda" => {
+                options.lambda =
+                    field.as_f64().ok_or_else(|| JsError::new("option lambda must be a number"))?;
+            }
+            "dirichlet" => {
+                options.dirichlet =
+                    field.as_bool().ok_or_else(|| JsError::new("option dirichlet must be true or false"))?;
+            }
+            "integrator" => {
+                options.integrator = match field.as_string().as_deref() {
+                    Some("spiral") => Integrator::Spiral,
+                    Some("linear") => Integrator::Linear,
+                    _ => return Err(JsError::new("option integrator must be \"spiral\" or \"linear\"")),
+                };
+            }
+            other => {
+                return Err(JsError::new(&format!(
+                    "unknown deformer option `{other}`; the options are {}",
+                    NAMES.join(", ")
+                )))
+            }
+        }
+    }
+    Ok(options)
+}
+
+thread_local! {
+    static PERFORMANCE: Option<(JsValue, js_sys::Function)> = {
+        let performance = Reflect::get(&js_sys::global(), &JsValue::from_str("performance")).ok();
+        performance.and_then(|p| {
+            let now = Reflect::get(&p, &JsValue::from_str("now")).ok()?.dyn_into::<js_sys::Function>().ok()?;
+            Some((p, now))
+        })
+    };
+}
+
+/// `performance.now()` in milliseconds, or 0 where there is no `performance`.
+fn performance_now() -> f64 {
+    PERFORMANCE.with(|p| {
+        p.as_ref().and_then(|(this, now)| now.call0(this).ok()).and_then(|v| v.as_f64()).unwrap_or(0.0)
+    })
 }
 
 fn to_js(error: impl std::fmt::Display) -> JsError {

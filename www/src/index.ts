@@ -101,17 +101,131 @@ export function triangulate(outline: Outline, options: TriangulationOptions = {}
  * Validates a mesh given as arrays (positions xy-interleaved, counter-clockwise triangles)
  * and returns it with its boundary. Throws an `Error` naming the first problem found.
  */
-export function meshFromArrays(positions: Coordinates, triangles: Uint32Array | readonly number[]): MeshData {
+export function meshFromArrays(positions: Coordinates, triangles: Indices): MeshData {
   assertLoaded();
-  let indices: Uint32Array;
-  if (triangles instanceof Uint32Array) {
-    indices = triangles;
-  } else {
-    const bad = triangles.findIndex((i) => !Number.isInteger(i) || i < 0 || i > 0xffffffff);
-    if (bad >= 0) throw new RangeError(`triangles[${bad}] is ${triangles[bad]}, not a vertex index`);
-    indices = Uint32Array.from(triangles);
+  return copyOut(new raw.Mesh(asFloat64(positions, "positions"), asUint32(triangles, "triangles")));
+}
+
+/** Vertex or triangle indices. */
+export type Indices = Uint32Array | readonly number[];
+
+function asUint32(indices: Indices, what: string): Uint32Array {
+  if (indices instanceof Uint32Array) return indices;
+  if (!Array.isArray(indices)) throw new TypeError(`${what} must be a Uint32Array or an array of numbers`);
+  const bad = indices.findIndex((i) => !Number.isInteger(i) || i < 0 || i > 0xffffffff);
+  if (bad >= 0) throw new RangeError(`${what}[${bad}] is ${indices[bad]}, not an index`);
+  return Uint32Array.from(indices);
+}
+
+/** Options of the {@link Deformer}. */
+export interface DeformerOptions {
+  /** Weight of the soft handle constraints (default 100). */
+  lambda?: number;
+  /** Whether the Dirichlet re-solve runs (default true). */
+  dirichlet?: boolean;
+  /** How vertices follow the field: along log spirals (default) or straight lines. */
+  integrator?: "spiral" | "linear";
+}
+
+/** Distortion of the current pose against the rest pose (2 for a rigid motion). */
+export interface Metrics {
+  areaDistortion: number;
+  angleDistortion: number;
+  /** Triangles turned upside down. */
+  flipped: number;
+}
+
+/** Milliseconds spent in each stage of the last step. */
+export interface Timings {
+  assembly: number;
+  factorisation: number;
+  solve: number;
+  integration: number;
+}
+
+/**
+ * As-Killing-As-Possible deformation of one mesh. Give it handles (vertices, or points
+ * inside triangles), then call {@link Deformer.step} with a velocity per handle each
+ * frame. Bad input throws an `Error` and leaves the deformer as it was. Call
+ * {@link Deformer.free} when done: the solver lives in WebAssembly memory.
+ */
+export class Deformer {
+  readonly #raw: raw.Deformer;
+
+  /**
+   * @param positions xy-interleaved vertex positions (length 2n)
+   * @param triangles counter-clockwise index triples (length 3m); the mesh must be connected
+   */
+  constructor(positions: Coordinates, triangles: Indices, options: DeformerOptions = {}) {
+    assertLoaded();
+    this.#raw = new raw.Deformer(asFloat64(positions, "positions"), asUint32(triangles, "triangles"), options);
   }
-  return copyOut(new raw.Mesh(asFloat64(positions, "positions"), indices));
+
+  /** Changes some options; the others keep their values. */
+  setOptions(options: DeformerOptions): void {
+    this.#raw.setOptions(options);
+  }
+
+  /** One handle on each of these vertices, replacing the current handles. */
+  setHandles(vertices: Indices): void {
+    this.#raw.setHandles(asUint32(vertices, "vertices"));
+  }
+
+  /** Handles at points inside triangles: a triangle index and 3 barycentric coordinates each. */
+  setHandlePoints(triangles: Indices, barycentric: Coordinates): void {
+    this.#raw.setHandlePoints(asUint32(triangles, "triangles"), asFloat64(barycentric, "barycentric"));
+  }
+
+  /** One step: two velocity components per handle, in handle order. */
+  step(velocities: Coordinates): void {
+    this.#raw.step(asFloat64(velocities, "velocities"));
+  }
+
+  /** A copy of the current positions, xy-interleaved. */
+  positions(): Float64Array {
+    return this.#raw.positions();
+  }
+
+  /** The last step's velocity field after the Dirichlet re-solve (U_opt), xy-interleaved. */
+  field(): Float64Array {
+    return this.#raw.field();
+  }
+
+  /** The last step's velocity field after the soft-constraint solve (U0), xy-interleaved. */
+  softField(): Float64Array {
+    return this.#raw.softField();
+  }
+
+  /** Current positions of the handle points, xy-interleaved. */
+  handlePositions(): Float64Array {
+    return this.#raw.handlePositions();
+  }
+
+  get handleCount(): number {
+    return this.#raw.handleCount;
+  }
+
+  get vertexCount(): number {
+    return this.#raw.vertexCount;
+  }
+
+  metrics(): Metrics {
+    return this.#raw.metrics() as Metrics;
+  }
+
+  timings(): Timings {
+    return this.#raw.timings() as Timings;
+  }
+
+  /** Back to the rest pose; handles stay. */
+  reset(): void {
+    this.#raw.reset();
+  }
+
+  /** Releases the WebAssembly memory; the deformer cannot be used afterwards. */
+  free(): void {
+    this.#raw.free();
+  }
 }
 
 /** The built-in default shape, a waving gingerbread figure about 1.4 units tall (y up). */
