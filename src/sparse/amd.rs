@@ -10,15 +10,15 @@
 //! Eliminating the pivot `p` forms `L_p = (A_p ∪ ⋃_{e ∈ E_p} L_e) \ {p}` and absorbs every
 //! element of `E_p` into `p`, so storage never grows beyond that of the input pattern.
 //!
-//! Instead of exact external degrees, each variable `i ∈ L_p` gets the paper's upper bound
-//! (its equation (4), in weighted form)
+//! Instead of exact external degrees, each variable `i ∈ L_p` gets the paper's approximate
+//! degree, an upper bound (in weighted form, `n - k` counting the variables not yet eliminated)
 //!
 //! ```text
 //! d_i = min( n - k,  d_i_old + |L_p \ i|,  |A_i \ i| + |L_p \ i| + Σ_{e ∈ E_i \ p} |L_e \ L_p| )
 //! ```
 //!
 //! where `|L_e \ L_p|` comes, for all elements at once, from one scan of the element lists of
-//! the variables of `L_p` (the paper's Algorithm 2), never from scanning `L_e` itself. The other
+//! the variables of `L_p`, never from scanning `L_e` itself. The other
 //! ingredients of the paper are here too: pivots are taken from degree buckets; variables with
 //! identical lists (found by hashing) are merged into supervariables and eliminated together;
 //! variables adjacent to nothing but the new element are eliminated with the pivot (mass
@@ -69,8 +69,8 @@ enum Kind {
     Dense,
 }
 
-/// Everything the inner loops read about one node, in one cache line: the lists are scanned
-/// in the (arbitrary) order of the input's labels, so each entry costs one miss, not five.
+/// Everything the inner loops read about one node, in one cache line: the nodes met in a scan
+/// are scattered in memory, so each costs one cache miss rather than one per field.
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 struct Node {
@@ -181,15 +181,17 @@ struct Amd {
     step: usize,
     /// Base of the `w` values of the current step.
     wflg: usize,
-    /// Scratch marks for deduplication and list comparison.
+    /// Scratch marks for comparing lists.
     scratch: Marks,
     buckets: DegreeLists,
-    /// Hash buckets for supervariable detection (heads by `hash % n`, chains through `hnext`).
+    /// Hash buckets for supervariable detection: heads by `hash % |L_p|`, chains through
+    /// `hnext`. These and the next two are indexed by position in `L_p`, not by node, so
+    /// that one step touches few cache lines.
     hhead: Vec<usize>,
     hnext: Vec<usize>,
-    /// Full hash of a variable's lists; scratch for [`Amd::compact`] outside that use.
+    /// Full hash of a variable's lists. [`Amd::compact`] borrows it as scratch indexed by node.
     hkey: Vec<usize>,
-    /// `|A_i \ L_p| + Σ |L_e \ L_p|` of a variable of `L_p` in the current step.
+    /// `|A_i \ L_p| + Σ |L_e \ L_p|` of each variable `i` of `L_p`.
     partial: Vec<usize>,
     /// The original indices a principal variable stands for, as a linked list with its tail.
     member_next: Vec<usize>,
@@ -219,7 +221,8 @@ impl Amd {
             *l = 0;
         }
         // Every entry is stored from both ends, so a symmetric input leaves half of this
-        // free after deduplication; the extra n guards one-sided input.
+        // free after deduplication; the extra n is elbow room for one-sided input. The live
+        // lists never outgrow the first `total` entries.
         let mut iw = vec![0usize; total + n + 1];
         for i in 0..n {
             for &j in &indices[ptr[i]..ptr[i + 1]] {
@@ -231,20 +234,8 @@ impl Amd {
                 }
             }
         }
-        let mut scratch = Marks::new(n);
-        for i in 0..n {
-            scratch.clear();
-            let s = start[i];
-            let mut d = s;
-            for k in s..s + len[i] {
-                let j = iw[k];
-                if !scratch.is_set(j) {
-                    scratch.set(j);
-                    iw[d] = j;
-                    d += 1;
-                }
-            }
-            len[i] = d - s;
+        for (&s, l) in start.iter().zip(len.iter_mut()) {
+            *l = sort_dedup(&mut iw[s..s + *l]);
         }
 
         let dense_above = (10.0 * (n as f64).sqrt()).max(16.0);
@@ -287,7 +278,7 @@ impl Amd {
             pfree: total,
             step: 0,
             wflg: 1,
-            scratch,
+            scratch: Marks::new(n),
             buckets: DegreeLists::new(n),
             hhead: vec![NONE; n],
             hnext: vec![NONE; n],
@@ -465,11 +456,11 @@ impl Amd {
             self.iw[s + new_elen] = p;
             node.elen = new_elen + 1;
             node.len = new_len + 1;
-            self.partial[i] = deg;
-            self.hkey[i] = hash;
-            let bucket = hash % self.n;
-            self.hnext[i] = self.hhead[bucket];
-            self.hhead[bucket] = i;
+            self.partial[idx] = deg;
+            self.hkey[idx] = hash;
+            let bucket = hash % self.lp.len();
+            self.hnext[idx] = self.hhead[bucket];
+            self.hhead[bucket] = idx;
         }
         mass
     }
@@ -477,38 +468,34 @@ impl Amd {
     /// Merges variables of `L_p` whose lists are identical (indistinguishable variables) into
     /// supervariables. Candidates share a hash bucket; all buckets are empty afterwards.
     fn detect_supervariables(&mut self) {
-        for idx in 0..self.lp.len() {
-            let i = self.lp[idx];
-            if self.node[i].kind != Kind::Variable {
+        let size = self.lp.len();
+        for idx in 0..size {
+            if self.node[self.lp[idx]].kind != Kind::Variable {
                 continue;
             }
-            let bucket = self.hkey[i] % self.n;
+            let bucket = self.hkey[idx] % size;
             let mut a = self.hhead[bucket];
             self.hhead[bucket] = NONE;
             while a != NONE {
-                if self.hnext[a] != NONE {
-                    self.scratch.clear();
-                    let Node { start: s, len, .. } = self.node[a];
-                    for k in s..s + len {
-                        self.scratch.set(self.iw[k]);
-                    }
-                }
+                // a's lists are marked for comparison only once a candidate turns up.
+                let mut marked = false;
                 let mut prev = a;
                 let mut b = self.hnext[a];
                 while b != NONE {
                     let next = self.hnext[b];
-                    if self.same_lists(a, b) {
-                        self.node[a].nv += self.node[b].nv;
-                        let merged = &mut self.node[b];
-                        merged.nv = 0;
-                        merged.kind = Kind::Merged;
-                        merged.len = 0;
-                        merged.elen = 0;
-                        self.append_members(a, b);
-                        self.hnext[prev] = next;
-                    } else {
-                        prev = b;
+                    if self.may_match(a, b) {
+                        if !marked {
+                            self.mark_lists(a);
+                            marked = true;
+                        }
+                        if self.same_lists(b) {
+                            self.merge(self.lp[a], self.lp[b]);
+                            self.hnext[prev] = next;
+                            b = next;
+                            continue;
+                        }
                     }
+                    prev = b;
                     b = next;
                 }
                 a = self.hnext[a];
@@ -516,29 +503,57 @@ impl Amd {
         }
     }
 
-    /// Whether `b`'s lists equal `a`'s, whose entries are marked in `scratch`. Lists hold no
-    /// duplicates, so equal lengths and inclusion mean equality.
-    fn same_lists(&self, a: usize, b: usize) -> bool {
-        let (na, nb) = (&self.node[a], &self.node[b]);
-        if self.hkey[a] != self.hkey[b] || na.len != nb.len || na.elen != nb.elen {
-            return false;
+    /// Marks in `scratch` the list entries of the variable at position `a` of `L_p`.
+    fn mark_lists(&mut self, a: usize) {
+        self.scratch.clear();
+        let Node { start: s, len, .. } = self.node[self.lp[a]];
+        for k in s..s + len {
+            self.scratch.set(self.iw[k]);
         }
+    }
+
+    /// Merges the indistinguishable variable `merge` into the supervariable `keep`.
+    fn merge(&mut self, keep: usize, merge: usize) {
+        self.node[keep].nv += self.node[merge].nv;
+        let merged = &mut self.node[merge];
+        merged.nv = 0;
+        merged.kind = Kind::Merged;
+        merged.len = 0;
+        merged.elen = 0;
+        self.append_members(keep, merge);
+    }
+
+    /// Whether the variables at positions `a` and `b` of `L_p` have equal hashes and list
+    /// lengths, so that their lists are worth comparing.
+    fn may_match(&self, a: usize, b: usize) -> bool {
+        let (na, nb) = (&self.node[self.lp[a]], &self.node[self.lp[b]]);
+        self.hkey[a] == self.hkey[b] && na.len == nb.len && na.elen == nb.elen
+    }
+
+    /// Whether every entry of the lists of the variable at position `b` of `L_p` is marked in
+    /// `scratch`. Lists hold no duplicates, so for lists of equal length this means equality.
+    fn same_lists(&self, b: usize) -> bool {
+        let nb = &self.node[self.lp[b]];
         self.iw[nb.start..nb.start + nb.len].iter().all(|&x| self.scratch.is_set(x))
     }
 
-    /// Drops merged variables from `L_p`, sets the approximate degree of the rest (`left`
-    /// variables remain in the graph) and puts them back in their buckets.
+    /// Sets the approximate degree of the variables of `L_p` still principal (`left`
+    /// variables remain in the graph), puts them back in their buckets and drops the others
+    /// from `L_p`.
     fn update_degrees(&mut self, p: usize, left: usize) {
         let node = &mut self.node;
-        self.lp.retain(|&i| node[i].kind == Kind::Variable);
         let degme: usize = self.lp.iter().map(|&i| node[i].nv).sum();
-        for &i in &self.lp {
+        for (idx, &i) in self.lp.iter().enumerate() {
             let v = &mut node[i];
+            if v.kind != Kind::Variable {
+                continue;
+            }
             let others_in_lp = degme - v.nv;
-            let bound = (left - v.nv).min(v.degree + others_in_lp).min(self.partial[i] + others_in_lp);
+            let bound = (left - v.nv).min(v.degree + others_in_lp).min(self.partial[idx] + others_in_lp);
             v.degree = bound;
             self.buckets.insert(i, bound);
         }
+        self.lp.retain(|&i| node[i].kind == Kind::Variable);
         node[p].degree = degme;
     }
 
@@ -601,6 +616,19 @@ impl Amd {
         self.member_next[tail] = b;
         self.member_tail[a] = self.member_tail[b];
     }
+}
+
+/// Sorts `list` and moves its distinct entries to the front; returns how many there are.
+fn sort_dedup(list: &mut [usize]) -> usize {
+    list.sort_unstable();
+    let mut d = 0;
+    for k in 0..list.len() {
+        if k == 0 || list[k] != list[d - 1] {
+            list[d] = list[k];
+            d += 1;
+        }
+    }
+    d
 }
 
 #[cfg(test)]
@@ -711,15 +739,12 @@ mod tests {
         nnz
     }
 
-    /// Dense adjacency of the pattern without diagonal.
+    /// Dense adjacency of the (symmetric) pattern without diagonal.
     fn adjacency(a: &Pattern) -> Vec<Vec<bool>> {
         let mut adj = vec![vec![false; a.n]; a.n];
-        for i in 0..a.n {
+        for (i, row) in adj.iter_mut().enumerate() {
             for &j in a.row(i) {
-                if i != j {
-                    adj[i][j] = true;
-                    adj[j][i] = true;
-                }
+                row[j] = i != j;
             }
         }
         adj
@@ -853,18 +878,30 @@ mod tests {
         let mut rng = Rng(777);
         // Isolated vertices only.
         Pattern::from_edges(50, &[]).amd();
-        // Several random components, labels scrambled together.
+        // Random components, their labels mixed together.
         let label = rng.permutation(600);
         let mut edges = Vec::new();
         for c in 0..6 {
-            let sub = random_graph(&mut rng, 100, 250);
-            for i in 0..100 {
-                edges.extend(sub.row(i).iter().map(|&j| (label[c * 100 + i], label[c * 100 + j])));
+            for (a, b) in simple_edges(&mut rng, 100, 250) {
+                edges.push((label[c * 100 + a], label[c * 100 + b]));
             }
         }
-        let a = Pattern::from_edges(600, &edges);
-        let order = a.amd();
-        assert!(cholesky_nnz(&a, &order) < cholesky_nnz(&a, &(0..600).collect::<Vec<_>>()));
+        Pattern::from_edges(600, &edges).amd();
+        // A forest (trees of random sizes, some single vertices) has a perfect elimination
+        // order: L has the pattern of A's lower triangle, n + #edges entries.
+        let n = 3000;
+        let label = rng.permutation(n);
+        let mut edges = Vec::new();
+        let mut root = 0;
+        while root < n {
+            let size = (1 + rng.below(200)).min(n - root);
+            for i in 1..size {
+                edges.push((label[root + i], label[root + rng.below(i)]));
+            }
+            root += size;
+        }
+        let a = Pattern::from_edges(n, &edges);
+        assert_eq!(cholesky_nnz(&a, &a.amd()), n + edges.len());
     }
 
     #[test]
@@ -911,47 +948,84 @@ mod tests {
         assert_eq!(cholesky_nnz(&a, &order), (2 * 998 - 1) + (998 + 1) + (999 + 1));
     }
 
+    /// `m` random distinct edges without loops, in random order.
+    fn simple_edges(rng: &mut Rng, n: usize, m: usize) -> Vec<(usize, usize)> {
+        let mut set = std::collections::BTreeSet::new();
+        for _ in 0..m {
+            let (a, b) = (rng.below(n), rng.below(n));
+            if a != b {
+                set.insert((a.min(b), a.max(b)));
+            }
+        }
+        let mut edges: Vec<(usize, usize)> = set.into_iter().collect();
+        for i in (1..edges.len()).rev() {
+            edges.swap(i, rng.below(i + 1));
+        }
+        edges
+    }
+
     #[test]
     fn duplicates_and_diagonal_entries_are_ignored() {
+        // Ignored means: the same order as for the clean pattern.
         let mut rng = Rng(4242);
         for n in [1, 7, 60, 400] {
-            let clean = random_graph(&mut rng, n, 3 * n);
-            let mut edges = Vec::new();
-            for i in 0..n {
-                edges.push((i, i));
-                for &j in clean.row(i) {
-                    edges.push((i, j));
-                    if rng.below(3) == 0 {
-                        edges.push((j, i));
-                    }
+            let edges = simple_edges(&mut rng, n, 3 * n);
+            let clean = Pattern::from_edges(n, &edges);
+            let mut noisy_edges: Vec<(usize, usize)> = (0..n).map(|i| (i, i)).collect();
+            for &(a, b) in &edges {
+                noisy_edges.push((b, a));
+                for _ in 0..rng.below(3) {
+                    noisy_edges.push((a, b));
                 }
             }
-            let noisy = Pattern::from_edges(n, &edges);
-            let order = noisy.amd();
-            assert!(cholesky_nnz(&clean, &order) <= cholesky_nnz(&clean, &(0..n).collect::<Vec<_>>()));
+            for i in (1..noisy_edges.len()).rev() {
+                noisy_edges.swap(i, rng.below(i + 1));
+            }
+            let noisy = Pattern::from_edges(n, &noisy_edges);
+            assert!(noisy.indices.len() > clean.indices.len());
+            assert_eq!(noisy.amd(), clean.amd(), "n = {n}");
         }
     }
 
     #[test]
     fn one_sided_pattern_is_symmetrised() {
-        // A path given by its upper triangle only is still a path: no fill.
+        // The upper triangle alone stands for the same symmetric pattern: same order.
         let mut rng = Rng(99);
-        let n = 500;
-        let label = rng.permutation(n);
-        let mut rows = vec![Vec::new(); n];
-        for i in 1..n {
+        for n in [2, 50, 500] {
+            for m in [n, 3 * n] {
+                let edges = simple_edges(&mut rng, n, m);
+                let full = Pattern::from_edges(n, &edges);
+                let mut rows = vec![Vec::new(); n];
+                for &(a, b) in &edges {
+                    rows[a].push(b);
+                }
+                let mut ptr = vec![0];
+                let mut indices = Vec::new();
+                for row in rows {
+                    indices.extend(row);
+                    ptr.push(indices.len());
+                }
+                let order = amd_order(n, &ptr, &indices);
+                assert_eq!(order, full.amd(), "n = {n}, m = {m}");
+            }
+        }
+        // In particular a path given by its upper triangle has no fill.
+        let label = rng.permutation(500);
+        let mut rows = vec![Vec::new(); 500];
+        for i in 1..500 {
             let (a, b) = (label[i - 1], label[i]);
             rows[a.min(b)].push(a.max(b));
         }
-        let mut ptr = vec![0];
-        let mut indices = Vec::new();
-        for row in rows {
-            indices.extend(row);
-            ptr.push(indices.len());
-        }
-        let order = amd_order(n, &ptr, &indices);
-        assert_permutation(&order, n);
-        assert_eq!(cholesky_nnz(&path_pattern(&label), &order), 2 * n - 1);
+        let ptr: Vec<usize> = std::iter::once(0)
+            .chain(rows.iter().scan(0, |total, row| {
+                *total += row.len();
+                Some(*total)
+            }))
+            .collect();
+        let indices: Vec<usize> = rows.into_iter().flatten().collect();
+        let order = amd_order(500, &ptr, &indices);
+        assert_permutation(&order, 500);
+        assert_eq!(cholesky_nnz(&path_pattern(&label), &order), 2 * 500 - 1);
     }
 
     fn path_pattern(label: &[usize]) -> Pattern {

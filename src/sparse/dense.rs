@@ -36,15 +36,53 @@ pub(super) fn cholesky_trapezoid(b: &mut [f64], height: usize, width: usize) -> 
 }
 
 /// The update one supernode sends to an ancestor: for the `m x k` block `a` (column-major,
-/// leading dimension `lda`), `c = a a[..q]^T` restricted to its lower trapezoid, i.e.
-/// `c[r + i * m] = sum_t a[r, t] a[i, t]` for `i < q`, `i <= r < m`.
+/// leading dimension `lda`), `c = a a[..q]^T` on its lower trapezoid, i.e.
+/// `c[r + i * m] = sum_t a[r, t] a[i, t]` for `i < q`, `i <= r < m` (entries above that
+/// may be overwritten with partial sums: callers read only the trapezoid).
+///
+/// Register-blocked: four columns of `c` and four rows at a time accumulate over `t`, so
+/// each element of `a` loaded serves four multiply-adds and `c` is written once.
 pub(super) fn update_block(c: &mut [f64], a: &[f64], lda: usize, m: usize, q: usize, k: usize) {
-    for i in 0..q {
-        let col = &mut c[i * m + i..i * m + m];
-        col.fill(0.0);
+    let mut i0 = 0;
+    while i0 + 4 <= q {
+        let mut r = i0;
+        while r + 4 <= m {
+            let mut acc = [[0.0f64; 4]; 4];
+            for t in 0..k {
+                let col = &a[t * lda..];
+                let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
+                let b: [f64; 4] = col[i0..i0 + 4].try_into().expect("four columns");
+                for (acc_c, bc) in acc.iter_mut().zip(b) {
+                    for (acc_cr, xr) in acc_c.iter_mut().zip(x) {
+                        *acc_cr += xr * bc;
+                    }
+                }
+            }
+            for (j, acc_c) in acc.iter().enumerate() {
+                c[(i0 + j) * m + r..(i0 + j) * m + r + 4].copy_from_slice(acc_c);
+            }
+            r += 4;
+        }
+        for r in r..m {
+            let mut acc = [0.0f64; 4];
+            for t in 0..k {
+                let col = &a[t * lda..];
+                for (j, acc_j) in acc.iter_mut().enumerate() {
+                    *acc_j += col[r] * col[i0 + j];
+                }
+            }
+            for (j, acc_j) in acc.iter().enumerate() {
+                c[(i0 + j) * m + r] = *acc_j;
+            }
+        }
+        i0 += 4;
+    }
+    for i in i0..q {
+        let out = &mut c[i * m + i..i * m + m];
+        out.fill(0.0);
         for t in 0..k {
             let src = &a[t * lda + i..t * lda + m];
-            axpy(col, src[0], src);
+            axpy(out, src[0], src);
         }
     }
 }

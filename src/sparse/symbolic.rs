@@ -79,7 +79,7 @@ impl Symbolic {
         let parent = elimination_tree(n, &lower);
 
         let counts = column_counts(n, &lower, &parent);
-        let super_start = fundamental_supernodes(&parent, &counts);
+        let super_start = relax_supernodes(&fundamental_supernodes(&parent, &counts), &parent, &counts);
         let ns = super_start.len() - 1;
         let mut col_to_super = vec![0; n];
         for s in 0..ns {
@@ -376,6 +376,59 @@ fn fundamental_supernodes(parent: &[usize], counts: &[usize]) -> Vec<usize> {
         start.push(n);
     }
     start
+}
+
+/// Amalgamates small supernodes with their parents (relaxed supernodes): merging a child
+/// that ends just before its parent starts stores some explicit zeros (the child's columns
+/// take the parent's row pattern) but makes the dense blocks larger, which the kernels run
+/// much faster. Merges are accepted while the merged supernode is narrow or the fraction of
+/// stored zeros small (the thresholds of Ashcraft and Grimes 1989, as CHOLMOD uses them).
+fn relax_supernodes(start: &[usize], parent: &[usize], counts: &[usize]) -> Vec<usize> {
+    let ns = start.len().saturating_sub(1);
+    let mut col_to_super = vec![0; parent.len()];
+    for s in 0..ns {
+        col_to_super[start[s]..start[s + 1]].fill(s);
+    }
+    // A merged group of consecutive fundamental supernodes: first column, width, rows (of
+    // its first column, own columns included), stored zeros, and its last fundamental one.
+    struct Group {
+        first: usize,
+        width: usize,
+        rows: usize,
+        zeros: usize,
+        last: usize,
+    }
+    let entries = |width: usize, rows: usize| width * rows - width * (width - 1) / 2;
+    let mut groups: Vec<Group> = Vec::with_capacity(ns);
+    for s in 0..ns {
+        let width = start[s + 1] - start[s];
+        let mut group = Group { first: start[s], width, rows: counts[start[s]], zeros: 0, last: s };
+        if let Some(child) = groups.last() {
+            let child_parent = parent[start[child.last + 1] - 1];
+            if child_parent != NONE && col_to_super[child_parent] == s {
+                let merged_width = child.width + width;
+                let merged_rows = child.width + group.rows;
+                let total = entries(merged_width, merged_rows);
+                let kept = entries(child.width, child.rows) - child.zeros + entries(width, group.rows);
+                let zeros = total - kept;
+                let fraction = zeros as f64 / total as f64;
+                let accept = merged_width <= 4
+                    || (merged_width <= 16 && fraction < 0.8)
+                    || (merged_width <= 48 && fraction < 0.1)
+                    || fraction < 0.05;
+                if accept {
+                    let child = groups.pop().expect("checked above");
+                    group = Group { first: child.first, width: merged_width, rows: merged_rows, zeros, last: s };
+                }
+            }
+        }
+        groups.push(group);
+    }
+    let mut relaxed: Vec<usize> = groups.iter().map(|g| g.first).collect();
+    if ns > 0 {
+        relaxed.push(start[ns]);
+    }
+    relaxed
 }
 
 /// The sorted row pattern of every supernode: its own columns, the rows of A below them,
