@@ -13,26 +13,81 @@ fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
 /// dimension `height`, `height >= width`): on return its first `width` rows hold the lower
 /// triangle of L for the diagonal block and the rows below hold the off-diagonal block,
 /// `L21 = A21 L11^-T`. Returns the failing column and its pivot if one is not positive.
+/// Entries above the diagonal are scratch and may be overwritten.
+///
+/// Left-looking by panels of four columns: a panel is first updated by all columns to
+/// its left with a register-blocked kernel, then factored column by column.
 pub(super) fn cholesky_trapezoid(b: &mut [f64], height: usize, width: usize) -> Result<(), (usize, f64)> {
-    for j in 0..width {
-        let (done, rest) = b.split_at_mut(j * height);
-        let col = &mut rest[j..height];
-        for t in 0..j {
-            let prev = &done[t * height + j..t * height + height];
-            axpy(col, -prev[0], prev);
+    let mut j0 = 0;
+    while j0 < width {
+        let panel = (width - j0).min(4);
+        let (done, rest) = b.split_at_mut(j0 * height);
+        if panel == 4 {
+            subtract_panel_update(rest, done, height, j0);
+        } else {
+            for j in 0..panel {
+                let col = &mut rest[j * height + j0 + j..(j + 1) * height];
+                for t in 0..j0 {
+                    let prev = &done[t * height + j0 + j..(t + 1) * height];
+                    axpy(col, -prev[0], prev);
+                }
+            }
         }
-        let pivot = col[0];
-        if !(pivot > 0.0 && pivot.is_finite()) {
-            return Err((j, pivot));
+        for j in 0..panel {
+            let (left, right) = rest.split_at_mut(j * height);
+            let col = &mut right[j0 + j..height];
+            for t in 0..j {
+                let prev = &left[t * height + j0 + j..(t + 1) * height];
+                axpy(col, -prev[0], prev);
+            }
+            let pivot = col[0];
+            if !(pivot > 0.0 && pivot.is_finite()) {
+                return Err((j0 + j, pivot));
+            }
+            let d = pivot.sqrt();
+            col[0] = d;
+            let inv = 1.0 / d;
+            for x in &mut col[1..] {
+                *x *= inv;
+            }
         }
-        let d = pivot.sqrt();
-        col[0] = d;
-        let inv = 1.0 / d;
-        for x in &mut col[1..] {
-            *x *= inv;
-        }
+        j0 += panel;
     }
     Ok(())
+}
+
+/// `panel[r, c] -= sum_{t < j0} done[r, t] done[j0 + c, t]` for the four panel columns c
+/// and rows `r >= j0` (all column-major with leading dimension `height`).
+fn subtract_panel_update(panel: &mut [f64], done: &[f64], height: usize, j0: usize) {
+    let mut r = j0;
+    while r + 4 <= height {
+        let mut acc = [[0.0f64; 4]; 4];
+        for t in 0..j0 {
+            let col = &done[t * height..(t + 1) * height];
+            let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
+            let b: [f64; 4] = col[j0..j0 + 4].try_into().expect("four columns");
+            for (acc_c, bc) in acc.iter_mut().zip(b) {
+                for (acc_cr, xr) in acc_c.iter_mut().zip(x) {
+                    *acc_cr += xr * bc;
+                }
+            }
+        }
+        for (c, acc_c) in acc.iter().enumerate() {
+            for (target, a) in panel[c * height + r..c * height + r + 4].iter_mut().zip(acc_c) {
+                *target -= a;
+            }
+        }
+        r += 4;
+    }
+    for r in r..height {
+        for c in 0..4 {
+            let mut sum = 0.0;
+            for t in 0..j0 {
+                sum += done[t * height + r] * done[t * height + j0 + c];
+            }
+            panel[c * height + r] -= sum;
+        }
+    }
 }
 
 /// The update one supernode sends to an ancestor: for the `m x k` block `a` (column-major,
