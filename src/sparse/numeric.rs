@@ -33,6 +33,8 @@ pub struct Numeric {
     list_head: Vec<usize>,
     list_next: Vec<usize>,
     solve_work: Vec<f64>,
+    /// The off-diagonal part of one supernode's rows during a solve.
+    solve_rows: Vec<f64>,
 }
 
 impl Numeric {
@@ -51,6 +53,7 @@ impl Numeric {
             list_head: vec![NONE; ns],
             list_next: vec![NONE; ns],
             solve_work: vec![0.0; n],
+            solve_rows: vec![0.0; max_height],
             symbolic,
         }
     }
@@ -147,39 +150,54 @@ impl Numeric {
             return Err(FactorError::NotFactored);
         }
         let y = &mut self.solve_work;
+        let below = &mut self.solve_rows;
         for (k, &i) in sym.perm.iter().enumerate() {
             y[k] = b[i];
         }
         let ns = sym.supernode_count();
-        // Forward: L y = P b.
+        // Forward, L y = P b: per supernode, a dense triangular solve on its own columns,
+        // then the rows below get `L21 x` accumulated densely and subtracted once.
         for s in 0..ns {
             let first = sym.super_start[s];
             let width = sym.super_start[s + 1] - first;
             let rows = &sym.rows[sym.row_start[s]..sym.row_start[s + 1]];
             let block = &self.values[sym.value_start[s]..sym.value_start[s + 1]];
             let height = rows.len();
+            let below = &mut below[..height - width];
+            below.fill(0.0);
             for j in 0..width {
                 let col = &block[j * height..(j + 1) * height];
                 let x = y[first + j] / col[j];
                 y[first + j] = x;
-                for r in j + 1..height {
-                    y[rows[r]] -= col[r] * x;
+                for r in j + 1..width {
+                    y[first + r] -= col[r] * x;
+                }
+                for (acc, l) in below.iter_mut().zip(&col[width..]) {
+                    *acc += l * x;
                 }
             }
+            for (&r, acc) in rows[width..].iter().zip(below.iter()) {
+                y[r] -= acc;
+            }
         }
-        // Backward: L^T z = y.
+        // Backward, L^T z = y: gather the rows below once, then dot products.
         for s in (0..ns).rev() {
             let first = sym.super_start[s];
             let width = sym.super_start[s + 1] - first;
             let rows = &sym.rows[sym.row_start[s]..sym.row_start[s + 1]];
             let block = &self.values[sym.value_start[s]..sym.value_start[s + 1]];
             let height = rows.len();
+            let below = &mut below[..height - width];
+            for (g, &r) in below.iter_mut().zip(&rows[width..]) {
+                *g = y[r];
+            }
             for j in (0..width).rev() {
                 let col = &block[j * height..(j + 1) * height];
                 let mut sum = y[first + j];
-                for r in j + 1..height {
-                    sum -= col[r] * y[rows[r]];
+                for r in j + 1..width {
+                    sum -= col[r] * y[first + r];
                 }
+                sum -= col[width..].iter().zip(below.iter()).map(|(l, x)| l * x).sum::<f64>();
                 y[first + j] = sum / col[j];
             }
         }
