@@ -1,0 +1,71 @@
+// Per-frame timings of the AKAP deformer compiled to wasm, in Node: a scripted drag of
+// the built-in figure's raised hand with both feet pinned, at several mesh sizes.
+// Prints median and 95th percentile milliseconds per stage and per frame.
+//   npm run build && node scripts/bench-deformer.mjs [vertices ...]
+import process from "node:process";
+import { performance } from "node:perf_hooks";
+import { Deformer, defaultShape, init, triangulate } from "../www/lib/index.js";
+
+await init();
+const sizes = process.argv
+  .slice(2)
+  .map(Number)
+  .filter((n) => n > 0);
+const targets = sizes.length ? sizes : [1000, 5000, 10000, 50000];
+const frames = 60;
+
+function ringArea(ring) {
+  let twice = 0;
+  for (let i = 0; i < ring.length; i += 2) {
+    const j = (i + 2) % ring.length;
+    twice += ring[i] * ring[j + 1] - ring[j] * ring[i + 1];
+  }
+  return Math.abs(twice) / 2;
+}
+
+const stat = (values, q) => {
+  const sorted = [...values].sort((a, b) => a - b);
+  return sorted[Math.round((sorted.length - 1) * q)];
+};
+
+const shape = defaultShape();
+const area = ringArea(shape.outer) - shape.holes.reduce((s, h) => s + ringArea(h), 0);
+console.log(
+  `| vertices | triangles | setup ms | assembly | factorisation | solve | integration | frame median | frame p95 |`,
+);
+console.log(`|---|---|---|---|---|---|---|---|---|`);
+for (const target of targets) {
+  // Refinement makes about 1.7x the triangles the area bound alone asks for.
+  const h = Math.sqrt((1.7 * area) / (2 * target) / (Math.sqrt(3) / 4));
+  const mesh = triangulate(shape, { targetEdgeLength: h, maxVertices: 4 * target });
+  const p = mesh.positions;
+  const feet = [];
+  let hand = 0;
+  let best = Infinity;
+  for (let v = 0; v < mesh.vertexCount; v++) {
+    if (p[2 * v + 1] < 0) feet.push(v);
+    const d = Math.hypot(p[2 * v] + 0.48, p[2 * v + 1] - 1.2);
+    if (d < best) [best, hand] = [d, v];
+  }
+  const start = performance.now();
+  const deformer = new Deformer(mesh.positions, mesh.triangles);
+  deformer.setHandles([...feet, hand]);
+  const setup = performance.now() - start;
+  const velocities = new Float64Array(2 * (feet.length + 1));
+  const stages = { assembly: [], factorisation: [], solve: [], integration: [], frame: [] };
+  for (let f = 0; f < frames; f++) {
+    const t = (f / frames) * 2 * Math.PI;
+    velocities[2 * feet.length] = 0.01 * Math.cos(t);
+    velocities[2 * feet.length + 1] = 0.01 * Math.sin(t);
+    const t0 = performance.now();
+    deformer.step(velocities);
+    stages.frame.push(performance.now() - t0);
+    const timings = deformer.timings();
+    for (const k of ["assembly", "factorisation", "solve", "integration"]) stages[k].push(timings[k]);
+  }
+  const med = (k) => stat(stages[k], 0.5).toFixed(2);
+  console.log(
+    `| ${mesh.vertexCount} | ${mesh.triangleCount} | ${setup.toFixed(0)} | ${med("assembly")} | ${med("factorisation")} | ${med("solve")} | ${med("integration")} | ${med("frame")} | ${stat(stages.frame, 0.95).toFixed(2)} |`,
+  );
+  deformer.free();
+}
