@@ -46,7 +46,13 @@ fn main() {
             deformer.step(&v).expect("step");
             let total = start.elapsed().as_secs_f64() * 1e3;
             let timings = deformer.timings();
-            for (s, x) in stages.iter_mut().zip([timings.assembly, timings.factorisation, timings.solve, timings.integration, total]) {
+            for (s, x) in stages.iter_mut().zip([
+                timings.assembly,
+                timings.factorisation,
+                timings.solve,
+                timings.integration,
+                total,
+            ]) {
                 s.push(x);
             }
         }

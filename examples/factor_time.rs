@@ -11,7 +11,9 @@ fn main() {
     let target: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(10_000);
     let figure = shapes::gingerbread();
     let h = (1.7 * figure.area() / (2.0 * target as f64) / (3f64.sqrt() / 4.0)).sqrt();
-    let mesh = triangulate(&figure, &TriangulationOptions::default().with_target_edge_length(h).with_max_vertices(4 * target)).unwrap();
+    let mesh =
+        triangulate(&figure, &TriangulationOptions::default().with_target_edge_length(h).with_max_vertices(4 * target))
+            .unwrap();
     let mut k = KillingMatrix::new(&mesh);
     k.assemble(mesh.positions());
     let mut a = k.matrix().clone();
@@ -29,11 +31,14 @@ fn main() {
         adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
         ptr.push(adj.len());
     }
-    for (name, order) in [("amd", amd_order(n, &ptr, &adj)), ("nd", nested_dissection_order(&ptr, &adj, mesh.positions()))] {
+    for (name, order) in
+        [("amd", amd_order(n, &ptr, &adj)), ("nd", nested_dissection_order(&ptr, &adj, mesh.positions()))]
+    {
         let t = std::time::Instant::now();
         let symbolic = Symbolic::analyse(a.view(), &Ordering::Given(expand_blocks(&order, 2))).unwrap();
         let analyse = t.elapsed().as_secs_f64() * 1e3;
-        let (nnz, flops, supers, stored) = (symbolic.nnz_l(), symbolic.flops(), symbolic.supernode_count(), symbolic.stored_values());
+        let (nnz, flops, supers, stored) =
+            (symbolic.nnz_l(), symbolic.flops(), symbolic.supernode_count(), symbolic.stored_values());
         let mut numeric = Numeric::new(Arc::new(symbolic));
         let mut best = f64::INFINITY;
         for _ in 0..10 {

@@ -322,8 +322,7 @@ fn parse_deformer_options(value: JsValue, base: DeformerOptions) -> Result<Defor
         let field = Reflect::get(object, &JsValue::from_str(&key)).map_err(|_| JsError::new("unreadable option"))?;
         match key.as_str() {
             "lambda" => {
-                options.lambda =
-                    field.as_f64().ok_or_else(|| JsError::new("option lambda must be a number"))?;
+                options.lambda = field.as_f64().ok_or_else(|| JsError::new("option lambda must be a number"))?;
             }
             "dirichlet" => {
                 options.dirichlet =
@@ -359,9 +358,8 @@ thread_local! {
 
 /// `performance.now()` in milliseconds, or 0 where there is no `performance`.
 fn performance_now() -> f64 {
-    PERFORMANCE.with(|p| {
-        p.as_ref().and_then(|(this, now)| now.call0(this).ok()).and_then(|v| v.as_f64()).unwrap_or(0.0)
-    })
+    PERFORMANCE
+        .with(|p| p.as_ref().and_then(|(this, now)| now.call0(this).ok()).and_then(|v| v.as_f64()).unwrap_or(0.0))
 }
 
 fn to_js(error: impl std::fmt::Display) -> JsError {
