@@ -78,12 +78,7 @@ impl Numeric {
         if !sym.same_pattern(a) {
             return Err(FactorError::PatternMismatch);
         }
-        self.values.fill(0.0);
-        for (&slot, &value) in sym.a_to_l.iter().zip(a.data()) {
-            if slot != NONE {
-                self.values[slot] += value;
-            }
-        }
+        let a_data = a.data();
         self.list_head.fill(NONE);
         let ns = sym.supernode_count();
         for j in 0..ns {
@@ -95,6 +90,10 @@ impl Numeric {
             }
             let (before, rest) = self.values.split_at_mut(sym.value_start[j]);
             let block = &mut rest[..sym.value_start[j + 1] - sym.value_start[j]];
+            block.fill(0.0);
+            for &(offset, p) in &sym.a_entries[sym.a_entry_start[j]..sym.a_entry_start[j + 1]] {
+                block[offset] += a_data[p];
+            }
 
             let mut k = self.list_head[j];
             while k != NONE {

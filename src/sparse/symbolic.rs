@@ -28,9 +28,12 @@ pub struct Symbolic {
     /// The analysed pattern of A, to check that refactorisations use the same one.
     pub(super) a_indptr: Vec<usize>,
     pub(super) a_indices: Vec<usize>,
-    /// For each stored entry of A: its slot in the values of L, or `NONE` for entries above
-    /// the diagonal (which are not read).
-    pub(super) a_to_l: Vec<usize>,
+    /// The entries of A that land in supernode `s`, as (offset in the supernode's values,
+    /// index in A's data): `a_entries[a_entry_start[s]..a_entry_start[s + 1]]`, so that
+    /// each supernode is assembled just before it is factored. Entries above the diagonal
+    /// of A are not read.
+    pub(super) a_entry_start: Vec<usize>,
+    pub(super) a_entries: Vec<(usize, usize)>,
     /// Supernode `s` holds columns `super_start[s]..super_start[s + 1]` of L.
     pub(super) super_start: Vec<usize>,
     pub(super) col_to_super: Vec<usize>,
@@ -96,7 +99,7 @@ impl Symbolic {
             max_update = max_update.max((height - width) * (height - width));
         }
 
-        let mut a_to_l = vec![NONE; indices.len()];
+        let mut by_super: Vec<(usize, usize, usize)> = Vec::with_capacity(indices.len());
         for j in 0..n {
             for p in indptr[j]..indptr[j + 1] {
                 let i = indices[p];
@@ -107,9 +110,18 @@ impl Symbolic {
                 let s = col_to_super[c];
                 let s_rows = &rows[row_start[s]..row_start[s + 1]];
                 let pos = s_rows.binary_search(&r).expect("every entry of A lies in the pattern of L");
-                a_to_l[p] = value_start[s] + (c - super_start[s]) * s_rows.len() + pos;
+                by_super.push((s, (c - super_start[s]) * s_rows.len() + pos, p));
             }
         }
+        by_super.sort_unstable();
+        let mut a_entry_start = vec![0; ns + 1];
+        for &(s, _, _) in &by_super {
+            a_entry_start[s + 1] += 1;
+        }
+        for s in 0..ns {
+            a_entry_start[s + 1] += a_entry_start[s];
+        }
+        let a_entries = by_super.into_iter().map(|(_, offset, p)| (offset, p)).collect();
 
         let nnz_l = counts.iter().sum();
         let flops = counts.iter().map(|&c| (c * c) as f64).sum();
@@ -118,7 +130,8 @@ impl Symbolic {
             perm,
             a_indptr: indptr,
             a_indices: indices,
-            a_to_l,
+            a_entry_start,
+            a_entries,
             super_start,
             col_to_super,
             row_start,
