@@ -101,8 +101,7 @@ impl Symbolic {
 
         let mut by_super: Vec<(usize, usize, usize)> = Vec::with_capacity(indices.len());
         for j in 0..n {
-            for p in indptr[j]..indptr[j + 1] {
-                let i = indices[p];
+            for (p, &i) in indices.iter().enumerate().take(indptr[j + 1]).skip(indptr[j]) {
                 if i < j {
                     continue;
                 }
