@@ -32,6 +32,8 @@ pub mod triangulate;
 
 #[cfg(target_arch = "wasm32")]
 pub mod wasm;
+#[cfg(all(target_arch = "wasm32", feature = "bench"))]
+mod wasm_bench;
 
 pub use error::Error;
 pub use mesh::{Mesh, MeshError};

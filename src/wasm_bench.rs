@@ -1,0 +1,163 @@
+//! The wasm benchmark of our sparse Cholesky (and faer's, compiled to wasm too) on
+//! AKAP-like matrices, timed with `performance.now()`. Compiled only for wasm32 with the
+//! `bench` feature; `scripts/bench-wasm.sh` builds it for Node and `scripts/bench-wasm.mjs`
+//! prints the table. The matrices come from `benches/common/mod.rs`, included by path so
+//! that the native benchmarks and this one measure the same matrices.
+//!
+//! An exception to "only `wasm` touches js-sys and wasm-bindgen", confined to this
+//! feature-gated module.
+
+use std::sync::Arc;
+
+use js_sys::{Function, Reflect};
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+
+use crate::sparse::{Numeric, Ordering, Symbolic};
+
+#[allow(dead_code)] // each includer uses part of the shared module
+#[path = "../benches/common/mod.rs"]
+mod common;
+
+use common::faer_llt::FaerLlt;
+use common::{median, random_vector, relative_difference, Problem, Shape, Variant};
+
+/// `globalThis.performance.now`, looked up once.
+struct Clock {
+    performance: JsValue,
+    now: Function,
+}
+
+impl Clock {
+    fn new() -> Result<Self, JsError> {
+        let performance = Reflect::get(&js_sys::global(), &"performance".into())
+            .map_err(|_| JsError::new("globalThis.performance is missing"))?;
+        let now = Reflect::get(&performance, &"now".into())
+            .ok()
+            .and_then(|f| f.dyn_into::<Function>().ok())
+            .ok_or_else(|| JsError::new("performance.now is missing"))?;
+        Ok(Self { performance, now })
+    }
+
+    fn ms(&self) -> f64 {
+        self.now.call0(&self.performance).ok().and_then(|t| t.as_f64()).unwrap_or(f64::NAN)
+    }
+
+    /// Milliseconds of one run of `f`.
+    fn time_ms(&self, f: impl FnOnce()) -> f64 {
+        let start = self.ms();
+        f();
+        self.ms() - start
+    }
+}
+
+/// Builds the AKAP-like matrix of `shape` (`"bar"` or `"gingerbread"`) meshed with about
+/// `target_vertices` vertices, with four penalised handles or, if `dirichlet`, the boundary
+/// eliminated; times our ordering and symbolic analysis, numeric refactorisation and solve
+/// (and faer's supernodal and simplicial ones) as medians of `repeats` rounds, and returns
+/// one JSON object: sizes, fill, milliseconds, and the relative difference between our
+/// solution of a random right-hand side and faer's. A failed factorisation is reported in
+/// its `error` field.
+#[wasm_bindgen]
+#[allow(unreachable_pub)] // exported to JavaScript; the module is private to the crate
+pub fn bench_cholesky(target_vertices: u32, shape: &str, dirichlet: bool, repeats: u32) -> Result<String, JsError> {
+    let shape = Shape::from_name(shape).ok_or_else(|| JsError::new(&format!("unknown shape {shape:?}")))?;
+    if !(100..=1_000_000).contains(&target_vertices) {
+        return Err(JsError::new("target_vertices must be from 100 to 1000000"));
+    }
+    let clock = Clock::new()?;
+    let variant = if dirichlet { Variant::Dirichlet } else { Variant::Penalty };
+    let start = clock.ms();
+    let problem = Problem::new(shape, target_vertices as usize, variant);
+    let build_ms = clock.ms() - start;
+    let a = &problem.matrix;
+    let b = random_vector(problem.n(), 7);
+    let mut fields = vec![
+        format!("\"label\":\"{}\"", problem.label()),
+        format!("\"vertices\":{}", problem.vertices),
+        format!("\"n\":{}", problem.n()),
+        format!("\"nnzLower\":{}", problem.nnz_lower()),
+        format!("\"repeats\":{repeats}"),
+        format!("\"buildMs\":{}", json_number(build_ms)),
+    ];
+
+    // Set everything up, untimed; then time each operation once per round, in turn, so
+    // that load from other processes hits all of them alike.
+    let symbolic = match Symbolic::analyse(a.view(), &Ordering::Amd) {
+        Ok(symbolic) => Arc::new(symbolic),
+        Err(e) => return Ok(json_with_error(fields, &e.to_string())),
+    };
+    fields.push(format!("\"nnzL\":{}", symbolic.nnz_l()));
+    fields.push(format!("\"flops\":{}", symbolic.flops()));
+    fields.push(format!("\"supernodes\":{}", symbolic.supernode_count()));
+    let mut numeric = Numeric::new(Arc::clone(&symbolic));
+    let mut ours_x = b.clone();
+    if let Err(e) = numeric.refactor(a.view()).and_then(|()| numeric.solve_in_place(&mut ours_x)) {
+        return Ok(json_with_error(fields, &e.to_string()));
+    }
+    fields.push(format!("\"residual\":{}", json_number(problem.relative_residual(&ours_x, &b))));
+    let mut supernodal = FaerLlt::analyse(a, true);
+    supernodal.factor(a);
+    let mut faer_x = b.clone();
+    supernodal.solve_in_place(&mut faer_x);
+    let mut simplicial = FaerLlt::analyse(a, false);
+    simplicial.factor(a);
+    fields.push(format!("\"faerNnzL\":{}", simplicial.stored_values()));
+    fields.push(format!("\"differenceFromFaer\":{}", json_number(relative_difference(&ours_x, &faer_x))));
+
+    let names = [
+        "oursSymbolicMs",
+        "oursNumericMs",
+        "oursSolveMs",
+        "faerSymbolicMs",
+        "faerNumericMs",
+        "faerSimplicialMs",
+        "faerSolveMs",
+    ];
+    let mut samples: [Vec<f64>; 7] = Default::default();
+    let mut x = b.clone();
+    for _ in 0..repeats.max(1) {
+        samples[0].push(clock.time_ms(|| {
+            std::hint::black_box(Symbolic::analyse(a.view(), &Ordering::Amd).ok());
+        }));
+        let (mut refactored, mut solved) = (Ok(()), Ok(()));
+        samples[1].push(clock.time_ms(|| refactored = numeric.refactor(a.view())));
+        x.copy_from_slice(&b);
+        samples[2].push(clock.time_ms(|| solved = numeric.solve_in_place(&mut x)));
+        if let Err(e) = refactored.and(solved) {
+            return Ok(json_with_error(fields, &e.to_string()));
+        }
+        samples[3].push(clock.time_ms(|| {
+            std::hint::black_box(supernodal.reanalyse());
+        }));
+        samples[4].push(clock.time_ms(|| supernodal.factor(a)));
+        samples[5].push(clock.time_ms(|| simplicial.factor(a)));
+        x.copy_from_slice(&b);
+        samples[6].push(clock.time_ms(|| supernodal.solve_in_place(&mut x)));
+    }
+    for (name, values) in names.iter().zip(samples) {
+        fields.push(format!("\"{name}\":{}", json_number(median(values))));
+    }
+    Ok(format!("{{{}}}", fields.join(",")))
+}
+
+/// Whether this build was compiled with wasm SIMD (`-C target-feature=+simd128`).
+#[wasm_bindgen]
+#[allow(unreachable_pub)] // exported to JavaScript
+pub fn bench_simd128() -> bool {
+    cfg!(target_feature = "simd128")
+}
+
+/// A JSON number, or `null` for NaN and infinities (which JSON cannot spell).
+fn json_number(x: f64) -> String {
+    if x.is_finite() {
+        x.to_string()
+    } else {
+        "null".to_string()
+    }
+}
+
+fn json_with_error(mut fields: Vec<String>, error: &str) -> String {
+    fields.push(format!("\"error\":\"{}\"", error.replace('\\', "\\\\").replace('"', "\\\"")));
+    format!("{{{}}}", fields.join(","))
+}
