@@ -1,5 +1,10 @@
 //! Minimum over repetitions of one numeric refactorisation of the step-1 matrix (Killing
-//! energy plus handle penalties) of the built-in figure. `cargo run --release --example factor_time -- 10000`.
+//! energy plus handle penalties) of the built-in figure, ordered by AMD and by nested
+//! dissection. `cargo run --release --example factor_time -- 10000`.
+//!
+//! With `--count` it does a fixed amount of work instead (one AMD analysis, three
+//! factorisations, one solve) and prints no times, for instruction counting, which is
+//! repeatable on a busy machine: `valgrind --tool=callgrind target/release/examples/factor_time 10000 --count`.
 
 use std::sync::Arc;
 
@@ -9,6 +14,7 @@ use akap::{shapes, triangulate, TriangulationOptions};
 
 fn main() {
     let target: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(10_000);
+    let count_only = std::env::args().any(|a| a == "--count");
     let figure = shapes::gingerbread();
     let h = (1.7 * figure.area() / (2.0 * target as f64) / (3f64.sqrt() / 4.0)).sqrt();
     let mesh =
@@ -30,6 +36,17 @@ fn main() {
     for v in 0..n {
         adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
         ptr.push(adj.len());
+    }
+    if count_only {
+        let order = expand_blocks(&amd_order(n, &ptr, &adj), 2);
+        let mut numeric = Numeric::new(Arc::new(Symbolic::analyse(a.view(), &Ordering::Given(order)).unwrap()));
+        for _ in 0..3 {
+            numeric.refactor(a.view()).unwrap();
+        }
+        let mut b = vec![1.0; 2 * n];
+        numeric.solve_in_place(&mut b).unwrap();
+        println!("n {n}, x[0] = {}", b[0]);
+        return;
     }
     for (name, order) in
         [("amd", amd_order(n, &ptr, &adj)), ("nd", nested_dissection_order(&ptr, &adj, mesh.positions()))]
