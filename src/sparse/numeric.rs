@@ -157,10 +157,8 @@ impl Numeric {
         // Forward, L y = P b: per supernode, a dense triangular solve on its own columns,
         // then the rows below get `L21 x` accumulated densely and subtracted once.
         for s in 0..ns {
-            let first = sym.super_start[s];
-            let width = sym.super_start[s + 1] - first;
-            let rows = &sym.rows[sym.row_start[s]..sym.row_start[s + 1]];
-            let block = &self.values[sym.value_start[s]..sym.value_start[s + 1]];
+            let (first, width, rows, range) = sym.supernode(s);
+            let block = &self.values[range];
             let height = rows.len();
             let below = &mut below[..height - width];
             below.fill(0.0);
@@ -181,10 +179,8 @@ impl Numeric {
         }
         // Backward, L^T z = y: gather the rows below once, then dot products.
         for s in (0..ns).rev() {
-            let first = sym.super_start[s];
-            let width = sym.super_start[s + 1] - first;
-            let rows = &sym.rows[sym.row_start[s]..sym.row_start[s + 1]];
-            let block = &self.values[sym.value_start[s]..sym.value_start[s + 1]];
+            let (first, width, rows, range) = sym.supernode(s);
+            let block = &self.values[range];
             let height = rows.len();
             let below = &mut below[..height - width];
             for (g, &r) in below.iter_mut().zip(&rows[width..]) {
@@ -213,10 +209,9 @@ impl Numeric {
         let n = sym.n;
         let mut dense = vec![0.0; n * n];
         for s in 0..sym.supernode_count() {
-            let first = sym.super_start[s];
-            let rows = &sym.rows[sym.row_start[s]..sym.row_start[s + 1]];
-            let block = &self.values[sym.value_start[s]..sym.value_start[s + 1]];
-            for j in 0..sym.super_start[s + 1] - first {
+            let (first, width, rows, range) = sym.supernode(s);
+            let block = &self.values[range];
+            for j in 0..width {
                 for (r, &row) in rows.iter().enumerate().skip(j) {
                     dense[row * n + first + j] = block[j * rows.len() + r];
                 }

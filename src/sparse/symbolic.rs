@@ -175,6 +175,14 @@ impl Symbolic {
         *self.value_start.last().expect("at least the leading zero")
     }
 
+    /// Supernode `s`: its first column, its width, its sorted rows (own columns first) and
+    /// the range of its values (column-major, one column per `rows.len()` values).
+    pub(super) fn supernode(&self, s: usize) -> (usize, usize, &[usize], std::ops::Range<usize>) {
+        let first = self.super_start[s];
+        let rows = &self.rows[self.row_start[s]..self.row_start[s + 1]];
+        (first, self.super_start[s + 1] - first, rows, self.value_start[s]..self.value_start[s + 1])
+    }
+
     /// Whether `a` has exactly the analysed pattern.
     pub(super) fn same_pattern(&self, a: CsMatView<'_>) -> bool {
         let offset = a.indptr().index(0);
