@@ -243,6 +243,29 @@ impl JsDeformer {
         self.inner.positions().iter().flatten().copied().collect()
     }
 
+    /// Where the current positions live in wasm memory: the byte offset of `2 * vertexCount`
+    /// f64 values, x and y interleaved. JavaScript wraps it in a `Float64Array` over
+    /// `memory.buffer` (no copy). The address changes with every step (the deformer swaps
+    /// two buffers), and a view detaches when the memory grows: ask again each frame.
+    #[wasm_bindgen(js_name = positionsPointer)]
+    pub fn positions_pointer(&self) -> usize {
+        self.inner.positions().as_ptr() as usize
+    }
+
+    /// Puts the mesh into the given pose (xy-interleaved, length `2 * vertexCount`); handles stay.
+    #[wasm_bindgen(js_name = setPositions)]
+    pub fn set_positions(&mut self, positions: &[f64]) -> Result<(), JsError> {
+        let (pairs, rest) = positions.as_chunks::<2>();
+        if !rest.is_empty() {
+            return Err(JsError::new(&format!(
+                "positions has length {}, expected {}",
+                positions.len(),
+                2 * self.inner.mesh().vertex_count()
+            )));
+        }
+        self.inner.set_positions(pairs).map_err(to_js)
+    }
+
     /// The last velocity field after the Dirichlet step (`U_opt`), interleaved.
     pub fn field(&self) -> Vec<f64> {
         self.inner.field().iter().flatten().copied().collect()

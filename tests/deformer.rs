@@ -306,3 +306,41 @@ fn long_random_runs_stay_finite() {
         }
     }
 }
+
+#[test]
+fn a_pose_set_from_outside_is_deformed_from_there() {
+    // Put the bar into a rotated and shifted copy of its rest pose, then step with the
+    // velocities of a rotation about a point: the spiral step must rotate the given pose,
+    // so the result equals the rest pose rotated by both angles (Appendix A again).
+    let mesh = bar_with_holes();
+    let rest = mesh.positions().to_vec();
+    let rotate = |p: Point, angle: f64, c: Point| -> Point {
+        let (s, co) = angle.sin_cos();
+        let (x, y) = (p[0] - c[0], p[1] - c[1]);
+        [c[0] + co * x - s * y, c[1] + s * x + co * y]
+    };
+    let posed: Vec<Point> =
+        rest.iter().map(|&p| rotate(p, 0.4, [0.0, 0.0])).map(|p| [p[0] + 1.5, p[1] - 0.5]).collect();
+    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    deformer.set_handle_vertices(&[0, 7, 30]).unwrap();
+    deformer.set_positions(&posed).unwrap();
+    assert_eq!(deformer.positions(), &posed[..]);
+
+    let (a, c) = (0.25, [2.0, 0.3]);
+    let u = killing_field(a, c, [0.0, 0.0]);
+    let velocities: Vec<[f64; 2]> = deformer.handle_positions().into_iter().map(u).collect();
+    deformer.step(&velocities).unwrap();
+    let size = scale(&posed);
+    for (got, &p) in deformer.positions().iter().zip(&posed) {
+        let want = rotate(p, a, c);
+        assert!((got[0] - want[0]).hypot(got[1] - want[1]) <= 1e-9 * size, "{got:?} vs {want:?}");
+    }
+
+    // Bad poses are refused and change nothing.
+    let before = deformer.positions().to_vec();
+    assert!(matches!(deformer.set_positions(&posed[1..]), Err(DeformError::Length { .. })));
+    let mut bad = posed.clone();
+    bad[5][1] = f64::NAN;
+    assert_eq!(deformer.set_positions(&bad), Err(DeformError::NonFinitePosition { vertex: 5 }));
+    assert_eq!(deformer.positions(), &before[..]);
+}

@@ -135,6 +135,11 @@ pub enum DeformError {
     Factor(FactorError),
     /// The step produced a non-finite position (a velocity too large for the mesh).
     NonFiniteResult,
+    /// A position given to [`Deformer::set_positions`] is NaN or infinite.
+    NonFinitePosition {
+        /// Which vertex.
+        vertex: usize,
+    },
 }
 
 impl fmt::Display for DeformError {
@@ -161,6 +166,7 @@ impl fmt::Display for DeformError {
             Self::NonFiniteVelocity { handle } => write!(f, "the velocity of handle {handle} is not a finite number"),
             Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
             Self::NonFiniteResult => write!(f, "the step produced positions that are not finite; use smaller steps"),
+            Self::NonFinitePosition { vertex } => write!(f, "the position of vertex {vertex} is not a finite number"),
         }
     }
 }
@@ -560,6 +566,25 @@ impl Deformer {
         self.positions.copy_from_slice(self.mesh.positions());
         self.soft_field.fill(0.0);
         self.field.fill(0.0);
+    }
+
+    /// Puts the mesh into a given pose (for undo, or to resume a saved pose); handles stay.
+    /// Fails, changing nothing, for a wrong length or a non-finite coordinate.
+    pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
+        if positions.len() != self.positions.len() {
+            return Err(DeformError::Length {
+                what: "positions",
+                expected: self.positions.len(),
+                found: positions.len(),
+            });
+        }
+        if let Some(vertex) = positions.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+            return Err(DeformError::NonFinitePosition { vertex });
+        }
+        self.positions.copy_from_slice(positions);
+        self.soft_field.fill(0.0);
+        self.field.fill(0.0);
+        Ok(())
     }
 
     /// Current vertex positions.

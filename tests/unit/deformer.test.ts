@@ -45,4 +45,41 @@ describe("Deformer", () => {
     expect(deformer.handleCount).toBe(2);
     deformer.free();
   });
+
+  it("exposes positions as a view of wasm memory that follows steps and memory growth", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.1 });
+    const deformer = new Deformer(mesh.positions, mesh.triangles);
+    deformer.setHandles([0, 10]);
+    const view = deformer.positionsView();
+    expect(Array.from(view)).toEqual(Array.from(mesh.positions));
+    deformer.step([0.01, 0, 0, 0.02]);
+    const copy = deformer.positions(); // may grow the memory: take the view after copies
+    const stepped = deformer.positionsView();
+    expect(Array.from(stepped)).toEqual(Array.from(copy));
+    expect(stepped[0]).not.toBe(mesh.positions[0]);
+    expect(deformer.positionsView()).toBe(stepped); // cached while nothing changed
+    // Allocating a big mesh grows the memory; the old view detaches, a new one is made.
+    const big = triangulate(defaultShape(), { targetEdgeLength: 0.01 });
+    const other = new Deformer(big.positions, big.triangles);
+    expect(view.length).toBe(0); // detached
+    const again = deformer.positionsView();
+    expect(again.length).toBe(2 * mesh.vertexCount);
+    expect(Array.from(again)).toEqual(Array.from(copy));
+    other.free();
+    deformer.free();
+  });
+
+  it("sets a pose and refuses bad ones without changing it", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.1 });
+    const deformer = new Deformer(mesh.positions, mesh.triangles);
+    const shifted = mesh.positions.map((x, i) => x + (i % 2 === 0 ? 0.5 : -0.25));
+    deformer.setPositions(shifted);
+    expect(Array.from(deformer.positionsView())).toEqual(Array.from(shifted));
+    expect(() => deformer.setPositions(shifted.subarray(2))).toThrow(/positions has length/);
+    const bad = shifted.slice();
+    bad[7] = Number.NaN;
+    expect(() => deformer.setPositions(bad)).toThrow(/vertex 3 is not a finite number/);
+    expect(Array.from(deformer.positions())).toEqual(Array.from(shifted));
+    deformer.free();
+  });
 });

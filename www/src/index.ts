@@ -12,7 +12,7 @@
  *
  * @packageDocumentation
  */
-import { assertLoaded, load, raw, type WasmSource } from "./internal/wasm.js";
+import { assertLoaded, load, raw, wasmMemory, type WasmSource } from "./internal/wasm.js";
 
 export type { WasmSource };
 
@@ -151,6 +151,7 @@ export interface Timings {
  */
 export class Deformer {
   readonly #raw: raw.Deformer;
+  #view: Float64Array | undefined;
 
   /**
    * @param positions xy-interleaved vertex positions (length 2n)
@@ -184,6 +185,27 @@ export class Deformer {
   /** A copy of the current positions, xy-interleaved. */
   positions(): Float64Array {
     return this.#raw.positions();
+  }
+
+  /**
+   * The current positions without a copy: a view of WebAssembly memory. Read it right away
+   * and call this again after the next step rather than keeping it: a step moves the
+   * positions to another buffer, and growing memory detaches old views. Cheap to call;
+   * the view is re-created only when one of those happened.
+   */
+  positionsView(): Float64Array {
+    // A step swaps the position buffers, and growth replaces the memory's buffer.
+    const buffer = wasmMemory().buffer;
+    const pointer = this.#raw.positionsPointer();
+    if (this.#view?.buffer !== buffer || this.#view.byteOffset !== pointer) {
+      this.#view = new Float64Array(buffer, pointer, 2 * this.#raw.vertexCount);
+    }
+    return this.#view;
+  }
+
+  /** Puts the mesh into a given pose (xy-interleaved, length 2n); handles stay. */
+  setPositions(positions: Coordinates): void {
+    this.#raw.setPositions(asFloat64(positions, "positions"));
   }
 
   /** The last step's velocity field after the Dirichlet re-solve (U_opt), xy-interleaved. */

@@ -8,6 +8,7 @@ export { raw };
 
 let ready: Promise<void> | undefined;
 let loaded = false;
+let memory: WebAssembly.Memory | undefined;
 
 /** Bytes, a URL or a compiled module, as wasm-bindgen's initialiser accepts them. */
 export type WasmSource = BufferSource | WebAssembly.Module | URL | string | Response;
@@ -28,13 +29,20 @@ async function readBesideThisModule(): Promise<BufferSource> {
 export function load(source?: WasmSource): Promise<void> {
   ready ??= (async () => {
     const input = source ?? (isNode() ? await readBesideThisModule() : undefined);
-    await initWasm(input === undefined ? undefined : { module_or_path: input });
+    const exports = await initWasm(input === undefined ? undefined : { module_or_path: input });
+    memory = exports.memory;
     loaded = true;
   })().catch((error: unknown) => {
     ready = undefined;
     throw new Error(`could not load the akap WebAssembly module: ${String(error)}`, { cause: error });
   });
   return ready;
+}
+
+/** The module's linear memory (after `load`). Its buffer changes when it grows. */
+export function wasmMemory(): WebAssembly.Memory {
+  if (!memory) throw new Error("akap is not initialised: await init() first");
+  return memory;
 }
 
 /** Throws a clear error when the module is used before `load` finished. */
