@@ -2,7 +2,11 @@ import { defineConfig } from "vite";
 
 export default defineConfig({
   root: ".",
-  build: { outDir: "dist", target: "es2022" },
+  build: {
+    outDir: "dist",
+    target: "es2022",
+    rollupOptions: { input: { main: "index.html", embed: "www/examples/embed.html" } },
+  },
   server: { host: "127.0.0.1", port: 5173 },
   preview: { host: "127.0.0.1", port: 4173 },
   test: {

@@ -139,3 +139,14 @@ mod tests {
         assert_eq!(rings.len(), 5);
     }
 }
+
+/// Names of the built-in shapes, in gallery order; the first is the default shape.
+pub const BUILTIN: &[&str] = &["gingerbread"];
+
+/// A built-in shape by its name in [`BUILTIN`].
+pub fn builtin(name: &str) -> Option<Outline> {
+    match name {
+        "gingerbread" => Some(gingerbread()),
+        _ => None,
+    }
+}

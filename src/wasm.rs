@@ -168,7 +168,25 @@ fn read_holes(holes: JsValue) -> Result<Vec<Vec<f64>>, JsError> {
 /// The built-in default shape, `{ outer: Float64Array, holes: Float64Array[] }`.
 #[wasm_bindgen(js_name = defaultShape)]
 pub fn default_shape() -> Result<Object, JsValue> {
-    let outline = shapes::gingerbread();
+    outline_object(&shapes::gingerbread())
+}
+
+/// Names of the built-in shapes; the first is the default.
+#[wasm_bindgen(js_name = builtinShapes)]
+pub fn builtin_shapes() -> Array {
+    shapes::BUILTIN.iter().map(|&name| JsValue::from_str(name)).collect()
+}
+
+/// A built-in shape by name, `{ outer, holes }` as for `defaultShape`.
+#[wasm_bindgen(js_name = builtinShape)]
+pub fn builtin_shape(name: &str) -> Result<Object, JsValue> {
+    let outline = shapes::builtin(name).ok_or_else(|| {
+        JsError::new(&format!("there is no built-in shape `{name}`; the shapes are {}", shapes::BUILTIN.join(", ")))
+    })?;
+    outline_object(&outline)
+}
+
+fn outline_object(outline: &Outline) -> Result<Object, JsValue> {
     let flat = |ring: &[[f64; 2]]| Float64Array::from(ring.iter().flatten().copied().collect::<Vec<f64>>().as_slice());
     let holes: Array = outline.holes.iter().map(|h| flat(h)).collect();
     let object = Object::new();

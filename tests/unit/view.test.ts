@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { bounds, fitView, toPixel } from "../../www/app/view.js";
+import { bounds, fitView, toPixel } from "../../www/src/widget/view.js";
 
 describe("fitView", () => {
   it("centres the box and fits its limiting side inside the margin", () => {

@@ -47,3 +47,8 @@ export function fitView(positions: ArrayLike<number>, width: number, height: num
 export function toPixel(view: View, x: number, y: number): [number, number] {
   return [view.offsetX + view.scale * x, view.offsetY - view.scale * y];
 }
+
+/** Pixels to shape coordinates (the inverse of {@link toPixel}). */
+export function fromPixel(view: View, px: number, py: number): [number, number] {
+  return [(px - view.offsetX) / view.scale, (view.offsetY - py) / view.scale];
+}

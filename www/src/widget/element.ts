@@ -1,0 +1,89 @@
+/**
+ * `<akap-deformer>`: the posing widget as a custom element.
+ *
+ * ```html
+ * <script type="module">
+ *   import { defineElement } from "akap";
+ *   defineElement();
+ * </script>
+ * <akap-deformer shape="gingerbread" vertices="1200" hud="false" style="height: 400px"></akap-deformer>
+ * ```
+ * Attributes (read when the element is connected): `shape`, `texture` (an image URL),
+ * `vertices`, `method`, `lambda`, `controls`, `hud`, `wireframe`, `field` (`"false"` turns
+ * a default-on feature off). The element fires the widget's events (`akap-ready`,
+ * `akap-pose`, `akap-handles`, `akap-error`); `element.widget` is the {@link Widget}.
+ */
+import { mount, type Method, type Widget, type WidgetOptions } from "./widget.js";
+
+/** Registers `<akap-deformer>` (or another tag name) once; later calls do nothing. */
+export function defineElement(tag = "akap-deformer"): void {
+  if (typeof customElements === "undefined" || customElements.get(tag)) return;
+  customElements.define(tag, class extends AkapDeformerElement {});
+}
+
+export class AkapDeformerElement extends HTMLElement {
+  #widget: Widget | undefined;
+  #mounting: Promise<Widget> | undefined;
+
+  /** The widget, once mounted (after `akap-ready`). */
+  get widget(): Widget | undefined {
+    return this.#widget;
+  }
+
+  /** Resolves with the widget once it is mounted. */
+  get ready(): Promise<Widget> {
+    return this.#mounting ?? Promise.reject(new Error("the element is not in a document"));
+  }
+
+  connectedCallback(): void {
+    if (this.#mounting) return;
+    if (!this.style.display) this.style.display = "block";
+    this.#mounting = mount(this, this.#options());
+    this.#mounting.then(
+      (widget) => {
+        if (this.isConnected) this.#widget = widget;
+        else widget.destroy();
+      },
+      (error: unknown) => {
+        const message = error instanceof Error ? error.message : String(error);
+        this.textContent = `akap-deformer: ${message}`;
+        this.dispatchEvent(new CustomEvent("akap-error", { detail: { message } }));
+      },
+    );
+  }
+
+  disconnectedCallback(): void {
+    this.#widget?.destroy();
+    this.#widget = undefined;
+    this.#mounting = undefined;
+  }
+
+  #options(): WidgetOptions {
+    const text = (name: string): string | undefined => this.getAttribute(name) ?? undefined;
+    const flag = (name: string): boolean | undefined => {
+      const value = this.getAttribute(name);
+      return value === null ? undefined : value !== "false";
+    };
+    const num = (name: string): number | undefined => {
+      const value = this.getAttribute(name);
+      if (value === null) return undefined;
+      const n = Number(value);
+      if (!Number.isFinite(n)) throw new Error(`attribute ${name}="${value}" is not a number`);
+      return n;
+    };
+    const options: WidgetOptions = {};
+    const assign = <K extends keyof WidgetOptions>(key: K, value: WidgetOptions[K] | undefined): void => {
+      if (value !== undefined) options[key] = value;
+    };
+    assign("shape", text("shape"));
+    assign("texture", text("texture"));
+    assign("vertices", num("vertices"));
+    assign("method", text("method") as Method | undefined);
+    assign("lambda", num("lambda"));
+    assign("controls", flag("controls"));
+    assign("hud", flag("hud"));
+    assign("wireframe", flag("wireframe"));
+    assign("field", flag("field"));
+    return options;
+  }
+}

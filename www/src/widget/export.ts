@@ -1,0 +1,71 @@
+/**
+ * Exports of the current pose: the mesh as JSON or Wavefront OBJ (with texture
+ * coordinates), the outline as SVG, and a file download helper for pages.
+ */
+import { boundaryLoops } from "./geometry.js";
+import { bounds } from "./view.js";
+
+/** `{ positions, triangles, uvs }` with the current positions; numbers round-trip exactly. */
+export function meshJson(positions: ArrayLike<number>, triangles: ArrayLike<number>, uvs: ArrayLike<number>): string {
+  return JSON.stringify({
+    positions: Array.from(positions),
+    triangles: Array.from(triangles),
+    uvs: Array.from(uvs, (x) => Math.fround(x)),
+  });
+}
+
+/** Wavefront OBJ: `v x y 0`, `vt u v`, `f a/a b/b c/c` (1-based), counter-clockwise faces. */
+export function meshObj(positions: ArrayLike<number>, triangles: ArrayLike<number>, uvs: ArrayLike<number>): string {
+  const lines = ["# akap deformed mesh", `# ${positions.length / 2} vertices, ${triangles.length / 3} triangles`];
+  for (let i = 0; i + 1 < positions.length; i += 2) lines.push(`v ${positions[i]} ${positions[i + 1]} 0`);
+  for (let i = 0; i + 1 < uvs.length; i += 2) lines.push(`vt ${Math.fround(uvs[i]!)} ${Math.fround(uvs[i + 1]!)}`);
+  for (let i = 0; i + 2 < triangles.length; i += 3) {
+    const [a, b, c] = [triangles[i]! + 1, triangles[i + 1]! + 1, triangles[i + 2]! + 1];
+    lines.push(`f ${a}/${a} ${b}/${b} ${c}/${c}`);
+  }
+  return lines.join("\n") + "\n";
+}
+
+/**
+ * The outline of the current pose as an SVG document: one path with every boundary loop
+ * (holes included, even-odd fill), y pointing down as SVG expects, a small margin.
+ */
+export function outlineSvg(positions: ArrayLike<number>, boundaryEdges: ArrayLike<number>, fill = "#c8773a"): string {
+  const b = bounds(positions);
+  const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
+  const width = b.maxX - b.minX + 2 * margin;
+  const height = b.maxY - b.minY + 2 * margin;
+  const fmt = (x: number): string => String(Math.round(x * 1e6) / 1e6);
+  const d = boundaryLoops(boundaryEdges)
+    .map(
+      (loop) =>
+        loop
+          .map((v, k) => {
+            const x = positions[2 * v]! - b.minX + margin;
+            const y = b.maxY + margin - positions[2 * v + 1]!;
+            return `${k === 0 ? "M" : "L"}${fmt(x)} ${fmt(y)}`;
+          })
+          .join(" ") + " Z",
+    )
+    .join(" ");
+  return [
+    `<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 ${fmt(width)} ${fmt(height)}" width="${fmt(width * 400)}" height="${fmt(height * 400)}">`,
+    `  <path d="${d}" fill="${fill}" fill-rule="evenodd" stroke="#5a2d0c" stroke-width="${fmt(0.004 * Math.max(width, height))}" stroke-linejoin="round"/>`,
+    "</svg>",
+    "",
+  ].join("\n");
+}
+
+/** Offers `data` to the user as a file download. */
+export function download(document: Document, data: Blob | string, filename: string, type = "text/plain"): void {
+  const blob = typeof data === "string" ? new Blob([data], { type }) : data;
+  const url = URL.createObjectURL(blob);
+  const link = document.createElement("a");
+  link.href = url;
+  link.download = filename;
+  link.style.display = "none";
+  document.body.append(link);
+  link.click();
+  link.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}

@@ -1,0 +1,75 @@
+/** Mesh helpers for drawing and export: unique edges, boundary loops, texture coordinates. */
+import { bounds } from "./view.js";
+
+/** Every edge of the triangles once, as index pairs. */
+export function uniqueEdges(triangles: ArrayLike<number>, vertexCount: number): Uint32Array {
+  const seen = new Set<number>();
+  const edges: number[] = [];
+  for (let i = 0; i + 2 < triangles.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      const a = triangles[i + k]!;
+      const b = triangles[i + ((k + 1) % 3)]!;
+      const key = Math.min(a, b) * vertexCount + Math.max(a, b);
+      if (seen.has(key)) continue;
+      seen.add(key);
+      edges.push(a, b);
+    }
+  }
+  return Uint32Array.from(edges);
+}
+
+/**
+ * Chains boundary edges (pairs, the shape on their left) into closed loops of vertex
+ * indices: the outer boundary counter-clockwise, holes clockwise.
+ */
+export function boundaryLoops(boundaryEdges: ArrayLike<number>): number[][] {
+  const next = new Map<number, number[]>();
+  for (let i = 0; i + 1 < boundaryEdges.length; i += 2) {
+    const from = boundaryEdges[i]!;
+    const list = next.get(from);
+    if (list) list.push(boundaryEdges[i + 1]!);
+    else next.set(from, [boundaryEdges[i + 1]!]);
+  }
+  const loops: number[][] = [];
+  for (const start of next.keys()) {
+    while ((next.get(start)?.length ?? 0) > 0) {
+      const loop = [start];
+      let at = next.get(start)!.pop()!;
+      while (at !== start) {
+        loop.push(at);
+        const out = next.get(at);
+        if (!out || out.length === 0) break; // open chain: cannot happen for a valid mesh
+        at = out.pop()!;
+      }
+      loops.push(loop);
+    }
+  }
+  return loops;
+}
+
+/**
+ * Texture coordinates from rest positions: the bounding box mapped into [0, 1]^2 with its
+ * aspect ratio kept (the longer side spans 0..1), centred in the shorter direction.
+ */
+export function boxUvs(positions: ArrayLike<number>): Float32Array {
+  const b = bounds(positions);
+  const span = Math.max(b.maxX - b.minX, b.maxY - b.minY) || 1;
+  const padX = (span - (b.maxX - b.minX)) / 2;
+  const padY = (span - (b.maxY - b.minY)) / 2;
+  const uvs = new Float32Array(positions.length);
+  for (let i = 0; i + 1 < positions.length; i += 2) {
+    uvs[i] = (positions[i]! - b.minX + padX) / span;
+    uvs[i + 1] = (positions[i + 1]! - b.minY + padY) / span;
+  }
+  return uvs;
+}
+
+/** Signed doubled area of triangle `t` (positive when counter-clockwise). */
+export function doubledArea(positions: ArrayLike<number>, triangles: ArrayLike<number>, t: number): number {
+  const a = triangles[3 * t]!;
+  const b = triangles[3 * t + 1]!;
+  const c = triangles[3 * t + 2]!;
+  const ax = positions[2 * a]!;
+  const ay = positions[2 * a + 1]!;
+  return (positions[2 * b]! - ax) * (positions[2 * c + 1]! - ay) - (positions[2 * b + 1]! - ay) * (positions[2 * c]! - ax);
+}

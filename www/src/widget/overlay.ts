@@ -1,0 +1,132 @@
+/**
+ * The 2D overlay above the mesh: the outline, flipped triangles, the velocity field of the
+ * last frame (arrows, as in the paper's Figure 4) and the handles.
+ */
+import { doubledArea } from "./geometry.js";
+import { toPixel, type View } from "./view.js";
+
+export interface OverlayHandle {
+  x: number;
+  y: number;
+  /** Where the handle is going (its target). */
+  targetX: number;
+  targetY: number;
+  selected: boolean;
+  dragged: boolean;
+}
+
+export interface OverlayScene {
+  positions: ArrayLike<number>;
+  triangles: ArrayLike<number>;
+  boundaryEdges: ArrayLike<number>;
+  handles: readonly OverlayHandle[];
+  /** The last field, 2 per vertex, or undefined to draw none. */
+  field: ArrayLike<number> | undefined;
+  showFlipped: boolean;
+}
+
+/** Handle radius in CSS pixels. */
+export const HANDLE_RADIUS = 7;
+/** Most arrows drawn for the field. */
+const MAX_ARROWS = 400;
+
+export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, view: View, ratio: number): void {
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
+  ctx.clearRect(0, 0, ctx.canvas.width, ctx.canvas.height);
+  const p = scene.positions;
+  const at = (v: number): [number, number] => toPixel(view, p[2 * v]!, p[2 * v + 1]!);
+
+  if (scene.showFlipped) {
+    ctx.beginPath();
+    const t = scene.triangles;
+    for (let f = 0; 3 * f + 2 < t.length; f++) {
+      if (doubledArea(p, t, f) >= 0) continue;
+      const [ax, ay] = at(t[3 * f]!);
+      const [bx, by] = at(t[3 * f + 1]!);
+      const [cx, cy] = at(t[3 * f + 2]!);
+      ctx.moveTo(ax, ay);
+      ctx.lineTo(bx, by);
+      ctx.lineTo(cx, cy);
+      ctx.closePath();
+    }
+    ctx.fillStyle = "rgba(220, 20, 60, 0.75)";
+    ctx.fill();
+  }
+
+  ctx.beginPath();
+  const e = scene.boundaryEdges;
+  for (let i = 0; i + 1 < e.length; i += 2) {
+    const [ax, ay] = at(e[i]!);
+    const [bx, by] = at(e[i + 1]!);
+    ctx.moveTo(ax, ay);
+    ctx.lineTo(bx, by);
+  }
+  ctx.strokeStyle = "#5a2d0c";
+  ctx.lineWidth = 2 * ratio;
+  ctx.lineJoin = "round";
+  ctx.stroke();
+
+  if (scene.field) drawField(ctx, p, scene.field, view, ratio);
+
+  for (const h of scene.handles) {
+    const [x, y] = toPixel(view, h.x, h.y);
+    const [tx, ty] = toPixel(view, h.targetX, h.targetY);
+    if (Math.hypot(tx - x, ty - y) > 2 * ratio) {
+      ctx.beginPath();
+      ctx.setLineDash([4 * ratio, 3 * ratio]);
+      ctx.moveTo(x, y);
+      ctx.lineTo(tx, ty);
+      ctx.strokeStyle = "rgba(20, 40, 90, 0.8)";
+      ctx.lineWidth = ratio;
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
+    ctx.beginPath();
+    ctx.arc(x, y, (h.dragged ? 1.3 : 1) * HANDLE_RADIUS * ratio, 0, 2 * Math.PI);
+    ctx.fillStyle = h.selected ? "#ffd34d" : "#ffffff";
+    ctx.fill();
+    ctx.lineWidth = 2.5 * ratio;
+    ctx.strokeStyle = h.dragged ? "#c0392b" : "#1d3557";
+    ctx.stroke();
+  }
+}
+
+/** Arrows for a subset of vertices, the longest scaled to 40 CSS pixels. */
+function drawField(
+  ctx: CanvasRenderingContext2D,
+  positions: ArrayLike<number>,
+  field: ArrayLike<number>,
+  view: View,
+  ratio: number,
+): void {
+  const n = field.length / 2;
+  let longest = 0;
+  for (let v = 0; v < n; v++) longest = Math.max(longest, Math.hypot(field[2 * v]!, field[2 * v + 1]!));
+  if (!(longest > 0)) return;
+  const scale = (40 * ratio) / (longest * view.scale);
+  const stride = Math.max(1, Math.ceil(n / MAX_ARROWS));
+  ctx.beginPath();
+  for (let v = 0; v < n; v += stride) {
+    const [x, y] = toPixel(view, positions[2 * v]!, positions[2 * v + 1]!);
+    const [tx, ty] = toPixel(
+      view,
+      positions[2 * v]! + scale * field[2 * v]!,
+      positions[2 * v + 1]! + scale * field[2 * v + 1]!,
+    );
+    const length = Math.hypot(tx - x, ty - y);
+    if (length < ratio) continue;
+    ctx.moveTo(x, y);
+    ctx.lineTo(tx, ty);
+    // Arrow head.
+    const ux = (tx - x) / length;
+    const uy = (ty - y) / length;
+    const head = Math.min(6 * ratio, length / 2);
+    ctx.moveTo(tx, ty);
+    ctx.lineTo(tx - head * (ux + 0.5 * uy), ty - head * (uy - 0.5 * ux));
+    ctx.moveTo(tx, ty);
+    ctx.lineTo(tx - head * (ux - 0.5 * uy), ty - head * (uy + 0.5 * ux));
+  }
+  ctx.strokeStyle = "rgba(10, 60, 140, 0.85)";
+  ctx.lineWidth = 1.2 * ratio;
+  ctx.stroke();
+}

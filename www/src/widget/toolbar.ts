@@ -1,0 +1,197 @@
+/**
+ * The widget's toolbar: shape, density, method and lambda; display toggles; undo, redo,
+ * reset, clear; record, replay, save and load sessions; exports. Every control has a
+ * label and is reachable with the keyboard.
+ */
+
+export interface ToolbarActions {
+  undo(): void;
+  redo(): void;
+  reset(): void;
+  clear(): void;
+  shape(name: string, vertices: number): void;
+  method(method: string, lambda: number): void;
+  display(options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }): void;
+  hud(visible: boolean): void;
+  record(): void;
+  replay(): void;
+  saveSession(): void;
+  loadSession(file: File): void;
+  export(format: "json" | "obj" | "svg" | "png"): void;
+}
+
+export interface ToolbarSettings {
+  vertices: number;
+  method: string;
+  lambda: number;
+  wireframe: boolean;
+  field: boolean;
+  flipped: boolean;
+  paperMode: boolean;
+  hud: boolean;
+}
+
+export interface Toolbar {
+  element: HTMLElement;
+  /** Enables and labels the buttons that depend on state. */
+  refresh(state: { canUndo: boolean; canRedo: boolean; recording: boolean; hasSession: boolean }): void;
+  /** Shows the current shape (undefined for a custom one) and its vertex count. */
+  showShape(name: string | undefined, vertices: number): void;
+  /** Brings the toggles in line with settings changed by keys. */
+  sync(settings: ToolbarSettings): void;
+}
+
+export function buildToolbar(
+  document: Document,
+  actions: ToolbarActions,
+  init: { shapes: string[]; methods: { value: string; label: string }[]; settings: ToolbarSettings },
+): Toolbar {
+  const bar = document.createElement("div");
+  bar.className = "toolbar";
+  bar.setAttribute("role", "toolbar");
+  bar.setAttribute("aria-label", "Posing tools");
+  const group = (label: string): HTMLElement => {
+    const g = document.createElement("div");
+    g.className = "group";
+    g.setAttribute("role", "group");
+    g.setAttribute("aria-label", label);
+    bar.append(g);
+    return g;
+  };
+  const labelled = (parent: HTMLElement, text: string, control: HTMLElement): void => {
+    const label = document.createElement("label");
+    label.append(text, control);
+    parent.append(label);
+  };
+  const button = (parent: HTMLElement, text: string, title: string, onClick: () => void, name = text): HTMLButtonElement => {
+    const b = document.createElement("button");
+    b.type = "button";
+    b.textContent = text;
+    b.title = title;
+    b.dataset.action = name.toLowerCase().replace(/\s+/g, "-");
+    b.addEventListener("click", onClick);
+    parent.append(b);
+    return b;
+  };
+  const select = (options: { value: string; label: string }[], value: string): HTMLSelectElement => {
+    const s = document.createElement("select");
+    for (const o of options) s.append(new Option(o.label, o.value, false, o.value === value));
+    return s;
+  };
+  const checkbox = (parent: HTMLElement, text: string, checked: boolean, onChange: () => void): HTMLInputElement => {
+    const c = document.createElement("input");
+    c.type = "checkbox";
+    c.checked = checked;
+    c.addEventListener("change", onChange);
+    const label = document.createElement("label");
+    label.append(c, text);
+    parent.append(label);
+    return c;
+  };
+  const number = (value: number, min: number, max: number, step: number | "any"): HTMLInputElement => {
+    const n = document.createElement("input");
+    n.type = "number";
+    n.min = String(min);
+    n.max = String(max);
+    n.step = String(step);
+    n.value = String(value);
+    return n;
+  };
+
+  const s = init.settings;
+  const shapeGroup = group("Shape");
+  const shape = select(
+    init.shapes.map((name) => ({ value: name, label: name })),
+    init.shapes[0] ?? "",
+  );
+  shape.name = "shape";
+  labelled(shapeGroup, "Shape ", shape);
+  const vertices = number(s.vertices, 100, 50_000, 100);
+  vertices.name = "vertices";
+  labelled(shapeGroup, "Vertices ", vertices);
+  const remesh = (): void => actions.shape(shape.value, Number(vertices.value));
+  shape.addEventListener("change", remesh);
+  vertices.addEventListener("change", remesh);
+
+  const methodGroup = group("Method");
+  const method = select(init.methods, s.method);
+  method.name = "method";
+  labelled(methodGroup, "Method ", method);
+  const lambda = number(s.lambda, 0.01, 1e6, "any");
+  lambda.name = "lambda";
+  labelled(methodGroup, "λ ", lambda);
+  const changeMethod = (): void => actions.method(method.value, Number(lambda.value));
+  method.addEventListener("change", changeMethod);
+  lambda.addEventListener("change", changeMethod);
+
+  const view = group("Display");
+  const display = (): void =>
+    actions.display({
+      wireframe: wireframe.checked,
+      field: field.checked,
+      flipped: flipped.checked,
+      paperMode: paper.checked,
+    });
+  const wireframe = checkbox(view, "Wireframe (W)", s.wireframe, display);
+  wireframe.name = "wireframe";
+  const field = checkbox(view, "Field (F)", s.field, display);
+  field.name = "field";
+  const flipped = checkbox(view, "Flipped", s.flipped, display);
+  flipped.name = "flipped";
+  const paper = checkbox(view, "Paper mode", s.paperMode, display);
+  paper.name = "paper-mode";
+  const hud = checkbox(view, "HUD", s.hud, () => actions.hud(hud.checked));
+  hud.name = "hud";
+
+  const edit = group("Edit");
+  const undo = button(edit, "Undo", "Undo the last gesture (Ctrl+Z)", actions.undo);
+  const redo = button(edit, "Redo", "Redo (Ctrl+Shift+Z or Ctrl+Y)", actions.redo);
+  button(edit, "Reset", "Back to the rest pose", actions.reset);
+  button(edit, "Clear handles", "Remove every handle", actions.clear);
+
+  const session = group("Session");
+  const record = button(session, "Record", "Record the interaction", actions.record);
+  const replay = button(session, "Replay", "Replay the last recording", actions.replay);
+  const save = button(session, "Save", "Save the last recording as JSON", actions.saveSession, "save-session");
+  const file = document.createElement("input");
+  file.type = "file";
+  file.accept = ".json,application/json";
+  file.className = "hidden";
+  file.name = "session-file";
+  file.addEventListener("change", () => {
+    const chosen = file.files?.[0];
+    if (chosen) actions.loadSession(chosen);
+    file.value = "";
+  });
+  session.append(file);
+  button(session, "Load", "Load a recorded session and replay it", () => file.click(), "load-session");
+
+  const out = group("Export");
+  for (const format of ["json", "obj", "svg", "png"] as const) {
+    button(out, format.toUpperCase(), `Export the pose as ${format.toUpperCase()}`, () => actions.export(format), `export-${format}`);
+  }
+
+  return {
+    element: bar,
+    refresh(state) {
+      undo.disabled = !state.canUndo;
+      redo.disabled = !state.canRedo;
+      record.textContent = state.recording ? "Stop" : "Record";
+      record.classList.toggle("active", state.recording);
+      replay.disabled = !state.hasSession || state.recording;
+      save.disabled = !state.hasSession;
+    },
+    showShape(name, count) {
+      if (name !== undefined) shape.value = name;
+      vertices.value = String(count);
+    },
+    sync(settings) {
+      wireframe.checked = settings.wireframe;
+      field.checked = settings.field;
+      flipped.checked = settings.flipped;
+      paper.checked = settings.paperMode;
+      method.value = settings.method;
+      lambda.value = String(settings.lambda);
+    },
+  };
+}

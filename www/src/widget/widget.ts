@@ -1,0 +1,1171 @@
+/**
+ * The posing widget: a shape drawn with WebGL2 (an image warps with it), handles added by
+ * clicking anywhere on the shape, dragged with mouse, pen or several fingers, pins that
+ * stay, undo and redo per gesture, recorded sessions that replay bit for bit, exports, and
+ * a heads-up display. {@link mount} puts one into any element; several on one page are
+ * independent (all state lives in the instance, the DOM in a shadow root).
+ *
+ * Each animation frame that has work: every handle's velocity is its target (the pointer,
+ * or where a pin was left) minus its current position, split into substeps no longer than
+ * `maxStep`; the deformer steps; positions are read through a view of wasm memory and
+ * drawn.
+ */
+import {
+  Deformer,
+  builtinShape,
+  builtinShapes,
+  init,
+  meshFromArrays,
+  triangulate,
+  type DeformerOptions,
+  type MeshData,
+  type Metrics,
+  type Outline,
+  type Timings,
+} from "../core.js";
+import { Canvas2dRenderer } from "./canvas2d.js";
+import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
+import { download, meshJson, meshObj, outlineSvg } from "./export.js";
+import { boxUvs, uniqueEdges } from "./geometry.js";
+import { GlRenderer, type MeshRenderer } from "./gl.js";
+import { History } from "./history.js";
+import { Hud } from "./hud.js";
+import { HANDLE_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
+import { locate, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
+import { Recorder, parseSession, type Session, type SessionEvent, type ShapeSpec } from "./session.js";
+import { WIDGET_CSS } from "./style.js";
+import { defaultTexture } from "./texture.js";
+import { buildToolbar, type Toolbar } from "./toolbar.js";
+import { fitView, fromPixel, type View } from "./view.js";
+
+/** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
+export const METHODS = {
+  akap: { label: "AKAP", options: { dirichlet: true, integrator: "spiral" } },
+  "akap-no-dirichlet": { label: "AKAP without Dirichlet step", options: { dirichlet: false, integrator: "spiral" } },
+  "akap-linear": { label: "AKAP with linear steps", options: { dirichlet: true, integrator: "linear" } },
+  "akap-simple": { label: "AKAP, both simplifications", options: { dirichlet: false, integrator: "linear" } },
+} as const satisfies Record<string, { label: string; options: DeformerOptions }>;
+
+export type Method = keyof typeof METHODS;
+
+export interface WidgetOptions {
+  /** A built-in shape (see `builtinShapes()`); default the first one. */
+  shape?: string;
+  /** A shape of your own instead of a built-in one. */
+  outline?: Outline;
+  /** An image URL used as the texture (mapped onto the shape's bounding box). */
+  texture?: string;
+  /** About how many mesh vertices (default 1500). */
+  vertices?: number;
+  /** Smallest triangle angle in degrees (default 28). */
+  minAngle?: number;
+  method?: Method;
+  /** Weight of the soft handle constraints (default 100). */
+  lambda?: number;
+  /** Velocities from raw pointer displacement, as in the paper, instead of target tracking. */
+  paperMode?: boolean;
+  /** Show the toolbar (default true). */
+  controls?: boolean;
+  /** Show the heads-up display (default true). */
+  hud?: boolean;
+  wireframe?: boolean;
+  /** Draw the last frame's velocity field as arrows. */
+  field?: boolean;
+  /** Highlight flipped triangles (default true). */
+  flipped?: boolean;
+  /** Longest handle move per substep, as a fraction of the shape's size (default 0.02). */
+  maxStep?: number;
+  /** Most substeps per animation frame (default 8); longer moves continue next frame. */
+  maxSubsteps?: number;
+}
+
+/** `detail` of the `akap-pose` event, sent after every frame that moved the shape. */
+export interface PoseDetail {
+  metrics: Metrics;
+  handleCount: number;
+}
+
+interface Handle {
+  point: MeshPoint;
+  /** Where the handle is going, shape units. */
+  target: [number, number];
+  selected: boolean;
+  /** The pointer dragging it, if any, and the offset from pointer to handle at grab time. */
+  pointerId: number | undefined;
+  grab: [number, number];
+  /** Paper mode: pointer motion not yet turned into steps. */
+  pending: [number, number];
+}
+
+interface Snapshot {
+  positions: Float64Array;
+  handles: { point: MeshPoint; target: [number, number] }[];
+}
+
+interface Shape {
+  mesh: MeshData;
+  spec: ShapeSpec | undefined;
+  edges: Uint32Array;
+  uvs: Float32Array;
+  /** Largest side of the rest bounding box. */
+  size: number;
+}
+
+const DEFAULTS = {
+  vertices: 1500,
+  minAngle: 28,
+  method: "akap" as Method,
+  lambda: 100,
+  maxStep: 0.02,
+  maxSubsteps: 8,
+};
+
+/** Frames without input after which the loop stops even if pins have not settled. */
+const SETTLE_FRAMES = 240;
+/** Press time in ms after which a still pointer on a handle removes it (touch). */
+const LONG_PRESS_MS = 650;
+
+export class Widget {
+  /** The element the widget was mounted into; events are dispatched on it. */
+  readonly target: HTMLElement;
+  readonly #host: HTMLElement;
+  readonly #root: HTMLElement;
+  readonly #glCanvas: HTMLCanvasElement;
+  readonly #overlay: HTMLCanvasElement;
+  readonly #overlayContext: CanvasRenderingContext2D;
+  readonly #status: HTMLElement;
+  readonly #renderer: MeshRenderer;
+  readonly #hud: Hud | undefined;
+  readonly #toolbar: Toolbar | undefined;
+  readonly #resizeObserver: ResizeObserver;
+  readonly #history = new History<Snapshot>();
+  readonly #recorder = new Recorder();
+  readonly #settings: Required<Omit<WidgetOptions, "shape" | "outline" | "texture">>;
+
+  #shape!: Shape;
+  #deformer!: Deformer;
+  #handles: Handle[] = [];
+  #view: View = { scale: 1, offsetX: 0, offsetY: 0 };
+  #ratio = 1;
+  #raf = 0;
+  #idleFrames = 0;
+  #atRest = true;
+  #gestureBefore: Snapshot | undefined;
+  #gestureChanged = false;
+  #longPress: ReturnType<typeof setTimeout> | undefined;
+  #lastField: Float64Array | undefined;
+  #metrics: Metrics = { areaDistortion: 2, angleDistortion: 2, flipped: 0 };
+  #replaying = false;
+  #destroyed = false;
+  #idleWaiters: (() => void)[] = [];
+
+  private constructor(target: HTMLElement, options: WidgetOptions) {
+    this.target = target;
+    this.#settings = {
+      vertices: options.vertices ?? DEFAULTS.vertices,
+      minAngle: options.minAngle ?? DEFAULTS.minAngle,
+      method: options.method ?? DEFAULTS.method,
+      lambda: options.lambda ?? DEFAULTS.lambda,
+      paperMode: options.paperMode ?? false,
+      controls: options.controls ?? true,
+      hud: options.hud ?? true,
+      wireframe: options.wireframe ?? false,
+      field: options.field ?? false,
+      flipped: options.flipped ?? true,
+      maxStep: options.maxStep ?? DEFAULTS.maxStep,
+      maxSubsteps: options.maxSubsteps ?? DEFAULTS.maxSubsteps,
+    };
+    if (!(METHODS as Record<string, unknown>)[this.#settings.method]) {
+      throw new Error(`unknown method "${this.#settings.method}"; the methods are ${Object.keys(METHODS).join(", ")}`);
+    }
+    if (!(this.#settings.maxStep > 0) || !(this.#settings.maxSubsteps >= 1)) {
+      throw new Error("maxStep must be above 0 and maxSubsteps at least 1");
+    }
+    const document = target.ownerDocument;
+    this.#host = document.createElement("div");
+    this.#host.className = "akap-host";
+    this.#host.style.cssText = "display:block;width:100%;height:100%;";
+    const shadow = this.#host.attachShadow({ mode: "open" });
+    const style = document.createElement("style");
+    style.textContent = WIDGET_CSS;
+    this.#root = document.createElement("div");
+    this.#root.className = "widget";
+    this.#root.tabIndex = 0;
+    this.#root.setAttribute("role", "application");
+    this.#root.setAttribute("aria-label", "Shape posing: click the shape to add handles, drag them to pose");
+    shadow.append(style, this.#root);
+
+    const stage = document.createElement("div");
+    stage.className = "stage";
+    this.#glCanvas = document.createElement("canvas");
+    this.#glCanvas.className = "mesh";
+    this.#overlay = document.createElement("canvas");
+    this.#overlay.className = "overlay";
+    this.#overlay.setAttribute("aria-label", "The shape; click to add a handle, drag a handle to move it");
+    this.#status = document.createElement("div");
+    this.#status.className = "status";
+    this.#status.setAttribute("role", "status");
+    this.#status.setAttribute("aria-live", "polite");
+    stage.append(this.#glCanvas, this.#overlay, this.#status);
+
+    if (this.#settings.controls) {
+      this.#toolbar = buildToolbar(document, this.#toolbarActions(), {
+        shapes: builtinShapes(),
+        methods: Object.entries(METHODS).map(([value, m]) => ({ value, label: m.label })),
+        settings: this.#settings,
+      });
+      this.#root.append(this.#toolbar.element);
+    }
+    this.#root.append(stage);
+    if (this.#settings.hud) {
+      this.#hud = new Hud(document);
+      stage.append(this.#hud.element);
+    }
+
+    const overlayContext = this.#overlay.getContext("2d");
+    if (!overlayContext) throw new Error("this browser cannot draw on a 2D canvas");
+    this.#overlayContext = overlayContext;
+    let renderer: MeshRenderer;
+    try {
+      renderer = new GlRenderer(this.#glCanvas);
+    } catch {
+      renderer = new Canvas2dRenderer(this.#glCanvas);
+    }
+    this.#renderer = renderer;
+    this.#root.dataset.renderer = renderer.kind;
+
+    this.#bindInput();
+    this.#resizeObserver = new ResizeObserver(() => this.#resize());
+    target.append(this.#host);
+  }
+
+  /** Creates a widget inside `target` (see {@link mount}). */
+  static async create(target: HTMLElement, options: WidgetOptions = {}): Promise<Widget> {
+    await init();
+    const widget = new Widget(target, options);
+    try {
+      const outline = options.outline ?? builtinShape(options.shape ?? builtinShapes()[0]!);
+      const spec = options.outline ? undefined : { name: options.shape ?? builtinShapes()[0]!, minAngle: 0, targetEdgeLength: 0 };
+      widget.#install(widget.#buildShape(outline, spec, widget.#settings.vertices));
+      widget.#renderer.setTexture(options.texture ? await loadImage(options.texture) : defaultTexture());
+    } catch (error) {
+      widget.destroy();
+      throw error;
+    }
+    widget.#resizeObserver.observe(widget.#glCanvas);
+    widget.#resize();
+    widget.#emit("akap-ready", { vertexCount: widget.vertexCount, triangleCount: widget.triangleCount });
+    return widget;
+  }
+
+  // ---------------------------------------------------------------- public API
+
+  get vertexCount(): number {
+    return this.#shape.mesh.vertexCount;
+  }
+
+  get triangleCount(): number {
+    return this.#shape.mesh.triangleCount;
+  }
+
+  /** The rest mesh. */
+  get mesh(): MeshData {
+    return this.#shape.mesh;
+  }
+
+  /** How shape units map to device pixels of the canvas, and the device pixel ratio. */
+  get view(): View & { pixelRatio: number } {
+    return { ...this.#view, pixelRatio: this.#ratio };
+  }
+
+  /** Which renderer draws the mesh: "webgl2", or "2d" where WebGL2 is missing. */
+  get renderer(): "webgl2" | "2d" {
+    return this.#renderer.kind;
+  }
+
+  /** The current positions (a copy), xy-interleaved. */
+  positions(): Float64Array {
+    return this.#deformer.positions();
+  }
+
+  /** Current handle positions (xy-interleaved). */
+  handlePositions(): Float64Array {
+    return this.#deformer.handlePositions();
+  }
+
+  get handleCount(): number {
+    return this.#handles.length;
+  }
+
+  get metrics(): Metrics {
+    return { ...this.#metrics };
+  }
+
+  /** Adds a handle at the shape point (x, y) (shape units). Returns its index, or -1 off the shape. */
+  addHandleAt(x: number, y: number): number {
+    const point = locate(this.#deformer.positionsView(), this.#shape.mesh.triangles, x, y);
+    if (!point) return -1;
+    this.#gesture(() => this.#addHandle(point));
+    return this.#handles.length - 1;
+  }
+
+  /** Removes a handle by index. */
+  removeHandle(index: number): void {
+    if (!(index >= 0 && index < this.#handles.length)) throw new RangeError(`there is no handle ${index}`);
+    this.#gesture(() => {
+      this.#handles.splice(index, 1);
+      this.#applyHandles();
+    });
+  }
+
+  /** Removes every handle (the pose stays). */
+  clearHandles(): void {
+    if (this.#handles.length === 0) return;
+    this.#gesture(() => {
+      this.#handles = [];
+      this.#applyHandles();
+    });
+  }
+
+  /** Back to the rest pose; handles stay, at their rest places. */
+  reset(): void {
+    this.#gesture(() => {
+      this.#deformer.reset();
+      this.#record({ reset: true });
+      this.#atRest = true;
+      this.#pinHandlesWhereTheyAre();
+    });
+  }
+
+  undo(): boolean {
+    const previous = this.#history.undo(this.#snapshot());
+    if (previous) this.#restore(previous);
+    this.#refreshButtons();
+    return previous !== undefined;
+  }
+
+  redo(): boolean {
+    const next = this.#history.redo(this.#snapshot());
+    if (next) this.#restore(next);
+    this.#refreshButtons();
+    return next !== undefined;
+  }
+
+  /** Changes the method and/or lambda. */
+  setMethod(method: Method, lambda = this.#settings.lambda): void {
+    if (!(METHODS as Record<string, unknown>)[method]) throw new Error(`unknown method "${method}"`);
+    const options = { ...METHODS[method].options, lambda };
+    this.#deformer.setOptions(options); // throws (and changes nothing) for a bad lambda
+    this.#record({ options });
+    this.#settings.method = method;
+    this.#settings.lambda = lambda;
+    this.#hud?.showMesh(this.vertexCount, this.triangleCount, METHODS[method].label);
+  }
+
+  /** Switches to a built-in shape, or re-meshes the current one with about `vertices` vertices. */
+  setShape(name: string | undefined, vertices = this.#settings.vertices): void {
+    const spec = name ?? this.#shape.spec?.name;
+    if (!spec) throw new Error("this widget shows a custom outline; give a built-in shape name");
+    const shape = this.#buildShape(builtinShape(spec), { name: spec, minAngle: 0, targetEdgeLength: 0 }, vertices);
+    this.#settings.vertices = vertices;
+    this.#install(shape);
+    this.#resize();
+  }
+
+  /** Shows a custom outline instead (triangulated to about `vertices` vertices). */
+  setOutline(outline: Outline, vertices = this.#settings.vertices): void {
+    this.#install(this.#buildShape(outline, undefined, vertices));
+    this.#resize();
+  }
+
+  setDisplay(options: { wireframe?: boolean; field?: boolean; flipped?: boolean; paperMode?: boolean }): void {
+    Object.assign(this.#settings, options);
+    this.#draw();
+  }
+
+  get recording(): boolean {
+    return this.#recorder.recording;
+  }
+
+  /** Starts recording every change of the deformer. */
+  startRecording(): void {
+    const start: SessionEvent[] = this.#atRest
+      ? [{ reset: true }]
+      : [{ positions: Array.from(this.#deformer.positionsView()) }];
+    if (this.#handles.length > 0) start.push(this.#handlesEvent());
+    const mesh = this.#shape.mesh;
+    this.#recorder.start(
+      {
+        ...(this.#shape.spec ? { shape: { ...this.#shape.spec } } : {}),
+        mesh: {
+          vertexCount: mesh.vertexCount,
+          triangleCount: mesh.triangleCount,
+          ...(this.#shape.spec ? {} : { positions: Array.from(mesh.positions), triangles: Array.from(mesh.triangles) }),
+        },
+        options: this.#deformerOptions(),
+      },
+      start,
+    );
+    this.#refreshButtons();
+  }
+
+  /** Stops recording and returns the session. */
+  stopRecording(): Session | undefined {
+    const session = this.#recorder.stop();
+    this.#refreshButtons();
+    return session;
+  }
+
+  /**
+   * Replays a session (an object, or JSON text): rebuilds its mesh if needed, then repeats
+   * its calls, drawing every `stepsPerFrame` steps. Resolves with the final positions.
+   * The result is bit-for-bit the pose the recording ended in.
+   */
+  async replay(session: Session | string, stepsPerFrame = 4): Promise<Float64Array> {
+    const s = typeof session === "string" ? parseSession(session) : session;
+    if (this.#replaying) throw new Error("a replay is already running");
+    this.#releasePointers();
+    const shape = this.#sessionShape(s);
+    if (shape.mesh.vertexCount !== s.mesh.vertexCount || shape.mesh.triangleCount !== s.mesh.triangleCount) {
+      throw new Error(
+        `the session's mesh has ${s.mesh.vertexCount} vertices and ${s.mesh.triangleCount} triangles, ` +
+          `but rebuilding it gave ${shape.mesh.vertexCount} and ${shape.mesh.triangleCount}`,
+      );
+    }
+    if (shape !== this.#shape) {
+      this.#install(shape);
+      this.#resize();
+    }
+    this.#replaying = true;
+    this.#root.dataset.replaying = "true";
+    try {
+      this.#deformer.setOptions({ ...METHODS.akap.options, lambda: DEFAULTS.lambda, ...s.options });
+      let steps = 0;
+      for (const event of s.events) {
+        if (this.#destroyed) break;
+        this.#apply(event);
+        if ("step" in event && ++steps % stepsPerFrame === 0) {
+          this.#draw();
+          await nextFrame();
+        }
+      }
+      this.#pinHandlesWhereTheyAre();
+      this.#history.clear();
+      this.#refreshButtons();
+      this.#metrics = this.#deformer.metrics();
+      this.#draw();
+      this.#emitPose();
+      return this.#deformer.positions();
+    } finally {
+      this.#replaying = false;
+      delete this.#root.dataset.replaying;
+    }
+  }
+
+  /** The current pose as JSON (`positions`, `triangles`, `uvs`) or OBJ text. */
+  exportMesh(format: "json" | "obj"): string {
+    const p = this.#deformer.positionsView();
+    const { triangles } = this.#shape.mesh;
+    return format === "json" ? meshJson(p, triangles, this.#shape.uvs) : meshObj(p, triangles, this.#shape.uvs);
+  }
+
+  /** The outline of the current pose as an SVG document. */
+  exportSvg(): string {
+    return outlineSvg(this.#deformer.positionsView(), this.#shape.mesh.boundaryEdges);
+  }
+
+  /** The rendered image (the shape and its outline, no handles) as a PNG. */
+  exportPng(): Promise<Blob> {
+    this.#draw();
+    const canvas = this.target.ownerDocument.createElement("canvas");
+    canvas.width = this.#glCanvas.width;
+    canvas.height = this.#glCanvas.height;
+    const ctx = canvas.getContext("2d");
+    if (!ctx) return Promise.reject(new Error("this browser cannot draw on a 2D canvas"));
+    ctx.drawImage(this.#glCanvas, 0, 0);
+    const outline = this.target.ownerDocument.createElement("canvas");
+    outline.width = canvas.width;
+    outline.height = canvas.height;
+    const outlineContext = outline.getContext("2d");
+    if (outlineContext) {
+      this.#drawOverlayOn(outlineContext, false);
+      ctx.drawImage(outline, 0, 0);
+    }
+    return new Promise((resolve, reject) =>
+      canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error("the image could not be encoded"))), "image/png"),
+    );
+  }
+
+  /** Resolves when no frame is pending (the pose has settled and nothing is dragged). */
+  whenIdle(): Promise<void> {
+    if (this.#raf === 0 && !this.#replaying) return Promise.resolve();
+    return new Promise((resolve) => this.#idleWaiters.push(resolve));
+  }
+
+  /** Removes the widget from the page and frees its WebAssembly memory. */
+  destroy(): void {
+    if (this.#destroyed) return;
+    this.#destroyed = true;
+    if (this.#raf) cancelAnimationFrame(this.#raf);
+    this.#raf = 0;
+    clearTimeout(this.#longPress);
+    this.#resizeObserver.disconnect();
+    this.#renderer.destroy();
+    this.#deformer?.free();
+    this.#host.remove();
+    for (const resolve of this.#idleWaiters.splice(0)) resolve();
+  }
+
+  // ---------------------------------------------------------------- shape and deformer
+
+  #buildShape(outline: Outline, spec: ShapeSpec | undefined, vertices: number): Shape {
+    if (!(Number.isFinite(vertices) && vertices >= 50 && vertices <= 100_000)) {
+      throw new RangeError(`the vertex count ${vertices} is outside 50..100000`);
+    }
+    const minAngle = this.#settings.minAngle;
+    // An equilateral mesh of edge h has about 2 / (sqrt(3) h^2) vertices per unit area;
+    // aim with the outline's area, then correct once with the count we got.
+    let edge = Math.sqrt((2 * outlineArea(outline)) / (Math.sqrt(3) * vertices));
+    let mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: 4 * vertices + 1000 });
+    if (Math.abs(mesh.vertexCount - vertices) > 0.1 * vertices) {
+      edge *= Math.sqrt(mesh.vertexCount / vertices);
+      mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: 4 * vertices + 1000 });
+    }
+    return this.#shapeFromMesh(mesh, spec ? { name: spec.name, targetEdgeLength: edge, minAngle } : undefined);
+  }
+
+  #shapeFromMesh(mesh: MeshData, spec: ShapeSpec | undefined): Shape {
+    let minX = Infinity;
+    let maxX = -Infinity;
+    let minY = Infinity;
+    let maxY = -Infinity;
+    for (let i = 0; i + 1 < mesh.positions.length; i += 2) {
+      minX = Math.min(minX, mesh.positions[i]!);
+      maxX = Math.max(maxX, mesh.positions[i]!);
+      minY = Math.min(minY, mesh.positions[i + 1]!);
+      maxY = Math.max(maxY, mesh.positions[i + 1]!);
+    }
+    return {
+      mesh,
+      spec,
+      edges: uniqueEdges(mesh.triangles, mesh.vertexCount),
+      uvs: boxUvs(mesh.positions),
+      size: Math.max(maxX - minX, maxY - minY) || 1,
+    };
+  }
+
+  /** The shape a session needs: the current one if it matches, else rebuilt. */
+  #sessionShape(session: Session): Shape {
+    const spec = session.shape;
+    const current = this.#shape.spec;
+    if (spec) {
+      if (
+        current &&
+        current.name === spec.name &&
+        current.targetEdgeLength === spec.targetEdgeLength &&
+        current.minAngle === spec.minAngle
+      ) {
+        return this.#shape;
+      }
+      const mesh = triangulate(builtinShape(spec.name), {
+        targetEdgeLength: spec.targetEdgeLength,
+        minAngle: spec.minAngle,
+        maxVertices: 4 * session.mesh.vertexCount + 1000,
+      });
+      return this.#shapeFromMesh(mesh, { ...spec });
+    }
+    const { positions, triangles } = session.mesh;
+    if (!positions || !triangles) throw new Error("the session names no shape and carries no mesh");
+    const m = this.#shape.mesh;
+    if (!current && sameArray(m.positions, positions) && sameArray(m.triangles, triangles)) return this.#shape;
+    return this.#shapeFromMesh(meshFromArrays(positions, triangles), undefined);
+  }
+
+  /** Makes `shape` current with a fresh deformer; fails without changing anything. */
+  #install(shape: Shape): void {
+    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.#deformerOptions());
+    this.#deformer?.free();
+    this.#deformer = deformer;
+    this.#shape = shape;
+    this.#handles = [];
+    this.#history.clear();
+    this.#recorder.stop();
+    this.#atRest = true;
+    this.#lastField = undefined;
+    this.#metrics = deformer.metrics();
+    this.#renderer.setMesh(shape.mesh.triangles, shape.edges, shape.uvs);
+    this.#toolbar?.showShape(shape.spec?.name, shape.mesh.vertexCount);
+    this.#hud?.showMesh(shape.mesh.vertexCount, shape.mesh.triangleCount, METHODS[this.#settings.method].label);
+    this.#refreshButtons();
+  }
+
+  #deformerOptions(): DeformerOptions {
+    return { ...METHODS[this.#settings.method].options, lambda: this.#settings.lambda };
+  }
+
+  // ---------------------------------------------------------------- handles
+
+  #addHandle(point: MeshPoint): Handle {
+    const [x, y] = pointPosition(this.#deformer.positionsView(), this.#shape.mesh.triangles, point);
+    const handle: Handle = {
+      point,
+      target: [x, y],
+      selected: false,
+      pointerId: undefined,
+      grab: [0, 0],
+      pending: [0, 0],
+    };
+    this.#handles.push(handle);
+    this.#applyHandles();
+    return handle;
+  }
+
+  /** Sends the handle set to the deformer (and the recording). */
+  #applyHandles(): void {
+    const event = this.#handlesEvent();
+    this.#deformer.setHandlePoints(event.handles.triangles, event.handles.barycentric);
+    this.#record(event);
+    this.#emit("akap-handles", { count: this.#handles.length });
+    this.#schedule();
+  }
+
+  #handlesEvent(): { handles: { triangles: number[]; barycentric: number[] } } {
+    return {
+      handles: {
+        triangles: this.#handles.map((h) => h.point.triangle),
+        barycentric: this.#handles.flatMap((h) => h.point.barycentric),
+      },
+    };
+  }
+
+  #pinHandlesWhereTheyAre(): void {
+    const p = this.#deformer.handlePositions();
+    this.#handles.forEach((h, i) => {
+      h.target = [p[2 * i]!, p[2 * i + 1]!];
+      h.pending = [0, 0];
+    });
+    this.#schedule();
+  }
+
+  // ---------------------------------------------------------------- gestures and history
+
+  #snapshot(): Snapshot {
+    return {
+      positions: this.#deformer.positions(),
+      handles: this.#handles.map((h) => ({ point: h.point, target: [...h.target] })),
+    };
+  }
+
+  #restore(snapshot: Snapshot): void {
+    this.#releasePointers();
+    this.#deformer.setPositions(snapshot.positions);
+    this.#record({ positions: Array.from(snapshot.positions) });
+    this.#atRest = false;
+    this.#handles = snapshot.handles.map((h) => ({
+      point: h.point,
+      target: [...h.target],
+      selected: false,
+      pointerId: undefined,
+      grab: [0, 0],
+      pending: [0, 0],
+    }));
+    this.#applyHandles();
+    this.#draw();
+    this.#emitPose();
+  }
+
+  /** Runs one complete gesture (an undoable unit) that is not a drag. */
+  #gesture(change: () => void): void {
+    const before = this.#snapshot();
+    change();
+    this.#history.push(before);
+    this.#refreshButtons();
+    this.#draw();
+  }
+
+  #releasePointers(): void {
+    for (const h of this.#handles) h.pointerId = undefined;
+    this.#endDragGesture();
+  }
+
+  #endDragGesture(): void {
+    if (this.#gestureBefore && this.#handles.every((h) => h.pointerId === undefined)) {
+      if (this.#gestureChanged) this.#history.push(this.#gestureBefore);
+      this.#gestureBefore = undefined;
+      this.#gestureChanged = false;
+      this.#refreshButtons();
+    }
+  }
+
+  // ---------------------------------------------------------------- the frame loop
+
+  #schedule(): void {
+    if (this.#raf === 0 && !this.#destroyed) {
+      this.#raf = requestAnimationFrame((time) => this.#frame(time));
+      delete this.#root.dataset.idle;
+    }
+  }
+
+  #frame(time: number): void {
+    this.#raf = 0;
+    if (this.#destroyed || this.#replaying) return;
+    const started = performance.now();
+    const timings: Timings = { assembly: 0, factorisation: 0, solve: 0, integration: 0 };
+    let substeps = 0;
+    try {
+      substeps = this.#advance(timings);
+      this.#status.textContent = "";
+      this.#status.classList.remove("error");
+    } catch (error) {
+      this.#showError(error);
+      this.#releasePointers();
+      this.#pinHandlesWhereTheyAre();
+    }
+    const dragging = this.#handles.some((h) => h.pointerId !== undefined);
+    this.#idleFrames = substeps > 0 && dragging ? 0 : this.#idleFrames + 1;
+    if (substeps > 0) {
+      this.#atRest = false;
+      this.#gestureChanged = true;
+      this.#metrics = this.#deformer.metrics();
+      if (this.#settings.field) this.#lastField = this.#deformer.field();
+    }
+    this.#draw();
+    if (substeps > 0) {
+      this.#hud?.report({ time, work: performance.now() - started, timings, substeps, metrics: this.#metrics });
+      this.#emitPose();
+    }
+    if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
+      this.#schedule();
+    } else {
+      this.#root.dataset.idle = "true";
+      for (const resolve of this.#idleWaiters.splice(0)) resolve();
+    }
+  }
+
+  /** Moves the handles toward their targets; returns the number of deformer steps taken. */
+  #advance(timings: Timings): number {
+    const n = this.#handles.length;
+    if (n === 0) return 0;
+    const { maxStep, maxSubsteps, paperMode } = this.#settings;
+    const longest = maxStep * this.#shape.size;
+    let current = this.#deformer.handlePositions();
+    if (paperMode) {
+      const displacement = new Float64Array(2 * n);
+      this.#handles.forEach((h, i) => {
+        displacement[2 * i] = h.pending[0];
+        displacement[2 * i + 1] = h.pending[1];
+        h.pending = [0, 0];
+      });
+      const distance = largestGap(new Float64Array(2 * n), displacement);
+      if (distance === 0) return 0;
+      const count = Math.min(substepCount(distance, longest), maxSubsteps);
+      const velocities = displacementVelocities(displacement, count);
+      for (let s = 0; s < count; s++) this.#step(velocities, timings);
+      current = this.#deformer.handlePositions();
+      // The handles end where the deformation took them; pins stay pins.
+      this.#handles.forEach((h, i) => {
+        if (h.pointerId === undefined) h.target = [current[2 * i]!, current[2 * i + 1]!];
+      });
+      return count;
+    }
+    const targets = new Float64Array(2 * n);
+    this.#handles.forEach((h, i) => {
+      targets[2 * i] = h.target[0];
+      targets[2 * i + 1] = h.target[1];
+    });
+    const gap = largestGap(current, targets);
+    if (gap <= 1e-5 * this.#shape.size) return 0;
+    const needed = substepCount(gap, longest);
+    const count = Math.min(needed, maxSubsteps);
+    const velocities = new Float64Array(2 * n);
+    for (let s = 0; s < count; s++) {
+      trackingVelocities(current, targets, needed - s, velocities);
+      this.#step(velocities, timings);
+      current = this.#deformer.handlePositions();
+    }
+    return count;
+  }
+
+  #step(velocities: Float64Array, timings: Timings): void {
+    this.#deformer.step(velocities);
+    this.#record({ step: Array.from(velocities) });
+    const t = this.#deformer.timings();
+    timings.assembly += t.assembly;
+    timings.factorisation += t.factorisation;
+    timings.solve += t.solve;
+    timings.integration += t.integration;
+  }
+
+  #apply(event: SessionEvent): void {
+    if ("handles" in event) {
+      const { triangles, barycentric } = event.handles;
+      this.#deformer.setHandlePoints(triangles, barycentric);
+      this.#handles = triangles.map((triangle, i) => ({
+        point: { triangle, barycentric: [barycentric[3 * i]!, barycentric[3 * i + 1]!, barycentric[3 * i + 2]!] },
+        target: [0, 0],
+        selected: false,
+        pointerId: undefined,
+        grab: [0, 0],
+        pending: [0, 0],
+      }));
+      this.#pinHandlesWhereTheyAre();
+    } else if ("step" in event) {
+      this.#deformer.step(event.step);
+      this.#atRest = false;
+    } else if ("positions" in event) {
+      this.#deformer.setPositions(event.positions);
+      this.#atRest = false;
+    } else if ("options" in event) {
+      this.#deformer.setOptions(event.options);
+    } else {
+      this.#deformer.reset();
+      this.#atRest = true;
+    }
+  }
+
+  #record(event: SessionEvent): void {
+    if (!this.#replaying) this.#recorder.record(event);
+  }
+
+  // ---------------------------------------------------------------- drawing
+
+  #resize(): void {
+    if (this.#destroyed) return;
+    const ratio = this.target.ownerDocument.defaultView?.devicePixelRatio || 1;
+    const rect = this.#glCanvas.getBoundingClientRect();
+    const width = Math.max(1, Math.round(rect.width * ratio));
+    const height = Math.max(1, Math.round(rect.height * ratio));
+    for (const canvas of [this.#glCanvas, this.#overlay]) {
+      if (canvas.width !== width || canvas.height !== height) {
+        canvas.width = width;
+        canvas.height = height;
+      }
+    }
+    this.#ratio = ratio;
+    // Fit the rest shape with room around it for poses that reach out.
+    this.#view = fitView(this.#shape.mesh.positions, width, height, 0.12);
+    this.#draw();
+  }
+
+  #draw(): void {
+    if (this.#destroyed) return;
+    const s = this.#settings;
+    this.#renderer.draw(this.#deformer.positionsView(), this.#view, {
+      wireframe: s.wireframe,
+      pixelRatio: this.#ratio,
+      background: "#f6f1e7",
+      fill: "#c8773a",
+      wire: "rgba(60, 30, 10, 0.55)",
+    });
+    this.#drawOverlayOn(this.#overlayContext, true);
+    this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
+  }
+
+  #drawOverlayOn(ctx: CanvasRenderingContext2D, withHandles: boolean): void {
+    const positions = this.#deformer.positionsView();
+    const handlePositions = withHandles ? this.#deformer.handlePositions() : new Float64Array(0);
+    const handles: OverlayHandle[] = withHandles
+      ? this.#handles.map((h, i) => ({
+          x: handlePositions[2 * i]!,
+          y: handlePositions[2 * i + 1]!,
+          targetX: this.#settings.paperMode ? handlePositions[2 * i]! : h.target[0],
+          targetY: this.#settings.paperMode ? handlePositions[2 * i + 1]! : h.target[1],
+          selected: h.selected,
+          dragged: h.pointerId !== undefined,
+        }))
+      : [];
+    drawOverlay(
+      ctx,
+      {
+        // Re-read: handlePositions() may have grown the memory and detached the view.
+        positions: positions.length > 0 ? positions : this.#deformer.positionsView(),
+        triangles: this.#shape.mesh.triangles,
+        boundaryEdges: this.#shape.mesh.boundaryEdges,
+        handles,
+        field: withHandles && this.#settings.field ? this.#lastField : undefined,
+        showFlipped: this.#settings.flipped,
+      },
+      this.#view,
+      this.#ratio,
+    );
+  }
+
+  // ---------------------------------------------------------------- input
+
+  #bindInput(): void {
+    const overlay = this.#overlay;
+    overlay.addEventListener("pointerdown", (e) => this.#pointerDown(e));
+    overlay.addEventListener("pointermove", (e) => this.#pointerMove(e));
+    overlay.addEventListener("pointerup", (e) => this.#pointerUp(e));
+    overlay.addEventListener("pointercancel", (e) => this.#pointerUp(e));
+    overlay.addEventListener("dblclick", (e) => {
+      const index = this.#handleAt(e);
+      if (index >= 0) this.removeHandle(index);
+    });
+    overlay.addEventListener("contextmenu", (e) => e.preventDefault());
+    this.#root.addEventListener("keydown", (e) => this.#key(e));
+  }
+
+  /** Shape coordinates of a pointer event. */
+  #shapePoint(e: MouseEvent): [number, number] {
+    const rect = this.#overlay.getBoundingClientRect();
+    return fromPixel(this.#view, (e.clientX - rect.left) * this.#ratio, (e.clientY - rect.top) * this.#ratio);
+  }
+
+  #handleAt(e: MouseEvent): number {
+    const [x, y] = this.#shapePoint(e);
+    const radius = (1.6 * HANDLE_RADIUS * this.#ratio) / this.#view.scale;
+    return nearestPoint(this.#deformer.handlePositions(), x, y, radius);
+  }
+
+  #pointerDown(e: PointerEvent): void {
+    if (this.#replaying || e.button > 0) return;
+    this.#root.focus({ preventScroll: true });
+    const [x, y] = this.#shapePoint(e);
+    let index = this.#handleAt(e);
+    const before = this.#gestureBefore ?? this.#snapshot();
+    if (index < 0) {
+      const tolerance = (4 * this.#ratio) / this.#view.scale;
+      const point = locate(this.#deformer.positionsView(), this.#shape.mesh.triangles, x, y, tolerance);
+      if (!point) {
+        if (!e.shiftKey) this.#handles.forEach((h) => (h.selected = false));
+        this.#draw();
+        return;
+      }
+      this.#addHandle(point);
+      index = this.#handles.length - 1;
+      this.#gestureChanged = true;
+    }
+    const handle = this.#handles[index]!;
+    if (handle.pointerId !== undefined) return; // another finger has it
+    if (!e.shiftKey && !handle.selected) this.#handles.forEach((h) => (h.selected = false));
+    handle.selected = e.shiftKey ? !handle.selected : true;
+    const p = this.#deformer.handlePositions();
+    handle.pointerId = e.pointerId;
+    handle.grab = [p[2 * index]! - x, p[2 * index + 1]! - y];
+    handle.target = [p[2 * index]!, p[2 * index + 1]!];
+    this.#gestureBefore = before;
+    this.#overlay.setPointerCapture(e.pointerId);
+    e.preventDefault();
+    clearTimeout(this.#longPress);
+    const start: [number, number] = [e.clientX, e.clientY];
+    this.#longPress = setTimeout(() => {
+      // A still press on a handle removes it (the touch way to delete).
+      if (handle.pointerId === e.pointerId && Math.hypot(this.#lastClient[0] - start[0], this.#lastClient[1] - start[1]) < 6) {
+        const at = this.#handles.indexOf(handle);
+        if (at >= 0) {
+          handle.pointerId = undefined;
+          this.#handles.splice(at, 1);
+          this.#applyHandles();
+          this.#gestureChanged = true;
+          this.#endDragGesture();
+          this.#draw();
+        }
+      }
+    }, LONG_PRESS_MS);
+    this.#lastClient = start;
+    this.#draw();
+    this.#schedule();
+  }
+
+  #lastClient: [number, number] = [0, 0];
+
+  #pointerMove(e: PointerEvent): void {
+    const handle = this.#handles.find((h) => h.pointerId === e.pointerId);
+    if (!handle) return;
+    this.#lastClient = [e.clientX, e.clientY];
+    const [x, y] = this.#shapePoint(e);
+    const next: [number, number] = [x + handle.grab[0], y + handle.grab[1]];
+    handle.pending = [handle.pending[0] + next[0] - handle.target[0], handle.pending[1] + next[1] - handle.target[1]];
+    handle.target = next;
+    this.#idleFrames = 0;
+    this.#schedule();
+  }
+
+  #pointerUp(e: PointerEvent): void {
+    const handle = this.#handles.find((h) => h.pointerId === e.pointerId);
+    if (!handle) return;
+    handle.pointerId = undefined;
+    clearTimeout(this.#longPress);
+    if (this.#overlay.hasPointerCapture(e.pointerId)) this.#overlay.releasePointerCapture(e.pointerId);
+    this.#endDragGesture();
+    this.#draw();
+    this.#schedule();
+  }
+
+  #key(e: KeyboardEvent): void {
+    const mod = e.ctrlKey || e.metaKey;
+    const key = e.key.toLowerCase();
+    if (mod && key === "z") {
+      if (e.shiftKey) this.redo();
+      else this.undo();
+    } else if (mod && key === "y") {
+      this.redo();
+    } else if (mod || e.altKey) {
+      return;
+    } else if (key === "delete" || key === "backspace") {
+      const keep = this.#handles.filter((h) => !h.selected);
+      if (keep.length === this.#handles.length) return;
+      this.#gesture(() => {
+        this.#handles = keep;
+        this.#applyHandles();
+      });
+    } else if (key.startsWith("arrow")) {
+      const selected = this.#handles.filter((h) => h.selected);
+      if (selected.length === 0) return;
+      const pixels = (e.shiftKey ? 10 : 1) * this.#ratio;
+      const d = pixels / this.#view.scale;
+      const [dx, dy] = { arrowleft: [-d, 0], arrowright: [d, 0], arrowup: [0, d], arrowdown: [0, -d] }[key] ?? [0, 0];
+      this.#gesture(() => {
+        for (const h of selected) {
+          h.target = [h.target[0] + dx!, h.target[1] + dy!];
+          h.pending = [h.pending[0] + dx!, h.pending[1] + dy!];
+        }
+        this.#schedule();
+      });
+    } else if (key === "escape") {
+      this.#handles.forEach((h) => (h.selected = false));
+      this.#draw();
+    } else if (key === "w") {
+      this.#settings.wireframe = !this.#settings.wireframe;
+      this.#toolbar?.sync(this.#settings);
+      this.#draw();
+    } else if (key === "f") {
+      this.#settings.field = !this.#settings.field;
+      this.#lastField = this.#settings.field ? this.#deformer.field() : undefined;
+      this.#toolbar?.sync(this.#settings);
+      this.#draw();
+    } else {
+      return;
+    }
+    e.preventDefault();
+  }
+
+  // ---------------------------------------------------------------- toolbar, events, errors
+
+  #toolbarActions(): Parameters<typeof buildToolbar>[1] {
+    const guard =
+      <A extends unknown[]>(action: (...args: A) => unknown) =>
+      (...args: A): void => {
+        try {
+          const result = action(...args);
+          if (result instanceof Promise) result.catch((error: unknown) => this.#showError(error));
+        } catch (error) {
+          this.#showError(error);
+        }
+      };
+    return {
+      undo: guard(() => this.undo()),
+      redo: guard(() => this.redo()),
+      reset: guard(() => this.reset()),
+      clear: guard(() => this.clearHandles()),
+      shape: guard((name: string, vertices: number) => this.setShape(name, vertices)),
+      method: guard((method: string, lambda: number) => this.setMethod(method as Method, lambda)),
+      display: guard((options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }) => {
+        this.setDisplay(options);
+        if (options.field) this.#lastField = this.#deformer.field();
+      }),
+      hud: (visible: boolean) => this.#hud?.element.classList.toggle("hidden", !visible),
+      record: guard(() => {
+        if (this.recording) {
+          const session = this.stopRecording();
+          if (session) this.#lastSession = session;
+        } else {
+          this.startRecording();
+        }
+      }),
+      replay: guard(() => (this.#lastSession ? this.replay(this.#lastSession) : undefined)),
+      saveSession: guard(() => {
+        if (this.#lastSession) {
+          download(this.target.ownerDocument, JSON.stringify(this.#lastSession), "session.akap.json", "application/json");
+        }
+      }),
+      loadSession: guard(async (file: File) => {
+        if (file.size > 80_000_000) throw new Error(`${file.name} is ${file.size} bytes; sessions are limited to 80 MB`);
+        const session = parseSession(await file.text());
+        this.#lastSession = session;
+        await this.replay(session);
+      }),
+      export: guard(async (format: "json" | "obj" | "svg" | "png") => {
+        const doc = this.target.ownerDocument;
+        if (format === "png") download(doc, await this.exportPng(), "pose.png");
+        else if (format === "svg") download(doc, this.exportSvg(), "pose.svg", "image/svg+xml");
+        else download(doc, this.exportMesh(format), `pose.${format}`, format === "json" ? "application/json" : "text/plain");
+      }),
+    };
+  }
+
+  #lastSession: Session | undefined;
+
+  /** The last recorded or loaded session. */
+  get lastSession(): Session | undefined {
+    return this.#lastSession;
+  }
+
+  #refreshButtons(): void {
+    this.#toolbar?.refresh({
+      canUndo: this.#history.canUndo,
+      canRedo: this.#history.canRedo,
+      recording: this.#recorder.recording,
+      hasSession: this.#lastSession !== undefined,
+    });
+  }
+
+  #showError(error: unknown): void {
+    const message = error instanceof Error ? error.message : String(error);
+    this.#status.textContent = message;
+    this.#status.classList.add("error");
+    this.#emit("akap-error", { message });
+  }
+
+  #emitPose(): void {
+    this.#emit("akap-pose", { metrics: { ...this.#metrics }, handleCount: this.#handles.length } satisfies PoseDetail);
+  }
+
+  #emit(type: string, detail: unknown): void {
+    this.target.dispatchEvent(new CustomEvent(type, { detail }));
+  }
+}
+
+/**
+ * Mounts a posing widget into `element` (it fills the element; give the element a size).
+ * Resolves once the WebAssembly module is loaded and the shape is meshed. Events on
+ * `element`: `akap-ready`, `akap-pose` ({@link PoseDetail}), `akap-handles`, `akap-error`.
+ */
+export function mount(element: HTMLElement, options: WidgetOptions = {}): Promise<Widget> {
+  return Widget.create(element, options);
+}
+
+function outlineArea(outline: Outline): number {
+  const ring = (points: ArrayLike<number>): number => {
+    let twice = 0;
+    const n = points.length / 2;
+    for (let i = 0; i < n; i++) {
+      const j = (i + 1) % n;
+      twice += points[2 * i]! * points[2 * j + 1]! - points[2 * j]! * points[2 * i + 1]!;
+    }
+    return Math.abs(twice) / 2;
+  };
+  return Math.max(ring(outline.outer) - (outline.holes ?? []).reduce((sum, h) => sum + ring(h), 0), 1e-12);
+}
+
+
+function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
+  if (a.length !== b.length) return false;
+  for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
+  return true;
+}
+
+function nextFrame(): Promise<void> {
+  return new Promise((resolve) => requestAnimationFrame(() => resolve()));
+}
+
+function loadImage(url: string): Promise<HTMLImageElement> {
+  return new Promise((resolve, reject) => {
+    const image = new Image();
+    image.crossOrigin = "anonymous";
+    image.onload = () => resolve(image);
+    image.onerror = () => reject(new Error(`the image ${url} could not be loaded`));
+    image.src = url;
+  });
+}
