@@ -20,7 +20,8 @@ export function largestGap(current: ArrayLike<number>, targets: ArrayLike<number
 
 /** How many substeps cover `distance` with steps of at most `maxStep` (at least 1). */
 export function substepCount(distance: number, maxStep: number): number {
-  if (!(maxStep > 0) || !Number.isFinite(distance)) throw new RangeError("substepCount needs maxStep > 0 and a finite distance");
+  if (!(maxStep > 0) || !Number.isFinite(distance))
+    throw new RangeError("substepCount needs maxStep > 0 and a finite distance");
   return Math.max(1, Math.ceil(distance / maxStep - 1e-9));
 }
 

@@ -71,5 +71,7 @@ export function doubledArea(positions: ArrayLike<number>, triangles: ArrayLike<n
   const c = triangles[3 * t + 2]!;
   const ax = positions[2 * a]!;
   const ay = positions[2 * a + 1]!;
-  return (positions[2 * b]! - ax) * (positions[2 * c + 1]! - ay) - (positions[2 * b + 1]! - ay) * (positions[2 * c]! - ax);
+  return (
+    (positions[2 * b]! - ax) * (positions[2 * c + 1]! - ay) - (positions[2 * b + 1]! - ay) * (positions[2 * c]! - ax)
+  );
 }

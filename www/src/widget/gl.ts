@@ -208,7 +208,12 @@ export function parseColor(css: string): [number, number, number, number] {
   if (hex) return [parseInt(hex[1]!, 16) / 255, parseInt(hex[2]!, 16) / 255, parseInt(hex[3]!, 16) / 255, 1];
   const rgba = /^rgba?\(\s*([\d.]+)\s*,\s*([\d.]+)\s*,\s*([\d.]+)\s*(?:,\s*([\d.]+)\s*)?\)$/i.exec(css);
   if (rgba) {
-    return [Number(rgba[1]) / 255, Number(rgba[2]) / 255, Number(rgba[3]) / 255, rgba[4] === undefined ? 1 : Number(rgba[4])];
+    return [
+      Number(rgba[1]) / 255,
+      Number(rgba[2]) / 255,
+      Number(rgba[3]) / 255,
+      rgba[4] === undefined ? 1 : Number(rgba[4]),
+    ];
   }
   throw new Error(`cannot read the colour ${css}`);
 }

@@ -78,7 +78,9 @@ export class Recorder {
 
 function copyEvent(event: SessionEvent): SessionEvent {
   if ("handles" in event) {
-    return { handles: { triangles: Array.from(event.handles.triangles), barycentric: Array.from(event.handles.barycentric) } };
+    return {
+      handles: { triangles: Array.from(event.handles.triangles), barycentric: Array.from(event.handles.barycentric) },
+    };
   }
   if ("step" in event) return { step: Array.from(event.step) };
   if ("positions" in event) return { positions: Array.from(event.positions) };
@@ -104,7 +106,8 @@ export function parseSession(text: string): Session {
     throw new Error(`the session is not valid JSON: ${(error as Error).message}`, { cause: error });
   }
   const root = record(data, "the session");
-  if (root.format !== "akap-session") throw new Error('the file is not an akap session (format must be "akap-session")');
+  if (root.format !== "akap-session")
+    throw new Error('the file is not an akap session (format must be "akap-session")');
   if (root.version !== 1) throw new Error(`session version ${String(root.version)} is not supported (expected 1)`);
   const mesh = record(root.mesh, "mesh");
   const session: Session = {

@@ -1,8 +1,8 @@
 /** The widget's CSS, inside its shadow root (nothing leaks into the page). */
 export const WIDGET_CSS = `
-:host { all: initial; }
+:host { all: initial; display: block; width: 100%; height: 100%; }
 .widget {
-  display: grid; grid-template-rows: auto 1fr; width: 100%; height: 100%; min-height: 200px;
+  display: flex; flex-direction: column; width: 100%; height: 100%; min-height: 200px;
   font: 13px/1.35 system-ui, sans-serif; color: #2b1a0c; background: #f6f1e7; outline: none;
 }
 .widget:focus-visible { box-shadow: inset 0 0 0 2px #1d3557; }
@@ -18,7 +18,7 @@ button:disabled { opacity: 0.45; cursor: default; }
 button.active { background: #c0392b; color: white; border-color: #8e261b; }
 button:focus-visible, select:focus-visible, input:focus-visible { outline: 2px solid #1d3557; outline-offset: 1px; }
 .hidden { display: none !important; }
-.stage { position: relative; min-height: 0; overflow: hidden; }
+.stage { position: relative; flex: 1 1 auto; min-height: 0; overflow: hidden; }
 canvas.mesh, canvas.overlay { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
 canvas.overlay { touch-action: none; cursor: crosshair; }
 .status { position: absolute; left: 0.6em; bottom: 0.4em; pointer-events: none; }

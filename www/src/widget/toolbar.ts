@@ -63,7 +63,13 @@ export function buildToolbar(
     label.append(text, control);
     parent.append(label);
   };
-  const button = (parent: HTMLElement, text: string, title: string, onClick: () => void, name = text): HTMLButtonElement => {
+  const button = (
+    parent: HTMLElement,
+    text: string,
+    title: string,
+    onClick: () => void,
+    name = text,
+  ): HTMLButtonElement => {
     const b = document.createElement("button");
     b.type = "button";
     b.textContent = text;
@@ -168,7 +174,13 @@ export function buildToolbar(
 
   const out = group("Export");
   for (const format of ["json", "obj", "svg", "png"] as const) {
-    button(out, format.toUpperCase(), `Export the pose as ${format.toUpperCase()}`, () => actions.export(format), `export-${format}`);
+    button(
+      out,
+      format.toUpperCase(),
+      `Export the pose as ${format.toUpperCase()}`,
+      () => actions.export(format),
+      `export-${format}`,
+    );
   }
 
   return {

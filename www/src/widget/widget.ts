@@ -245,7 +245,9 @@ export class Widget {
     const widget = new Widget(target, options);
     try {
       const outline = options.outline ?? builtinShape(options.shape ?? builtinShapes()[0]!);
-      const spec = options.outline ? undefined : { name: options.shape ?? builtinShapes()[0]!, minAngle: 0, targetEdgeLength: 0 };
+      const spec = options.outline
+        ? undefined
+        : { name: options.shape ?? builtinShapes()[0]!, minAngle: 0, targetEdgeLength: 0 };
       widget.#install(widget.#buildShape(outline, spec, widget.#settings.vertices));
       widget.#renderer.setTexture(options.texture ? await loadImage(options.texture) : defaultTexture());
     } catch (error) {
@@ -492,7 +494,10 @@ export class Widget {
       ctx.drawImage(outline, 0, 0);
     }
     return new Promise((resolve, reject) =>
-      canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error("the image could not be encoded"))), "image/png"),
+      canvas.toBlob(
+        (blob) => (blob ? resolve(blob) : reject(new Error("the image could not be encoded"))),
+        "image/png",
+      ),
     );
   }
 
@@ -924,6 +929,7 @@ export class Widget {
     const [x, y] = this.#shapePoint(e);
     let index = this.#handleAt(e);
     const before = this.#gestureBefore ?? this.#snapshot();
+    const existed = index >= 0;
     if (index < 0) {
       const tolerance = (4 * this.#ratio) / this.#view.scale;
       const point = locate(this.#deformer.positionsView(), this.#shape.mesh.triangles, x, y, tolerance);
@@ -949,20 +955,24 @@ export class Widget {
     e.preventDefault();
     clearTimeout(this.#longPress);
     const start: [number, number] = [e.clientX, e.clientY];
-    this.#longPress = setTimeout(() => {
-      // A still press on a handle removes it (the touch way to delete).
-      if (handle.pointerId === e.pointerId && Math.hypot(this.#lastClient[0] - start[0], this.#lastClient[1] - start[1]) < 6) {
-        const at = this.#handles.indexOf(handle);
-        if (at >= 0) {
-          handle.pointerId = undefined;
-          this.#handles.splice(at, 1);
-          this.#applyHandles();
-          this.#gestureChanged = true;
-          this.#endDragGesture();
-          this.#draw();
+    // A long still press on an existing handle removes it: the touch way to delete.
+    if (existed && e.pointerType !== "mouse")
+      this.#longPress = setTimeout(() => {
+        if (
+          handle.pointerId === e.pointerId &&
+          Math.hypot(this.#lastClient[0] - start[0], this.#lastClient[1] - start[1]) < 6
+        ) {
+          const at = this.#handles.indexOf(handle);
+          if (at >= 0) {
+            handle.pointerId = undefined;
+            this.#handles.splice(at, 1);
+            this.#applyHandles();
+            this.#gestureChanged = true;
+            this.#endDragGesture();
+            this.#draw();
+          }
         }
-      }
-    }, LONG_PRESS_MS);
+      }, LONG_PRESS_MS);
     this.#lastClient = start;
     this.#draw();
     this.#schedule();
@@ -1077,11 +1087,17 @@ export class Widget {
       replay: guard(() => (this.#lastSession ? this.replay(this.#lastSession) : undefined)),
       saveSession: guard(() => {
         if (this.#lastSession) {
-          download(this.target.ownerDocument, JSON.stringify(this.#lastSession), "session.akap.json", "application/json");
+          download(
+            this.target.ownerDocument,
+            JSON.stringify(this.#lastSession),
+            "session.akap.json",
+            "application/json",
+          );
         }
       }),
       loadSession: guard(async (file: File) => {
-        if (file.size > 80_000_000) throw new Error(`${file.name} is ${file.size} bytes; sessions are limited to 80 MB`);
+        if (file.size > 80_000_000)
+          throw new Error(`${file.name} is ${file.size} bytes; sessions are limited to 80 MB`);
         const session = parseSession(await file.text());
         this.#lastSession = session;
         await this.replay(session);
@@ -1090,7 +1106,13 @@ export class Widget {
         const doc = this.target.ownerDocument;
         if (format === "png") download(doc, await this.exportPng(), "pose.png");
         else if (format === "svg") download(doc, this.exportSvg(), "pose.svg", "image/svg+xml");
-        else download(doc, this.exportMesh(format), `pose.${format}`, format === "json" ? "application/json" : "text/plain");
+        else
+          download(
+            doc,
+            this.exportMesh(format),
+            `pose.${format}`,
+            format === "json" ? "application/json" : "text/plain",
+          );
       }),
     };
   }
@@ -1148,7 +1170,6 @@ function outlineArea(outline: Outline): number {
   };
   return Math.max(ring(outline.outer) - (outline.holes ?? []).reduce((sum, h) => sum + ring(h), 0), 1e-12);
 }
-
 
 function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
   if (a.length !== b.length) return false;
