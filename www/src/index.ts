@@ -20,6 +20,6 @@
  */
 export * from "./core.js";
 export { METHODS, Widget, mount, type Method, type PoseDetail, type WidgetOptions } from "./widget/widget.js";
-export { AkapDeformerElement, defineElement } from "./widget/element.js";
+export { defineElement, type AkapDeformerElement } from "./widget/element.js";
 export type { Session, SessionEvent, ShapeSpec } from "./widget/session.js";
 export { parseSession } from "./widget/session.js";

@@ -15,75 +15,86 @@
  */
 import { mount, type Method, type Widget, type WidgetOptions } from "./widget.js";
 
-/** Registers `<akap-deformer>` (or another tag name) once; later calls do nothing. */
-export function defineElement(tag = "akap-deformer"): void {
-  if (typeof customElements === "undefined" || customElements.get(tag)) return;
-  customElements.define(tag, class extends AkapDeformerElement {});
+/** What `document.querySelector("akap-deformer")` gives after {@link defineElement}. */
+export interface AkapDeformerElement extends HTMLElement {
+  /** The widget, once mounted (after `akap-ready`). */
+  readonly widget: Widget | undefined;
+  /** Resolves with the widget once it is mounted. */
+  readonly ready: Promise<Widget>;
 }
 
-export class AkapDeformerElement extends HTMLElement {
-  #widget: Widget | undefined;
-  #mounting: Promise<Widget> | undefined;
+/**
+ * Registers `<akap-deformer>` (or another tag name) once; later calls do nothing. The
+ * class is made here, not at import, so that importing the package works in Node.
+ */
+export function defineElement(tag = "akap-deformer"): void {
+  if (typeof customElements === "undefined" || customElements.get(tag)) return;
+  customElements.define(
+    tag,
+    class extends HTMLElement implements AkapDeformerElement {
+      #widget: Widget | undefined;
+      #mounting: Promise<Widget> | undefined;
 
-  /** The widget, once mounted (after `akap-ready`). */
-  get widget(): Widget | undefined {
-    return this.#widget;
-  }
+      get widget(): Widget | undefined {
+        return this.#widget;
+      }
 
-  /** Resolves with the widget once it is mounted. */
-  get ready(): Promise<Widget> {
-    return this.#mounting ?? Promise.reject(new Error("the element is not in a document"));
-  }
+      get ready(): Promise<Widget> {
+        return this.#mounting ?? Promise.reject(new Error("the element is not in a document"));
+      }
 
-  connectedCallback(): void {
-    if (this.#mounting) return;
-    if (!this.style.display) this.style.display = "block";
-    this.#mounting = mount(this, this.#options());
-    this.#mounting.then(
-      (widget) => {
-        if (this.isConnected) this.#widget = widget;
-        else widget.destroy();
-      },
-      (error: unknown) => {
-        const message = error instanceof Error ? error.message : String(error);
-        this.textContent = `akap-deformer: ${message}`;
-        this.dispatchEvent(new CustomEvent("akap-error", { detail: { message } }));
-      },
-    );
-  }
+      connectedCallback(): void {
+        if (this.#mounting) return;
+        if (!this.style.display) this.style.display = "block";
+        this.#mounting = mount(this, elementOptions(this));
+        this.#mounting.then(
+          (widget) => {
+            if (this.isConnected) this.#widget = widget;
+            else widget.destroy();
+          },
+          (error: unknown) => {
+            const message = error instanceof Error ? error.message : String(error);
+            this.textContent = `akap-deformer: ${message}`;
+            this.dispatchEvent(new CustomEvent("akap-error", { detail: { message } }));
+          },
+        );
+      }
 
-  disconnectedCallback(): void {
-    this.#widget?.destroy();
-    this.#widget = undefined;
-    this.#mounting = undefined;
-  }
+      disconnectedCallback(): void {
+        this.#widget?.destroy();
+        this.#widget = undefined;
+        this.#mounting = undefined;
+      }
+    },
+  );
+}
 
-  #options(): WidgetOptions {
-    const text = (name: string): string | undefined => this.getAttribute(name) ?? undefined;
-    const flag = (name: string): boolean | undefined => {
-      const value = this.getAttribute(name);
-      return value === null ? undefined : value !== "false";
-    };
-    const num = (name: string): number | undefined => {
-      const value = this.getAttribute(name);
-      if (value === null) return undefined;
-      const n = Number(value);
-      if (!Number.isFinite(n)) throw new Error(`attribute ${name}="${value}" is not a number`);
-      return n;
-    };
-    const options: WidgetOptions = {};
-    const assign = <K extends keyof WidgetOptions>(key: K, value: WidgetOptions[K] | undefined): void => {
-      if (value !== undefined) options[key] = value;
-    };
-    assign("shape", text("shape"));
-    assign("texture", text("texture"));
-    assign("vertices", num("vertices"));
-    assign("method", text("method") as Method | undefined);
-    assign("lambda", num("lambda"));
-    assign("controls", flag("controls"));
-    assign("hud", flag("hud"));
-    assign("wireframe", flag("wireframe"));
-    assign("field", flag("field"));
-    return options;
-  }
+/** Widget options from the element's attributes. */
+function elementOptions(element: HTMLElement): WidgetOptions {
+  const text = (name: string): string | undefined => element.getAttribute(name) ?? undefined;
+  const flag = (name: string): boolean | undefined => {
+    const value = element.getAttribute(name);
+    return value === null ? undefined : value !== "false";
+  };
+  const num = (name: string): number | undefined => {
+    const value = element.getAttribute(name);
+    if (value === null) return undefined;
+    const n = Number(value);
+    if (!Number.isFinite(n)) throw new Error(`attribute ${name}="${value}" is not a number`);
+    return n;
+  };
+  const options: WidgetOptions = {};
+  const assign = <K extends keyof WidgetOptions>(key: K, value: WidgetOptions[K] | undefined): void => {
+    if (value !== undefined) options[key] = value;
+  };
+  assign("shape", text("shape"));
+  assign("texture", text("texture"));
+  assign("vertices", num("vertices"));
+  assign("method", text("method") as Method | undefined);
+  assign("lambda", num("lambda"));
+  assign("controls", flag("controls"));
+  assign("hud", flag("hud"));
+  assign("wireframe", flag("wireframe"));
+  assign("field", flag("field"));
+  return options;
 }

@@ -1,0 +1,173 @@
+/** The pure TypeScript parts of the widget: drag velocities, picking, history, sessions, exports. */
+import { describe, expect, it } from "vitest";
+import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
+import { meshObj, outlineSvg } from "../../www/src/widget/export.js";
+import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
+import { History } from "../../www/src/widget/history.js";
+import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
+import { Recorder, parseSession } from "../../www/src/widget/session.js";
+
+// A unit square split into two counter-clockwise triangles, with a square hole-free boundary.
+const square = Float64Array.from([0, 0, 1, 0, 1, 1, 0, 1]);
+const squareTriangles = Uint32Array.from([0, 1, 2, 0, 2, 3]);
+
+describe("drag velocities", () => {
+  it("substeps bring every handle exactly to its target with bounded steps", () => {
+    const current = [0, 0, 1, 1];
+    const targets = [0.25, -0.1, 1, 1.05];
+    const gap = largestGap(current, targets);
+    expect(gap).toBeCloseTo(Math.hypot(0.25, 0.1), 15);
+    const n = substepCount(gap, 0.05);
+    expect(n).toBe(Math.ceil(gap / 0.05));
+    // Simulate perfect tracking: each substep moves by the velocity.
+    const p = current.slice();
+    for (let s = 0; s < n; s++) {
+      const v = trackingVelocities(p, targets, n - s);
+      for (let i = 0; i < 4; i++) {
+        expect(Math.hypot(v[0]!, v[1]!)).toBeLessThanOrEqual(0.05 + 1e-12);
+        p[i]! += v[i]!;
+      }
+    }
+    p.forEach((x, i) => expect(x).toBeCloseTo(targets[i]!, 14));
+  });
+
+  it("a handle that fell short is aimed at the target again (no drift)", () => {
+    // Handle reached only 80% of the way: the next velocity is the whole remaining gap.
+    const v = trackingVelocities([0.8, 0], [1, 0], 1);
+    expect(Array.from(v)).toEqual([0.19999999999999996, 0]);
+  });
+
+  it("exact multiples need no extra substep, and nothing to do is one substep", () => {
+    expect(substepCount(0.3, 0.1)).toBe(3);
+    expect(substepCount(0, 0.1)).toBe(1);
+    expect(() => substepCount(1, 0)).toThrow(RangeError);
+    expect(() => largestGap([0, 0], [0])).toThrow(RangeError);
+  });
+
+  it("paper mode splits the raw displacement evenly", () => {
+    expect(Array.from(displacementVelocities([0.75, -1.5, 0, 0], 3))).toEqual([0.25, -0.5, 0, 0]);
+  });
+});
+
+describe("picking", () => {
+  it("finds the triangle and barycentric coordinates that reproduce the point", () => {
+    for (const [x, y] of [
+      [0.3, 0.1],
+      [0.2, 0.7],
+      [0.999, 0.5],
+    ] as const) {
+      const hit = locate(square, squareTriangles, x, y)!;
+      expect(hit).toBeDefined();
+      expect(hit.barycentric.reduce((a, b) => a + b)).toBeCloseTo(1, 14);
+      hit.barycentric.forEach((w) => expect(w).toBeGreaterThanOrEqual(0));
+      const [px, py] = pointPosition(square, squareTriangles, hit);
+      expect(px).toBeCloseTo(x, 14);
+      expect(py).toBeCloseTo(y, 14);
+    }
+    // (0.3, 0.1) is below the diagonal: triangle 0.
+    expect(locate(square, squareTriangles, 0.3, 0.1)!.triangle).toBe(0);
+    expect(locate(square, squareTriangles, 0.1, 0.3)!.triangle).toBe(1);
+  });
+
+  it("snaps to the closest boundary point within the tolerance, and only then", () => {
+    expect(locate(square, squareTriangles, 1.05, 0.5)).toBeUndefined();
+    const hit = locate(square, squareTriangles, 1.05, 0.5, 0.1)!;
+    const [x, y] = pointPosition(square, squareTriangles, hit);
+    expect(x).toBeCloseTo(1, 14);
+    expect(y).toBeCloseTo(0.5, 14);
+    expect(locate(square, squareTriangles, 1.2, 0.5, 0.1)).toBeUndefined();
+  });
+
+  it("nearest point within a radius", () => {
+    const points = [0, 0, 1, 0, 0.5, 0.5];
+    expect(nearestPoint(points, 0.9, 0.05, 0.2)).toBe(1);
+    expect(nearestPoint(points, 0.45, 0.4, 0.2)).toBe(2);
+    expect(nearestPoint(points, 3, 3, 0.2)).toBe(-1);
+  });
+});
+
+describe("history", () => {
+  it("undoes and redoes gestures in order and drops redo on a new gesture", () => {
+    const h = new History<string>(3);
+    h.push("a");
+    h.push("b");
+    expect(h.undo("c")).toBe("b");
+    expect(h.undo("b")).toBe("a");
+    expect(h.canUndo).toBe(false);
+    expect(h.redo("a")).toBe("b");
+    expect(h.redo("b")).toBe("c");
+    expect(h.redo("c")).toBeUndefined();
+    h.undo("c");
+    h.push("x");
+    expect(h.canRedo).toBe(false);
+  });
+
+  it("forgets the oldest gestures beyond its limit", () => {
+    const h = new History<number>(2);
+    [1, 2, 3].forEach((s) => h.push(s));
+    expect(h.undo(4)).toBe(3);
+    expect(h.undo(3)).toBe(2);
+    expect(h.undo(2)).toBeUndefined();
+  });
+});
+
+describe("sessions", () => {
+  const header = {
+    shape: { name: "gingerbread", targetEdgeLength: 0.035, minAngle: 28 },
+    mesh: { vertexCount: 10, triangleCount: 12 },
+    options: { lambda: 100 },
+  };
+
+  it("round-trips through JSON with every double intact", () => {
+    const r = new Recorder();
+    r.start(header, [{ reset: true }]);
+    const v = Float64Array.from([0.1 + 0.2, -1e-300, Math.PI, 5e-324]);
+    r.record({ handles: { triangles: [3, 4], barycentric: [0.2, 0.3, 0.5, 1 / 3, 1 / 3, 1 / 3] } });
+    r.record({ step: Array.from(v) });
+    v[0] = 0; // recorded events are copies
+    const session = r.stop()!;
+    expect(r.recording).toBe(false);
+    const back = parseSession(JSON.stringify(session));
+    expect(back).toEqual(session);
+    expect((back.events[2] as { step: number[] }).step[0]).toBe(0.1 + 0.2);
+  });
+
+  it("rejects malformed files with a message that says where", () => {
+    const good = { format: "akap-session", version: 1, ...header, events: [{ step: [1, 2] }] };
+    const bad = (patch: object) => JSON.stringify({ ...good, ...patch });
+    expect(() => parseSession("{")).toThrow(/not valid JSON/);
+    expect(() => parseSession(bad({ format: "x" }))).toThrow(/not an akap session/);
+    expect(() => parseSession(bad({ version: 2 }))).toThrow(/version 2/);
+    expect(() => parseSession(bad({ events: [{ step: [1, "2"] }] }))).toThrow(/events\[0\]\.step\[1\]/);
+    expect(() => parseSession(bad({ events: [{ jump: 1 }] }))).toThrow(/unknown kind "jump"/);
+    expect(() => parseSession(bad({ events: [{ step: [1], reset: true }] }))).toThrow(/exactly one key/);
+    expect(() => parseSession(bad({ shape: undefined }))).toThrow(/names no shape/);
+    expect(() => parseSession(bad({ mesh: { vertexCount: -1, triangleCount: 1 } }))).toThrow(/mesh.vertexCount/);
+  });
+});
+
+describe("geometry and exports", () => {
+  it("lists each edge once and chains the boundary into loops", () => {
+    const edges = uniqueEdges(squareTriangles, 4);
+    expect(edges.length).toBe(2 * 5); // 4 sides and the diagonal
+    const loops = boundaryLoops([0, 1, 1, 2, 2, 3, 3, 0, 5, 4, 4, 6, 6, 5]);
+    expect(loops.map((l) => l.length).sort()).toEqual([3, 4]);
+  });
+
+  it("maps the bounding box to texture space keeping the aspect ratio", () => {
+    const uvs = boxUvs([0, 0, 2, 0, 2, 1, 0, 1]);
+    expect(Array.from(uvs)).toEqual([0, 0.25, 1, 0.25, 1, 0.75, 0, 0.75]);
+  });
+
+  it("writes OBJ with 1-based faces and texture coordinates, SVG with one subpath per loop", () => {
+    const obj = meshObj(square, squareTriangles, boxUvs(square));
+    expect(obj).toContain("v 1 1 0\n");
+    expect(obj).toContain("vt 1 1\n");
+    expect(obj).toContain("f 1/1 3/3 4/4\n");
+    const svg = outlineSvg(square, [0, 1, 1, 2, 2, 3, 3, 0]);
+    const d = /d="([^"]*)"/.exec(svg)![1]!;
+    expect(d.match(/M/g)!.length).toBe(1);
+    // y flips: the shape's bottom-left corner (0, 0) is at the bottom of the picture.
+    expect(d.startsWith("M0.02 1.02")).toBe(true);
+  });
+});
