@@ -83,6 +83,12 @@ export interface WidgetOptions {
 export interface PoseDetail {
   metrics: Metrics;
   handleCount: number;
+  /** Milliseconds of work in the frame (solver steps and drawing); 0 outside the frame loop. */
+  frameMs: number;
+  /** Deformer steps in the frame. */
+  steps: number;
+  /** Solver stages summed over the frame's steps. */
+  timings: Timings;
 }
 
 interface Handle {
@@ -736,8 +742,9 @@ export class Widget {
     }
     this.#draw();
     if (substeps > 0) {
-      this.#hud?.report({ time, work: performance.now() - started, timings, substeps, metrics: this.#metrics });
-      this.#emitPose();
+      const work = performance.now() - started;
+      this.#hud?.report({ time, work, timings, substeps, metrics: this.#metrics });
+      this.#emitPose(work, substeps, timings);
     }
     if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
       this.#schedule();
@@ -1140,8 +1147,19 @@ export class Widget {
     this.#emit("akap-error", { message });
   }
 
-  #emitPose(): void {
-    this.#emit("akap-pose", { metrics: { ...this.#metrics }, handleCount: this.#handles.length } satisfies PoseDetail);
+  #emitPose(
+    frameMs = 0,
+    steps = 0,
+    timings: Timings = { assembly: 0, factorisation: 0, solve: 0, integration: 0 },
+  ): void {
+    const detail: PoseDetail = {
+      metrics: { ...this.#metrics },
+      handleCount: this.#handles.length,
+      frameMs,
+      steps,
+      timings,
+    };
+    this.#emit("akap-pose", detail);
   }
 
   #emit(type: string, detail: unknown): void {
