@@ -117,6 +117,17 @@ fn catmull_rom(p: [Point; 4], u: f64) -> Point {
     lerp(b1, b2, t1, t2)
 }
 
+/// Names of the built-in shapes, in gallery order; the first is the default shape.
+pub const BUILTIN: &[&str] = &["gingerbread"];
+
+/// A built-in shape by its name in [`BUILTIN`].
+pub fn builtin(name: &str) -> Option<Outline> {
+    match name {
+        "gingerbread" => Some(gingerbread()),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -137,16 +148,5 @@ mod tests {
         assert!(polygon_area(&figure.outer) > 0.0);
         let rings = figure.validated(10_000).expect("the default shape is valid");
         assert_eq!(rings.len(), 5);
-    }
-}
-
-/// Names of the built-in shapes, in gallery order; the first is the default shape.
-pub const BUILTIN: &[&str] = &["gingerbread"];
-
-/// A built-in shape by its name in [`BUILTIN`].
-pub fn builtin(name: &str) -> Option<Outline> {
-    match name {
-        "gingerbread" => Some(gingerbread()),
-        _ => None,
     }
 }

@@ -273,6 +273,7 @@ pub struct Deformer {
     next_soft: Vec<f64>,
     next_field: Vec<f64>,
     interior_rhs: Vec<f64>,
+    spiral_sums: Vec<[f64; 2]>,
     timings: Timings,
 }
 
@@ -324,6 +325,7 @@ impl Deformer {
             field: vec![0.0; 2 * n],
             next_soft: vec![0.0; 2 * n],
             next_field: vec![0.0; 2 * n],
+            spiral_sums: vec![[0.0; 2]; n],
             timings: Timings::default(),
             mesh,
         })
@@ -483,7 +485,13 @@ impl Deformer {
         match self.options.integrator {
             Integrator::Spiral => {
                 let mesh = &self.mesh;
-                spiral_step(&self.positions, field, |v| mesh.neighbors(v), &mut self.next_positions)
+                spiral_step(
+                    &self.positions,
+                    field,
+                    |v| mesh.neighbors(v),
+                    &mut self.spiral_sums,
+                    &mut self.next_positions,
+                )
             }
             Integrator::Linear => linear_step(&self.positions, field, &mut self.next_positions),
         }

@@ -10,19 +10,34 @@
 
 use crate::geometry::Point;
 
+/// Below this `|s|` the series is used (13 terms: the first one left out is below 1e-17).
+const SERIES_RADIUS: f64 = 0.25;
+
+/// `1 / (k + 1)!` for k = 0..=12: the coefficients of `(e^s - 1) / s = sum s^k / (k + 1)!`.
+const SERIES: [f64; 13] = {
+    let mut c = [1.0; 13];
+    let mut k = 1;
+    while k < 13 {
+        c[k] = c[k - 1] / (k as f64 + 1.0);
+        k += 1;
+    }
+    c
+};
+
 /// `(e^s - 1) / s` for a complex `s = [re, im]`, accurate for all `s` (1 at `s = 0`).
+///
+/// Per-frame fields are small, so most `s` are well inside the series' radius, where
+/// Horner's rule costs a dozen complex multiply-adds instead of five transcendental calls.
 pub fn exp_ratio(s: [f64; 2]) -> [f64; 2] {
     let [x, y] = s;
-    let norm2 = x * x + y * y;
-    if norm2 < 1e-6 {
-        // 1 + s/2 + s^2/6 + s^3/24 + s^4/120: the next term is below 1e-17 for |s| < 1e-3.
-        let s2 = mul(s, s);
-        let s3 = mul(s2, s);
-        let s4 = mul(s2, s2);
-        return [
-            1.0 + x / 2.0 + s2[0] / 6.0 + s3[0] / 24.0 + s4[0] / 120.0,
-            y / 2.0 + s2[1] / 6.0 + s3[1] / 24.0 + s4[1] / 120.0,
-        ];
+    if x * x + y * y < SERIES_RADIUS * SERIES_RADIUS {
+        // |s|^13 / 14! < 1e-17 for |s| < 1/4.
+        let mut r = [SERIES[12], 0.0];
+        for &c in SERIES[..12].iter().rev() {
+            r = mul(r, s);
+            r[0] += c;
+        }
+        return r;
     }
     // e^s - 1 = (e^x cos y - 1) + i e^x sin y, with the real part written without
     // cancellation: e^x cos y - 1 = expm1(x) cos y - 2 sin^2(y / 2).
@@ -43,26 +58,35 @@ fn div(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 }
 
 /// The spiral step: writes the new position of every vertex into `out`. Neighbours of `v`
-/// are `neighbors(v)`; `field[v]` is the velocity of vertex v.
+/// are `neighbors(v)`; `field[v]` is the velocity of vertex v. `sums` (one per vertex) is
+/// scratch. `s` is the same seen from either end of an edge, so each edge's factor is
+/// computed once, for its lower-numbered end, and added to both ends.
 pub fn spiral_step<'a>(
     positions: &[Point],
     field: &[[f64; 2]],
     neighbors: impl Fn(usize) -> &'a [u32],
+    sums: &mut [[f64; 2]],
     out: &mut [Point],
 ) {
+    sums.fill([0.0, 0.0]);
     for (v, (p, u)) in positions.iter().zip(field).enumerate() {
-        let around = neighbors(v);
-        let mut sum = [0.0, 0.0];
-        for &w in around {
+        for &w in neighbors(v) {
             let w = w as usize;
+            if w <= v {
+                continue;
+            }
             let du = [u[0] - field[w][0], u[1] - field[w][1]];
             let dp = [p[0] - positions[w][0], p[1] - positions[w][1]];
             let ratio = exp_ratio(div(du, dp));
-            sum[0] += ratio[0];
-            sum[1] += ratio[1];
+            for end in [v, w] {
+                sums[end][0] += ratio[0];
+                sums[end][1] += ratio[1];
+            }
         }
-        let k = around.len().max(1) as f64;
-        let factor = if around.is_empty() { [1.0, 0.0] } else { [sum[0] / k, sum[1] / k] };
+    }
+    for (v, ((p, u), sum)) in positions.iter().zip(field).zip(sums.iter()).enumerate() {
+        let k = neighbors(v).len();
+        let factor = if k == 0 { [1.0, 0.0] } else { [sum[0] / k as f64, sum[1] / k as f64] };
         let step = mul(*u, factor);
         out[v] = [p[0] + step[0], p[1] + step[1]];
     }
@@ -91,9 +115,18 @@ mod tests {
             assert!(close(exp_ratio(s), div(e, s), 1e-13), "{s:?}");
         }
         assert_eq!(exp_ratio([0.0, 0.0]), [1.0, 0.0]);
-        // Both branches agree where they meet (|s| = 1e-3).
-        let (inside, outside) = (exp_ratio([0.0, 0.999_999e-3]), exp_ratio([0.0, 1.000_001e-3]));
-        assert!(close(inside, outside, 1e-9));
+        // Inside its radius (up to the edge, at every angle) the series equals the closed form.
+        let closed = |s: [f64; 2]| {
+            let e = [s[0].exp_m1() * s[1].cos() - 2.0 * (s[1] / 2.0).sin().powi(2), s[0].exp() * s[1].sin()];
+            div(e, s)
+        };
+        for angle in [0.0f64, 0.7, 1.9, 3.0, std::f64::consts::PI, 4.4] {
+            let s = [0.249_999_999 * angle.cos(), 0.249_999_999 * angle.sin()];
+            assert!(close(exp_ratio(s), closed(s), 4e-16), "{s:?}");
+        }
+        for s in [[0.2f64, 0.1], [-0.1, -0.2], [0.0, 0.249], [1e-9, -2e-9]] {
+            assert!(close(exp_ratio(s), closed(s), 4e-16), "{s:?}");
+        }
         // Pure imaginary s = i a: (e^{ia} - 1) / (ia) has modulus |2 sin(a/2) / a|.
         let a: f64 = 0.3;
         let r = exp_ratio([0.0, a]);
@@ -110,7 +143,7 @@ mod tests {
             positions.iter().map(|p| [-a * (p[1] - c[1]) + d[0], a * (p[0] - c[0]) + d[1]]).collect();
         let centre = [c[0] - d[1] / a, c[1] + d[0] / a];
         let mut out = [[0.0; 2]; 4];
-        spiral_step(&positions, &field, |v| neighbors[v], &mut out);
+        spiral_step(&positions, &field, |v| neighbors[v], &mut [[0.0; 2]; 4], &mut out);
         let (sin, cos) = a.sin_cos();
         for (p, q) in positions.iter().zip(out) {
             let r = [p[0] - centre[0], p[1] - centre[1]];
