@@ -4,6 +4,7 @@ import { displacementVelocities, largestGap, substepCount, trackingVelocities } 
 import { meshObj, outlineSvg } from "../../www/src/widget/export.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
 import { History } from "../../www/src/widget/history.js";
+import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
 import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
 import { Recorder, parseSession } from "../../www/src/widget/session.js";
 
@@ -169,5 +170,26 @@ describe("geometry and exports", () => {
     expect(d.match(/M/g)!.length).toBe(1);
     // y flips: the shape's bottom-left corner (0, 0) is at the bottom of the picture.
     expect(d.startsWith("M0.02 1.02")).toBe(true);
+  });
+});
+
+describe("keyboard shortcuts", () => {
+  const press = (key: string, mods: Partial<Omit<KeyPress, "key">> = {}) =>
+    keyCommand({ key, ctrlKey: false, metaKey: false, altKey: false, shiftKey: false, ...mods });
+  it("maps keys to commands", () => {
+    expect(press("z", { ctrlKey: true })).toEqual({ kind: "undo" });
+    expect(press("Z", { metaKey: true, shiftKey: true })).toEqual({ kind: "redo" });
+    expect(press("y", { ctrlKey: true })).toEqual({ kind: "redo" });
+    expect(press("Delete")).toEqual({ kind: "delete" });
+    expect(press("Backspace")).toEqual({ kind: "delete" });
+    expect(press("ArrowUp")).toEqual({ kind: "nudge", dx: 0, dy: 1 });
+    expect(press("ArrowLeft", { shiftKey: true })).toEqual({ kind: "nudge", dx: -10, dy: 0 });
+    expect(press("w")).toEqual({ kind: "toggle", what: "wireframe" });
+    expect(press("Escape")).toEqual({ kind: "deselect" });
+  });
+  it("leaves other keys and browser shortcuts alone", () => {
+    expect(press("q")).toBeUndefined();
+    expect(press("w", { ctrlKey: true })).toBeUndefined();
+    expect(press("ArrowUp", { altKey: true })).toBeUndefined();
   });
 });

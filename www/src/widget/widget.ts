@@ -30,6 +30,7 @@ import { boxUvs, uniqueEdges } from "./geometry.js";
 import { GlRenderer, type MeshRenderer } from "./gl.js";
 import { History } from "./history.js";
 import { Hud } from "./hud.js";
+import { keyCommand } from "./keys.js";
 import { HANDLE_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { locate, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, parseSession, type Session, type SessionEvent, type ShapeSpec } from "./session.js";
@@ -1011,51 +1012,51 @@ export class Widget {
   }
 
   #key(e: KeyboardEvent): void {
-    const mod = e.ctrlKey || e.metaKey;
-    const key = e.key.toLowerCase();
-    if (mod && key === "z") {
-      if (e.shiftKey) this.redo();
-      else this.undo();
-    } else if (mod && key === "y") {
-      this.redo();
-    } else if (mod || e.altKey) {
-      return;
-    } else if (key === "delete" || key === "backspace") {
-      const keep = this.#handles.filter((h) => !h.selected);
-      if (keep.length === this.#handles.length) return;
-      this.#gesture(() => {
-        this.#handles = keep;
-        this.#applyHandles();
-      });
-    } else if (key.startsWith("arrow")) {
-      const selected = this.#handles.filter((h) => h.selected);
-      if (selected.length === 0) return;
-      const pixels = (e.shiftKey ? 10 : 1) * this.#ratio;
-      const d = pixels / this.#view.scale;
-      const [dx, dy] = { arrowleft: [-d, 0], arrowright: [d, 0], arrowup: [0, d], arrowdown: [0, -d] }[key] ?? [0, 0];
-      this.#gesture(() => {
-        for (const h of selected) {
-          h.target = [h.target[0] + dx!, h.target[1] + dy!];
-          h.pending = [h.pending[0] + dx!, h.pending[1] + dy!];
-        }
-        this.#schedule();
-      });
-    } else if (key === "escape") {
-      this.#handles.forEach((h) => (h.selected = false));
-      this.#draw();
-    } else if (key === "w") {
-      this.#settings.wireframe = !this.#settings.wireframe;
-      this.#toolbar?.sync(this.#settings);
-      this.#draw();
-    } else if (key === "f") {
-      this.#settings.field = !this.#settings.field;
-      this.#lastField = this.#settings.field ? this.#deformer.field() : undefined;
-      this.#toolbar?.sync(this.#settings);
-      this.#draw();
-    } else {
-      return;
-    }
+    const command = keyCommand(e);
+    if (!command) return;
     e.preventDefault();
+    switch (command.kind) {
+      case "undo":
+        this.undo();
+        break;
+      case "redo":
+        this.redo();
+        break;
+      case "delete": {
+        const keep = this.#handles.filter((h) => !h.selected);
+        if (keep.length < this.#handles.length) {
+          this.#gesture(() => {
+            this.#handles = keep;
+            this.#applyHandles();
+          });
+        }
+        break;
+      }
+      case "nudge": {
+        const selected = this.#handles.filter((h) => h.selected);
+        const unit = this.#ratio / this.#view.scale;
+        const [dx, dy] = [command.dx * unit, command.dy * unit];
+        if (selected.length === 0) break;
+        this.#gesture(() => {
+          for (const h of selected) {
+            h.target = [h.target[0] + dx, h.target[1] + dy];
+            h.pending = [h.pending[0] + dx, h.pending[1] + dy];
+          }
+          this.#schedule();
+        });
+        break;
+      }
+      case "deselect":
+        this.#handles.forEach((h) => (h.selected = false));
+        this.#draw();
+        break;
+      case "toggle":
+        this.#settings[command.what] = !this.#settings[command.what];
+        if (command.what === "field") this.#lastField = this.#settings.field ? this.#deformer.field() : undefined;
+        this.#toolbar?.sync(this.#settings);
+        this.#draw();
+        break;
+    }
   }
 
   // ---------------------------------------------------------------- toolbar, events, errors
