@@ -1,3 +1,4 @@
+/* global requestAnimationFrame */
 // Frame times of the posing app in headless Chromium: for each mesh size, pin a foot,
 // drag the raised hand along a quarter circle with the mouse, and collect the widget's
 // per-frame work (solver steps and drawing) from its `akap-pose` events.
