@@ -16,9 +16,13 @@ const targets = sizes.length ? sizes : [1000, 5000, 10000];
 const port = Number(process.env.BENCH_PORT ?? 4391);
 const moves = 150;
 
-const server = spawn("node_modules/.bin/vite", ["preview", "--host", "127.0.0.1", "--port", String(port), "--strictPort"], {
-  stdio: ["ignore", "pipe", "inherit"],
-});
+const server = spawn(
+  "node_modules/.bin/vite",
+  ["preview", "--host", "127.0.0.1", "--port", String(port), "--strictPort"],
+  {
+    stdio: ["ignore", "pipe", "inherit"],
+  },
+);
 await new Promise((resolve, reject) => {
   server.stdout.on("data", (d) => String(d).includes(String(port)) && resolve());
   server.on("exit", (code) => reject(new Error(`vite preview exited with ${code}`)));
@@ -43,7 +47,9 @@ const stat = (values, q) => {
 const ms = (x) => x.toFixed(1);
 
 console.log(`Chromium ${browser.version()}, ${moves} pointer moves per run`);
-console.log("| vertices | frames | steps/frame | frame median ms | frame p95 ms | worst ms | assembly | factorisation | solve | spiral |");
+console.log(
+  "| vertices | frames | steps/frame | frame median ms | frame p95 ms | worst ms | assembly | factorisation | solve | spiral |",
+);
 console.log("|---|---|---|---|---|---|---|---|---|---|");
 try {
   for (const target of targets) {
@@ -53,7 +59,8 @@ try {
     const setup = await page.evaluate(() => {
       const w = window.akapDemo.widget;
       const { positions: p, triangles: t } = w.mesh;
-      const centroid = (f) => [0, 1].map((c) => (p[2 * t[3 * f] + c] + p[2 * t[3 * f + 1] + c] + p[2 * t[3 * f + 2] + c]) / 3);
+      const centroid = (f) =>
+        [0, 1].map((c) => (p[2 * t[3 * f] + c] + p[2 * t[3 * f + 1] + c] + p[2 * t[3 * f + 2] + c]) / 3);
       let low = 0;
       let high = 0;
       for (let f = 0; f < t.length / 3; f++) {
@@ -62,13 +69,17 @@ try {
       }
       window.benchFrames = [];
       document.getElementById("app").addEventListener("akap-pose", (e) => {
-        if (e.detail.steps > 0) window.benchFrames.push({ ms: e.detail.frameMs, steps: e.detail.steps, t: e.detail.timings });
+        if (e.detail.steps > 0)
+          window.benchFrames.push({ ms: e.detail.frameMs, steps: e.detail.steps, t: e.detail.timings });
       });
       return { vertices: w.vertexCount, view: w.view, pin: centroid(low), grab: centroid(high) };
     });
     const box = await page.locator("canvas.overlay").boundingBox();
     const { view } = setup;
-    const css = ([x, y]) => [box.x + (view.offsetX + view.scale * x) / view.pixelRatio, box.y + (view.offsetY - view.scale * y) / view.pixelRatio];
+    const css = ([x, y]) => [
+      box.x + (view.offsetX + view.scale * x) / view.pixelRatio,
+      box.y + (view.offsetY - view.scale * y) / view.pixelRatio,
+    ];
     const pin = css(setup.pin);
     const grab = css(setup.grab);
     await page.mouse.click(pin[0], pin[1]);
