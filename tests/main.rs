@@ -1,5 +1,6 @@
 //! Integration tests: one binary, one module per area, shared checks in `common`.
 
+mod arap;
 mod common;
 mod deformer;
 mod killing;

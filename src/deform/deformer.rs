@@ -135,6 +135,13 @@ pub enum DeformError {
     Factor(FactorError),
     /// The step produced a non-finite position (a velocity too large for the mesh).
     NonFiniteResult,
+    /// Options of another method were given; the method is chosen when the deformer is made.
+    WrongMethod {
+        /// The deformer's method.
+        current: super::method::Method,
+        /// The method of the options given.
+        given: super::method::Method,
+    },
 }
 
 impl fmt::Display for DeformError {
@@ -161,6 +168,11 @@ impl fmt::Display for DeformError {
             Self::NonFiniteVelocity { handle } => write!(f, "the velocity of handle {handle} is not a finite number"),
             Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
             Self::NonFiniteResult => write!(f, "the step produced positions that are not finite; use smaller steps"),
+            Self::WrongMethod { current, given } => write!(
+                f,
+                "the deformer uses method {current}, options for {given} were given; \
+                 the method is chosen when the deformer is created"
+            ),
         }
     }
 }
@@ -189,7 +201,7 @@ pub struct Timings {
 /// A clock in milliseconds, for [`Timings`].
 pub type Clock = fn() -> f64;
 
-fn default_clock() -> f64 {
+pub(crate) fn default_clock() -> f64 {
     #[cfg(not(target_arch = "wasm32"))]
     {
         static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
