@@ -4,6 +4,7 @@ mod arap;
 mod common;
 mod deformer;
 mod killing;
+mod session;
 mod sparse;
 mod triangulation;
 #[cfg(target_arch = "wasm32")]
