@@ -9,6 +9,8 @@
 //! - `bar-fold`: the same, bent on to a half circle (a tighter bend, more distortion);
 //! - `gingerbread`: a wave of the raised hand, a reset, then the other arm raised with the
 //!   feet and head held;
+//! - `gingerbread-fast`: the arm raised by 90 degrees in 6 frames, held by points inside
+//!   triangles (the situation of the paper's Figure 8);
 //! - `cat`: a front leg lifted and bent with the other paws and the head held, then, with
 //!   a new handle set, the tail raised.
 
@@ -191,6 +193,31 @@ fn gingerbread() -> Session {
     r.finish()
 }
 
+/// Figure 8's situation: large frames (15 degrees each) and handles inside triangles, where
+/// the ablations show (singular fields around handles without the Dirichlet step, dilation
+/// with linear steps).
+fn gingerbread_fast() -> Session {
+    let mut r = Recorder::new("gingerbread", 0.04);
+    let mesh = r.mesh().clone();
+    let handles = [
+        at_vertex(&mesh, [-0.21, -0.02]),
+        at_vertex(&mesh, [0.21, -0.02]),
+        in_triangle(&mesh, [0.0, 1.2]),
+        in_triangle(&mesh, [0.55, 0.63]),
+        in_triangle(&mesh, [-0.46, 1.15]),
+    ];
+    r.handles(&handles);
+    let rest = r.rest_of(&handles);
+    let shoulder = [0.22, 0.66];
+    let frames = 6;
+    for k in 1..=frames {
+        let mut targets = rest.clone();
+        targets[3] = rotate(rest[3], shoulder, 90f64.to_radians() * k as f64 / frames as f64);
+        r.step(&targets);
+    }
+    r.finish()
+}
+
 fn cat() -> Session {
     let mut r = Recorder::new("cat", 0.045);
     let mesh = r.mesh().clone();
@@ -228,8 +255,13 @@ fn cat() -> Session {
 fn main() {
     let dir = std::env::args().nth(1).unwrap_or_else(|| "tests/sessions".to_owned());
     std::fs::create_dir_all(&dir).expect("can create the output directory");
-    let sessions =
-        [("bar", bar(PI / 2.0, 60)), ("bar-fold", bar(PI, 90)), ("gingerbread", gingerbread()), ("cat", cat())];
+    let sessions = [
+        ("bar", bar(PI / 2.0, 60)),
+        ("bar-fold", bar(PI, 90)),
+        ("gingerbread", gingerbread()),
+        ("gingerbread-fast", gingerbread_fast()),
+        ("cat", cat()),
+    ];
     for (file, session) in sessions {
         let path = format!("{dir}/{file}.json");
         std::fs::write(&path, session.to_json()).expect("can write the session");

