@@ -25,7 +25,8 @@
 //! **Constraints.** A handle at a vertex (or at a point whose barycentric weight at one
 //! vertex is 1) is a hard constraint, by elimination: that vertex's row and column of the
 //! matrix become the identity row and column, its known position moves to the right-hand
-//! side of the other rows (`b_f -= L_fc target_c`), and the solve returns it unchanged.
+//! side of the other rows (`b_f -= A_fc target_c`), and the solve returns it unchanged
+//! (several handles on one vertex pin it at the mean of their targets).
 //! A handle strictly inside a triangle (or on an edge) is a stiff penalty, the second part
 //! of `E`, with `w = 10^6` times the mean diagonal entry of `L` (dimensionless, like the
 //! cotangent weights): it adds `w beta_hk beta_hl` to entries between vertices of one
