@@ -4,6 +4,7 @@ use std::fmt;
 
 use crate::mesh::MeshError;
 use crate::outline::OutlineError;
+use crate::session::SessionError;
 use crate::triangulate::TriangulationError;
 
 /// Any error this crate reports.
@@ -14,6 +15,8 @@ pub enum Error {
     Mesh(MeshError),
     /// An outline or its options could not be triangulated.
     Triangulation(TriangulationError),
+    /// A session could not be read or replayed.
+    Session(SessionError),
 }
 
 impl fmt::Display for Error {
@@ -21,6 +24,7 @@ impl fmt::Display for Error {
         match self {
             Self::Mesh(e) => e.fmt(f),
             Self::Triangulation(e) => e.fmt(f),
+            Self::Session(e) => e.fmt(f),
         }
     }
 }
@@ -30,6 +34,7 @@ impl std::error::Error for Error {
         match self {
             Self::Mesh(e) => Some(e),
             Self::Triangulation(e) => Some(e),
+            Self::Session(e) => Some(e),
         }
     }
 }
@@ -49,5 +54,11 @@ impl From<TriangulationError> for Error {
 impl From<OutlineError> for Error {
     fn from(e: OutlineError) -> Self {
         Self::Triangulation(TriangulationError::Outline(e))
+    }
+}
+
+impl From<SessionError> for Error {
+    fn from(e: SessionError) -> Self {
+        Self::Session(e)
     }
 }

@@ -18,14 +18,17 @@
 //!
 //! Module map (see ARCHITECTURE.md): [`geometry`] (planar helpers), [`outline`] (input
 //! shapes and their validation), [`triangulate`](mod@triangulate) (the only user of spade),
-//! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes), and
-//! `wasm` (the JavaScript bindings, compiled for wasm32 only).
+//! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes),
+//! [`sparse`] (our sparse Cholesky), [`deform`] (AKAP and ARAP), [`session`] (recorded
+//! interaction sessions and their replay), and `wasm` (the JavaScript bindings, compiled
+//! for wasm32 only).
 
 pub mod deform;
 pub mod error;
 pub mod geometry;
 pub mod mesh;
 pub mod outline;
+pub mod session;
 pub mod shapes;
 pub mod sparse;
 pub mod triangulate;

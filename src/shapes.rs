@@ -1,8 +1,13 @@
-//! Built-in shapes of our own making.
+//! Built-in shapes of our own making, by name ([`by_name`], [`NAMES`]).
 //!
-//! The default shape is a waving gingerbread figure: a smooth outline through hand-placed
-//! control points (a centripetal Catmull-Rom spline, which neither overshoots nor forms
-//! cusps), with eyes and buttons as holes.
+//! - `gingerbread`, the default shape: a waving gingerbread figure, a smooth outline
+//!   through hand-placed control points (a centripetal Catmull-Rom spline, which neither
+//!   overshoots nor forms cusps), with eyes and buttons as holes;
+//! - `cat`: a standing cartoon cat seen from the side (four legs, raised tail, ears), built
+//!   the same way, with an eye as a hole;
+//! - `bar`: the paper's synthetic model for its comparison (Table 1, Figure 9), a long bar
+//!   whose long sides carry small teeth, so that bending it shows how boundary detail is
+//!   kept.
 
 use crate::geometry::{distance, Point};
 use crate::outline::Outline;
@@ -71,6 +76,119 @@ pub fn gingerbread() -> Outline {
     outline
 }
 
+/// Control points of the cat's outline, counter-clockwise with y pointing up, from the
+/// rump down round the hind legs, the belly, the front legs, the head (facing right) and
+/// back along the back to the raised tail. About 1.7 units long and 1.1 tall, paws at y = 0.
+const CAT: [Point; 55] = [
+    [-0.50, 0.50],
+    [-0.50, 0.30],
+    [-0.49, 0.12],
+    [-0.52, 0.02],
+    [-0.46, -0.01],
+    [-0.37, 0.0],
+    [-0.37, 0.10],
+    [-0.36, 0.24],
+    [-0.335, 0.29],
+    [-0.31, 0.24],
+    [-0.30, 0.10],
+    [-0.31, 0.02],
+    [-0.25, -0.01],
+    [-0.16, 0.0],
+    [-0.17, 0.12],
+    [-0.15, 0.30],
+    [0.0, 0.33],
+    [0.12, 0.30],
+    [0.14, 0.12],
+    [0.13, 0.02],
+    [0.19, -0.01],
+    [0.27, 0.0],
+    [0.26, 0.12],
+    [0.27, 0.24],
+    [0.295, 0.29],
+    [0.32, 0.24],
+    [0.33, 0.12],
+    [0.32, 0.02],
+    [0.38, -0.01],
+    [0.47, 0.0],
+    [0.46, 0.12],
+    [0.47, 0.35],
+    [0.52, 0.55],
+    [0.62, 0.64],
+    [0.76, 0.68],
+    [0.84, 0.78],
+    [0.80, 0.88],
+    [0.74, 0.95],
+    [0.76, 1.08],
+    [0.66, 1.00],
+    [0.58, 1.09],
+    [0.54, 0.96],
+    [0.46, 0.80],
+    [0.30, 0.70],
+    [0.0, 0.68],
+    [-0.35, 0.70],
+    [-0.52, 0.72],
+    [-0.68, 0.80],
+    [-0.78, 0.94],
+    [-0.80, 1.08],
+    [-0.86, 1.06],
+    [-0.86, 0.92],
+    [-0.76, 0.76],
+    [-0.60, 0.64],
+    [-0.52, 0.60],
+];
+
+/// A standing cartoon cat, side view, facing right, with one eye as a hole. Boundary
+/// points are spaced about 0.02 apart.
+pub fn cat() -> Outline {
+    Outline::new(closed_spline(&CAT, 0.02)).with_hole(ellipse([0.71, 0.85], 0.022, 0.03, 12))
+}
+
+/// Length and height of [`toothed_bar`].
+pub const BAR_SIZE: [f64; 2] = [2.0, 0.4];
+
+/// The paper's synthetic model: a 2 x 0.4 bar (lower left corner at the origin) whose long
+/// sides each carry 16 trapezoidal teeth 0.035 high, 0.07 wide at the base and 0.04 at the
+/// top, one every 0.125. The short ends are straight, for handles.
+pub fn toothed_bar() -> Outline {
+    let [length, height] = BAR_SIZE;
+    let (teeth, tooth_height, base, top) = (16, 0.035, 0.07, 0.04);
+    let period = length / teeth as f64;
+    // Along the bottom from left to right, teeth pointing down; then the top from right to
+    // left, teeth pointing up: counter-clockwise.
+    let mut ring = vec![[0.0, 0.0]];
+    for k in 0..teeth {
+        let centre = (k as f64 + 0.5) * period;
+        ring.push([centre - base / 2.0, 0.0]);
+        ring.push([centre - top / 2.0, -tooth_height]);
+        ring.push([centre + top / 2.0, -tooth_height]);
+        ring.push([centre + base / 2.0, 0.0]);
+    }
+    ring.push([length, 0.0]);
+    ring.push([length, height]);
+    for k in (0..teeth).rev() {
+        let centre = (k as f64 + 0.5) * period;
+        ring.push([centre + base / 2.0, height]);
+        ring.push([centre + top / 2.0, height + tooth_height]);
+        ring.push([centre - top / 2.0, height + tooth_height]);
+        ring.push([centre - base / 2.0, height]);
+    }
+    ring.push([0.0, height]);
+    Outline::new(ring)
+}
+
+/// The names of the built-in shapes, as [`by_name`] takes them.
+pub const NAMES: [&str; 3] = ["gingerbread", "cat", "bar"];
+
+/// A built-in shape by name (see [`NAMES`]).
+pub fn by_name(name: &str) -> Option<Outline> {
+    match name {
+        "gingerbread" => Some(gingerbread()),
+        "cat" => Some(cat()),
+        "bar" => Some(toothed_bar()),
+        _ => None,
+    }
+}
+
 /// An axis-aligned ellipse as a counter-clockwise polygon of `n` points.
 pub fn ellipse(centre: Point, rx: f64, ry: f64, n: usize) -> Vec<Point> {
     (0..n)
@@ -117,17 +235,6 @@ fn catmull_rom(p: [Point; 4], u: f64) -> Point {
     lerp(b1, b2, t1, t2)
 }
 
-/// Names of the built-in shapes, in gallery order; the first is the default shape.
-pub const BUILTIN: &[&str] = &["gingerbread"];
-
-/// A built-in shape by its name in [`BUILTIN`].
-pub fn builtin(name: &str) -> Option<Outline> {
-    match name {
-        "gingerbread" => Some(gingerbread()),
-        _ => None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -148,5 +255,15 @@ mod tests {
         assert!(polygon_area(&figure.outer) > 0.0);
         let rings = figure.validated(10_000).expect("the default shape is valid");
         assert_eq!(rings.len(), 5);
+    }
+
+    #[test]
+    fn every_named_shape_is_a_valid_counter_clockwise_outline() {
+        for name in NAMES {
+            let shape = by_name(name).expect("a listed name");
+            assert!(polygon_area(&shape.outer) > 0.0, "{name}");
+            shape.validated(10_000).unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+        assert!(by_name("dragon").is_none());
     }
 }

@@ -9,7 +9,7 @@ use js_sys::{Array, Float64Array, Object, Reflect};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use crate::deform::{Deformer, DeformerOptions, Integrator};
+use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions};
 use crate::mesh::Mesh;
 use crate::outline::Outline;
 use crate::shapes;
@@ -174,14 +174,14 @@ pub fn default_shape() -> Result<Object, JsValue> {
 /// Names of the built-in shapes; the first is the default.
 #[wasm_bindgen(js_name = builtinShapes)]
 pub fn builtin_shapes() -> Array {
-    shapes::BUILTIN.iter().map(|&name| JsValue::from_str(name)).collect()
+    shapes::NAMES.iter().map(|&name| JsValue::from_str(name)).collect()
 }
 
 /// A built-in shape by name, `{ outer, holes }` as for `defaultShape`.
 #[wasm_bindgen(js_name = builtinShape)]
 pub fn builtin_shape(name: &str) -> Result<Object, JsValue> {
-    let outline = shapes::builtin(name).ok_or_else(|| {
-        JsError::new(&format!("there is no built-in shape `{name}`; the shapes are {}", shapes::BUILTIN.join(", ")))
+    let outline = shapes::by_name(name).ok_or_else(|| {
+        JsError::new(&format!("there is no built-in shape `{name}`; the shapes are {}", shapes::NAMES.join(", ")))
     })?;
     outline_object(&outline)
 }
@@ -195,31 +195,39 @@ fn outline_object(outline: &Outline) -> Result<Object, JsValue> {
     Ok(object)
 }
 
-/// The AKAP deformer for one mesh (see `crate::deform::Deformer`).
+/// A deformer for one mesh: AKAP (`crate::deform::Deformer`) or ARAP
+/// (`crate::deform::ArapDeformer`), chosen by the `method` option.
 #[wasm_bindgen(js_name = Deformer)]
 pub struct JsDeformer {
-    inner: Deformer,
+    inner: Box<dyn Deform>,
 }
 
 #[wasm_bindgen(js_class = Deformer)]
 impl JsDeformer {
     /// Validates the mesh (xy-interleaved positions, counter-clockwise index triples) and
-    /// prepares the solver. `options`: `{ lambda?: number, dirichlet?: boolean,
-    /// integrator?: "spiral" | "linear" }`.
+    /// prepares the solver. `options`: `{ method?: "akap" | "arap", lambda?: number,
+    /// dirichlet?: boolean, integrator?: "spiral" | "linear", iterations?: number }`
+    /// (the last for ARAP, the three before it for AKAP).
     #[wasm_bindgen(constructor)]
     pub fn new(positions: &[f64], triangles: &[u32], options: JsValue) -> Result<JsDeformer, JsError> {
-        let options = parse_deformer_options(options, DeformerOptions::default())?;
+        let options = parse_deformer_options(options, MethodOptions::default())?;
         let mesh = Mesh::from_flat(positions, triangles).map_err(to_js)?;
-        let mut inner = Deformer::new(mesh, options).map_err(to_js)?;
+        let mut inner = options.build(mesh).map_err(to_js)?;
         inner.set_clock(performance_now);
         Ok(Self { inner })
     }
 
-    /// Changes some options; the others keep their values.
+    /// Changes some options; the others keep their values. The method cannot change.
     #[wasm_bindgen(js_name = setOptions)]
     pub fn set_options(&mut self, options: JsValue) -> Result<(), JsError> {
-        let options = parse_deformer_options(options, self.inner.options())?;
-        self.inner.set_options(options).map_err(to_js)
+        let options = parse_deformer_options(options, self.inner.method_options())?;
+        self.inner.set_method_options(options).map_err(to_js)
+    }
+
+    /// `"akap"` or `"arap"`.
+    #[wasm_bindgen(getter)]
+    pub fn method(&self) -> String {
+        self.inner.method_options().method().name().to_owned()
     }
 
     /// One handle on each of these vertices (replacing the handles).
@@ -284,12 +292,14 @@ impl JsDeformer {
         self.inner.set_positions(pairs).map_err(to_js)
     }
 
-    /// The last velocity field after the Dirichlet step (`U_opt`), interleaved.
+    /// The last velocity field after the Dirichlet step (`U_opt`; ARAP: the last step's
+    /// displacement), interleaved.
     pub fn field(&self) -> Vec<f64> {
         self.inner.field().iter().flatten().copied().collect()
     }
 
-    /// The last velocity field after the soft-constraint step (`U0`), interleaved.
+    /// The last velocity field after the soft-constraint step (`U0`; ARAP: the last
+    /// step's displacement), interleaved.
     #[wasm_bindgen(js_name = softField)]
     pub fn soft_field(&self) -> Vec<f64> {
         self.inner.soft_field().iter().flatten().copied().collect()
@@ -348,35 +358,59 @@ fn object(entries: &[(&str, JsValue)]) -> Result<Object, JsValue> {
     Ok(object)
 }
 
-/// Reads `{ lambda?, dirichlet?, integrator? }` over `base`, refusing unknown keys.
-fn parse_deformer_options(value: JsValue, base: DeformerOptions) -> Result<DeformerOptions, JsError> {
-    const NAMES: [&str; 3] = ["lambda", "dirichlet", "integrator"];
+/// Reads `{ method?, lambda?, dirichlet?, integrator?, iterations? }` over `base`, refusing
+/// unknown keys and options of the other method. A different `method` starts from that
+/// method's defaults.
+fn parse_deformer_options(value: JsValue, base: MethodOptions) -> Result<MethodOptions, JsError> {
+    const NAMES: [&str; 5] = ["method", "lambda", "dirichlet", "integrator", "iterations"];
     if value.is_undefined() || value.is_null() {
         return Ok(base);
     }
     let Some(object) = value.dyn_ref::<Object>() else {
         return Err(JsError::new("deformer options must be an object"));
     };
+    let get = |key: &str| Reflect::get(object, &JsValue::from_str(key)).map_err(|_| JsError::new("unreadable option"));
+    let keys: Vec<String> = Object::keys(object).iter().map(|k| k.as_string().unwrap_or_default()).collect();
     let mut options = base;
-    for key in Object::keys(object).iter() {
-        let key = key.as_string().unwrap_or_default();
-        let field = Reflect::get(object, &JsValue::from_str(&key)).map_err(|_| JsError::new("unreadable option"))?;
-        match key.as_str() {
-            "lambda" => {
-                options.lambda = field.as_f64().ok_or_else(|| JsError::new("option lambda must be a number"))?;
+    if keys.iter().any(|k| k == "method") {
+        let method = match get("method")?.as_string().as_deref() {
+            Some("akap") => Method::Akap,
+            Some("arap") => Method::Arap,
+            _ => return Err(JsError::new("option method must be \"akap\" or \"arap\"")),
+        };
+        if method != base.method() {
+            options = match method {
+                Method::Akap => MethodOptions::Akap(DeformerOptions::default()),
+                Method::Arap => MethodOptions::Arap(ArapOptions::default()),
+            };
+        }
+    }
+    let only = |name: &str, method: &str| JsError::new(&format!("option {name} applies to method \"{method}\" only"));
+    for key in keys.iter().filter(|k| *k != "method") {
+        let field = get(key)?;
+        match (key.as_str(), &mut options) {
+            ("lambda", MethodOptions::Akap(o)) => {
+                o.lambda = field.as_f64().ok_or_else(|| JsError::new("option lambda must be a number"))?;
             }
-            "dirichlet" => {
-                options.dirichlet =
-                    field.as_bool().ok_or_else(|| JsError::new("option dirichlet must be true or false"))?;
+            ("dirichlet", MethodOptions::Akap(o)) => {
+                o.dirichlet = field.as_bool().ok_or_else(|| JsError::new("option dirichlet must be true or false"))?;
             }
-            "integrator" => {
-                options.integrator = match field.as_string().as_deref() {
+            ("integrator", MethodOptions::Akap(o)) => {
+                o.integrator = match field.as_string().as_deref() {
                     Some("spiral") => Integrator::Spiral,
                     Some("linear") => Integrator::Linear,
                     _ => return Err(JsError::new("option integrator must be \"spiral\" or \"linear\"")),
                 };
             }
-            other => {
+            ("iterations", MethodOptions::Arap(o)) => {
+                o.iterations = match field.as_f64() {
+                    Some(n) if n.fract() == 0.0 && (1.0..=1e6).contains(&n) => n as usize,
+                    _ => return Err(JsError::new("option iterations must be a whole number from 1 to 1000000")),
+                };
+            }
+            ("lambda" | "dirichlet" | "integrator", _) => return Err(only(key, "akap")),
+            ("iterations", _) => return Err(only(key, "arap")),
+            (other, _) => {
                 return Err(JsError::new(&format!(
                     "unknown deformer option `{other}`; the options are {}",
                     NAMES.join(", ")

@@ -1,8 +1,10 @@
 //! Integration tests: one binary, one module per area, shared checks in `common`.
 
+mod arap;
 mod common;
 mod deformer;
 mod killing;
+mod session;
 mod sparse;
 mod triangulation;
 #[cfg(target_arch = "wasm32")]

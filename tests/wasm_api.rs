@@ -84,3 +84,49 @@ fn bad_input_becomes_a_javascript_error() {
     assert!(message(mesh.neighbors(3)).contains("out of range"));
     assert_eq!(mesh.neighbors(0).unwrap(), vec![1, 2]);
 }
+
+#[test]
+fn deformer_methods_and_their_options() {
+    use akap::wasm::JsDeformer;
+    // A 3 x 1 strip of 6 squares, each split in two.
+    let mut positions = Vec::new();
+    for y in 0..2 {
+        for x in 0..4 {
+            positions.extend([f64::from(x), f64::from(y)]);
+        }
+    }
+    let mut triangles = Vec::new();
+    for x in 0..3u32 {
+        triangles.extend([x, x + 1, x + 5, x, x + 5, x + 4]);
+    }
+    for json in [r#"{"method": "arap", "iterations": 5}"#, r#"{"method": "akap", "lambda": 50}"#, "{}"] {
+        let mut deformer = JsDeformer::new(&positions, &triangles, options(json)).unwrap();
+        let expected = if json.contains("arap") { "arap" } else { "akap" };
+        assert_eq!(deformer.method(), expected);
+        deformer.set_handles(&[0, 4, 3, 7]).unwrap();
+        // A translation of every handle moves the whole strip rigidly.
+        deformer.step(&[0.5, 0.25, 0.5, 0.25, 0.5, 0.25, 0.5, 0.25]).unwrap();
+        for (p, q) in positions.chunks(2).zip(deformer.positions().chunks(2)) {
+            assert!((q[0] - p[0] - 0.5).abs() < 1e-9 && (q[1] - p[1] - 0.25).abs() < 1e-9, "{json}: {q:?}");
+        }
+        let metrics = deformer.metrics().unwrap();
+        let area = Reflect::get(&metrics, &"areaDistortion".into()).unwrap().as_f64().unwrap();
+        assert!((area - 2.0).abs() < 1e-9);
+    }
+    let cases = [
+        (r#"{"method": "fem"}"#, "option method"),
+        (r#"{"method": "arap", "lambda": 5}"#, "applies to method \"akap\""),
+        (r#"{"iterations": 5}"#, "applies to method \"arap\""),
+        (r#"{"method": "arap", "iterations": 0}"#, "whole number"),
+        (r#"{"method": "arap", "iterations": 2.5}"#, "whole number"),
+        (r#"{"itterations": 5}"#, "unknown deformer option"),
+    ];
+    for (json, expected) in cases {
+        let text = message(JsDeformer::new(&positions, &triangles, options(json)));
+        assert!(text.contains(expected), "{text:?} should mention {expected:?}");
+    }
+    let mut deformer = JsDeformer::new(&positions, &triangles, options(r#"{"method": "arap"}"#)).unwrap();
+    deformer.set_options(options(r#"{"iterations": 3}"#)).unwrap();
+    assert!(message(deformer.set_options(options(r#"{"method": "akap"}"#))).contains("chosen when the deformer"));
+    assert_eq!(deformer.method(), "arap");
+}

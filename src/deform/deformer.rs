@@ -135,10 +135,17 @@ pub enum DeformError {
     Factor(FactorError),
     /// The step produced a non-finite position (a velocity too large for the mesh).
     NonFiniteResult,
-    /// A position given to [`Deformer::set_positions`] is NaN or infinite.
+    /// A position given to `set_positions` is NaN or infinite.
     NonFinitePosition {
         /// Which vertex.
         vertex: usize,
+    },
+    /// Options of another method were given; the method is chosen when the deformer is made.
+    WrongMethod {
+        /// The deformer's method.
+        current: super::method::Method,
+        /// The method of the options given.
+        given: super::method::Method,
     },
 }
 
@@ -167,6 +174,11 @@ impl fmt::Display for DeformError {
             Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
             Self::NonFiniteResult => write!(f, "the step produced positions that are not finite; use smaller steps"),
             Self::NonFinitePosition { vertex } => write!(f, "the position of vertex {vertex} is not a finite number"),
+            Self::WrongMethod { current, given } => write!(
+                f,
+                "the deformer uses method {current}, options for {given} were given; \
+                 the method is chosen when the deformer is created"
+            ),
         }
     }
 }
@@ -195,7 +207,7 @@ pub struct Timings {
 /// A clock in milliseconds, for [`Timings`].
 pub type Clock = fn() -> f64;
 
-fn default_clock() -> f64 {
+pub(crate) fn default_clock() -> f64 {
     #[cfg(not(target_arch = "wasm32"))]
     {
         static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();

@@ -82,4 +82,30 @@ describe("Deformer", () => {
     expect(Array.from(deformer.positions())).toEqual(Array.from(shifted));
     deformer.free();
   });
+
+  it("runs ARAP with the same interface", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.1 });
+    const deformer = new Deformer(mesh.positions, mesh.triangles, { method: "arap", iterations: 5 });
+    expect(deformer.method).toBe("arap");
+    // Handles at vertices are hard constraints: a translation of all of them is exact.
+    deformer.setHandles([0, 17, 42]);
+    deformer.step([0.1, -0.2, 0.1, -0.2, 0.1, -0.2]);
+    const p = deformer.positions();
+    for (let v = 0; v < mesh.vertexCount; v++) {
+      expect(p[2 * v]! - mesh.positions[2 * v]!).toBeCloseTo(0.1, 9);
+      expect(p[2 * v + 1]! - mesh.positions[2 * v + 1]!).toBeCloseTo(-0.2, 9);
+    }
+    expect(deformer.metrics().areaDistortion).toBeCloseTo(2, 9);
+    expect(() => deformer.setOptions({ lambda: 10 })).toThrow(/applies to method "akap"/);
+    expect(() => deformer.setOptions({ method: "akap" })).toThrow(/chosen when the deformer is created/);
+    expect(() => new Deformer(mesh.positions, mesh.triangles, { iterations: 3 })).toThrow(/applies to method "arap"/);
+    deformer.setOptions({ iterations: 2 });
+    // A pose set from outside: the handles' targets move with it, so a zero step stays.
+    const shifted = p.map((x, i) => x + (i % 2 === 0 ? 0.3 : 0));
+    deformer.setPositions(shifted);
+    deformer.step([0, 0, 0, 0, 0, 0]);
+    const q = deformer.positions();
+    for (let i = 0; i < q.length; i++) expect(q[i]!).toBeCloseTo(shifted[i]!, 9);
+    deformer.free();
+  });
 });

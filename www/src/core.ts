@@ -116,14 +116,26 @@ function asUint32(indices: Indices, what: string): Uint32Array {
   return Uint32Array.from(indices);
 }
 
-/** Options of the {@link Deformer}. */
+/**
+ * Options of the {@link Deformer}. `method` is chosen when the deformer is created;
+ * `lambda`, `dirichlet` and `integrator` apply to AKAP only, `iterations` to ARAP only
+ * (giving one to the other method throws).
+ */
 export interface DeformerOptions {
-  /** Weight of the soft handle constraints (default 100). */
+  /**
+   * `"akap"` (default): As-Killing-As-Possible vector fields, the paper's method.
+   * `"arap"`: as-rigid-as-possible local/global iterations, for comparison; each step
+   * moves every handle's target by its velocity and iterates from the current pose.
+   */
+  method?: "akap" | "arap";
+  /** AKAP: weight of the soft handle constraints (default 100). */
   lambda?: number;
-  /** Whether the Dirichlet re-solve runs (default true). */
+  /** AKAP: whether the Dirichlet re-solve runs (default true). */
   dirichlet?: boolean;
-  /** How vertices follow the field: along log spirals (default) or straight lines. */
+  /** AKAP: how vertices follow the field: along log spirals (default) or straight lines. */
   integrator?: "spiral" | "linear";
+  /** ARAP: local/global iterations per step, a whole number from 1 to 1000000 (default 10). */
+  iterations?: number;
 }
 
 /** Distortion of the current pose against the rest pose (2 for a rigid motion). */
@@ -143,9 +155,9 @@ export interface Timings {
 }
 
 /**
- * As-Killing-As-Possible deformation of one mesh. Give it handles (vertices, or points
- * inside triangles), then call {@link Deformer.step} with a velocity per handle each
- * frame. Bad input throws an `Error` and leaves the deformer as it was. Call
+ * As-Killing-As-Possible (or, with `method: "arap"`, as-rigid-as-possible) deformation of
+ * one mesh. Give it handles (vertices, or points inside triangles), then call
+ * {@link Deformer.step} with a velocity per handle each frame. Bad input throws an `Error` and leaves the deformer as it was. Call
  * {@link Deformer.free} when done: the solver lives in WebAssembly memory.
  */
 export class Deformer {
@@ -161,9 +173,14 @@ export class Deformer {
     this.#raw = new raw.Deformer(asFloat64(positions, "positions"), asUint32(triangles, "triangles"), options);
   }
 
-  /** Changes some options; the others keep their values. */
+  /** Changes some options; the others keep their values. The method cannot change. */
   setOptions(options: DeformerOptions): void {
     this.#raw.setOptions(options);
+  }
+
+  /** The method chosen at construction. */
+  get method(): "akap" | "arap" {
+    return this.#raw.method as "akap" | "arap";
   }
 
   /** One handle on each of these vertices, replacing the current handles. */
@@ -207,12 +224,12 @@ export class Deformer {
     this.#raw.setPositions(asFloat64(positions, "positions"));
   }
 
-  /** The last step's velocity field after the Dirichlet re-solve (U_opt), xy-interleaved. */
+  /** The last step's velocity field after the Dirichlet re-solve (U_opt; ARAP: the step's displacement), xy-interleaved. */
   field(): Float64Array {
     return this.#raw.field();
   }
 
-  /** The last step's velocity field after the soft-constraint solve (U0), xy-interleaved. */
+  /** The last step's velocity field after the soft-constraint solve (U0; ARAP: the step's displacement), xy-interleaved. */
   softField(): Float64Array {
     return this.#raw.softField();
   }

@@ -59,6 +59,7 @@ export function buildToolbar(
     return g;
   };
   const labelled = (parent: HTMLElement, text: string, control: HTMLElement): void => {
+    control.setAttribute("aria-label", text.trim());
     const label = document.createElement("label");
     label.append(text, control);
     parent.append(label);

@@ -41,10 +41,20 @@ import { fitView, fromPixel, type View } from "./view.js";
 
 /** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
 export const METHODS = {
-  akap: { label: "AKAP", options: { dirichlet: true, integrator: "spiral" } },
-  "akap-no-dirichlet": { label: "AKAP without Dirichlet step", options: { dirichlet: false, integrator: "spiral" } },
-  "akap-linear": { label: "AKAP with linear steps", options: { dirichlet: true, integrator: "linear" } },
-  "akap-simple": { label: "AKAP, both simplifications", options: { dirichlet: false, integrator: "linear" } },
+  akap: { label: "AKAP", options: { method: "akap", dirichlet: true, integrator: "spiral" } },
+  "akap-no-dirichlet": {
+    label: "AKAP without Dirichlet step",
+    options: { method: "akap", dirichlet: false, integrator: "spiral" },
+  },
+  "akap-linear": {
+    label: "AKAP with linear steps",
+    options: { method: "akap", dirichlet: true, integrator: "linear" },
+  },
+  "akap-simple": {
+    label: "AKAP, both simplifications",
+    options: { method: "akap", dirichlet: false, integrator: "linear" },
+  },
+  arap: { label: "ARAP (10 iterations per step)", options: { method: "arap", iterations: 10 } },
 } as const satisfies Record<string, { label: string; options: DeformerOptions }>;
 
 export type Method = keyof typeof METHODS;
@@ -363,12 +373,36 @@ export class Widget {
   /** Changes the method and/or lambda. */
   setMethod(method: Method, lambda = this.#settings.lambda): void {
     if (!(METHODS as Record<string, unknown>)[method]) throw new Error(`unknown method "${method}"`);
-    const options = { ...METHODS[method].options, lambda };
-    this.#deformer.setOptions(options); // throws (and changes nothing) for a bad lambda
+    const options = methodOptions(method, lambda);
+    this.#useOptions(options); // throws (and changes nothing) for a bad lambda
     this.#record({ options });
     this.#settings.method = method;
     this.#settings.lambda = lambda;
     this.#hud?.showMesh(this.vertexCount, this.triangleCount, METHODS[method].label);
+  }
+
+  /**
+   * Applies deformer options. The same method only changes settings; another method (AKAP
+   * and ARAP are different solvers) gets a new deformer with the current pose and handles.
+   */
+  #useOptions(options: DeformerOptions): void {
+    const { method = "akap", ...settings } = options;
+    if (method === this.#deformer.method) {
+      this.#deformer.setOptions(settings);
+      return;
+    }
+    const { positions, triangles } = this.#shape.mesh;
+    const next = new Deformer(positions, triangles, options);
+    try {
+      next.setPositions(this.#deformer.positionsView());
+      const event = this.#handlesEvent();
+      next.setHandlePoints(event.handles.triangles, event.handles.barycentric);
+    } catch (error) {
+      next.free();
+      throw error;
+    }
+    this.#deformer.free();
+    this.#deformer = next;
   }
 
   /** Switches to a built-in shape, or re-meshes the current one with about `vertices` vertices. */
@@ -448,7 +482,9 @@ export class Widget {
     this.#replaying = true;
     this.#root.dataset.replaying = "true";
     try {
-      this.#deformer.setOptions({ ...METHODS.akap.options, lambda: DEFAULTS.lambda, ...s.options });
+      const defaults: DeformerOptions =
+        s.options.method === "arap" ? {} : { ...METHODS.akap.options, lambda: DEFAULTS.lambda };
+      this.#useOptions({ ...defaults, ...s.options });
       let steps = 0;
       for (const event of s.events) {
         if (this.#destroyed) break;
@@ -612,7 +648,7 @@ export class Widget {
   }
 
   #deformerOptions(): DeformerOptions {
-    return { ...METHODS[this.#settings.method].options, lambda: this.#settings.lambda };
+    return methodOptions(this.#settings.method, this.#settings.lambda);
   }
 
   // ---------------------------------------------------------------- handles
@@ -829,7 +865,7 @@ export class Widget {
       this.#deformer.setPositions(event.positions);
       this.#atRest = false;
     } else if ("options" in event) {
-      this.#deformer.setOptions(event.options);
+      this.#useOptions(event.options);
     } else {
       this.#deformer.reset();
       this.#atRest = true;
@@ -1188,6 +1224,13 @@ function outlineArea(outline: Outline): number {
     return Math.abs(twice) / 2;
   };
   return Math.max(ring(outline.outer) - (outline.holes ?? []).reduce((sum, h) => sum + ring(h), 0), 1e-12);
+}
+
+/** Deformer options of a widget method; lambda applies to the AKAP variants only. */
+function methodOptions(method: Method, lambda: number): DeformerOptions {
+  const options: DeformerOptions = { ...METHODS[method].options };
+  if (options.method === "akap") options.lambda = lambda;
+  return options;
 }
 
 function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {

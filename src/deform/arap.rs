@@ -1,0 +1,691 @@
+//! As-rigid-as-possible deformation for comparison with AKAP: the per-triangle "elements"
+//! energy of Liu, Zhang, Xu, Gotsman and Gortler (SGP 2008) with cotangent weights,
+//! minimised by Sorkine and Alexa's local/global iteration (SGP 2007).
+//!
+//! With rest positions `x`, current positions `u`, and per triangle `t` a rotation `R_t`,
+//!
+//! `E(u, R) = 1/2 sum_t sum_(i,j) cot(theta_t^ij) |(u_i - u_j) - R_t (x_i - x_j)|^2
+//!          + w/2 sum_h |sum_k beta_hk u_hk - target_h|^2`,
+//!
+//! the inner sum over the three edges `(i, j)` of `t`, `theta_t^ij` the rest angle opposite
+//! the edge. The first part equals `sum_t A_t |J_t - R_t|_F^2` (`J_t` the Jacobian of the
+//! piecewise-linear map on triangle `t`, `A_t` its rest area), so every triangle is as
+//! close to a rotation as it can be.
+//!
+//! - **Local step**: for fixed `u`, each `R_t` maximises `tr(R^T S_t)` with
+//!   `S_t = sum cot(theta) (u_i - u_j)(x_i - x_j)^T = 2 A_t J_t`: in 2D the rotation by
+//!   `atan2(S_10 - S_01, S_00 + S_11)`, the polar factor of `J_t`.
+//! - **Global step**: for fixed rotations, `L u = b` for x and y separately, with `L` the
+//!   cotangent Laplacian (`L_ij = -sum cot`, `L_ii = sum_j sum cot`) and
+//!   `b_i = sum_t sum_j cot(theta_t^ij) R_t (x_i - x_j)`.
+//!
+//! Each step lowers `E` (each is an exact minimisation over its own unknowns), so the
+//! energy never increases over iterations.
+//!
+//! **Constraints.** A handle at a vertex (or at a point whose barycentric weight at one
+//! vertex is 1) is a hard constraint, by elimination: that vertex's row and column of the
+//! matrix become the identity row and column, its known position moves to the right-hand
+//! side of the other rows (`b_f -= A_fc target_c`), and the solve returns it unchanged
+//! (several handles on one vertex pin it at the mean of their targets).
+//! A handle strictly inside a triangle (or on an edge) is a stiff penalty, the second part
+//! of `E`, with `w = 10^6` times the mean diagonal entry of `L` (dimensionless, like the
+//! cotangent weights): it adds `w beta_hk beta_hl` to entries between vertices of one
+//! triangle, which are already in the pattern. Either way the matrix stays symmetric
+//! positive definite (one handle removes the translations that are `L`'s null space) and
+//! its pattern is that of the vertex graph: the symbolic analysis runs once per mesh, the
+//! numeric factorisation once per handle set (in the first step after the handles change),
+//! and every iteration only solves.
+//!
+//! Each [`ArapDeformer::step`] sets the targets (current handle position plus velocity)
+//! and runs the configured iterations warm-started from the current pose; buffers are
+//! sized when the mesh or the handle set changes, so a step allocates nothing.
+
+use std::sync::Arc;
+
+use sprs::CsMat;
+
+use super::deformer::{default_clock, Clock, DeformError, Timings};
+use super::metrics::{metrics, Metrics};
+use crate::geometry::{bounding_box, Point};
+use crate::mesh::Mesh;
+use crate::sparse::{amd_order, nested_dissection_order, Numeric, Ordering, Symbolic};
+
+const NONE: usize = usize::MAX;
+
+/// Penalty weight of handles inside triangles, relative to the mean diagonal of `L`.
+const PENALTY: f64 = 1e6;
+
+/// A weight this close to 1 puts a handle on a vertex (a hard constraint).
+const AT_VERTEX: f64 = 1e-12;
+
+/// ARAP settings, with builders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArapOptions {
+    /// Local/global iterations per step (at most; at least 1).
+    pub iterations: usize,
+    /// A step stops early once an iteration moves no vertex further than `tolerance`
+    /// times the rest shape's bounding-box diagonal (0: always run `iterations`).
+    pub tolerance: f64,
+}
+
+impl Default for ArapOptions {
+    fn default() -> Self {
+        Self { iterations: 10, tolerance: 0.0 }
+    }
+}
+
+impl ArapOptions {
+    /// Sets the number of iterations per step.
+    pub fn with_iterations(mut self, iterations: usize) -> Self {
+        self.iterations = iterations;
+        self
+    }
+
+    /// Iterates until an iteration moves no vertex further than `tolerance` times the
+    /// shape's size, or `max_iterations` have run (for tests and final poses).
+    pub fn until_converged(mut self, tolerance: f64, max_iterations: usize) -> Self {
+        self.tolerance = tolerance;
+        self.iterations = max_iterations;
+        self
+    }
+}
+
+/// How the last call of [`ArapDeformer::step`] or [`ArapDeformer::iterate`] ended.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct IterationReport {
+    /// Iterations run.
+    pub iterations: usize,
+    /// The largest distance a vertex moved in the last iteration.
+    pub last_move: f64,
+    /// Whether `last_move` reached the tolerance.
+    pub converged: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Handle {
+    vertices: [u32; 3],
+    weights: [f64; 3],
+    /// The triangle the point lies in.
+    triangle: usize,
+    /// The vertex this handle pins (a hard constraint), or `NONE` for a penalty handle.
+    pinned: usize,
+}
+
+/// The ARAP deformer for one mesh.
+#[derive(Debug, Clone)]
+pub struct ArapDeformer {
+    mesh: Mesh,
+    options: ArapOptions,
+    clock: Clock,
+    /// The rest shape's bounding-box diagonal.
+    size: f64,
+    /// Per triangle, the cotangent of the rest angle at corner k, which weights the edge
+    /// opposite it, from `v[k + 1]` to `v[k + 2]`.
+    cot: Vec<[f64; 3]>,
+    /// Per triangle, the rest edge vectors `x[v[k + 1]] - x[v[k + 2]]`.
+    rest_edges: Vec<[Point; 3]>,
+    /// The cotangent Laplacian on the pattern of `matrix` (full symmetric CSC storage).
+    laplacian: Vec<f64>,
+    /// Per triangle, the slots of the 9 entries `(v[i], v[j])` (index `3 i + j`).
+    triangle_slots: Vec<[usize; 9]>,
+    /// `L` plus penalties, with pinned rows and columns replaced by the identity.
+    matrix: CsMat<f64>,
+    numeric: Numeric,
+    /// Whether `numeric` holds the factor of the current handle set.
+    factored: bool,
+    penalty: f64,
+    handles: Vec<Handle>,
+    /// Per vertex: the number of handles pinning it (0 for a free vertex).
+    pin_count: Vec<u32>,
+    /// Entries coupling a free row to a pinned column: (value, row, column).
+    coupling: Vec<(f64, usize, usize)>,
+    targets: Vec<Point>,
+    positions: Vec<Point>,
+    /// Per triangle `(cos, sin)` of the rotation of the last local step.
+    rotations: Vec<[f64; 2]>,
+    /// The displacement of the last step, per vertex.
+    field: Vec<[f64; 2]>,
+    report: IterationReport,
+    timings: Timings,
+    // Scratch for a step, committed only on success.
+    next_positions: Vec<Point>,
+    next_rotations: Vec<[f64; 2]>,
+    next_targets: Vec<Point>,
+    pin_target: Vec<Point>,
+    rhs_x: Vec<f64>,
+    rhs_y: Vec<f64>,
+}
+
+impl ArapDeformer {
+    /// Prepares a deformer for a connected mesh: cotangent weights, the Laplacian, its
+    /// ordering and symbolic analysis, and every buffer.
+    pub fn new(mesh: Mesh, options: ArapOptions) -> Result<Self, DeformError> {
+        check_options(&options)?;
+        let components = mesh.connected_components();
+        if components != 1 {
+            return Err(DeformError::Disconnected { components });
+        }
+        let n = mesh.vertex_count();
+        let m = mesh.triangle_count();
+        let x = mesh.positions();
+
+        // Pattern: column v holds rows N(v) and v, ascending (full symmetric storage).
+        let mut indptr = Vec::with_capacity(n + 1);
+        let mut indices = Vec::new();
+        indptr.push(0);
+        for v in 0..n {
+            let neighbors = mesh.neighbors(v);
+            let split = neighbors.partition_point(|&w| (w as usize) < v);
+            indices.extend(neighbors[..split].iter().map(|&w| w as usize));
+            indices.push(v);
+            indices.extend(neighbors[split..].iter().map(|&w| w as usize));
+            indptr.push(indices.len());
+        }
+        let slot = |row: usize, col: usize| {
+            let (start, end) = (indptr[col], indptr[col + 1]);
+            start + indices[start..end].binary_search(&row).expect("triangle vertices are neighbours")
+        };
+        let mut cot = Vec::with_capacity(m);
+        let mut rest_edges = Vec::with_capacity(m);
+        let mut triangle_slots = Vec::with_capacity(m);
+        let mut laplacian = vec![0.0; indices.len()];
+        for t in mesh.triangles() {
+            let p = t.map(|v| x[v as usize]);
+            let mut c = [0.0; 3];
+            let mut e = [[0.0; 2]; 3];
+            for k in 0..3 {
+                let (a, b) = (sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
+                c[k] = (a[0] * b[0] + a[1] * b[1]) / (a[0] * b[1] - a[1] * b[0]);
+                e[k] = sub(p[(k + 1) % 3], p[(k + 2) % 3]);
+            }
+            let mut s = [0; 9];
+            for i in 0..3 {
+                for j in 0..3 {
+                    s[3 * i + j] = slot(t[i] as usize, t[j] as usize);
+                }
+            }
+            for (k, &weight) in c.iter().enumerate() {
+                let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+                laplacian[s[3 * i + i]] += weight;
+                laplacian[s[3 * j + j]] += weight;
+                laplacian[s[3 * i + j]] -= weight;
+                laplacian[s[3 * j + i]] -= weight;
+            }
+            cot.push(c);
+            rest_edges.push(e);
+            triangle_slots.push(s);
+        }
+        let diagonal_sum: f64 = (0..n).map(|v| laplacian[slot(v, v)]).sum();
+        let penalty = PENALTY * diagonal_sum / n as f64;
+
+        // Vertex graph without self loops, for the orderings.
+        let (mut ptr, mut adj) = (vec![0], Vec::new());
+        for v in 0..n {
+            adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
+            ptr.push(adj.len());
+        }
+        let matrix = CsMat::new_csc((n, n), indptr, indices, laplacian.clone());
+        let analyse = |order: Vec<usize>| {
+            Symbolic::analyse(matrix.view(), &Ordering::Given(order))
+                .expect("a vertex order is a valid ordering of the vertex Laplacian")
+        };
+        let by_degree = analyse(amd_order(n, &ptr, &adj));
+        let by_dissection = analyse(nested_dissection_order(&ptr, &adj, x));
+        let best = if by_dissection.flops() < by_degree.flops() { by_dissection } else { by_degree };
+        let (lo, hi) = bounding_box(x.iter().copied()).expect("a mesh has vertices");
+
+        Ok(Self {
+            options,
+            clock: default_clock,
+            size: (hi[0] - lo[0]).hypot(hi[1] - lo[1]),
+            cot,
+            rest_edges,
+            laplacian,
+            triangle_slots,
+            matrix,
+            numeric: Numeric::new(Arc::new(best)),
+            factored: false,
+            penalty,
+            handles: Vec::new(),
+            pin_count: vec![0; n],
+            coupling: Vec::new(),
+            targets: Vec::new(),
+            positions: x.to_vec(),
+            rotations: vec![[1.0, 0.0]; m],
+            field: vec![[0.0; 2]; n],
+            report: IterationReport::default(),
+            timings: Timings::default(),
+            next_positions: x.to_vec(),
+            next_rotations: vec![[1.0, 0.0]; m],
+            next_targets: Vec::new(),
+            pin_target: vec![[0.0; 2]; n],
+            rhs_x: vec![0.0; n],
+            rhs_y: vec![0.0; n],
+            mesh,
+        })
+    }
+
+    /// Sets the clock used for [`Self::timings`] (milliseconds).
+    pub fn set_clock(&mut self, clock: Clock) {
+        self.clock = clock;
+    }
+
+    /// The mesh in its rest pose.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// Current options.
+    pub fn options(&self) -> ArapOptions {
+        self.options
+    }
+
+    /// Changes the options (they apply from the next step).
+    pub fn set_options(&mut self, options: ArapOptions) -> Result<(), DeformError> {
+        check_options(&options)?;
+        self.options = options;
+        Ok(())
+    }
+
+    /// The penalty weight `w` of handles inside triangles.
+    pub fn penalty_weight(&self) -> f64 {
+        self.penalty
+    }
+
+    /// Puts one handle on each of these vertices (replacing any handles); each is a hard
+    /// constraint.
+    pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        let n = self.mesh.vertex_count();
+        let mut corner_of = vec![NONE; n];
+        for (t, tri) in self.mesh.triangles().iter().enumerate() {
+            for &v in tri {
+                corner_of[v as usize] = t;
+            }
+        }
+        let mut handles = Vec::with_capacity(vertices.len());
+        for (handle, &vertex) in vertices.iter().enumerate() {
+            if vertex as usize >= n {
+                return Err(DeformError::VertexOutOfRange { handle, vertex, vertex_count: n });
+            }
+            let triangle = corner_of[vertex as usize];
+            let vertices = self.mesh.triangles()[triangle];
+            let weights = vertices.map(|v| if v == vertex { 1.0 } else { 0.0 });
+            handles.push(Handle { vertices, weights, triangle, pinned: vertex as usize });
+        }
+        self.install(handles);
+        Ok(())
+    }
+
+    /// Puts handles at points inside triangles, given by triangle index and barycentric
+    /// coordinates (replacing any handles). A point at a vertex pins that vertex; any
+    /// other point is held by the penalty.
+    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        if barycentric.len() != triangles.len() {
+            return Err(DeformError::Length {
+                what: "barycentric",
+                expected: 3 * triangles.len(),
+                found: 3 * barycentric.len(),
+            });
+        }
+        let m = self.mesh.triangle_count();
+        let mut handles = Vec::with_capacity(triangles.len());
+        for (handle, (&triangle, &w)) in triangles.iter().zip(barycentric).enumerate() {
+            if triangle as usize >= m {
+                return Err(DeformError::TriangleOutOfRange { handle, triangle, triangle_count: m });
+            }
+            let valid = w.iter().all(|x| x.is_finite() && *x >= -1e-12) && (w.iter().sum::<f64>() - 1.0).abs() <= 1e-9;
+            if !valid {
+                return Err(DeformError::InvalidBarycentric { handle, coordinates: w });
+            }
+            let vertices = self.mesh.triangles()[triangle as usize];
+            let pinned = (0..3).find(|&k| w[k] >= 1.0 - AT_VERTEX).map_or(NONE, |k| vertices[k] as usize);
+            handles.push(Handle { vertices, weights: w, triangle: triangle as usize, pinned });
+        }
+        self.install(handles);
+        Ok(())
+    }
+
+    /// Builds the matrix of a new handle set (its factorisation waits for the next step)
+    /// and sets the targets to the handles' current positions.
+    fn install(&mut self, handles: Vec<Handle>) {
+        self.pin_count.fill(0);
+        for h in handles.iter().filter(|h| h.pinned != NONE) {
+            self.pin_count[h.pinned] += 1;
+        }
+        let data = self.matrix.data_mut();
+        data.copy_from_slice(&self.laplacian);
+        for h in handles.iter().filter(|h| h.pinned == NONE) {
+            let slots = self.triangle_slots[h.triangle];
+            for i in 0..3 {
+                for j in 0..3 {
+                    data[slots[3 * i + j]] += self.penalty * h.weights[i] * h.weights[j];
+                }
+            }
+        }
+        self.coupling.clear();
+        let (indptr, indices) = (self.matrix.indptr().raw_storage().to_vec(), self.matrix.indices().to_vec());
+        let data = self.matrix.data_mut();
+        for col in 0..indptr.len() - 1 {
+            for p in indptr[col]..indptr[col + 1] {
+                let row = indices[p];
+                let (row_pinned, col_pinned) = (self.pin_count[row] > 0, self.pin_count[col] > 0);
+                if row == col && row_pinned {
+                    data[p] = 1.0;
+                } else if col_pinned && !row_pinned {
+                    self.coupling.push((data[p], row, col));
+                    data[p] = 0.0;
+                } else if row_pinned || col_pinned {
+                    data[p] = 0.0;
+                }
+            }
+        }
+        self.handles = handles;
+        self.targets = self.handle_positions();
+        self.next_targets = self.targets.clone();
+        self.factored = false;
+    }
+
+    fn point_of(&self, h: &Handle, positions: &[Point]) -> Point {
+        let mut p = [0.0, 0.0];
+        for (v, w) in h.vertices.iter().zip(h.weights) {
+            p[0] += w * positions[*v as usize][0];
+            p[1] += w * positions[*v as usize][1];
+        }
+        p
+    }
+
+    /// Number of handles.
+    pub fn handle_count(&self) -> usize {
+        self.handles.len()
+    }
+
+    /// Current positions of the handle points.
+    pub fn handle_positions(&self) -> Vec<Point> {
+        self.handles.iter().map(|h| self.point_of(h, &self.positions)).collect()
+    }
+
+    /// The handles' targets of the last step (their positions when the handles were set).
+    pub fn targets(&self) -> &[Point] {
+        &self.targets
+    }
+
+    /// One step: each handle's target becomes its current position plus its velocity (in
+    /// handle order), then the configured local/global iterations run from the current
+    /// pose. With no handles nothing moves.
+    pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+        if velocities.len() != self.handles.len() {
+            return Err(DeformError::Length {
+                what: "velocities",
+                expected: 2 * self.handles.len(),
+                found: 2 * velocities.len(),
+            });
+        }
+        if let Some(handle) = velocities.iter().position(|v| !v[0].is_finite() || !v[1].is_finite()) {
+            return Err(DeformError::NonFiniteVelocity { handle });
+        }
+        for (k, (h, v)) in self.handles.iter().zip(velocities).enumerate() {
+            let p = self.point_of(h, &self.positions);
+            self.next_targets[k] = [p[0] + v[0], p[1] + v[1]];
+        }
+        let options = self.options;
+        self.run(options.iterations, options.tolerance)?;
+        std::mem::swap(&mut self.targets, &mut self.next_targets);
+        Ok(())
+    }
+
+    /// More iterations towards the current targets (at most `max_iterations`, stopping
+    /// once an iteration moves no vertex further than `tolerance` times the shape's
+    /// size), without changing the targets.
+    pub fn iterate(&mut self, max_iterations: usize, tolerance: f64) -> Result<IterationReport, DeformError> {
+        if max_iterations == 0 {
+            return Err(DeformError::InvalidOption { name: "iterations", value: 0.0 });
+        }
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Err(DeformError::InvalidOption { name: "tolerance", value: tolerance });
+        }
+        self.next_targets.copy_from_slice(&self.targets);
+        self.run(max_iterations, tolerance)?;
+        Ok(self.report)
+    }
+
+    /// Iterations towards `next_targets`, committed only if all succeed.
+    fn run(&mut self, max_iterations: usize, tolerance: f64) -> Result<(), DeformError> {
+        let clock = self.clock;
+        let mut timings = Timings::default();
+        if self.handles.is_empty() {
+            self.field.fill([0.0, 0.0]);
+            self.report = IterationReport { iterations: 0, last_move: 0.0, converged: true };
+            self.timings = timings;
+            return Ok(());
+        }
+        if !self.factored {
+            let t0 = clock();
+            self.numeric.refactor(self.matrix.view())?;
+            self.factored = true;
+            timings.factorisation = clock() - t0;
+        }
+        // Pinned vertices go to the mean target of the handles pinning them.
+        for h in self.handles.iter().filter(|h| h.pinned != NONE) {
+            self.pin_target[h.pinned] = [0.0, 0.0];
+        }
+        for (h, t) in self.handles.iter().zip(&self.next_targets) {
+            if h.pinned != NONE {
+                let k = f64::from(self.pin_count[h.pinned]);
+                self.pin_target[h.pinned][0] += t[0] / k;
+                self.pin_target[h.pinned][1] += t[1] / k;
+            }
+        }
+        self.next_positions.copy_from_slice(&self.positions);
+        self.next_rotations.copy_from_slice(&self.rotations);
+        let mut report = IterationReport::default();
+        while report.iterations < max_iterations {
+            let t0 = clock();
+            self.local_step();
+            self.assemble_rhs();
+            let t1 = clock();
+            self.numeric.solve_in_place(&mut self.rhs_x)?;
+            self.numeric.solve_in_place(&mut self.rhs_y)?;
+            let t2 = clock();
+            let mut moved: f64 = 0.0;
+            for (v, p) in self.next_positions.iter_mut().enumerate() {
+                let q = if self.pin_count[v] > 0 { self.pin_target[v] } else { [self.rhs_x[v], self.rhs_y[v]] };
+                if !(q[0].is_finite() && q[1].is_finite()) {
+                    return Err(DeformError::NonFiniteResult);
+                }
+                moved = moved.max((q[0] - p[0]).hypot(q[1] - p[1]));
+                *p = q;
+            }
+            let t3 = clock();
+            timings.assembly += t1 - t0;
+            timings.solve += t2 - t1;
+            timings.integration += t3 - t2;
+            report.iterations += 1;
+            report.last_move = moved;
+            if moved <= tolerance * self.size {
+                report.converged = true;
+                break;
+            }
+        }
+        for ((f, p), q) in self.field.iter_mut().zip(&self.positions).zip(&self.next_positions) {
+            *f = [q[0] - p[0], q[1] - p[1]];
+        }
+        std::mem::swap(&mut self.positions, &mut self.next_positions);
+        std::mem::swap(&mut self.rotations, &mut self.next_rotations);
+        self.report = report;
+        self.timings = timings;
+        Ok(())
+    }
+
+    /// The local step at `next_positions` into `next_rotations`.
+    fn local_step(&mut self) {
+        let u = &self.next_positions;
+        for (((t, c), e), r) in
+            self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&mut self.next_rotations)
+        {
+            if let Some(rotation) = best_rotation(t.map(|v| u[v as usize]), c, e) {
+                *r = rotation;
+            }
+        }
+    }
+
+    /// The global step's right-hand sides for the rotations in `next_rotations`.
+    fn assemble_rhs(&mut self) {
+        self.rhs_x.fill(0.0);
+        self.rhs_y.fill(0.0);
+        for (((t, c), e), r) in
+            self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&self.next_rotations)
+        {
+            for k in 0..3 {
+                let d = [c[k] * (r[0] * e[k][0] - r[1] * e[k][1]), c[k] * (r[1] * e[k][0] + r[0] * e[k][1])];
+                let (i, j) = (t[(k + 1) % 3] as usize, t[(k + 2) % 3] as usize);
+                self.rhs_x[i] += d[0];
+                self.rhs_y[i] += d[1];
+                self.rhs_x[j] -= d[0];
+                self.rhs_y[j] -= d[1];
+            }
+        }
+        for (h, target) in self.handles.iter().zip(&self.next_targets) {
+            if h.pinned == NONE {
+                for (v, w) in h.vertices.iter().zip(h.weights) {
+                    self.rhs_x[*v as usize] += self.penalty * w * target[0];
+                    self.rhs_y[*v as usize] += self.penalty * w * target[1];
+                }
+            }
+        }
+        for &(value, row, col) in &self.coupling {
+            self.rhs_x[row] -= value * self.pin_target[col][0];
+            self.rhs_y[row] -= value * self.pin_target[col][1];
+        }
+        for (v, &count) in self.pin_count.iter().enumerate() {
+            if count > 0 {
+                self.rhs_x[v] = self.pin_target[v][0];
+                self.rhs_y[v] = self.pin_target[v][1];
+            }
+        }
+    }
+
+    /// The energy `E` of the current pose with the best rotations and the current
+    /// targets (the quantity each iteration lowers).
+    pub fn energy(&self) -> f64 {
+        let u = &self.positions;
+        let mut energy = 0.0;
+        for ((t, c), e) in self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges) {
+            let p = t.map(|v| u[v as usize]);
+            let r = best_rotation(p, c, e).unwrap_or([1.0, 0.0]);
+            for k in 0..3 {
+                let d = sub(p[(k + 1) % 3], p[(k + 2) % 3]);
+                let re = [r[0] * e[k][0] - r[1] * e[k][1], r[1] * e[k][0] + r[0] * e[k][1]];
+                energy += 0.5 * c[k] * ((d[0] - re[0]).powi(2) + (d[1] - re[1]).powi(2));
+            }
+        }
+        for (h, target) in self.handles.iter().zip(&self.targets) {
+            if h.pinned == NONE {
+                let p = self.point_of(h, u);
+                energy += 0.5 * self.penalty * ((p[0] - target[0]).powi(2) + (p[1] - target[1]).powi(2));
+            }
+        }
+        energy
+    }
+
+    /// Back to the rest pose with identity rotations; handles stay, their targets become
+    /// their rest positions.
+    pub fn reset(&mut self) {
+        self.positions.copy_from_slice(self.mesh.positions());
+        self.rotations.fill([1.0, 0.0]);
+        self.field.fill([0.0, 0.0]);
+        let targets = self.handle_positions();
+        self.targets.copy_from_slice(&targets);
+    }
+
+    /// Puts the mesh into a given pose (undo, saved poses); handles stay, their targets
+    /// become their positions in that pose. Fails, changing nothing, for a wrong length or a
+    /// non-finite coordinate.
+    pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
+        if positions.len() != self.positions.len() {
+            return Err(DeformError::Length {
+                what: "positions",
+                expected: self.positions.len(),
+                found: positions.len(),
+            });
+        }
+        if let Some(vertex) = positions.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+            return Err(DeformError::NonFinitePosition { vertex });
+        }
+        self.positions.copy_from_slice(positions);
+        self.field.fill([0.0, 0.0]);
+        let targets = self.handle_positions();
+        self.targets.copy_from_slice(&targets);
+        Ok(())
+    }
+
+    /// Current vertex positions.
+    pub fn positions(&self) -> &[Point] {
+        &self.positions
+    }
+
+    /// Per triangle, `(cos, sin)` of the rotation found by the last local step.
+    pub fn rotations(&self) -> &[[f64; 2]] {
+        &self.rotations
+    }
+
+    /// How far each vertex moved in the last step.
+    pub fn field(&self) -> &[[f64; 2]] {
+        &self.field
+    }
+
+    /// How the last step's iterations ended.
+    pub fn report(&self) -> IterationReport {
+        self.report
+    }
+
+    /// Stage timings of the last step: `assembly` the local steps and right-hand sides,
+    /// `factorisation` the refactorisation after a change of handles (0 otherwise),
+    /// `solve` the triangular solves, `integration` the update of the positions.
+    pub fn timings(&self) -> Timings {
+        self.timings
+    }
+
+    /// Distortion of the current pose against the rest pose.
+    pub fn metrics(&self) -> Metrics {
+        metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
+    }
+
+    /// Factor statistics of the global system: (nnz(L), flops).
+    pub fn factor_stats(&self) -> (usize, f64) {
+        let s = self.numeric.symbolic();
+        (s.nnz_l(), s.flops())
+    }
+}
+
+/// The rotation `(cos, sin)` maximising `tr(R^T S)` for `S = sum_k c_k d_k e_k^T`, with
+/// `d_k` the current and `e_k` the rest edge opposite corner k; `None` when every
+/// rotation is equally good (`S` has no rotational part).
+fn best_rotation(p: [Point; 3], c: &[f64; 3], e: &[Point; 3]) -> Option<[f64; 2]> {
+    let mut s = [[0.0; 2]; 2];
+    for k in 0..3 {
+        let d = sub(p[(k + 1) % 3], p[(k + 2) % 3]);
+        for (a, row) in s.iter_mut().enumerate() {
+            for (b, entry) in row.iter_mut().enumerate() {
+                *entry += c[k] * d[a] * e[k][b];
+            }
+        }
+    }
+    // tr(R^T S) = cos (S00 + S11) + sin (S10 - S01).
+    let (x, y) = (s[0][0] + s[1][1], s[1][0] - s[0][1]);
+    let r = x.hypot(y);
+    (r > 0.0 && r.is_finite()).then(|| [x / r, y / r])
+}
+
+fn sub(a: Point, b: Point) -> Point {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn check_options(options: &ArapOptions) -> Result<(), DeformError> {
+    if options.iterations == 0 {
+        return Err(DeformError::InvalidOption { name: "iterations", value: 0.0 });
+    }
+    if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
+        return Err(DeformError::InvalidOption { name: "tolerance", value: options.tolerance });
+    }
+    Ok(())
+}
