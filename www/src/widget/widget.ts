@@ -15,8 +15,6 @@ import {
   builtinShape,
   builtinShapes,
   init,
-  meshFromArrays,
-  triangulate,
   type DeformerOptions,
   type MeshData,
   type Metrics,
@@ -26,14 +24,16 @@ import {
 import { Canvas2dRenderer } from "./canvas2d.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
 import { download, meshJson, meshObj, outlineSvg } from "./export.js";
-import { boxUvs, uniqueEdges } from "./geometry.js";
+
 import { GlRenderer, type MeshRenderer } from "./gl.js";
 import { History } from "./history.js";
 import { Hud } from "./hud.js";
 import { keyCommand } from "./keys.js";
+import { PointerInput } from "./pointer.js";
 import { HANDLE_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { locate, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
-import { Recorder, parseSession, type Session, type SessionEvent, type ShapeSpec } from "./session.js";
+import { Recorder, parseSession, type Session, type SessionEvent } from "./session.js";
+import { meshOutline, sessionShape, type Shape } from "./shape.js";
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
 import { buildToolbar, type Toolbar } from "./toolbar.js";
@@ -119,15 +119,6 @@ interface Snapshot {
   handles: { point: MeshPoint; target: [number, number] }[];
 }
 
-interface Shape {
-  mesh: MeshData;
-  spec: ShapeSpec | undefined;
-  edges: Uint32Array;
-  uvs: Float32Array;
-  /** Largest side of the rest bounding box. */
-  size: number;
-}
-
 const DEFAULTS = {
   vertices: 1500,
   minAngle: 28,
@@ -139,8 +130,6 @@ const DEFAULTS = {
 
 /** Frames without input after which the loop stops even if pins have not settled. */
 const SETTLE_FRAMES = 240;
-/** Press time in ms after which a still pointer on a handle removes it (touch). */
-const LONG_PRESS_MS = 650;
 
 export class Widget {
   /** The element the widget was mounted into; events are dispatched on it. */
@@ -169,7 +158,7 @@ export class Widget {
   #atRest = true;
   #gestureBefore: Snapshot | undefined;
   #gestureChanged = false;
-  #longPress: ReturnType<typeof setTimeout> | undefined;
+  #pointer: PointerInput | undefined;
   #lastField: Float64Array | undefined;
   #metrics: Metrics = { areaDistortion: 2, angleDistortion: 2, flipped: 0 };
   #replaying = false;
@@ -261,11 +250,9 @@ export class Widget {
     await init();
     const widget = new Widget(target, options);
     try {
-      const outline = options.outline ?? builtinShape(options.shape ?? builtinShapes()[0]!);
-      const spec = options.outline
-        ? undefined
-        : { name: options.shape ?? builtinShapes()[0]!, minAngle: 0, targetEdgeLength: 0 };
-      widget.#install(widget.#buildShape(outline, spec, widget.#settings.vertices));
+      const name = options.outline ? undefined : (options.shape ?? builtinShapes()[0]!);
+      const outline = options.outline ?? builtinShape(name!);
+      widget.#install(meshOutline(outline, name, widget.#settings.vertices, widget.#settings.minAngle));
       widget.#renderer.setTexture(options.texture ? await loadImage(options.texture) : defaultTexture());
     } catch (error) {
       widget.destroy();
@@ -409,7 +396,7 @@ export class Widget {
   setShape(name: string | undefined, vertices = this.#settings.vertices): void {
     const spec = name ?? this.#shape.spec?.name;
     if (!spec) throw new Error("this widget shows a custom outline; give a built-in shape name");
-    const shape = this.#buildShape(builtinShape(spec), { name: spec, minAngle: 0, targetEdgeLength: 0 }, vertices);
+    const shape = meshOutline(builtinShape(spec), spec, vertices, this.#settings.minAngle);
     this.#settings.vertices = vertices;
     this.#install(shape);
     this.#resize();
@@ -417,7 +404,7 @@ export class Widget {
 
   /** Shows a custom outline instead (triangulated to about `vertices` vertices). */
   setOutline(outline: Outline, vertices = this.#settings.vertices): void {
-    this.#install(this.#buildShape(outline, undefined, vertices));
+    this.#install(meshOutline(outline, undefined, vertices, this.#settings.minAngle));
     this.#resize();
   }
 
@@ -468,7 +455,7 @@ export class Widget {
     const s = typeof session === "string" ? parseSession(session) : session;
     if (this.#replaying) throw new Error("a replay is already running");
     this.#releasePointers();
-    const shape = this.#sessionShape(s);
+    const shape = sessionShape(s, this.#shape);
     if (shape.mesh.vertexCount !== s.mesh.vertexCount || shape.mesh.triangleCount !== s.mesh.triangleCount) {
       throw new Error(
         `the session's mesh has ${s.mesh.vertexCount} vertices and ${s.mesh.triangleCount} triangles, ` +
@@ -556,7 +543,7 @@ export class Widget {
     this.#destroyed = true;
     if (this.#raf) cancelAnimationFrame(this.#raf);
     this.#raf = 0;
-    clearTimeout(this.#longPress);
+    this.#pointer?.destroy();
     this.#resizeObserver.disconnect();
     this.#renderer.destroy();
     this.#deformer?.free();
@@ -565,69 +552,6 @@ export class Widget {
   }
 
   // ---------------------------------------------------------------- shape and deformer
-
-  #buildShape(outline: Outline, spec: ShapeSpec | undefined, vertices: number): Shape {
-    if (!(Number.isFinite(vertices) && vertices >= 50 && vertices <= 100_000)) {
-      throw new RangeError(`the vertex count ${vertices} is outside 50..100000`);
-    }
-    const minAngle = this.#settings.minAngle;
-    // An equilateral mesh of edge h has about 2 / (sqrt(3) h^2) vertices per unit area;
-    // aim with the outline's area, then correct once with the count we got.
-    let edge = Math.sqrt((2 * outlineArea(outline)) / (Math.sqrt(3) * vertices));
-    let mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: 4 * vertices + 1000 });
-    if (Math.abs(mesh.vertexCount - vertices) > 0.1 * vertices) {
-      edge *= Math.sqrt(mesh.vertexCount / vertices);
-      mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: 4 * vertices + 1000 });
-    }
-    return this.#shapeFromMesh(mesh, spec ? { name: spec.name, targetEdgeLength: edge, minAngle } : undefined);
-  }
-
-  #shapeFromMesh(mesh: MeshData, spec: ShapeSpec | undefined): Shape {
-    let minX = Infinity;
-    let maxX = -Infinity;
-    let minY = Infinity;
-    let maxY = -Infinity;
-    for (let i = 0; i + 1 < mesh.positions.length; i += 2) {
-      minX = Math.min(minX, mesh.positions[i]!);
-      maxX = Math.max(maxX, mesh.positions[i]!);
-      minY = Math.min(minY, mesh.positions[i + 1]!);
-      maxY = Math.max(maxY, mesh.positions[i + 1]!);
-    }
-    return {
-      mesh,
-      spec,
-      edges: uniqueEdges(mesh.triangles, mesh.vertexCount),
-      uvs: boxUvs(mesh.positions),
-      size: Math.max(maxX - minX, maxY - minY) || 1,
-    };
-  }
-
-  /** The shape a session needs: the current one if it matches, else rebuilt. */
-  #sessionShape(session: Session): Shape {
-    const spec = session.shape;
-    const current = this.#shape.spec;
-    if (spec) {
-      if (
-        current &&
-        current.name === spec.name &&
-        current.targetEdgeLength === spec.targetEdgeLength &&
-        current.minAngle === spec.minAngle
-      ) {
-        return this.#shape;
-      }
-      const mesh = triangulate(builtinShape(spec.name), {
-        targetEdgeLength: spec.targetEdgeLength,
-        minAngle: spec.minAngle,
-        maxVertices: 4 * session.mesh.vertexCount + 1000,
-      });
-      return this.#shapeFromMesh(mesh, { ...spec });
-    }
-    const { positions, triangles } = session.mesh;
-    if (!positions || !triangles) throw new Error("the session names no shape and carries no mesh");
-    const m = this.#shape.mesh;
-    if (!current && sameArray(m.positions, positions) && sameArray(m.triangles, triangles)) return this.#shape;
-    return this.#shapeFromMesh(meshFromArrays(positions, triangles), undefined);
-  }
 
   /** Makes `shape` current with a fresh deformer; fails without changing anything. */
   #install(shape: Shape): void {
@@ -942,109 +866,82 @@ export class Widget {
   // ---------------------------------------------------------------- input
 
   #bindInput(): void {
-    const overlay = this.#overlay;
-    overlay.addEventListener("pointerdown", (e) => this.#pointerDown(e));
-    overlay.addEventListener("pointermove", (e) => this.#pointerMove(e));
-    overlay.addEventListener("pointerup", (e) => this.#pointerUp(e));
-    overlay.addEventListener("pointercancel", (e) => this.#pointerUp(e));
-    overlay.addEventListener("dblclick", (e) => {
-      const index = this.#handleAt(e);
-      if (index >= 0) this.removeHandle(index);
-    });
-    overlay.addEventListener("contextmenu", (e) => e.preventDefault());
-    this.#root.addEventListener("keydown", (e) => this.#key(e));
-  }
-
-  /** Shape coordinates of a pointer event. */
-  #shapePoint(e: MouseEvent): [number, number] {
-    const rect = this.#overlay.getBoundingClientRect();
-    return fromPixel(this.#view, (e.clientX - rect.left) * this.#ratio, (e.clientY - rect.top) * this.#ratio);
-  }
-
-  #handleAt(e: MouseEvent): number {
-    const [x, y] = this.#shapePoint(e);
-    const radius = (1.6 * HANDLE_RADIUS * this.#ratio) / this.#view.scale;
-    return nearestPoint(this.#deformer.handlePositions(), x, y, radius);
-  }
-
-  #pointerDown(e: PointerEvent): void {
-    if (this.#replaying || e.button > 0) return;
-    this.#root.focus({ preventScroll: true });
-    const [x, y] = this.#shapePoint(e);
-    let index = this.#handleAt(e);
-    const before = this.#gestureBefore ?? this.#snapshot();
-    const existed = index >= 0;
-    if (index < 0) {
-      const tolerance = (4 * this.#ratio) / this.#view.scale;
-      const point = locate(this.#deformer.positionsView(), this.#shape.mesh.triangles, x, y, tolerance);
-      if (!point) {
-        if (!e.shiftKey) this.#handles.forEach((h) => (h.selected = false));
+    const ratio = () => this.#ratio;
+    this.#pointer = new PointerInput(this.#overlay, {
+      accepting: () => !this.#replaying,
+      focus: () => this.#root.focus({ preventScroll: true }),
+      toShape: (clientX, clientY) => {
+        const rect = this.#overlay.getBoundingClientRect();
+        return fromPixel(this.#view, (clientX - rect.left) * ratio(), (clientY - rect.top) * ratio());
+      },
+      handleAt: (x, y) => {
+        const radius = (1.6 * HANDLE_RADIUS * ratio()) / this.#view.scale;
+        return nearestPoint(this.#deformer.handlePositions(), x, y, radius);
+      },
+      beginGesture: () => {
+        this.#gestureBefore ??= this.#snapshot();
+      },
+      addHandleAt: (x, y) => {
+        const tolerance = (4 * ratio()) / this.#view.scale;
+        const point = locate(this.#deformer.positionsView(), this.#shape.mesh.triangles, x, y, tolerance);
+        if (!point) return -1;
+        this.#addHandle(point);
+        this.#gestureChanged = true;
+        return this.#handles.length - 1;
+      },
+      grab: (index, pointerId, x, y, additive) => {
+        const handle = this.#handles[index]!;
+        if (handle.pointerId !== undefined) return false; // another finger has it
+        if (!additive && !handle.selected) this.#handles.forEach((h) => (h.selected = false));
+        handle.selected = additive ? !handle.selected : true;
+        const p = this.#deformer.handlePositions();
+        handle.pointerId = pointerId;
+        handle.grab = [p[2 * index]! - x, p[2 * index + 1]! - y];
+        handle.target = [p[2 * index]!, p[2 * index + 1]!];
         this.#draw();
-        return;
-      }
-      this.#addHandle(point);
-      index = this.#handles.length - 1;
-      this.#gestureChanged = true;
-    }
-    const handle = this.#handles[index]!;
-    if (handle.pointerId !== undefined) return; // another finger has it
-    if (!e.shiftKey && !handle.selected) this.#handles.forEach((h) => (h.selected = false));
-    handle.selected = e.shiftKey ? !handle.selected : true;
-    const p = this.#deformer.handlePositions();
-    handle.pointerId = e.pointerId;
-    handle.grab = [p[2 * index]! - x, p[2 * index + 1]! - y];
-    handle.target = [p[2 * index]!, p[2 * index + 1]!];
-    this.#gestureBefore = before;
-    this.#overlay.setPointerCapture(e.pointerId);
-    e.preventDefault();
-    clearTimeout(this.#longPress);
-    const start: [number, number] = [e.clientX, e.clientY];
-    // A long still press on an existing handle removes it: the touch way to delete.
-    if (existed && e.pointerType !== "mouse")
-      this.#longPress = setTimeout(() => {
-        if (
-          handle.pointerId === e.pointerId &&
-          Math.hypot(this.#lastClient[0] - start[0], this.#lastClient[1] - start[1]) < 6
-        ) {
-          const at = this.#handles.indexOf(handle);
-          if (at >= 0) {
-            handle.pointerId = undefined;
-            this.#handles.splice(at, 1);
-            this.#applyHandles();
-            this.#gestureChanged = true;
-            this.#endDragGesture();
-            this.#draw();
-          }
-        }
-      }, LONG_PRESS_MS);
-    this.#lastClient = start;
-    this.#draw();
-    this.#schedule();
-  }
-
-  #lastClient: [number, number] = [0, 0];
-
-  #pointerMove(e: PointerEvent): void {
-    const handle = this.#handles.find((h) => h.pointerId === e.pointerId);
-    if (!handle) return;
-    this.#lastClient = [e.clientX, e.clientY];
-    const [x, y] = this.#shapePoint(e);
-    const next: [number, number] = [x + handle.grab[0], y + handle.grab[1]];
-    handle.pending = [handle.pending[0] + next[0] - handle.target[0], handle.pending[1] + next[1] - handle.target[1]];
-    handle.target = next;
-    this.#idleFrames = 0;
-    this.#schedule();
-  }
-
-  #pointerUp(e: PointerEvent): void {
-    const handle = this.#handles.find((h) => h.pointerId === e.pointerId);
-    if (!handle) return;
-    handle.pointerId = undefined;
-    clearTimeout(this.#longPress);
-    if (this.#overlay.hasPointerCapture(e.pointerId)) this.#overlay.releasePointerCapture(e.pointerId);
-    this.#endDragGesture();
-    this.#draw();
-    this.#schedule();
+        this.#schedule();
+        return true;
+      },
+      drag: (pointerId, x, y) => {
+        const handle = this.#handles.find((h) => h.pointerId === pointerId);
+        if (!handle) return;
+        const next: [number, number] = [x + handle.grab[0], y + handle.grab[1]];
+        handle.pending = [
+          handle.pending[0] + next[0] - handle.target[0],
+          handle.pending[1] + next[1] - handle.target[1],
+        ];
+        handle.target = next;
+        this.#idleFrames = 0;
+        this.#schedule();
+      },
+      release: (pointerId) => {
+        const handle = this.#handles.find((h) => h.pointerId === pointerId);
+        if (handle) handle.pointerId = undefined;
+        this.#endDragGesture();
+        this.#draw();
+        this.#schedule();
+      },
+      removeHeld: (pointerId) => {
+        const at = this.#handles.findIndex((h) => h.pointerId === pointerId);
+        if (at < 0) return;
+        this.#handles.splice(at, 1);
+        this.#applyHandles();
+        this.#gestureChanged = true;
+        this.#endDragGesture();
+        this.#draw();
+      },
+      removeAt: (x, y) => {
+        const radius = (1.6 * HANDLE_RADIUS * ratio()) / this.#view.scale;
+        const index = nearestPoint(this.#deformer.handlePositions(), x, y, radius);
+        if (index >= 0) this.removeHandle(index);
+      },
+      pressedOff: (additive) => {
+        if (!additive) this.#handles.forEach((h) => (h.selected = false));
+        this.#endDragGesture();
+        this.#draw();
+      },
+    });
+    this.#root.addEventListener("keydown", (e) => this.#key(e));
   }
 
   #key(e: KeyboardEvent): void {
@@ -1213,30 +1110,11 @@ export function mount(element: HTMLElement, options: WidgetOptions = {}): Promis
   return Widget.create(element, options);
 }
 
-function outlineArea(outline: Outline): number {
-  const ring = (points: ArrayLike<number>): number => {
-    let twice = 0;
-    const n = points.length / 2;
-    for (let i = 0; i < n; i++) {
-      const j = (i + 1) % n;
-      twice += points[2 * i]! * points[2 * j + 1]! - points[2 * j]! * points[2 * i + 1]!;
-    }
-    return Math.abs(twice) / 2;
-  };
-  return Math.max(ring(outline.outer) - (outline.holes ?? []).reduce((sum, h) => sum + ring(h), 0), 1e-12);
-}
-
 /** Deformer options of a widget method; lambda applies to the AKAP variants only. */
 function methodOptions(method: Method, lambda: number): DeformerOptions {
   const options: DeformerOptions = { ...METHODS[method].options };
   if (options.method === "akap") options.lambda = lambda;
   return options;
-}
-
-function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
-  if (a.length !== b.length) return false;
-  for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
-  return true;
 }
 
 function nextFrame(): Promise<void> {

@@ -1,0 +1,104 @@
+/**
+ * What the widget deforms: a validated mesh with its edges, texture coordinates and size,
+ * and how it was made (a built-in shape's name and triangulation, so sessions can rebuild
+ * it exactly).
+ */
+import { builtinShape, meshFromArrays, triangulate, type MeshData, type Outline } from "../core.js";
+import type { Session, ShapeSpec } from "./session.js";
+import { boxUvs, uniqueEdges } from "./geometry.js";
+import { bounds } from "./view.js";
+
+export interface Shape {
+  mesh: MeshData;
+  /** Set for built-in shapes: how to rebuild the mesh. */
+  spec: ShapeSpec | undefined;
+  edges: Uint32Array;
+  /** Texture coordinates, 2 per vertex, v up. */
+  uvs: Float32Array;
+  /** Largest side of the rest bounding box. */
+  size: number;
+}
+
+/** Most vertices a widget mesh may have. */
+export const MAX_VERTICES = 100_000;
+
+/**
+ * Triangulates an outline to about `vertices` vertices: an equilateral mesh of edge h has
+ * about 2 / (sqrt(3) h^2) vertices per unit area, so aim with the outline's area, then
+ * correct the edge length once with the count obtained. `name` marks a built-in shape.
+ */
+export function meshOutline(outline: Outline, name: string | undefined, vertices: number, minAngle: number): Shape {
+  if (!(Number.isFinite(vertices) && vertices >= 50 && vertices <= MAX_VERTICES)) {
+    throw new RangeError(`the vertex count ${vertices} is outside 50..${MAX_VERTICES}`);
+  }
+  const limit = Math.min(4 * vertices + 1000, MAX_VERTICES);
+  let edge = Math.sqrt((2 * outlineArea(outline)) / (Math.sqrt(3) * vertices));
+  let mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: limit });
+  if (Math.abs(mesh.vertexCount - vertices) > 0.1 * vertices) {
+    edge *= Math.sqrt(mesh.vertexCount / vertices);
+    mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: limit });
+  }
+  return shapeFromMesh(mesh, name === undefined ? undefined : { name, targetEdgeLength: edge, minAngle });
+}
+
+/** A shape from a mesh; texture coordinates from its bounding box unless given. */
+export function shapeFromMesh(mesh: MeshData, spec: ShapeSpec | undefined, uvs?: ArrayLike<number>): Shape {
+  const b = bounds(mesh.positions);
+  if (uvs !== undefined && uvs.length !== mesh.positions.length) {
+    throw new Error(`the mesh has ${uvs.length / 2} texture coordinates for ${mesh.vertexCount} vertices`);
+  }
+  return {
+    mesh,
+    spec,
+    edges: uniqueEdges(mesh.triangles, mesh.vertexCount),
+    uvs: uvs === undefined ? boxUvs(mesh.positions) : Float32Array.from(uvs),
+    size: Math.max(b.maxX - b.minX, b.maxY - b.minY) || 1,
+  };
+}
+
+/** The shape a session needs: `current` if it is that shape, else rebuilt from the session. */
+export function sessionShape(session: Session, current: Shape): Shape {
+  const spec = session.shape;
+  const now = current.spec;
+  if (spec) {
+    if (
+      now &&
+      now.name === spec.name &&
+      now.targetEdgeLength === spec.targetEdgeLength &&
+      now.minAngle === spec.minAngle
+    ) {
+      return current;
+    }
+    const mesh = triangulate(builtinShape(spec.name), {
+      targetEdgeLength: spec.targetEdgeLength,
+      minAngle: spec.minAngle,
+      maxVertices: Math.min(4 * session.mesh.vertexCount + 1000, MAX_VERTICES),
+    });
+    return shapeFromMesh(mesh, { ...spec });
+  }
+  const { positions, triangles } = session.mesh;
+  if (!positions || !triangles) throw new Error("the session names no shape and carries no mesh");
+  const m = current.mesh;
+  if (!now && sameArray(m.positions, positions) && sameArray(m.triangles, triangles)) return current;
+  return shapeFromMesh(meshFromArrays(positions, triangles), undefined);
+}
+
+/** Area of an outline: the outer ring's less the holes'. */
+export function outlineArea(outline: Outline): number {
+  const ring = (points: ArrayLike<number>): number => {
+    let twice = 0;
+    const n = points.length / 2;
+    for (let i = 0; i < n; i++) {
+      const j = (i + 1) % n;
+      twice += points[2 * i]! * points[2 * j + 1]! - points[2 * j]! * points[2 * i + 1]!;
+    }
+    return Math.abs(twice) / 2;
+  };
+  return Math.max(ring(outline.outer) - (outline.holes ?? []).reduce((sum, h) => sum + ring(h), 0), 1e-12);
+}
+
+function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
+  if (a.length !== b.length) return false;
+  for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
+  return true;
+}
