@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use crate::import::ImportError;
 use crate::mesh::MeshError;
 use crate::outline::OutlineError;
 use crate::triangulate::TriangulationError;
@@ -14,6 +15,8 @@ pub enum Error {
     Mesh(MeshError),
     /// An outline or its options could not be triangulated.
     Triangulation(TriangulationError),
+    /// An SVG, image or mesh file could not be imported.
+    Import(ImportError),
 }
 
 impl fmt::Display for Error {
@@ -21,6 +24,7 @@ impl fmt::Display for Error {
         match self {
             Self::Mesh(e) => e.fmt(f),
             Self::Triangulation(e) => e.fmt(f),
+            Self::Import(e) => e.fmt(f),
         }
     }
 }
@@ -30,6 +34,7 @@ impl std::error::Error for Error {
         match self {
             Self::Mesh(e) => Some(e),
             Self::Triangulation(e) => Some(e),
+            Self::Import(e) => Some(e),
         }
     }
 }
@@ -49,5 +54,11 @@ impl From<TriangulationError> for Error {
 impl From<OutlineError> for Error {
     fn from(e: OutlineError) -> Self {
         Self::Triangulation(TriangulationError::Outline(e))
+    }
+}
+
+impl From<ImportError> for Error {
+    fn from(e: ImportError) -> Self {
+        Self::Import(e)
     }
 }

@@ -24,6 +24,7 @@
 pub mod deform;
 pub mod error;
 pub mod geometry;
+pub mod import;
 pub mod mesh;
 pub mod outline;
 pub mod shapes;
