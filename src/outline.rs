@@ -216,12 +216,9 @@ struct Segment {
 /// their shared point.
 pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), OutlineError> {
     match meeting_segments(rings, true).first() {
-        Some(&[(ring_a, segment_a), (ring_b, segment_b)]) => Err(OutlineError::SelfIntersection {
-            ring_a: Ring(ring_a),
-            segment_a,
-            ring_b: Ring(ring_b),
-            segment_b,
-        }),
+        Some(&[(ring_a, segment_a), (ring_b, segment_b)]) => {
+            Err(OutlineError::SelfIntersection { ring_a: Ring(ring_a), segment_a, ring_b: Ring(ring_b), segment_b })
+        }
         None => Ok(()),
     }
 }

@@ -2,6 +2,7 @@
 
 mod common;
 mod deformer;
+mod import_svg;
 mod killing;
 mod sparse;
 mod triangulation;

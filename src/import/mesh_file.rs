@@ -101,14 +101,51 @@ pub fn write_json(mesh: &Mesh, uvs: Option<&[Point]>) -> Result<String, ImportEr
         triangles: mesh.triangles().iter().flatten().copied().collect(),
         uvs: uvs.map(|u| u.iter().flatten().copied().collect()),
     };
-    serde_json::to_string(&json).map_err(|e| ImportError::Syntax { format: "JSON", message: e.to_string(), line: 0, column: 0 })
+    serde_json::to_string(&json).map_err(|e| ImportError::Syntax {
+        format: "JSON",
+        message: e.to_string(),
+        line: 0,
+        column: 0,
+    })
 }
 
 /// OBJ statements that carry nothing for a flat triangle mesh; they are skipped.
 const OBJ_IGNORED: [&str; 35] = [
-    "vn", "vp", "o", "g", "s", "usemtl", "mtllib", "l", "p", "mg", "cstype", "deg", "bmat", "step", "curv", "curv2",
-    "surf", "parm", "trim", "hole", "scrv", "sp", "end", "con", "bevel", "c_interp", "d_interp", "lod", "usemap",
-    "maplib", "shadow_obj", "trace_obj", "ctech", "stech", "call",
+    "vn",
+    "vp",
+    "o",
+    "g",
+    "s",
+    "usemtl",
+    "mtllib",
+    "l",
+    "p",
+    "mg",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "lod",
+    "usemap",
+    "maplib",
+    "shadow_obj",
+    "trace_obj",
+    "ctech",
+    "stech",
+    "call",
 ];
 
 /// Reads a Wavefront OBJ mesh in the xy plane: `v x y [z]` (z must be 0), `vt u v`, and
@@ -133,7 +170,7 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
         if line.ends_with('\\') {
             joined.clear();
             joined.push_str(&line[..line.len() - 1]);
-            while let Some((_, next)) = lines.next() {
+            for (_, next) in lines.by_ref() {
                 let next = next.strip_suffix('\r').unwrap_or(next);
                 match next.strip_suffix('\\') {
                     Some(part) => joined.push_str(part),
@@ -147,7 +184,8 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
             line = &joined;
         }
         let content = line.split('#').next().unwrap_or("");
-        let column_of = |token: &str| content[..token.as_ptr() as usize - content.as_ptr() as usize].chars().count() + 1;
+        let column_of =
+            |token: &str| content[..token.as_ptr() as usize - content.as_ptr() as usize].chars().count() + 1;
         let error = |token: &str, message: String| ImportError::Syntax {
             format: "OBJ",
             message,
@@ -166,13 +204,20 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
         match keyword {
             "v" => {
                 if !(2..=7).contains(&args.len()) {
-                    return Err(error(keyword, format!("a vertex needs x and y (and z = 0), found {} numbers", args.len())));
+                    return Err(error(
+                        keyword,
+                        format!("a vertex needs x and y (and z = 0), found {} numbers", args.len()),
+                    ));
                 }
                 let values = args.iter().map(|a| number(a)).collect::<Result<Vec<f64>, _>>()?;
                 if values.len() > 2 && values[2] != 0.0 {
                     return Err(error(
                         args[2],
-                        format!("vertex {} has z = {}; only flat meshes in the xy plane can be read", positions.len() + 1, values[2]),
+                        format!(
+                            "vertex {} has z = {}; only flat meshes in the xy plane can be read",
+                            positions.len() + 1,
+                            values[2]
+                        ),
                     ));
                 }
                 Limits::check(positions.len() + 1, limits.max_vertices, "the mesh", "vertices")?;
@@ -181,7 +226,10 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
             }
             "vt" => {
                 if !(1..=3).contains(&args.len()) {
-                    return Err(error(keyword, format!("a texture coordinate needs u and v, found {} numbers", args.len())));
+                    return Err(error(
+                        keyword,
+                        format!("a texture coordinate needs u and v, found {} numbers", args.len()),
+                    ));
                 }
                 let u = number(args[0])?;
                 let v = args.get(1).map(|a| number(a)).transpose()?.unwrap_or(0.0);
@@ -195,19 +243,20 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
                 let mut corners = Vec::with_capacity(args.len());
                 for token in &args {
                     let mut parts = token.split('/');
-                    let resolve = |part: Option<&str>, count: usize, what: &str| -> Result<Option<usize>, ImportError> {
-                        let Some(part) = part.filter(|p| !p.is_empty()) else { return Ok(None) };
-                        let index: i64 =
-                            part.parse().map_err(|_| error(token, format!("`{part}` is not a {what} index")))?;
-                        let resolved = if index > 0 { index - 1 } else { count as i64 + index };
-                        if index == 0 || resolved < 0 || resolved >= count as i64 {
-                            return Err(error(
-                                token,
-                                format!("{what} index {index} is out of range: {count} defined so far"),
-                            ));
-                        }
-                        Ok(Some(resolved as usize))
-                    };
+                    let resolve =
+                        |part: Option<&str>, count: usize, what: &str| -> Result<Option<usize>, ImportError> {
+                            let Some(part) = part.filter(|p| !p.is_empty()) else { return Ok(None) };
+                            let index: i64 =
+                                part.parse().map_err(|_| error(token, format!("`{part}` is not a {what} index")))?;
+                            let resolved = if index > 0 { index - 1 } else { count as i64 + index };
+                            if index == 0 || resolved < 0 || resolved >= count as i64 {
+                                return Err(error(
+                                    token,
+                                    format!("{what} index {index} is out of range: {count} defined so far"),
+                                ));
+                            }
+                            Ok(Some(resolved as usize))
+                        };
                     let v = resolve(parts.next(), positions.len(), "vertex")?
                         .ok_or_else(|| error(token, "a face corner needs a vertex index".to_string()))?;
                     let t = resolve(parts.next(), texcoords.len(), "texture coordinate")?;
@@ -219,15 +268,13 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
                             corners_with_uv.0 += 1;
                             let uv = texcoords[t];
                             match uv_of[v] {
-                                Some(existing) if existing != uv => {
-                                    return Err(error(
-                                        token,
-                                        format!(
-                                            "vertex {} has two different texture coordinates; one per vertex is supported",
-                                            v + 1
-                                        ),
-                                    ))
-                                }
+                                Some(existing) if existing != uv => return Err(error(
+                                    token,
+                                    format!(
+                                        "vertex {} has two different texture coordinates; one per vertex is supported",
+                                        v + 1
+                                    ),
+                                )),
                                 _ => uv_of[v] = Some(uv),
                             }
                         }

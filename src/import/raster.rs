@@ -163,10 +163,15 @@ impl Field<'_> {
 /// assert!((outlines[0].area() - 60.0).abs() < 0.6);
 /// # Ok::<(), akap::import::ImportError>(())
 /// ```
-pub fn trace_image(rgba: &[u8], width: usize, height: usize, options: &TraceOptions) -> Result<Vec<Outline>, ImportError> {
+pub fn trace_image(
+    rgba: &[u8],
+    width: usize,
+    height: usize,
+    options: &TraceOptions,
+) -> Result<Vec<Outline>, ImportError> {
     options.validate()?;
     let limits = &options.limits;
-    let pixels = width.checked_mul(height).unwrap_or(usize::MAX);
+    let pixels = width.saturating_mul(height);
     Limits::check(pixels, limits.max_pixels, "the image", "pixels")?;
     if pixels == 0 || pixels.checked_mul(4) != Some(rgba.len()) {
         return Err(ImportError::ImageSize { width, height, len: rgba.len() });
@@ -202,8 +207,7 @@ pub fn trace_image(rgba: &[u8], width: usize, height: usize, options: &TraceOpti
     let count: usize = simplified.iter().map(Vec::len).sum();
     Limits::check(count, limits.max_points, "the traced outline", "points")?;
     let sources: Vec<SourceRing> = simplified.into_iter().map(|points| SourceRing { points, shape: 0 }).collect();
-    let outlines = assemble(&sources, &[FillRule::NonZero], options.min_area)
-        .map_err(|_| ImportError::EmptyImage)?;
+    let outlines = assemble(&sources, &[FillRule::NonZero], options.min_area).map_err(|_| ImportError::EmptyImage)?;
     if outlines.is_empty() {
         return Err(ImportError::EmptyImage);
     }

@@ -7,7 +7,7 @@
 //! is a boundary: the outer boundary of a part, or a hole in one. Parts come out largest
 //! first; a part inside a hole of another part is a part of its own.
 
-use crate::geometry::{bounding_box, point_in_polygon, polygon_area, Point};
+use crate::geometry::{bounding_box, distance, orient, point_in_polygon, polygon_area, Point};
 use crate::import::vector::FillRule;
 use crate::outline::{check_no_intersections, Outline, OutlineError};
 
@@ -30,11 +30,7 @@ pub(crate) enum RegionError {
 /// Builds outlines from rings; `rules[shape]` is the fill rule of each shape. Rings with
 /// fewer than three distinct points or no area are ignored, and so are parts with an area
 /// below `min_area` (holes that small are filled).
-pub(crate) fn assemble(
-    rings: &[SourceRing],
-    rules: &[FillRule],
-    min_area: f64,
-) -> Result<Vec<Outline>, RegionError> {
+pub(crate) fn assemble(rings: &[SourceRing], rules: &[FillRule], min_area: f64) -> Result<Vec<Outline>, RegionError> {
     // Clean rings, keeping their input indices and signed areas.
     let mut sources = Vec::new();
     let mut areas = Vec::new();
@@ -48,12 +44,16 @@ pub(crate) fn assemble(
         if ring_points.len() < 3 {
             continue;
         }
-        let area = polygon_area(&ring_points);
+        // Rings along a line enclose nothing; a figure-eight has zero area too, but it
+        // crosses itself, which the check below reports.
         let (lo, hi) = bounding_box(ring_points.iter().copied()).expect("ring has points");
         let diagonal2 = (hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2);
-        if !(area.abs() > 1e-12 * diagonal2) {
+        let a = ring_points[0];
+        let b = ring_points.iter().copied().max_by(|p, q| distance(a, *p).total_cmp(&distance(a, *q))).unwrap_or(a);
+        if ring_points.iter().all(|&p| orient(a, b, p).abs() <= 1e-12 * diagonal2) {
             continue;
         }
+        let area = polygon_area(&ring_points);
         sources.push(index);
         areas.push(area);
         points.push(ring_points);

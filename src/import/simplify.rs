@@ -16,8 +16,11 @@ pub(crate) fn simplify_rings(rings: &[Vec<Point>], parents: &[Option<usize>], to
     // Per ring, which original points are kept.
     let mut keep: Vec<Vec<bool>> = rings.iter().map(|r| douglas_peucker(r, tolerance)).collect();
     loop {
-        let simplified: Vec<Vec<Point>> =
-            rings.iter().zip(&keep).map(|(r, k)| r.iter().zip(k).filter(|(_, &k)| k).map(|(p, _)| *p).collect()).collect();
+        let simplified: Vec<Vec<Point>> = rings
+            .iter()
+            .zip(&keep)
+            .map(|(r, k)| r.iter().zip(k).filter(|(_, &k)| k).map(|(p, _)| *p).collect())
+            .collect();
         let mut changed = false;
         for [(ring_a, seg_a), (ring_b, seg_b)] in meeting_segments(&simplified, false) {
             changed |= refine(&rings[ring_a], &mut keep[ring_a], seg_a);

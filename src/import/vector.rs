@@ -133,8 +133,9 @@ impl VectorPath {
                 }
             };
             // NaN (from infinite control points) fails this too.
-            if !(pieces <= (max_points - total.min(max_points)) as f64) {
-                return Err(if pieces.is_finite() { total + pieces as usize } else { usize::MAX });
+            let budget = max_points.saturating_sub(total) as f64;
+            if pieces.is_nan() || pieces > budget {
+                return Err(total.saturating_add(pieces as usize));
             }
             let n = pieces as usize;
             match verb {

@@ -84,7 +84,8 @@ impl Grid {
         let cell = (w * h / mesh.triangle_count() as f64).sqrt().max(w.max(h) / 4096.0);
         let columns = ((w / cell).ceil() as usize).clamp(1, 4096);
         let rows = ((h / cell).ceil() as usize).clamp(1, 4096);
-        let mut grid = Self { origin: lo, cell, columns, rows, start: vec![0; columns * rows + 1], triangles: Vec::new() };
+        let mut grid =
+            Self { origin: lo, cell, columns, rows, start: vec![0; columns * rows + 1], triangles: Vec::new() };
         let ranges: Vec<(usize, usize, usize, usize)> = mesh
             .triangles()
             .iter()

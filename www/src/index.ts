@@ -233,3 +233,4 @@ export function defaultShape(): { outer: Float64Array; holes: Float64Array[] } {
   assertLoaded();
   return raw.defaultShape() as { outer: Float64Array; holes: Float64Array[] };
 }
+export * from "./import.js";

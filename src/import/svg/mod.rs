@@ -129,7 +129,10 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
     };
     let document = Document::parse_with_options(text, parsing).map_err(|e| {
         let pos = e.pos();
-        ImportError::Xml { message: e.to_string(), line: pos.row, column: pos.col }
+        let message = e.to_string();
+        let suffix = format!(" at {}:{}", pos.row, pos.col);
+        let message = message.strip_suffix(&suffix).unwrap_or(&message).to_string();
+        ImportError::Xml { message, line: pos.row, column: pos.col }
     })?;
     let root = document.root_element();
     if root.tag_name().name() != "svg" || !in_svg_namespace(root) {
@@ -150,12 +153,7 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
     let mut count = 0;
     for (shape, p) in paths.iter().enumerate() {
         let flat = p.path.flatten(tolerance.max(f64::MIN_POSITIVE), count, limits.max_points).map_err(|size| {
-            ImportError::TooLarge {
-                what: "the flattened outline",
-                size,
-                limit: limits.max_points,
-                unit: "points",
-            }
+            ImportError::TooLarge { what: "the flattened outline", size, limit: limits.max_points, unit: "points" }
         })?;
         count += flat.iter().map(Vec::len).sum::<usize>();
         rings.extend(flat.into_iter().map(|points| SourceRing { points, shape }));
@@ -201,7 +199,11 @@ impl<'a, 'input> Walk<'a, 'input> {
     }
 
     fn attribute_error(&self, node: Node, attribute: &str, message: impl Into<String>) -> ImportError {
-        ImportError::Attribute { element: self.element_ref(node), attribute: attribute.to_string(), message: message.into() }
+        ImportError::Attribute {
+            element: self.element_ref(node),
+            attribute: attribute.to_string(),
+            message: message.into(),
+        }
     }
 
     /// Walks the tree without recursion: (node, transform to output, style, depth).
@@ -244,10 +246,10 @@ impl<'a, 'input> Walk<'a, 'input> {
                         self.paths.push(SvgPath { element: self.element_ref(node), path, fill_rule: style.fill_rule });
                     }
                 }
-                "text" | "use" | "image" | "foreignObject" | "textPath" | "tspan" => {
-                    if !self.skipped.iter().any(|s| s == name) {
-                        self.skipped.push(name.to_string());
-                    }
+                "text" | "use" | "image" | "foreignObject" | "textPath" | "tspan"
+                    if !self.skipped.iter().any(|s| s == name) =>
+                {
+                    self.skipped.push(name.to_string());
                 }
                 // Definitions, metadata, lines and anything unknown draw no filled area.
                 _ => {}
@@ -288,9 +290,7 @@ impl<'a, 'input> Walk<'a, 'input> {
                 ("fill-rule", "evenodd") => style.fill_rule = FillRule::EvenOdd,
                 ("fill-rule", "nonzero") => style.fill_rule = FillRule::NonZero,
                 ("fill-rule", other) => {
-                    return Err(
-                        self.attribute_error(node, "fill-rule", format!("`{other}` is not nonzero or evenodd"))
-                    )
+                    return Err(self.attribute_error(node, "fill-rule", format!("`{other}` is not nonzero or evenodd")))
                 }
                 _ => {}
             }
@@ -312,7 +312,11 @@ impl<'a, 'input> Walk<'a, 'input> {
         let numbers = path_data::parse_number_list(text, 4).map_err(|e| self.syntax_error(node, "viewBox", e))?;
         match numbers[..] {
             [x, y, w, h] if w > 0.0 && h > 0.0 => Ok(Some([x, y, w, h])),
-            _ => Err(self.attribute_error(node, "viewBox", "expected four numbers: x, y, and a width and height above 0")),
+            _ => Err(self.attribute_error(
+                node,
+                "viewBox",
+                "expected four numbers: x, y, and a width and height above 0",
+            )),
         }
     }
 
@@ -451,7 +455,9 @@ fn parse_length(text: &str) -> Result<f64, String> {
         "in" => 96.0,
         "pt" => 96.0 / 72.0,
         "pc" => 16.0,
-        other => return Err(format!("unsupported unit `{other}` in `{text}` (use user units, px, mm, cm, in, pt or pc)")),
+        other => {
+            return Err(format!("unsupported unit `{other}` in `{text}` (use user units, px, mm, cm, in, pt or pc)"))
+        }
     };
     Ok(value * scale)
 }

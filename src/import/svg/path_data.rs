@@ -283,9 +283,7 @@ pub fn parse_path_data(data: &str, max_points: usize) -> Result<VectorPath, Synt
                 current = start;
                 s.skip_separator();
             }
-            _ => {
-                return Err(SyntaxError::new(command_offset, format!("unknown path command `{}`", letter as char)))
-            }
+            _ => return Err(SyntaxError::new(command_offset, format!("unknown path command `{}`", letter as char))),
         }
         last_cubic = next_cubic;
         last_quad = next_quad;
