@@ -179,7 +179,7 @@ fn basic_shapes_have_their_areas() {
 fn fill_rules_holes_and_parts() {
     let square = |x: f64, s: f64| format!("M{x} {x}h{s}v{s}h-{s}z");
     let ring = |x: f64, s: f64| format!("M{x} {x}v{s}h{s}v-{s}z"); // the other way round
-    // Even-odd: an inner square is a hole whichever way it runs.
+                                                                   // Even-odd: an inner square is a hole whichever way it runs.
     let d = format!("{}{}", square(0.0, 10.0), square(2.0, 2.0));
     let shape = import(&format!(r#"<path fill-rule="evenodd" d="{d}"/>"#), "");
     assert_eq!((shape.outlines.len(), shape.outlines[0].holes.len()), (1, 1));
@@ -187,7 +187,8 @@ fn fill_rules_holes_and_parts() {
     // Non-zero: the same path has no hole, the reversed inner square makes one.
     let shape = import(&format!(r#"<path d="{d}"/>"#), "");
     assert_eq!(shape.outlines[0].holes.len(), 0);
-    let shape = import(&format!(r#"<path style="fill-rule: nonzero" d="{}{}"/>"#, square(0.0, 10.0), ring(2.0, 2.0)), "");
+    let shape =
+        import(&format!(r#"<path style="fill-rule: nonzero" d="{}{}"/>"#, square(0.0, 10.0), ring(2.0, 2.0)), "");
     assert_eq!(shape.outlines[0].holes.len(), 1);
     // A shape inside a hole is a separate part, and separate shapes are separate parts,
     // largest first.
@@ -220,7 +221,10 @@ fn unfilled_and_hidden_elements_do_not_count() {
     assert!((shape.outlines[0].area() - 900.0 * PI).abs() < 10.0);
     assert_eq!(shape.skipped, vec!["text".to_string()]);
     assert_eq!(shape.paths.len(), 1);
-    assert_eq!(error(r##"<use href="#a"/><text>hi</text>"##, ""), "the SVG has no filled shape (unsupported elements skipped: use, text)");
+    assert_eq!(
+        error(r##"<use href="#a"/><text>hi</text>"##, ""),
+        "the SVG has no filled shape (unsupported elements skipped: use, text)"
+    );
 }
 
 #[test]
@@ -284,10 +288,7 @@ fn imported_outlines_triangulate() {
 
 #[test]
 fn vector_paths_follow_the_deformed_mesh() {
-    let text = svg(
-        r#"<path d="M10 10 C 30 0 60 0 90 10 L 90 60 Q 50 90 10 60 Z"/>"#,
-        r#"viewBox="0 0 100 100""#,
-    );
+    let text = svg(r#"<path d="M10 10 C 30 0 60 0 90 10 L 90 60 Q 50 90 10 60 Z"/>"#, r#"viewBox="0 0 100 100""#);
     let shape = import_svg(&text, &SvgOptions::default()).unwrap();
     let path = &shape.paths[0].path;
     // Writing the points back gives path data that parses to the same points.
@@ -295,8 +296,7 @@ fn vector_paths_follow_the_deformed_mesh() {
     assert_eq!(parse_path_data(&data, 1000).unwrap(), *path);
     // Through an affine deformation of the mesh, every point (control points outside the
     // mesh included) moves by that same affine map.
-    let mesh =
-        triangulate(&shape.outlines[0], &TriangulationOptions::default().with_target_edge_length(8.0)).unwrap();
+    let mesh = triangulate(&shape.outlines[0], &TriangulationOptions::default().with_target_edge_length(8.0)).unwrap();
     let motion = |p: Point| [0.8 * p[0] - 0.6 * p[1] + 5.0, 0.6 * p[0] + 0.8 * p[1] - 2.0];
     let deformed: Vec<Point> = mesh.positions().iter().map(|&p| motion(p)).collect();
     let mapped = PointMapper::new(&mesh, &path.points).map(&deformed).unwrap();

@@ -2,6 +2,8 @@
 
 mod common;
 mod deformer;
+mod import_mesh;
+mod import_raster;
 mod import_svg;
 mod killing;
 mod sparse;

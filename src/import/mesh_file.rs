@@ -268,13 +268,15 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
                             corners_with_uv.0 += 1;
                             let uv = texcoords[t];
                             match uv_of[v] {
-                                Some(existing) if existing != uv => return Err(error(
-                                    token,
-                                    format!(
+                                Some(existing) if existing != uv => {
+                                    return Err(error(
+                                        token,
+                                        format!(
                                         "vertex {} has two different texture coordinates; one per vertex is supported",
                                         v + 1
                                     ),
-                                )),
+                                    ))
+                                }
                                 _ => uv_of[v] = Some(uv),
                             }
                         }
