@@ -2,6 +2,7 @@
 
 mod common;
 mod deformer;
+mod gallery;
 mod import_mesh;
 mod import_raster;
 mod import_svg;
