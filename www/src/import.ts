@@ -74,7 +74,11 @@ export function importSvgPaths(text: string, options: SvgImportOptions = {}): Ve
  * SVG path data for a vector path with the given points (its own by default, or mapped
  * ones). `flipY` negates y, turning the y-up coordinates back into SVG's y-down ones.
  */
-export function pathData(path: VectorPath, points: NumberList = path.points, options: { flipY?: boolean } = {}): string {
+export function pathData(
+  path: VectorPath,
+  points: NumberList = path.points,
+  options: { flipY?: boolean } = {},
+): string {
   const p = toFloat64(points, "points");
   const sign = options.flipY ? -1 : 1;
   const counts: Record<string, number> = { M: 1, L: 1, Q: 2, C: 3, Z: 0 };
@@ -83,7 +87,8 @@ export function pathData(path: VectorPath, points: NumberList = path.points, opt
   for (const command of path.commands) {
     const count = counts[command];
     if (count === undefined) throw new RangeError(`unknown path command ${command}`);
-    if (2 * (next + count) > p.length) throw new RangeError(`points has ${p.length / 2} points, too few for the commands`);
+    if (2 * (next + count) > p.length)
+      throw new RangeError(`points has ${p.length / 2} points, too few for the commands`);
     let part = command;
     for (let i = next; i < next + count; i++) part += ` ${p[2 * i]} ${sign * p[2 * i + 1]!}`;
     parts.push(part);
@@ -128,8 +133,12 @@ export function traceImage(
   if (!(rgba instanceof Uint8Array || rgba instanceof Uint8ClampedArray)) {
     throw new TypeError("rgba must be a Uint8Array or Uint8ClampedArray");
   }
-  for (const [name, value] of [["width", width], ["height", height]] as const) {
-    if (!Number.isInteger(value) || value < 1 || value > 0xffffffff) throw new RangeError(`${name} is ${value}, not a pixel count`);
+  for (const [name, value] of [
+    ["width", width],
+    ["height", height],
+  ] as const) {
+    if (!Number.isInteger(value) || value < 1 || value > 0xffffffff)
+      throw new RangeError(`${name} is ${value}, not a pixel count`);
   }
   const bytes = rgba instanceof Uint8Array ? rgba : new Uint8Array(rgba.buffer, rgba.byteOffset, rgba.byteLength);
   return raw.trace_image(bytes, width, height, options) as ImportedOutline[];
