@@ -18,8 +18,9 @@
 //!
 //! Module map (see ARCHITECTURE.md): [`geometry`] (planar helpers), [`outline`] (input
 //! shapes and their validation), [`triangulate`](mod@triangulate) (the only user of spade),
-//! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes), and
-//! `wasm` (the JavaScript bindings, compiled for wasm32 only).
+//! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes),
+//! [`import`] (SVG documents, images and mesh files in), and `wasm` (the JavaScript
+//! bindings, compiled for wasm32 only).
 
 pub mod deform;
 pub mod error;

@@ -21,10 +21,18 @@ pub(crate) fn simplify_rings(rings: &[Vec<Point>], parents: &[Option<usize>], to
             .zip(&keep)
             .map(|(r, k)| r.iter().zip(k).filter(|(_, &k)| k).map(|(p, _)| *p).collect())
             .collect();
+        // The points to restore, found before any is restored (restoring renumbers the
+        // simplified segments).
+        let mut restore = Vec::new();
+        for [a, b] in meeting_segments(&simplified, false) {
+            for (ring, segment) in [a, b] {
+                restore.extend(refine(&rings[ring], &keep[ring], segment).map(|k| (ring, k)));
+            }
+        }
         let mut changed = false;
-        for [(ring_a, seg_a), (ring_b, seg_b)] in meeting_segments(&simplified, false) {
-            changed |= refine(&rings[ring_a], &mut keep[ring_a], seg_a);
-            changed |= refine(&rings[ring_b], &mut keep[ring_b], seg_b);
+        for (ring, k) in restore {
+            changed |= !keep[ring][k];
+            keep[ring][k] = true;
         }
         for (r, parent) in parents.iter().enumerate() {
             if let Some(p) = *parent {
@@ -94,23 +102,16 @@ fn douglas_peucker(ring: &[Point], tolerance: f64) -> Vec<bool> {
 fn farthest(ring: &[Point], i: usize, j: usize) -> Option<(usize, f64)> {
     let n = ring.len();
     let (a, b) = (ring[i % n], ring[j % n]);
-    (i + 1..j).map(|k| (k, distance_to_segment(ring[k], a, b))).max_by(|x, y| x.1.total_cmp(&y.1))
+    (i + 1..j).map(|k| (k, distance_to_segment(ring[k % n], a, b))).max_by(|x, y| x.1.total_cmp(&y.1))
 }
 
-/// Restores the original point farthest from simplified segment `segment` of a ring (the
-/// segment from its `segment`-th kept point to the next). Returns whether a point was
-/// restored.
-fn refine(ring: &[Point], keep: &mut [bool], segment: usize) -> bool {
+/// The original point farthest from simplified segment `segment` of a ring (the segment
+/// from its `segment`-th kept point to the next), if the segment dropped any.
+fn refine(ring: &[Point], keep: &[bool], segment: usize) -> Option<usize> {
     let kept: Vec<usize> = (0..ring.len()).filter(|&k| keep[k]).collect();
     let i = kept[segment];
     let j = if segment + 1 < kept.len() { kept[segment + 1] } else { kept[0] + ring.len() };
-    match farthest(ring, i, j) {
-        Some((k, _)) => {
-            keep[k % ring.len()] = true;
-            true
-        }
-        None => false,
-    }
+    farthest(ring, i, j).map(|(k, _)| k % ring.len())
 }
 
 fn distance2(a: Point, b: Point) -> f64 {
@@ -153,6 +154,16 @@ mod tests {
         }
         let out = simplify_rings(&[ring], &[None], 0.25);
         assert_eq!(out[0].len(), 4, "{:?}", out[0]);
+    }
+
+    #[test]
+    fn the_closing_segment_refines_across_the_ring_start() {
+        let ring = [[0.0, 0.0], [1.0, -0.1], [2.0, 0.0], [2.0, 1.0], [1.0, 1.1], [0.0, 1.0]];
+        let keep = [true, false, true, false, true, false];
+        // Kept points 0, 2, 4: the last segment runs from point 4 back to point 0.
+        assert_eq!(refine(&ring, &keep, 2), Some(5));
+        assert_eq!(refine(&ring, &keep, 0), Some(1));
+        assert_eq!(refine(&ring, &[true; 6], 5), None);
     }
 
     #[test]
