@@ -1,9 +1,7 @@
 //! The gallery (`www/gallery/`): every entry of `index.json` imports, triangulates and
 //! gives a valid, connected mesh covering its outline.
 
-use akap::import::raster::{trace_image, TraceOptions};
 use akap::import::svg::{import_svg, SvgOptions};
-use akap::import::warp::texture_coordinates;
 use akap::{triangulate, Outline, TriangulationOptions};
 use serde::Deserialize;
 #[cfg(target_arch = "wasm32")]
@@ -64,6 +62,9 @@ fn cartoon_svgs_import_and_triangulate() {
 #[cfg(not(target_arch = "wasm32"))]
 #[test]
 fn textured_png_traces_and_triangulates() {
+    use akap::import::raster::{trace_image, TraceOptions};
+    use akap::import::warp::texture_coordinates;
+
     let decoder = png::Decoder::new(std::io::Cursor::new(PNG.1));
     let mut reader = decoder.read_info().unwrap();
     let mut rgba = vec![0; reader.output_buffer_size().unwrap()];
