@@ -3,7 +3,6 @@
 use std::fmt;
 
 use crate::mesh::MeshError;
-use crate::outline::OutlineError;
 
 /// An element of an SVG document, for error messages: its name, its `id` if it has one, and
 /// where its start tag begins (1-based line and column).
@@ -71,17 +70,6 @@ pub enum ImportError {
         /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
         skipped: Vec<String>,
     },
-    /// The boundaries of two filled shapes cross or touch; outlines are built by nesting
-    /// boundaries inside each other, which needs boundaries that stay apart.
-    Overlap {
-        /// The element of one boundary.
-        a: ElementRef,
-        /// The element of the other (may be the same element).
-        b: ElementRef,
-    },
-    /// The outline built from the input is invalid (a bug in the import, or shapes whose
-    /// boundaries nearly touch).
-    Outline(OutlineError),
     /// The pixel buffer does not match the image size.
     ImageSize {
         /// Width in pixels.
@@ -139,16 +127,6 @@ impl fmt::Display for ImportError {
             Self::NoShapes { skipped } => {
                 write!(f, "the SVG has no filled shape (unsupported elements skipped: {})", skipped.join(", "))
             }
-            Self::Overlap { a, b } if a == b => write!(
-                f,
-                "the boundary of {a} crosses or touches itself; the importer needs boundaries that stay apart"
-            ),
-            Self::Overlap { a, b } => write!(
-                f,
-                "the boundaries of {a} and {b} cross or touch; the importer needs filled shapes that lie apart \
-                 or inside one another (merge overlapping shapes in your editor)"
-            ),
-            Self::Outline(e) => write!(f, "the imported outline is invalid: {e}"),
             Self::ImageSize { width, height, len } => write!(
                 f,
                 "a {width} x {height} image needs {} bytes of RGBA pixels, but {len} were given",
@@ -170,7 +148,6 @@ impl fmt::Display for ImportError {
 impl std::error::Error for ImportError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
-            Self::Outline(e) => Some(e),
             Self::Mesh(e) => Some(e),
             _ => None,
         }

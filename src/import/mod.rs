@@ -15,6 +15,7 @@
 //! | [`vector`] | vector paths: flattening, writing path data |
 
 mod error;
+mod merge;
 pub mod mesh_file;
 pub mod raster;
 mod regions;

@@ -87,14 +87,23 @@ impl TraceOptions {
     }
 }
 
-/// The scalar field marching squares contours: one value per pixel, inside from `level` on.
-struct Field<'a> {
-    rgba: &'a [u8],
-    width: usize,
-    height: usize,
-    level: f64,
-    /// `None` for alpha; the background colour for colour distance.
-    background: Option<[f64; 3]>,
+/// Where the values of a field come from.
+pub(crate) enum Values<'a> {
+    /// An image's alpha.
+    Alpha(&'a [u8]),
+    /// An image's distance from a background colour.
+    Colour(&'a [u8], [f64; 3]),
+    /// One value per pixel (a coverage, say).
+    Grid(&'a [f32]),
+}
+
+/// The scalar field marching squares contours: one value per pixel, inside from `level`
+/// on; 0 outside the grid.
+pub(crate) struct Field<'a> {
+    pub(crate) values: Values<'a>,
+    pub(crate) width: usize,
+    pub(crate) height: usize,
+    pub(crate) level: f64,
 }
 
 impl Field<'_> {
@@ -103,16 +112,17 @@ impl Field<'_> {
         if x < 0 || y < 0 || x as usize >= self.width || y as usize >= self.height {
             return 0.0;
         }
-        let i = 4 * (y as usize * self.width + x as usize);
-        let px = &self.rgba[i..i + 4];
-        match self.background {
-            None => f64::from(px[3]),
-            Some(bg) => {
+        let i = y as usize * self.width + x as usize;
+        match self.values {
+            Values::Alpha(rgba) => f64::from(rgba[4 * i + 3]),
+            Values::Colour(rgba, bg) => {
                 // Composite over the background, then measure the distance from it.
+                let px = &rgba[4 * i..4 * i + 4];
                 let alpha = f64::from(px[3]) / 255.0;
                 let d = |k: usize| alpha * (f64::from(px[k]) - bg[k]);
                 (d(0).powi(2) + d(1).powi(2) + d(2).powi(2)).sqrt()
             }
+            Values::Grid(values) => f64::from(values[i]),
         }
     }
 
@@ -189,25 +199,37 @@ pub fn trace_image(
             }
         }
     };
-    let level = if background.is_some() { options.colour_threshold } else { options.alpha_threshold };
-    let field = Field { rgba, width, height, level, background };
+    let field = match background {
+        None => Field { values: Values::Alpha(rgba), width, height, level: options.alpha_threshold },
+        Some(bg) => Field { values: Values::Colour(rgba, bg), width, height, level: options.colour_threshold },
+    };
+    contour_outlines(&field, options.tolerance, options.min_area, limits.max_points)
+}
 
-    let segments = march(&field, limits.max_points.saturating_mul(20))?;
+/// Outlines of a field: marching squares, specks dropped, rings simplified to `tolerance`
+/// (pixels) without crossing, nested into parts. In pixel units, y up.
+pub(crate) fn contour_outlines(
+    field: &Field,
+    tolerance: f64,
+    min_area: f64,
+    max_points: usize,
+) -> Result<Vec<Outline>, ImportError> {
+    let segments = march(field, max_points.saturating_mul(20))?;
     if segments.is_empty() {
         return Err(ImportError::EmptyImage);
     }
-    let rings = link(&field, &segments);
+    let rings = link(field, &segments);
     // Specks (and holes that small) go before simplification.
     let rings: Vec<Vec<Point>> = rings
         .into_iter()
-        .filter(|r| r.len() >= 3 && polygon_area(r).abs() >= options.min_area.max(f64::MIN_POSITIVE))
+        .filter(|r| r.len() >= 3 && polygon_area(r).abs() >= min_area.max(f64::MIN_POSITIVE))
         .collect();
     let (_, parents) = containment(&rings);
-    let simplified = simplify_rings(&rings, &parents, options.tolerance);
+    let simplified = simplify_rings(&rings, &parents, tolerance);
     let count: usize = simplified.iter().map(Vec::len).sum();
-    Limits::check(count, limits.max_points, "the traced outline", "points")?;
+    Limits::check(count, max_points, "the traced outline", "points")?;
     let sources: Vec<SourceRing> = simplified.into_iter().map(|points| SourceRing { points, shape: 0 }).collect();
-    let outlines = assemble(&sources, &[FillRule::NonZero], options.min_area).map_err(|_| ImportError::EmptyImage)?;
+    let outlines = assemble(&sources, &[FillRule::NonZero], min_area).map_err(|_| ImportError::EmptyImage)?;
     if outlines.is_empty() {
         return Err(ImportError::EmptyImage);
     }

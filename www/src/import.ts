@@ -40,9 +40,9 @@ export interface SvgImportOptions {
  * The filled shapes of an SVG document as outlines with holes, one per separate part,
  * largest first. Coordinates are the root `viewBox`'s user units with y flipped to point
  * up (the `viewBox`'s bottom-left corner is the origin). The document is parsed as data,
- * never inserted into a page. Throws an `Error` that names the element (and line) at
- * fault for malformed input, unsupported units, shapes whose boundaries cross, or a
- * document without filled shapes.
+ * never inserted into a page. Overlapping shapes are merged (their union traced on a fine
+ * grid). Throws an `Error` that names the element (and line) at fault for malformed input
+ * or unsupported units, or says that the document has no filled shape.
  */
 export function importSvg(text: string, options: SvgImportOptions = {}): ImportedOutline[] {
   assertLoaded();

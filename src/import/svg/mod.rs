@@ -3,7 +3,8 @@
 //! `polyline` elements count, through `g`, `a`, `switch` and nested `svg` elements, with
 //! their `transform`s and `viewBox`es; `fill`, `fill-rule` and `display` are read from
 //! attributes and `style`. Curves are flattened to a tolerance and the rings become
-//! outlines with holes by nesting (see `regions`).
+//! outlines with holes by nesting (see `regions`), exactly; when boundaries cross or touch
+//! (overlapping shapes), the union is traced on a fine grid instead (see `merge`).
 //!
 //! Output coordinates are the root's user units (its `viewBox`) with y flipped to point
 //! up: the bottom-left corner of the `viewBox` is the origin.
@@ -18,6 +19,7 @@ pub use transform::{parse_transform, Affine};
 
 use crate::geometry::{bounding_box, Point};
 use crate::import::error::{ElementRef, ImportError};
+use crate::import::merge::merge;
 use crate::import::regions::{assemble, RegionError, SourceRing};
 use crate::import::vector::{FillRule, VectorPath, Verb};
 use crate::import::Limits;
@@ -159,9 +161,11 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
         rings.extend(flat.into_iter().map(|points| SourceRing { points, shape }));
     }
     let rules: Vec<FillRule> = paths.iter().map(|p| p.fill_rule).collect();
-    let outlines = assemble(&rings, &rules, options.min_area).map_err(|RegionError::Crossing(a, b)| {
-        ImportError::Overlap { a: paths[rings[a].shape].element.clone(), b: paths[rings[b].shape].element.clone() }
-    })?;
+    // Boundaries that cross or touch leave nesting undecided: merge those shapes on a grid.
+    let outlines = match assemble(&rings, &rules, options.min_area) {
+        Ok(outlines) => outlines,
+        Err(RegionError::Crossing(..)) => merge(&rings, &rules, tolerance, options.min_area, limits)?,
+    };
     if outlines.is_empty() {
         return Err(ImportError::NoShapes { skipped });
     }
