@@ -215,7 +215,7 @@ struct Segment {
 /// Rejects any two segments that meet, other than consecutive segments of one ring at
 /// their shared point.
 pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), OutlineError> {
-    match meeting_segments(rings, true).first() {
+    match meeting_segments(rings, true, usize::MAX).unwrap_or_default().first() {
         Some(&[(ring_a, segment_a), (ring_b, segment_b)]) => {
             Err(OutlineError::SelfIntersection { ring_a: Ring(ring_a), segment_a, ring_b: Ring(ring_b), segment_b })
         }
@@ -226,8 +226,12 @@ pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), Outline
 /// The pairs of segments, as `(ring, segment)` with the smaller first, that meet other than
 /// consecutive segments of one ring at their shared point: all of them, or only the first
 /// found. Sweeps segments sorted by their left end, so only segments whose x ranges
-/// overlap are compared.
-pub(crate) fn meeting_segments(rings: &[Vec<Point>], first_only: bool) -> Vec<[(usize, usize); 2]> {
+/// overlap are compared; gives up (`None`) after `budget` such comparisons.
+pub(crate) fn meeting_segments(
+    rings: &[Vec<Point>],
+    first_only: bool,
+    budget: usize,
+) -> Option<Vec<[(usize, usize); 2]>> {
     let mut segments: Vec<Segment> = Vec::new();
     for (ring, points) in rings.iter().enumerate() {
         for index in 0..points.len() {
@@ -237,21 +241,26 @@ pub(crate) fn meeting_segments(rings: &[Vec<Point>], first_only: bool) -> Vec<[(
     }
     segments.sort_by(|s, t| s.min_x.total_cmp(&t.min_x));
     let mut pairs = Vec::new();
+    let mut comparisons = 0usize;
     for (i, s) in segments.iter().enumerate() {
         for t in &segments[i + 1..] {
             if t.min_x > s.max_x {
                 break;
             }
+            comparisons += 1;
+            if comparisons > budget {
+                return None;
+            }
             if meet(s, t, rings) {
                 let (first, second) = if (s.ring, s.index) < (t.ring, t.index) { (s, t) } else { (t, s) };
                 pairs.push([(first.ring, first.index), (second.ring, second.index)]);
                 if first_only {
-                    return pairs;
+                    return Some(pairs);
                 }
             }
         }
     }
-    pairs
+    Some(pairs)
 }
 
 /// Whether two distinct segments meet anywhere they should not.

@@ -70,6 +70,12 @@ pub enum ImportError {
         /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
         skipped: Vec<String>,
     },
+    /// Checking the outline for crossings would take too long: too many segments lie close
+    /// together (only adversarial inputs do this).
+    TooComplex {
+        /// The number of nearby segment pairs after which the check gave up.
+        pairs: usize,
+    },
     /// The pixel buffer does not match the image size.
     ImageSize {
         /// Width in pixels.
@@ -127,6 +133,11 @@ impl fmt::Display for ImportError {
             Self::NoShapes { skipped } => {
                 write!(f, "the SVG has no filled shape (unsupported elements skipped: {})", skipped.join(", "))
             }
+            Self::TooComplex { pairs } => write!(
+                f,
+                "the outline has more than {pairs} pairs of segments close together to check for crossings; \
+                 simplify the shape"
+            ),
             Self::ImageSize { width, height, len } => write!(
                 f,
                 "a {width} x {height} image needs {} bytes of RGBA pixels, but {len} were given",

@@ -127,7 +127,7 @@ pub(crate) fn merge(
 
     let field = Field { values: Values::Grid(&coverage), width, height, level: 0.5 };
     let pixels_tolerance = tolerance / (2.0 * cell);
-    let outlines = match contour_outlines(&field, pixels_tolerance, min_area / (cell * cell), limits.max_points) {
+    let outlines = match contour_outlines(&field, pixels_tolerance, min_area / (cell * cell), limits) {
         Ok(outlines) => outlines,
         Err(ImportError::EmptyImage) => return Ok(Vec::new()),
         Err(e) => return Err(e),

@@ -39,6 +39,10 @@ pub struct Limits {
     pub max_vertices: usize,
     /// Most XML nodes (elements, attributes' text nodes and so on) of an SVG.
     pub max_elements: usize,
+    /// Most comparisons of nearby segments when checking that outlines neither cross nor
+    /// touch (a sweep; only adversarial inputs, thousands of segments stacked in one
+    /// place, come near the default).
+    pub max_segment_pairs: usize,
 }
 
 impl Default for Limits {
@@ -49,6 +53,7 @@ impl Default for Limits {
             max_points: 100_000,
             max_vertices: 1_000_000,
             max_elements: 200_000,
+            max_segment_pairs: 50_000_000,
         }
     }
 }

@@ -16,7 +16,7 @@
 use std::collections::HashMap;
 
 use crate::geometry::{orient, polygon_area, Point};
-use crate::import::regions::{assemble, containment, SourceRing};
+use crate::import::regions::{assemble, containment, RegionError, SourceRing};
 use crate::import::simplify::simplify_rings;
 use crate::import::vector::FillRule;
 use crate::import::{ImportError, Limits};
@@ -203,7 +203,7 @@ pub fn trace_image(
         None => Field { values: Values::Alpha(rgba), width, height, level: options.alpha_threshold },
         Some(bg) => Field { values: Values::Colour(rgba, bg), width, height, level: options.colour_threshold },
     };
-    contour_outlines(&field, options.tolerance, options.min_area, limits.max_points)
+    contour_outlines(&field, options.tolerance, options.min_area, limits)
 }
 
 /// Outlines of a field: marching squares, specks dropped, rings simplified to `tolerance`
@@ -212,8 +212,9 @@ pub(crate) fn contour_outlines(
     field: &Field,
     tolerance: f64,
     min_area: f64,
-    max_points: usize,
+    limits: &Limits,
 ) -> Result<Vec<Outline>, ImportError> {
+    let max_points = limits.max_points;
     let segments = march(field, max_points.saturating_mul(20))?;
     if segments.is_empty() {
         return Err(ImportError::EmptyImage);
@@ -225,11 +226,18 @@ pub(crate) fn contour_outlines(
         .filter(|r| r.len() >= 3 && polygon_area(r).abs() >= min_area.max(f64::MIN_POSITIVE))
         .collect();
     let (_, parents) = containment(&rings);
-    let simplified = simplify_rings(&rings, &parents, tolerance);
+    let too_complex = ImportError::TooComplex { pairs: limits.max_segment_pairs };
+    let simplified =
+        simplify_rings(&rings, &parents, tolerance, limits.max_segment_pairs).ok_or(too_complex.clone())?;
     let count: usize = simplified.iter().map(Vec::len).sum();
     Limits::check(count, max_points, "the traced outline", "points")?;
     let sources: Vec<SourceRing> = simplified.into_iter().map(|points| SourceRing { points, shape: 0 }).collect();
-    let outlines = assemble(&sources, &[FillRule::NonZero], min_area).map_err(|_| ImportError::EmptyImage)?;
+    let outlines = match assemble(&sources, &[FillRule::NonZero], min_area, limits.max_segment_pairs) {
+        Ok(outlines) => outlines,
+        Err(RegionError::TooComplex) => return Err(too_complex),
+        // Simplified contours never cross (simplify_rings checks), so this is not reached.
+        Err(RegionError::Crossing(..)) => return Err(ImportError::EmptyImage),
+    };
     if outlines.is_empty() {
         return Err(ImportError::EmptyImage);
     }

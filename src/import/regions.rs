@@ -9,7 +9,7 @@
 
 use crate::geometry::{bounding_box, distance, orient, point_in_polygon, polygon_area, Point};
 use crate::import::vector::FillRule;
-use crate::outline::{check_no_intersections, Outline, OutlineError};
+use crate::outline::{meeting_segments, Outline};
 
 /// A closed ring (not repeating its first point) of one shape.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,12 +25,19 @@ pub(crate) enum RegionError {
     /// The two rings (indices into the input) cross or touch (the same index twice: a ring
     /// meets itself).
     Crossing(usize, usize),
+    /// The crossing check gave up after `max_segment_pairs` comparisons.
+    TooComplex,
 }
 
 /// Builds outlines from rings; `rules[shape]` is the fill rule of each shape. Rings with
 /// fewer than three distinct points or no area are ignored, and so are parts with an area
 /// below `min_area` (holes that small are filled).
-pub(crate) fn assemble(rings: &[SourceRing], rules: &[FillRule], min_area: f64) -> Result<Vec<Outline>, RegionError> {
+pub(crate) fn assemble(
+    rings: &[SourceRing],
+    rules: &[FillRule],
+    min_area: f64,
+    max_segment_pairs: usize,
+) -> Result<Vec<Outline>, RegionError> {
     // Clean rings, keeping their input indices and signed areas.
     let mut sources = Vec::new();
     let mut areas = Vec::new();
@@ -58,8 +65,12 @@ pub(crate) fn assemble(rings: &[SourceRing], rules: &[FillRule], min_area: f64) 
         areas.push(area);
         points.push(ring_points);
     }
-    if let Err(OutlineError::SelfIntersection { ring_a, ring_b, .. }) = check_no_intersections(&points) {
-        return Err(RegionError::Crossing(sources[ring_a.0], sources[ring_b.0]));
+    match meeting_segments(&points, true, max_segment_pairs).as_deref() {
+        None => return Err(RegionError::TooComplex),
+        Some([[(ring_a, _), (ring_b, _)], ..]) => {
+            return Err(RegionError::Crossing(sources[*ring_a], sources[*ring_b]))
+        }
+        Some([]) => {}
     }
     let n = points.len();
     let (order, parent) = containment(&points);
@@ -150,15 +161,15 @@ mod tests {
     fn fill_rules_decide_holes() {
         // Two squares of one path running the same way: a hole under even-odd only.
         let rings = [ring(square(0.0, 0.0, 10.0, true), 0), ring(square(2.0, 2.0, 2.0, true), 0)];
-        let even_odd = assemble(&rings, &[FillRule::EvenOdd], 0.0).unwrap();
+        let even_odd = assemble(&rings, &[FillRule::EvenOdd], 0.0, usize::MAX).unwrap();
         assert_eq!(even_odd.len(), 1);
         assert_eq!(even_odd[0].holes.len(), 1);
         assert_eq!(even_odd[0].area(), 96.0);
-        let non_zero = assemble(&rings, &[FillRule::NonZero], 0.0).unwrap();
+        let non_zero = assemble(&rings, &[FillRule::NonZero], 0.0, usize::MAX).unwrap();
         assert_eq!(non_zero[0].holes.len(), 0);
         // Running the other way makes a hole under non-zero too.
         let rings = [ring(square(0.0, 0.0, 10.0, true), 0), ring(square(2.0, 2.0, 2.0, false), 0)];
-        assert_eq!(assemble(&rings, &[FillRule::NonZero], 0.0).unwrap()[0].holes.len(), 1);
+        assert_eq!(assemble(&rings, &[FillRule::NonZero], 0.0, usize::MAX).unwrap()[0].holes.len(), 1);
     }
 
     #[test]
@@ -169,7 +180,7 @@ mod tests {
             ring(square(4.0, 4.0, 1.0, true), 1),
             ring(square(20.0, 0.0, 1.0, true), 2),
         ];
-        let parts = assemble(&rings, &[FillRule::NonZero; 3], 0.0).unwrap();
+        let parts = assemble(&rings, &[FillRule::NonZero; 3], 0.0, usize::MAX).unwrap();
         let areas: Vec<f64> = parts.iter().map(Outline::area).collect();
         assert_eq!(areas, vec![64.0, 1.0, 1.0]);
         // A second shape covering the hole fills it: one part, no hole.
@@ -178,17 +189,17 @@ mod tests {
             ring(square(2.0, 2.0, 6.0, false), 0),
             ring(square(1.0, 1.0, 8.0, true), 1),
         ];
-        let parts = assemble(&rings, &[FillRule::NonZero; 2], 0.0).unwrap();
+        let parts = assemble(&rings, &[FillRule::NonZero; 2], 0.0, usize::MAX).unwrap();
         assert_eq!(parts.len(), 1);
         assert_eq!(parts[0].area(), 100.0);
         // Tiny parts and holes go.
         let rings = [ring(square(0.0, 0.0, 10.0, true), 0), ring(square(2.0, 2.0, 0.5, false), 0)];
-        assert_eq!(assemble(&rings, &[FillRule::NonZero], 1.0).unwrap()[0].holes.len(), 0);
+        assert_eq!(assemble(&rings, &[FillRule::NonZero], 1.0, usize::MAX).unwrap()[0].holes.len(), 0);
     }
 
     #[test]
     fn crossing_rings_are_named() {
         let rings = [ring(square(0.0, 0.0, 2.0, true), 0), ring(square(1.0, 1.0, 2.0, true), 1)];
-        assert_eq!(assemble(&rings, &[FillRule::NonZero; 2], 0.0), Err(RegionError::Crossing(0, 1)));
+        assert_eq!(assemble(&rings, &[FillRule::NonZero; 2], 0.0, usize::MAX), Err(RegionError::Crossing(0, 1)));
     }
 }

@@ -11,8 +11,14 @@ use crate::geometry::{orient, point_in_polygon, Point};
 use crate::outline::meeting_segments;
 
 /// Simplifies rings that neither cross nor touch, keeping it so. `parents[r]` is the ring
-/// that immediately contains ring `r` (if any), which must stay so.
-pub(crate) fn simplify_rings(rings: &[Vec<Point>], parents: &[Option<usize>], tolerance: f64) -> Vec<Vec<Point>> {
+/// that immediately contains ring `r` (if any), which must stay so. `None` when a crossing
+/// check gives up after `max_segment_pairs` comparisons.
+pub(crate) fn simplify_rings(
+    rings: &[Vec<Point>],
+    parents: &[Option<usize>],
+    tolerance: f64,
+    max_segment_pairs: usize,
+) -> Option<Vec<Vec<Point>>> {
     // Per ring, which original points are kept.
     let mut keep: Vec<Vec<bool>> = rings.iter().map(|r| douglas_peucker(r, tolerance)).collect();
     loop {
@@ -24,7 +30,7 @@ pub(crate) fn simplify_rings(rings: &[Vec<Point>], parents: &[Option<usize>], to
         // The points to restore, found before any is restored (restoring renumbers the
         // simplified segments).
         let mut restore = Vec::new();
-        for [a, b] in meeting_segments(&simplified, false) {
+        for [a, b] in meeting_segments(&simplified, false, max_segment_pairs)? {
             for (ring, segment) in [a, b] {
                 restore.extend(refine(&rings[ring], &keep[ring], segment).map(|k| (ring, k)));
             }
@@ -48,7 +54,7 @@ pub(crate) fn simplify_rings(rings: &[Vec<Point>], parents: &[Option<usize>], to
             }
         }
         if !changed {
-            return simplified;
+            return Some(simplified);
         }
     }
 }
@@ -152,7 +158,7 @@ mod tests {
                 _ => [wiggle, 4.0 - t],
             });
         }
-        let out = simplify_rings(&[ring], &[None], 0.25);
+        let out = simplify_rings(&[ring], &[None], 0.25, usize::MAX).unwrap();
         assert_eq!(out[0].len(), 4, "{:?}", out[0]);
     }
 
@@ -175,7 +181,7 @@ mod tests {
         let hole = vec![[10.8, 0.15], [11.2, 0.15], [11.0, 0.3]];
         let rings = vec![outer, hole];
         assert!(point_in_polygon(rings[1][0], &rings[0]));
-        let out = simplify_rings(&rings, &[None, Some(0)], 0.5);
+        let out = simplify_rings(&rings, &[None, Some(0)], 0.5, usize::MAX).unwrap();
         assert!(check_no_intersections(&out).is_ok());
         assert!(point_in_polygon(out[1][0], &out[0]));
     }

@@ -162,9 +162,10 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
     }
     let rules: Vec<FillRule> = paths.iter().map(|p| p.fill_rule).collect();
     // Boundaries that cross or touch leave nesting undecided: merge those shapes on a grid.
-    let outlines = match assemble(&rings, &rules, options.min_area) {
+    let outlines = match assemble(&rings, &rules, options.min_area, limits.max_segment_pairs) {
         Ok(outlines) => outlines,
         Err(RegionError::Crossing(..)) => merge(&rings, &rules, tolerance, options.min_area, limits)?,
+        Err(RegionError::TooComplex) => return Err(ImportError::TooComplex { pairs: limits.max_segment_pairs }),
     };
     if outlines.is_empty() {
         return Err(ImportError::NoShapes { skipped });
