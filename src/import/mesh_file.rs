@@ -101,12 +101,8 @@ pub fn write_json(mesh: &Mesh, uvs: Option<&[Point]>) -> Result<String, ImportEr
         triangles: mesh.triangles().iter().flatten().copied().collect(),
         uvs: uvs.map(|u| u.iter().flatten().copied().collect()),
     };
-    serde_json::to_string(&json).map_err(|e| ImportError::Syntax {
-        format: "JSON",
-        message: e.to_string(),
-        line: 0,
-        column: 0,
-    })
+    // Arrays of finite numbers and indices always serialise.
+    Ok(serde_json::to_string(&json).expect("a mesh serialises to JSON"))
 }
 
 /// OBJ statements that carry nothing for a flat triangle mesh; they are skipped.
