@@ -65,6 +65,13 @@ pub enum ImportError {
         /// What is wrong, including the position in the value where that helps.
         message: String,
     },
+    /// SVG elements nest deeper than the limit.
+    TooDeep {
+        /// The first element past the limit.
+        element: ElementRef,
+        /// The nesting limit.
+        limit: usize,
+    },
     /// The SVG has no filled shape that could become an outline.
     NoShapes {
         /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
@@ -129,6 +136,7 @@ impl fmt::Display for ImportError {
             Self::Attribute { element, attribute, message } => {
                 write!(f, "attribute {attribute} of {element}: {message}")
             }
+            Self::TooDeep { element, limit } => write!(f, "{element} nests deeper than {limit} elements"),
             Self::NoShapes { skipped } if skipped.is_empty() => write!(f, "the SVG has no filled shape"),
             Self::NoShapes { skipped } => {
                 write!(f, "the SVG has no filled shape (unsupported elements skipped: {})", skipped.join(", "))

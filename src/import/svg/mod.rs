@@ -217,7 +217,7 @@ impl<'a, 'input> Walk<'a, 'input> {
         let mut stack = vec![(root, viewport, Style { filled: true, fill_rule: FillRule::NonZero }, 0usize)];
         while let Some((node, parent_transform, parent_style, depth)) = stack.pop() {
             if depth > MAX_DEPTH {
-                return Err(self.attribute_error(node, "(nesting)", format!("elements nest deeper than {MAX_DEPTH}")));
+                return Err(ImportError::TooDeep { element: self.element_ref(node), limit: MAX_DEPTH });
             }
             let Some(style) = self.style(node, parent_style)? else { continue };
             let mut transform = parent_transform;
