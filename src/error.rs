@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use crate::import::ImportError;
 use crate::mesh::MeshError;
 use crate::outline::OutlineError;
 use crate::session::SessionError;
@@ -17,6 +18,8 @@ pub enum Error {
     Triangulation(TriangulationError),
     /// A session could not be read or replayed.
     Session(SessionError),
+    /// An SVG, image or mesh file could not be imported.
+    Import(ImportError),
 }
 
 impl fmt::Display for Error {
@@ -25,6 +28,7 @@ impl fmt::Display for Error {
             Self::Mesh(e) => e.fmt(f),
             Self::Triangulation(e) => e.fmt(f),
             Self::Session(e) => e.fmt(f),
+            Self::Import(e) => e.fmt(f),
         }
     }
 }
@@ -35,6 +39,7 @@ impl std::error::Error for Error {
             Self::Mesh(e) => Some(e),
             Self::Triangulation(e) => Some(e),
             Self::Session(e) => Some(e),
+            Self::Import(e) => Some(e),
         }
     }
 }
@@ -60,5 +65,11 @@ impl From<OutlineError> for Error {
 impl From<SessionError> for Error {
     fn from(e: SessionError) -> Self {
         Self::Session(e)
+    }
+}
+
+impl From<ImportError> for Error {
+    fn from(e: ImportError) -> Self {
+        Self::Import(e)
     }
 }

@@ -213,9 +213,25 @@ struct Segment {
 }
 
 /// Rejects any two segments that meet, other than consecutive segments of one ring at
-/// their shared point. Sweeps segments sorted by their left end, so only segments whose x
-/// ranges overlap are compared.
-fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), OutlineError> {
+/// their shared point.
+pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), OutlineError> {
+    match meeting_segments(rings, true, usize::MAX).unwrap_or_default().first() {
+        Some(&[(ring_a, segment_a), (ring_b, segment_b)]) => {
+            Err(OutlineError::SelfIntersection { ring_a: Ring(ring_a), segment_a, ring_b: Ring(ring_b), segment_b })
+        }
+        None => Ok(()),
+    }
+}
+
+/// The pairs of segments, as `(ring, segment)` with the smaller first, that meet other than
+/// consecutive segments of one ring at their shared point: all of them, or only the first
+/// found. Sweeps segments sorted by their left end, so only segments whose x ranges
+/// overlap are compared; gives up (`None`) after `budget` such comparisons.
+pub(crate) fn meeting_segments(
+    rings: &[Vec<Point>],
+    first_only: bool,
+    budget: usize,
+) -> Option<Vec<[(usize, usize); 2]>> {
     let mut segments: Vec<Segment> = Vec::new();
     for (ring, points) in rings.iter().enumerate() {
         for index in 0..points.len() {
@@ -224,23 +240,27 @@ fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), OutlineError> {
         }
     }
     segments.sort_by(|s, t| s.min_x.total_cmp(&t.min_x));
+    let mut pairs = Vec::new();
+    let mut comparisons = 0usize;
     for (i, s) in segments.iter().enumerate() {
         for t in &segments[i + 1..] {
             if t.min_x > s.max_x {
                 break;
             }
+            comparisons += 1;
+            if comparisons > budget {
+                return None;
+            }
             if meet(s, t, rings) {
                 let (first, second) = if (s.ring, s.index) < (t.ring, t.index) { (s, t) } else { (t, s) };
-                return Err(OutlineError::SelfIntersection {
-                    ring_a: Ring(first.ring),
-                    segment_a: first.index,
-                    ring_b: Ring(second.ring),
-                    segment_b: second.index,
-                });
+                pairs.push([(first.ring, first.index), (second.ring, second.index)]);
+                if first_only {
+                    return Some(pairs);
+                }
             }
         }
     }
-    Ok(())
+    Some(pairs)
 }
 
 /// Whether two distinct segments meet anywhere they should not.

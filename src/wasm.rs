@@ -440,3 +440,257 @@ fn performance_now() -> f64 {
 fn to_js(error: impl std::fmt::Display) -> JsError {
     JsError::new(&error.to_string())
 }
+
+// ── Shape import: SVG, images, mesh files (`crate::import`) ─────────────────────────────
+
+use crate::import::mesh_file::{self, MeshFile};
+use crate::import::raster::{self, MaskMode, TraceOptions};
+use crate::import::svg::{self as svg_import, SvgOptions};
+use crate::import::warp::{self, PointMapper};
+use crate::import::{ImportError, Limits};
+
+/// Reads an options object, refusing unknown keys: `(key, value)` pairs.
+fn option_entries(value: &JsValue, what: &str, names: &[&str]) -> Result<Vec<(String, JsValue)>, JsError> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(Vec::new());
+    }
+    let Some(object) = value.dyn_ref::<Object>() else {
+        return Err(JsError::new(&format!("{what} options must be an object")));
+    };
+    let mut entries = Vec::new();
+    for key in Object::keys(object).iter() {
+        let key = key.as_string().unwrap_or_default();
+        if !names.contains(&key.as_str()) {
+            return Err(JsError::new(&format!("unknown {what} option `{key}`; the options are {}", names.join(", "))));
+        }
+        let field = Reflect::get(object, &JsValue::from_str(&key)).map_err(|_| JsError::new("unreadable option"))?;
+        if !field.is_undefined() {
+            entries.push((key, field));
+        }
+    }
+    Ok(entries)
+}
+
+fn number_option(name: &str, value: &JsValue) -> Result<f64, JsError> {
+    value.as_f64().ok_or_else(|| JsError::new(&format!("option {name} must be a number")))
+}
+
+/// A whole-number option such as a limit.
+fn count_option(name: &str, value: &JsValue) -> Result<usize, JsError> {
+    let count = number_option(name, value)?;
+    if !(count.is_finite() && count.fract() == 0.0 && count >= 0.0) {
+        return Err(JsError::new(&format!("option {name} is {count}, expected a whole number")));
+    }
+    Ok(count.min(usize::MAX as f64) as usize)
+}
+
+fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, JsError> {
+    let mut options = SvgOptions::default();
+    for (key, field) in option_entries(value, "SVG import", &["tolerance", "minArea", "maxPoints", "maxBytes"])? {
+        match key.as_str() {
+            "tolerance" => options.tolerance = Some(number_option(&key, &field)?),
+            "minArea" => options.min_area = number_option(&key, &field)?,
+            "maxPoints" => options.limits.max_points = count_option(&key, &field)?,
+            _ => options.limits.max_bytes = count_option(&key, &field)?,
+        }
+    }
+    Ok(options)
+}
+
+fn parse_trace_options(value: &JsValue) -> Result<TraceOptions, JsError> {
+    const NAMES: [&str; 7] =
+        ["mode", "alphaThreshold", "colourThreshold", "tolerance", "minArea", "maxPoints", "maxPixels"];
+    let mut options = TraceOptions::default();
+    for (key, field) in option_entries(value, "image tracing", &NAMES)? {
+        match key.as_str() {
+            "mode" => {
+                options.mode = match field.as_string().as_deref() {
+                    Some("auto") => MaskMode::Auto,
+                    Some("alpha") => MaskMode::Alpha,
+                    Some("colour") => MaskMode::Colour,
+                    _ => return Err(JsError::new("option mode must be \"auto\", \"alpha\" or \"colour\"")),
+                }
+            }
+            "alphaThreshold" => options.alpha_threshold = number_option(&key, &field)?,
+            "colourThreshold" => options.colour_threshold = number_option(&key, &field)?,
+            "tolerance" => options.tolerance = number_option(&key, &field)?,
+            "minArea" => options.min_area = number_option(&key, &field)?,
+            "maxPoints" => options.limits.max_points = count_option(&key, &field)?,
+            _ => options.limits.max_pixels = count_option(&key, &field)?,
+        }
+    }
+    Ok(options)
+}
+
+fn flat(points: &[[f64; 2]]) -> Float64Array {
+    Float64Array::from(points.iter().flatten().copied().collect::<Vec<f64>>().as_slice())
+}
+
+/// Outlines as `[{ outer: Float64Array, holes: Float64Array[] }]`.
+fn outlines_to_js(outlines: &[Outline]) -> Result<Array, JsError> {
+    let list = Array::new();
+    for outline in outlines {
+        let holes: Array = outline.holes.iter().map(|h| flat(h)).collect();
+        let entry = object(&[("outer", flat(&outline.outer).into()), ("holes", holes.into())])
+            .map_err(|_| JsError::new("could not build an outline object"))?;
+        list.push(&entry);
+    }
+    Ok(list)
+}
+
+fn import_error(error: ImportError) -> JsError {
+    to_js(error)
+}
+
+/// The filled region of an SVG document as outlines, largest part first. `options`:
+/// `{ tolerance?, minArea?, maxPoints?, maxBytes? }`.
+#[wasm_bindgen]
+pub fn import_svg(text: &str, options: JsValue) -> Result<Array, JsError> {
+    let options = parse_svg_options(&options)?;
+    let shape = svg_import::import_svg(text, &options).map_err(import_error)?;
+    outlines_to_js(&shape.outlines)
+}
+
+/// The filled elements' paths in output coordinates:
+/// `[{ element, commands: "MLQCZ"-letters, points: Float64Array, fillRule }]`.
+#[wasm_bindgen]
+pub fn import_svg_paths(text: &str, options: JsValue) -> Result<Array, JsError> {
+    let options = parse_svg_options(&options)?;
+    let shape = svg_import::import_svg(text, &options).map_err(import_error)?;
+    let list = Array::new();
+    for p in &shape.paths {
+        let commands: String = p.path.verbs.iter().map(|v| v.letter()).collect();
+        let rule = match p.fill_rule {
+            crate::import::vector::FillRule::NonZero => "nonzero",
+            crate::import::vector::FillRule::EvenOdd => "evenodd",
+        };
+        let entry = object(&[
+            ("element", p.element.to_string().into()),
+            ("commands", commands.into()),
+            ("points", flat(&p.path.points).into()),
+            ("fillRule", rule.into()),
+        ])
+        .map_err(|_| JsError::new("could not build a path object"))?;
+        list.push(&entry);
+    }
+    Ok(list)
+}
+
+/// Traces the shape in RGBA pixels (rows from the top) into outlines in pixel units, y up.
+/// `options`: `{ mode?, alphaThreshold?, colourThreshold?, tolerance?, minArea?, maxPoints?,
+/// maxPixels? }`.
+#[wasm_bindgen]
+pub fn trace_image(rgba: &[u8], width: u32, height: u32, options: JsValue) -> Result<Array, JsError> {
+    let options = parse_trace_options(&options)?;
+    let outlines = raster::trace_image(rgba, width as usize, height as usize, &options).map_err(import_error)?;
+    outlines_to_js(&outlines)
+}
+
+/// A mesh read from a file, with its texture coordinates if it has them.
+#[wasm_bindgen(js_name = MeshFile)]
+pub struct JsMeshFile {
+    file: MeshFile,
+}
+
+#[wasm_bindgen(js_class = MeshFile)]
+impl JsMeshFile {
+    /// The validated mesh.
+    pub fn mesh(&self) -> JsMesh {
+        JsMesh { mesh: self.file.mesh.clone() }
+    }
+
+    /// Per-vertex texture coordinates, u and v interleaved, or undefined.
+    pub fn uvs(&self) -> Option<Vec<f64>> {
+        self.file.uvs.as_ref().map(|uvs| uvs.iter().flatten().copied().collect())
+    }
+}
+
+/// Reads a Wavefront OBJ mesh (xy plane).
+#[wasm_bindgen]
+pub fn mesh_from_obj(text: &str) -> Result<JsMeshFile, JsError> {
+    Ok(JsMeshFile { file: mesh_file::read_obj(text, &Limits::default()).map_err(import_error)? })
+}
+
+/// Reads a mesh in our JSON format.
+#[wasm_bindgen]
+pub fn mesh_from_json(text: &str) -> Result<JsMeshFile, JsError> {
+    Ok(JsMeshFile { file: mesh_file::read_json(text, &Limits::default()).map_err(import_error)? })
+}
+
+/// A mesh and its optional texture coordinates, as the writers take them.
+type MeshAndUvs = (Mesh, Option<Vec<[f64; 2]>>);
+
+fn mesh_and_uvs(positions: &[f64], triangles: &[u32], uvs: &Option<Vec<f64>>) -> Result<MeshAndUvs, JsError> {
+    let mesh = Mesh::from_flat(positions, triangles).map_err(to_js)?;
+    let uvs = match uvs {
+        None => None,
+        Some(flat) if flat.len() % 2 == 0 => Some(flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect()),
+        Some(flat) => return Err(JsError::new(&format!("uvs has odd length {}; u, v pairs are needed", flat.len()))),
+    };
+    Ok((mesh, uvs))
+}
+
+/// Writes a mesh (validated first) as Wavefront OBJ, with `vt` lines when `uvs` are given.
+#[wasm_bindgen]
+pub fn mesh_to_obj(positions: &[f64], triangles: &[u32], uvs: Option<Vec<f64>>) -> Result<String, JsError> {
+    let (mesh, uvs) = mesh_and_uvs(positions, triangles, &uvs)?;
+    mesh_file::write_obj(&mesh, uvs.as_deref()).map_err(import_error)
+}
+
+/// Writes a mesh (validated first) in our JSON format.
+#[wasm_bindgen]
+pub fn mesh_to_json(positions: &[f64], triangles: &[u32], uvs: Option<Vec<f64>>) -> Result<String, JsError> {
+    let (mesh, uvs) = mesh_and_uvs(positions, triangles, &uvs)?;
+    mesh_file::write_json(&mesh, uvs.as_deref()).map_err(import_error)
+}
+
+/// Texture coordinates (u, v interleaved) of positions in a traced image's pixel frame.
+#[wasm_bindgen]
+pub fn texture_coordinates(positions: &[f64], width: f64, height: f64) -> Result<Vec<f64>, JsError> {
+    if !(width > 0.0 && height > 0.0 && width.is_finite() && height.is_finite()) {
+        return Err(JsError::new(&format!("image size {width} x {height} must be finite and above 0")));
+    }
+    if positions.len() % 2 == 1 {
+        return Err(JsError::new(&format!("positions has odd length {}", positions.len())));
+    }
+    let points: Vec<[f64; 2]> = positions.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+    Ok(warp::texture_coordinates(&points, width, height).into_iter().flatten().collect())
+}
+
+/// Points located once in a rest mesh, then carried along to deformed positions.
+#[wasm_bindgen(js_name = PointMapper)]
+pub struct JsPointMapper {
+    inner: PointMapper,
+}
+
+#[wasm_bindgen(js_class = PointMapper)]
+impl JsPointMapper {
+    /// Validates the rest mesh and locates the points (xy-interleaved) in it.
+    #[wasm_bindgen(constructor)]
+    pub fn new(positions: &[f64], triangles: &[u32], points: &[f64]) -> Result<JsPointMapper, JsError> {
+        let mesh = Mesh::from_flat(positions, triangles).map_err(to_js)?;
+        if points.len() % 2 == 1 {
+            return Err(JsError::new(&format!("points has odd length {}", points.len())));
+        }
+        if let Some(i) = points.iter().position(|v| !v.is_finite()) {
+            return Err(JsError::new(&format!("point {} has a coordinate that is not a finite number", i / 2)));
+        }
+        let points: Vec<[f64; 2]> = points.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+        Ok(Self { inner: PointMapper::new(&mesh, &points) })
+    }
+
+    /// The points carried along to `deformed` (xy-interleaved, one per rest vertex).
+    pub fn map(&self, deformed: &[f64]) -> Result<Vec<f64>, JsError> {
+        let (pairs, rest) = deformed.as_chunks::<2>();
+        let mapped = if rest.is_empty() { self.inner.map(pairs) } else { None };
+        mapped.map(|m| m.into_iter().flatten().collect()).ok_or_else(|| {
+            JsError::new(&format!("deformed positions have length {}, expected 2 per rest vertex", deformed.len()))
+        })
+    }
+
+    /// Number of points.
+    #[wasm_bindgen(getter)]
+    pub fn length(&self) -> usize {
+        self.inner.len()
+    }
+}

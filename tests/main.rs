@@ -3,6 +3,10 @@
 mod arap;
 mod common;
 mod deformer;
+mod gallery;
+mod import_mesh;
+mod import_raster;
+mod import_svg;
 mod killing;
 mod session;
 mod sparse;

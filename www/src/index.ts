@@ -23,3 +23,4 @@ export { METHODS, Widget, mount, type Method, type PoseDetail, type WidgetOption
 export { defineElement, type AkapDeformerElement } from "./widget/element.js";
 export type { Session, SessionEvent, ShapeSpec } from "./widget/session.js";
 export { parseSession } from "./widget/session.js";
+export * from "./import.js";

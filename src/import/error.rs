@@ -1,0 +1,180 @@
+//! `ImportError`: why a file or image could not be read, and where.
+
+use std::fmt;
+
+use crate::mesh::MeshError;
+
+/// An element of an SVG document, for error messages: its name, its `id` if it has one, and
+/// where its start tag begins (1-based line and column).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ElementRef {
+    /// The element's local name, e.g. `path`.
+    pub name: String,
+    /// Its `id` attribute, if any.
+    pub id: Option<String>,
+    /// Line of the start tag, from 1.
+    pub line: u32,
+    /// Column of the start tag, from 1.
+    pub column: u32,
+}
+
+impl fmt::Display for ElementRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.id {
+            Some(id) => write!(f, "<{} id=\"{id}\"> (line {}, column {})", self.name, self.line, self.column),
+            None => write!(f, "<{}> (line {}, column {})", self.name, self.line, self.column),
+        }
+    }
+}
+
+/// Why an SVG document, an image or a mesh file could not be imported.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum ImportError {
+    /// The input exceeds a size limit (see [`crate::import::Limits`]).
+    TooLarge {
+        /// What is too large, e.g. "the SVG text" or "the image".
+        what: &'static str,
+        /// Its size.
+        size: usize,
+        /// The limit.
+        limit: usize,
+        /// The unit of both, e.g. "bytes", "pixels", "points".
+        unit: &'static str,
+    },
+    /// The XML is not well formed (or uses a feature the parser refuses).
+    Xml {
+        /// The parser's description.
+        message: String,
+        /// Line, from 1.
+        line: u32,
+        /// Column, from 1.
+        column: u32,
+    },
+    /// The document's root element is not `svg`.
+    NotSvg {
+        /// The root element's name.
+        root: String,
+    },
+    /// An attribute of an SVG element has a value that cannot be used.
+    Attribute {
+        /// The element.
+        element: ElementRef,
+        /// The attribute's name.
+        attribute: String,
+        /// What is wrong, including the position in the value where that helps.
+        message: String,
+    },
+    /// SVG elements nest deeper than the limit.
+    TooDeep {
+        /// The first element past the limit.
+        element: ElementRef,
+        /// The nesting limit.
+        limit: usize,
+    },
+    /// The SVG has no filled shape that could become an outline.
+    NoShapes {
+        /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
+        skipped: Vec<String>,
+    },
+    /// Checking the outline for crossings would take too long: too many segments lie close
+    /// together (only adversarial inputs do this).
+    TooComplex {
+        /// The number of nearby segment pairs after which the check gave up.
+        pairs: usize,
+    },
+    /// The pixel buffer does not match the image size.
+    ImageSize {
+        /// Width in pixels.
+        width: usize,
+        /// Height in pixels.
+        height: usize,
+        /// The buffer's length in bytes (4 per pixel are needed).
+        len: usize,
+    },
+    /// No pixel of the image counts as part of the shape.
+    EmptyImage,
+    /// A syntax error in a mesh file.
+    Syntax {
+        /// The file format, "OBJ" or "JSON".
+        format: &'static str,
+        /// What is wrong.
+        message: String,
+        /// Line, from 1.
+        line: usize,
+        /// Column, from 1.
+        column: usize,
+    },
+    /// Texture coordinates that do not fit the mesh.
+    TextureCoordinates {
+        /// What is wrong.
+        message: String,
+    },
+    /// The mesh in the file is invalid (the same rules and errors as [`crate::Mesh::new`]).
+    Mesh(MeshError),
+    /// An option is out of range.
+    InvalidOption {
+        /// The option's name as the JavaScript API spells it.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What would be accepted.
+        expected: &'static str,
+    },
+}
+
+impl fmt::Display for ImportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::TooLarge { what, size, limit, unit } => {
+                write!(f, "{what} has {size} {unit}, more than the limit of {limit} {unit}")
+            }
+            Self::Xml { message, line, column } => {
+                write!(f, "the SVG is not well-formed XML at line {line}, column {column}: {message}")
+            }
+            Self::NotSvg { root } => write!(f, "the document's root element is <{root}>, not <svg>"),
+            Self::Attribute { element, attribute, message } => {
+                write!(f, "attribute {attribute} of {element}: {message}")
+            }
+            Self::TooDeep { element, limit } => write!(f, "{element} nests deeper than {limit} elements"),
+            Self::NoShapes { skipped } if skipped.is_empty() => write!(f, "the SVG has no filled shape"),
+            Self::NoShapes { skipped } => {
+                write!(f, "the SVG has no filled shape (unsupported elements skipped: {})", skipped.join(", "))
+            }
+            Self::TooComplex { pairs } => write!(
+                f,
+                "the outline has more than {pairs} pairs of segments close together to check for crossings; \
+                 simplify the shape"
+            ),
+            Self::ImageSize { width, height, len } => write!(
+                f,
+                "a {width} x {height} image needs {} bytes of RGBA pixels, but {len} were given",
+                width.saturating_mul(*height).saturating_mul(4)
+            ),
+            Self::EmptyImage => write!(f, "no pixel of the image belongs to the shape (check the threshold)"),
+            Self::Syntax { format, message, line, column } => {
+                write!(f, "{format} error at line {line}, column {column}: {message}")
+            }
+            Self::TextureCoordinates { message } => write!(f, "texture coordinates: {message}"),
+            Self::Mesh(e) => e.fmt(f),
+            Self::InvalidOption { name, value, expected } => {
+                write!(f, "option {name} is {value}, expected {expected}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ImportError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Mesh(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<MeshError> for ImportError {
+    fn from(e: MeshError) -> Self {
+        Self::Mesh(e)
+    }
+}

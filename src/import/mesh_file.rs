@@ -1,0 +1,328 @@
+//! Mesh files: our JSON (`{ "positions": [x0, y0, ...], "triangles": [a0, b0, c0, ...],
+//! "uvs": [u0, v0, ...] }`, `uvs` optional) and Wavefront OBJ (`v`, `vt`, `f` with polygons
+//! fanned into triangles, negative indices, comments). Both are read into a validated
+//! [`Mesh`] (the same rules and errors as [`Mesh::new`]) and written back so that a round
+//! trip gives the same numbers.
+
+use std::fmt::Write;
+
+use serde::{Deserialize, Serialize};
+
+use crate::geometry::Point;
+use crate::import::{ImportError, Limits};
+use crate::mesh::Mesh;
+
+/// A mesh read from a file, with its per-vertex texture coordinates if the file has them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshFile {
+    /// The validated mesh.
+    pub mesh: Mesh,
+    /// One `[u, v]` per vertex, or `None`.
+    pub uvs: Option<Vec<Point>>,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct JsonMesh {
+    positions: Vec<f64>,
+    triangles: Vec<u32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    uvs: Option<Vec<f64>>,
+}
+
+fn check_size(text: &str, limits: &Limits, what: &'static str) -> Result<(), ImportError> {
+    Limits::check(text.len(), limits.max_bytes, what, "bytes")
+}
+
+fn check_counts(vertices: usize, triangles: usize, limits: &Limits) -> Result<(), ImportError> {
+    Limits::check(vertices, limits.max_vertices, "the mesh", "vertices")?;
+    Limits::check(triangles, limits.max_vertices.saturating_mul(2), "the mesh", "triangles")
+}
+
+/// Checks texture coordinates against the mesh: one finite pair per vertex.
+fn check_uvs(uvs: &[Point], vertices: usize) -> Result<(), ImportError> {
+    if uvs.len() != vertices {
+        return Err(ImportError::TextureCoordinates {
+            message: format!("{} pairs for {vertices} vertices; one pair per vertex is needed", uvs.len()),
+        });
+    }
+    if let Some(v) = uvs.iter().position(|t| !(t[0].is_finite() && t[1].is_finite())) {
+        return Err(ImportError::TextureCoordinates { message: format!("vertex {v} has a value that is not finite") });
+    }
+    Ok(())
+}
+
+/// Reads our JSON mesh format. Unknown fields are errors, so a misspelt `uvs` is noticed.
+///
+/// ```
+/// use akap::import::{mesh_file::read_json, Limits};
+/// let file = read_json(r#"{"positions": [0,0, 1,0, 0,1], "triangles": [0,1,2]}"#, &Limits::default())?;
+/// assert_eq!(file.mesh.triangle_count(), 1);
+/// # Ok::<(), akap::import::ImportError>(())
+/// ```
+pub fn read_json(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
+    check_size(text, limits, "the JSON text")?;
+    let parsed: JsonMesh = serde_json::from_str(text).map_err(|e| {
+        let (line, column) = (e.line(), e.column());
+        let message = e.to_string();
+        let suffix = format!(" at line {line} column {column}");
+        ImportError::Syntax {
+            format: "JSON",
+            message: message.strip_suffix(&suffix).unwrap_or(&message).to_string(),
+            line,
+            column,
+        }
+    })?;
+    check_counts(parsed.positions.len() / 2, parsed.triangles.len() / 3, limits)?;
+    let mesh = Mesh::from_flat(&parsed.positions, &parsed.triangles)?;
+    let uvs = match parsed.uvs {
+        None => None,
+        Some(flat) => {
+            if flat.len() % 2 == 1 {
+                return Err(ImportError::TextureCoordinates {
+                    message: format!("uvs must hold u, v pairs, but their length {} is odd", flat.len()),
+                });
+            }
+            let pairs: Vec<Point> = flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+            check_uvs(&pairs, mesh.vertex_count())?;
+            Some(pairs)
+        }
+    };
+    Ok(MeshFile { mesh, uvs })
+}
+
+/// Writes our JSON mesh format (numbers in their shortest exact form).
+pub fn write_json(mesh: &Mesh, uvs: Option<&[Point]>) -> Result<String, ImportError> {
+    if let Some(uvs) = uvs {
+        check_uvs(uvs, mesh.vertex_count())?;
+    }
+    let json = JsonMesh {
+        positions: mesh.positions().iter().flatten().copied().collect(),
+        triangles: mesh.triangles().iter().flatten().copied().collect(),
+        uvs: uvs.map(|u| u.iter().flatten().copied().collect()),
+    };
+    // Arrays of finite numbers and indices always serialise.
+    Ok(serde_json::to_string(&json).expect("a mesh serialises to JSON"))
+}
+
+/// OBJ statements that carry nothing for a flat triangle mesh; they are skipped.
+const OBJ_IGNORED: [&str; 35] = [
+    "vn",
+    "vp",
+    "o",
+    "g",
+    "s",
+    "usemtl",
+    "mtllib",
+    "l",
+    "p",
+    "mg",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "lod",
+    "usemap",
+    "maplib",
+    "shadow_obj",
+    "trace_obj",
+    "ctech",
+    "stech",
+    "call",
+];
+
+/// Reads a Wavefront OBJ mesh in the xy plane: `v x y [z]` (z must be 0), `vt u v`, and
+/// faces `f a b c ...` whose corners are `v`, `v/vt`, `v//vn` or `v/vt/vn` (1-based, or
+/// negative: counted back from the last vertex so far), fanned into triangles from their
+/// first corner. Texture coordinates become per-vertex, so a vertex used with two
+/// different ones is an error.
+pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
+    check_size(text, limits, "the OBJ text")?;
+    let mut positions: Vec<Point> = Vec::new();
+    let mut texcoords: Vec<Point> = Vec::new();
+    let mut triangles: Vec<[u32; 3]> = Vec::new();
+    // Per vertex, the texture coordinate its corners use (checked to agree).
+    let mut uv_of: Vec<Option<Point>> = Vec::new();
+    let mut corners_with_uv = (0usize, 0usize); // (with, without)
+    let mut lines = text.split('\n').enumerate().peekable();
+    let mut joined = String::new();
+    while let Some((index, raw)) = lines.next() {
+        let line_number = index + 1;
+        // A trailing backslash continues the statement on the next line.
+        let mut line = raw.strip_suffix('\r').unwrap_or(raw);
+        if line.ends_with('\\') {
+            joined.clear();
+            joined.push_str(&line[..line.len() - 1]);
+            for (_, next) in lines.by_ref() {
+                let next = next.strip_suffix('\r').unwrap_or(next);
+                match next.strip_suffix('\\') {
+                    Some(part) => joined.push_str(part),
+                    None => {
+                        joined.push_str(next);
+                        break;
+                    }
+                }
+                joined.push(' ');
+            }
+            line = &joined;
+        }
+        let content = line.split('#').next().unwrap_or("");
+        let column_of =
+            |token: &str| content[..token.as_ptr() as usize - content.as_ptr() as usize].chars().count() + 1;
+        let error = |token: &str, message: String| ImportError::Syntax {
+            format: "OBJ",
+            message,
+            line: line_number,
+            column: column_of(token),
+        };
+        let mut tokens = content.split_ascii_whitespace();
+        let Some(keyword) = tokens.next() else { continue };
+        let args: Vec<&str> = tokens.collect();
+        let number = |token: &str| -> Result<f64, ImportError> {
+            match token.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(error(token, format!("`{token}` is not a finite number"))),
+            }
+        };
+        match keyword {
+            "v" => {
+                if !(2..=7).contains(&args.len()) {
+                    return Err(error(
+                        keyword,
+                        format!("a vertex needs x and y (and z = 0), found {} numbers", args.len()),
+                    ));
+                }
+                let values = args.iter().map(|a| number(a)).collect::<Result<Vec<f64>, _>>()?;
+                if values.len() > 2 && values[2] != 0.0 {
+                    return Err(error(
+                        args[2],
+                        format!(
+                            "vertex {} has z = {}; only flat meshes in the xy plane can be read",
+                            positions.len() + 1,
+                            values[2]
+                        ),
+                    ));
+                }
+                Limits::check(positions.len() + 1, limits.max_vertices, "the mesh", "vertices")?;
+                positions.push([values[0], values[1]]);
+                uv_of.push(None);
+            }
+            "vt" => {
+                if !(1..=3).contains(&args.len()) {
+                    return Err(error(
+                        keyword,
+                        format!("a texture coordinate needs u and v, found {} numbers", args.len()),
+                    ));
+                }
+                let u = number(args[0])?;
+                let v = args.get(1).map(|a| number(a)).transpose()?.unwrap_or(0.0);
+                Limits::check(texcoords.len() + 1, limits.max_vertices, "the mesh", "texture coordinates")?;
+                texcoords.push([u, v]);
+            }
+            "f" => {
+                if args.len() < 3 {
+                    return Err(error(keyword, format!("a face needs at least 3 corners, found {}", args.len())));
+                }
+                let mut corners = Vec::with_capacity(args.len());
+                for token in &args {
+                    let mut parts = token.split('/');
+                    let resolve =
+                        |part: Option<&str>, count: usize, what: &str| -> Result<Option<usize>, ImportError> {
+                            let Some(part) = part.filter(|p| !p.is_empty()) else { return Ok(None) };
+                            let index: i64 =
+                                part.parse().map_err(|_| error(token, format!("`{part}` is not a {what} index")))?;
+                            let resolved = if index > 0 { index - 1 } else { count as i64 + index };
+                            if index == 0 || resolved < 0 || resolved >= count as i64 {
+                                return Err(error(
+                                    token,
+                                    format!("{what} index {index} is out of range: {count} defined so far"),
+                                ));
+                            }
+                            Ok(Some(resolved as usize))
+                        };
+                    let v = resolve(parts.next(), positions.len(), "vertex")?
+                        .ok_or_else(|| error(token, "a face corner needs a vertex index".to_string()))?;
+                    let t = resolve(parts.next(), texcoords.len(), "texture coordinate")?;
+                    if parts.clone().count() > 1 {
+                        return Err(error(token, format!("`{token}` has more than three indices")));
+                    }
+                    match t {
+                        Some(t) => {
+                            corners_with_uv.0 += 1;
+                            let uv = texcoords[t];
+                            match uv_of[v] {
+                                Some(existing) if existing != uv => {
+                                    return Err(error(
+                                        token,
+                                        format!(
+                                        "vertex {} has two different texture coordinates; one per vertex is supported",
+                                        v + 1
+                                    ),
+                                    ))
+                                }
+                                _ => uv_of[v] = Some(uv),
+                            }
+                        }
+                        None => corners_with_uv.1 += 1,
+                    }
+                    corners.push(v as u32);
+                }
+                for i in 1..corners.len() - 1 {
+                    triangles.push([corners[0], corners[i], corners[i + 1]]);
+                }
+                Limits::check(triangles.len(), limits.max_vertices.saturating_mul(2), "the mesh", "triangles")?;
+            }
+            other if OBJ_IGNORED.contains(&other) => {}
+            other => return Err(error(other, format!("unknown statement `{other}`"))),
+        }
+    }
+    let uvs = match corners_with_uv {
+        (0, _) => None,
+        (_, 0) => Some(uv_of.iter().map(|uv| uv.unwrap_or([0.0, 0.0])).collect()),
+        _ => {
+            return Err(ImportError::TextureCoordinates {
+                message: "some face corners have texture coordinates and others do not".to_string(),
+            })
+        }
+    };
+    let mesh = Mesh::new(positions, triangles)?;
+    Ok(MeshFile { mesh, uvs })
+}
+
+/// Writes a Wavefront OBJ: `v x y 0` per vertex, `vt u v` per vertex when `uvs` are given
+/// (then faces are `f a/a b/b c/c`), and one `f` per triangle.
+pub fn write_obj(mesh: &Mesh, uvs: Option<&[Point]>) -> Result<String, ImportError> {
+    if let Some(uvs) = uvs {
+        check_uvs(uvs, mesh.vertex_count())?;
+    }
+    let mut out = String::new();
+    let _ = writeln!(out, "# akap mesh: {} vertices, {} triangles", mesh.vertex_count(), mesh.triangle_count());
+    for p in mesh.positions() {
+        let _ = writeln!(out, "v {} {} 0", p[0], p[1]);
+    }
+    for t in uvs.unwrap_or(&[]) {
+        let _ = writeln!(out, "vt {} {}", t[0], t[1]);
+    }
+    for t in mesh.triangles() {
+        let [a, b, c] = t.map(|i| i + 1);
+        if uvs.is_some() {
+            let _ = writeln!(out, "f {a}/{a} {b}/{b} {c}/{c}");
+        } else {
+            let _ = writeln!(out, "f {a} {b} {c}");
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,68 @@
+//! Shapes in: SVG documents and raster images become [`Outline`](crate::Outline)s, and mesh
+//! files (our JSON, Wavefront OBJ) become validated [`Mesh`](crate::Mesh)es. Everything here
+//! is plain Rust and knows nothing of the browser: the page decodes images into RGBA pixels
+//! and hands over file contents as text.
+//!
+//! Input is untrusted: every parser has size limits ([`Limits`]), reports malformed input
+//! as an [`ImportError`] that says what and where, and bounds its loops and nesting.
+//!
+//! | module | what |
+//! |---|---|
+//! | [`svg`] | SVG to outlines (and the filled paths, for exporting the art deformed) |
+//! | [`raster`] | RGBA pixels to outlines: threshold, marching squares, simplification |
+//! | [`mesh_file`] | JSON and OBJ meshes, read (validated) and written |
+//! | [`warp`] | points through a deformed mesh (barycentric), texture coordinates |
+//! | [`vector`] | vector paths: flattening, writing path data |
+
+mod error;
+mod merge;
+pub mod mesh_file;
+pub mod raster;
+mod regions;
+mod simplify;
+pub mod svg;
+pub mod vector;
+pub mod warp;
+
+pub use error::{ElementRef, ImportError};
+
+/// Size limits for untrusted input. The defaults suit interactive use in a browser.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest text input (SVG, OBJ, JSON), in bytes.
+    pub max_bytes: usize,
+    /// Largest image, in pixels.
+    pub max_pixels: usize,
+    /// Most outline points an SVG or image may produce (after flattening or tracing).
+    pub max_points: usize,
+    /// Most vertices (and triangles) a mesh file may have.
+    pub max_vertices: usize,
+    /// Most XML nodes (elements, attributes' text nodes and so on) of an SVG.
+    pub max_elements: usize,
+    /// Most comparisons of nearby segments when checking that outlines neither cross nor
+    /// touch (a sweep; only adversarial inputs, thousands of segments stacked in one
+    /// place, come near the default).
+    pub max_segment_pairs: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            max_bytes: 32 << 20,
+            max_pixels: 4096 * 4096,
+            max_points: 100_000,
+            max_vertices: 1_000_000,
+            max_elements: 200_000,
+            max_segment_pairs: 50_000_000,
+        }
+    }
+}
+
+impl Limits {
+    fn check(value: usize, limit: usize, what: &'static str, unit: &'static str) -> Result<(), ImportError> {
+        if value > limit {
+            return Err(ImportError::TooLarge { what, size: value, limit, unit });
+        }
+        Ok(())
+    }
+}

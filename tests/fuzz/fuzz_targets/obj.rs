@@ -1,0 +1,16 @@
+//! Wavefront OBJ: reading never panics or hangs; a mesh that reads writes back to a file
+//! that reads to the same mesh and texture coordinates.
+#![no_main]
+
+use akap::import::mesh_file::{read_obj, write_obj};
+use akap::import::Limits;
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let limits = Limits { max_vertices: 10_000, ..Limits::default() };
+    let Ok(file) = read_obj(text, &limits) else { return };
+    let written = write_obj(&file.mesh, file.uvs.as_deref()).expect("a read mesh writes");
+    let again = read_obj(&written, &limits).expect("a written mesh reads");
+    assert_eq!(again, file);
+});

@@ -1,0 +1,151 @@
+//! Mesh files: exact round trips of JSON and OBJ (with texture coordinates), the OBJ
+//! features we read, and malformed files reported with line and column.
+
+use akap::geometry::Point;
+use akap::import::mesh_file::{read_json, read_obj, write_json, write_obj};
+use akap::import::{ImportError, Limits};
+use akap::shapes::gingerbread;
+use akap::{triangulate, Mesh, MeshError, TriangulationOptions};
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+fn figure() -> (Mesh, Vec<Point>) {
+    let mesh = triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.1)).unwrap();
+    // Texture coordinates with awkward binary fractions, to test exact printing.
+    let uvs = mesh.positions().iter().map(|p| [p[0] / 3.0 + 0.1, 1.0 - p[1] / 7.0]).collect();
+    (mesh, uvs)
+}
+
+fn limits() -> Limits {
+    Limits::default()
+}
+
+#[test]
+fn json_round_trip_is_exact() {
+    let (mesh, uvs) = figure();
+    for with_uvs in [false, true] {
+        let text = write_json(&mesh, with_uvs.then_some(uvs.as_slice())).unwrap();
+        let back = read_json(&text, &limits()).unwrap();
+        assert_eq!(back.mesh, mesh);
+        assert_eq!(back.uvs.as_deref(), with_uvs.then_some(uvs.as_slice()));
+        assert_eq!(text.contains("\"uvs\""), with_uvs);
+    }
+}
+
+#[test]
+fn obj_round_trip_is_exact() {
+    let (mesh, uvs) = figure();
+    for with_uvs in [false, true] {
+        let text = write_obj(&mesh, with_uvs.then_some(uvs.as_slice())).unwrap();
+        assert!(text.starts_with("# akap mesh:"));
+        let back = read_obj(&text, &limits()).unwrap();
+        assert_eq!(back.mesh, mesh);
+        assert_eq!(back.uvs.as_deref(), with_uvs.then_some(uvs.as_slice()));
+    }
+}
+
+#[test]
+fn obj_polygons_negative_indices_and_comments() {
+    // A unit square as one quad (fanned into two triangles) plus a triangle on top given
+    // with negative indices, normals, groups, Windows line ends and a continued line.
+    let text = "# a house\r\nmtllib house.mtl\r\no house\r\nv 0 0 0\r\nv 1 0\r\nv 1 1 0.0 1.0\r\nv 0 1\r\n\
+                vn 0 0 1\r\ng walls\r\nf 1//1 2//1 3//1 4//1 # the square\r\nv 0.5 \\\r\n 1.5\r\ns off\r\nf -2 -3 -1\r\n";
+    let file = read_obj(text, &limits()).unwrap();
+    assert_eq!(file.mesh.triangles(), &[[0, 1, 2], [0, 2, 3], [3, 2, 4]]);
+    assert_eq!(file.mesh.positions()[4], [0.5, 1.5]);
+    assert_eq!(file.mesh.area(), 1.25);
+    assert_eq!(file.uvs, None);
+    // Texture coordinates per corner become per vertex.
+    let text = "v 0 0\nv 1 0\nv 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2/1 3/3\n";
+    assert_eq!(read_obj(text, &limits()).unwrap().uvs, Some(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]));
+}
+
+fn obj_error(text: &str) -> String {
+    read_obj(text, &limits()).unwrap_err().to_string()
+}
+
+#[test]
+fn malformed_obj_says_where() {
+    let square = "v 0 0\nv 1 0\nv 1 1\n";
+    let cases = [
+        ("v 0 0\nv 1 zero\n", "OBJ error at line 2, column 5: `zero` is not a finite number"),
+        ("v 0 0\nv 1 NaN\n", "line 2, column 5: `NaN` is not a finite number"),
+        ("v 0 0 2\n", "line 1, column 7: vertex 1 has z = 2; only flat meshes"),
+        ("v 0\n", "line 1, column 1: a vertex needs x and y"),
+        (&format!("{square}f 1 2 4\n"), "line 4, column 7: vertex index 4 is out of range: 3 defined so far"),
+        (&format!("{square}f 0 1 2\n"), "vertex index 0 is out of range"),
+        (&format!("{square}f -4 1 2\n"), "vertex index -4 is out of range"),
+        (&format!("{square}f 1 2\n"), "a face needs at least 3 corners, found 2"),
+        (&format!("{square}f 1/x 2 3\n"), "`x` is not a texture coordinate index"),
+        (&format!("{square}f 1/1/1/1 2 3\n"), "texture coordinate index 1 is out of range: 0 defined so far"),
+        (&format!("{square}vt 0 0\nf 1/1/1/1 2/1 3/1\n"), "`1/1/1/1` has more than three indices"),
+        (
+            &format!("{square}vt 0 0\nvt 1 1\nf 1/1 2/1 3/1\nf 1/2 3/1 2/1\n"),
+            "line 7, column 3: vertex 1 has two different texture coordinates",
+        ),
+        (&format!("{square}vt 0 0\nf 1/1 2/1 3\n"), "some face corners have texture coordinates and others do not"),
+        ("{\"positions\": []}\n", "line 1, column 1: unknown statement `{\"positions\":`"),
+        // The mesh rules and messages of Mesh::new.
+        (&format!("{square}f 1 3 2\n"), "triangle 0 is clockwise; triangles must be counter-clockwise"),
+        (&format!("{square}v 5 5\nf 1 2 3\n"), "vertex 3 belongs to no triangle"),
+        (square, "the mesh has no triangles"),
+    ];
+    for (text, expected) in cases {
+        let message = obj_error(text);
+        assert!(message.contains(expected), "{message:?} should contain {expected:?}");
+    }
+    assert!(matches!(
+        read_obj("v 0 0\nv 1 0\nv 0 1\nf 1 3 2\n", &limits()),
+        Err(ImportError::Mesh(MeshError::Clockwise { triangle: 0 }))
+    ));
+}
+
+#[test]
+fn malformed_json_says_where() {
+    let cases = [
+        ("{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 1, 2,]}", "JSON error at line 1, column 57"),
+        (
+            "{\"positions\": [0, 0, 1, 0, 0, 1],\n \"triangles\": [0, 1, -2]}",
+            "line 2, column 23: invalid value: integer `-2`, expected u32",
+        ),
+        ("{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 1, 2], \"uv\": []}", "unknown field `uv`"),
+        ("{\"positions\": [0, 0, 1e999, 0, 0, 1], \"triangles\": [0, 1, 2]}", "number out of range"),
+        ("{\"triangles\": [0, 1, 2]}", "missing field `positions`"),
+        ("[1, 2]", "invalid type"),
+        ("{\"positions\": [0, 0, 1, 0, 0], \"triangles\": [0, 1, 2]}", "length 5 is odd"),
+        ("{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 2, 1]}", "triangle 0 is clockwise"),
+        (
+            "{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 1, 2], \"uvs\": [0, 0, 1]}",
+            "uvs must hold u, v pairs",
+        ),
+        ("{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 1, 2], \"uvs\": [0, 0]}", "1 pairs for 3 vertices"),
+    ];
+    for (text, expected) in cases {
+        let message = read_json(text, &limits()).unwrap_err().to_string();
+        assert!(message.contains(expected), "{message:?} should contain {expected:?}");
+    }
+    // Deep nesting is an error, not a stack overflow.
+    let deep = format!("{{\"positions\": {}{}}}", "[".repeat(100_000), "]".repeat(100_000));
+    assert!(read_json(&deep, &limits()).unwrap_err().to_string().contains("invalid type"));
+}
+
+#[test]
+fn size_limits_apply() {
+    let small = Limits { max_bytes: 10, max_vertices: 2, ..Limits::default() };
+    let text = "v 0 0\nv 1 0\nv 0 1\nf 1 2 3\n";
+    assert_eq!(
+        read_obj(text, &small).unwrap_err(),
+        ImportError::TooLarge { what: "the OBJ text", size: text.len(), limit: 10, unit: "bytes" }
+    );
+    let few = Limits { max_vertices: 2, ..Limits::default() };
+    assert!(read_obj(text, &few)
+        .unwrap_err()
+        .to_string()
+        .contains("the mesh has 3 vertices, more than the limit of 2"));
+    let json = r#"{"positions": [0, 0, 1, 0, 0, 1], "triangles": [0, 1, 2]}"#;
+    assert!(matches!(read_json(json, &few), Err(ImportError::TooLarge { .. })));
+    // Writers check texture coordinates too.
+    let (mesh, _) = figure();
+    assert!(write_obj(&mesh, Some(&[[0.0, 0.0]])).is_err());
+    assert!(write_json(&mesh, Some(&vec![[f64::NAN, 0.0]; mesh.vertex_count()])).is_err());
+}

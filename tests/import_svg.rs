@@ -1,0 +1,345 @@
+//! SVG import: path data, shapes and transforms against hand-computed outlines; fill rules
+//! and holes; malformed input; vector export through a deformed mesh.
+
+use std::f64::consts::PI;
+
+use akap::geometry::{distance, polygon_area, Point};
+use akap::import::svg::{import_svg, parse_path_data, SvgOptions, SvgShape};
+use akap::import::warp::PointMapper;
+use akap::import::{ImportError, Limits};
+use akap::{triangulate, Outline, TriangulationOptions};
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+fn svg(body: &str, attributes: &str) -> String {
+    format!(r#"<svg xmlns="http://www.w3.org/2000/svg" {attributes}>{body}</svg>"#)
+}
+
+fn import(body: &str, attributes: &str) -> SvgShape {
+    import_svg(&svg(body, attributes), &SvgOptions::default()).unwrap()
+}
+
+fn error(body: &str, attributes: &str) -> String {
+    import_svg(&svg(body, attributes), &SvgOptions::default()).unwrap_err().to_string()
+}
+
+/// The ring rotated to start at its lowest-then-leftmost point and run counter-clockwise,
+/// so rings can be compared regardless of where they start.
+fn canonical(ring: &[Point]) -> Vec<Point> {
+    let mut r = ring.to_vec();
+    if polygon_area(&r) < 0.0 {
+        r.reverse();
+    }
+    let start = (0..r.len()).min_by(|&i, &j| (r[i][1], r[i][0]).partial_cmp(&(r[j][1], r[j][0])).unwrap()).unwrap();
+    r.rotate_left(start);
+    r
+}
+
+fn assert_ring(actual: &[Point], expected: &[Point]) {
+    let (a, e) = (canonical(actual), canonical(expected));
+    assert_eq!(a.len(), e.len(), "{a:?} vs {e:?}");
+    for (p, q) in a.iter().zip(&e) {
+        assert!(distance(*p, *q) < 1e-9, "{a:?} vs {e:?}");
+    }
+}
+
+#[test]
+fn absolute_and_relative_commands_with_view_box_flip() {
+    // viewBox 0 0 100 50: y' = 50 - y.
+    let shape = import(r#"<path d="M 10 10 h 80 v 30 H 10 Z"/>"#, r#"viewBox="0 0 100 50""#);
+    assert_eq!(shape.outlines.len(), 1);
+    assert_ring(&shape.outlines[0].outer, &[[10.0, 40.0], [90.0, 40.0], [90.0, 10.0], [10.0, 10.0]]);
+    // Relative moveto with implicit linetos, and V/L; the viewBox origin moves to 0.
+    let shape = import(r#"<path d="m10 10 20 0 0 20 L 10 30 z"/>"#, r#"viewBox="5 0 40 40""#);
+    assert_ring(&shape.outlines[0].outer, &[[5.0, 30.0], [25.0, 30.0], [25.0, 10.0], [5.0, 10.0]]);
+    // Without a viewBox, y' = height - y.
+    let shape = import(r#"<polygon points="0,0 4,0 4,2"/>"#, r#"height="10""#);
+    assert_ring(&shape.outlines[0].outer, &[[0.0, 10.0], [4.0, 10.0], [4.0, 8.0]]);
+}
+
+#[test]
+fn smooth_curves_reflect_their_control_points() {
+    // S after C reflects the second control point; T after Q the control point; S after
+    // anything else starts from the current point.
+    let path = parse_path_data("M0 0 C1 0 2 0 3 0 s 1 2 1 3 q 0 1 -1 1 t -2 0 L 0 0 S 1 1 2 2", 100).unwrap();
+    assert_eq!(path.points[4], [4.0, 0.0], "S reflects (2, 0) about (3, 0)");
+    assert_eq!(&path.points[5..7], &[[4.0, 2.0], [4.0, 3.0]], "relative to (3, 0)");
+    assert_eq!(&path.points[7..9], &[[4.0, 4.0], [3.0, 4.0]]);
+    assert_eq!(path.points[9], [2.0, 4.0], "T reflects (4, 4) about (3, 4)");
+    assert_eq!(path.points[10], [1.0, 4.0]);
+    assert_eq!(path.points[12], [0.0, 0.0], "S after L: the first control point is the current point");
+}
+
+/// All points of every ring of the outline lie within `tol` of the ellipse with centre
+/// `c`, semi-axes `a`, `b` rotated by `phi`.
+fn assert_on_ellipse(points: &[Point], c: Point, a: f64, b: f64, phi: f64, tol: f64) {
+    let (s, k) = phi.sin_cos();
+    for p in points {
+        let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
+        let (u, v) = (k * dx + s * dy, -s * dx + k * dy);
+        // Distance to the ellipse, to first order: |F| / |grad F| with F = (u/a)^2 + (v/b)^2 - 1.
+        let f = (u / a).powi(2) + (v / b).powi(2) - 1.0;
+        let grad = (2.0 * u / (a * a)).hypot(2.0 * v / (b * b));
+        assert!((f / grad).abs() <= tol, "{p:?} is {} from the ellipse", f / grad);
+    }
+}
+
+#[test]
+fn arcs_follow_the_implementation_notes() {
+    // A full circle from two half arcs (large-arc and sweep flags), radius 20 about (50, 50)
+    // with viewBox 0 0 100 100: the centre stays at (50, 50) after the flip.
+    let tol = 0.01;
+    let shape = import_svg(
+        &svg(r#"<path d="M 50 50 m -20 0 a 20 20 0 1 0 40 0 a 20 20 0 1 0 -40 0 z"/>"#, r#"viewBox="0 0 100 100""#),
+        &SvgOptions::default().with_tolerance(tol),
+    )
+    .unwrap();
+    let outer = &shape.outlines[0].outer;
+    // Points are on the curve (cubic arcs of 45 degrees: radius error below 1e-4 here).
+    assert_on_ellipse(outer, [50.0, 50.0], 20.0, 20.0, 0.0, 1e-4);
+    // The inscribed polygon's area is short of the disc's by at most perimeter * tolerance.
+    let area = polygon_area(outer).abs();
+    assert!(area < PI * 400.0 && PI * 400.0 - area < 2.0 * PI * 20.0 * tol, "{area}");
+
+    // Radii too small to reach the end point are scaled up (F.6.6): a half circle of
+    // radius 5 centred (5, 0), closed by its diameter.
+    let path = parse_path_data("M0 0 A 1 1 0 0 1 10 0 Z", 100).unwrap();
+    let ring = &path.flatten(1e-3, 0, 10_000).unwrap()[0];
+    assert_on_ellipse(&ring[..ring.len() - 1], [5.0, 0.0], 5.0, 5.0, 0.0, 1e-4);
+    // sweep-flag 1 goes the positive-angle way, from +x towards +y: from angle pi to 2 pi,
+    // through (5, -5) (the upper half on screen, where y points down).
+    assert!(ring.iter().any(|p| distance(*p, [5.0, -5.0]) < 1e-9));
+    assert!((polygon_area(ring).abs() - PI * 12.5).abs() < 2.0 * PI * 5.0 * 1e-3);
+
+    // A rotated ellipse arc: semi-axes 4 and 2 turned 30 degrees, through two points
+    // computed from its parametric form; the centre must come out as (1, 2).
+    let (a, b, phi) = (4.0, 2.0, 30f64.to_radians());
+    let at = |t: f64| {
+        let (s, k) = phi.sin_cos();
+        [1.0 + a * t.cos() * k - b * t.sin() * s, 2.0 + a * t.cos() * s + b * t.sin() * k]
+    };
+    let (p, q) = (at(0.3), at(2.5));
+    let d = format!("M{} {} A 4 2 30 0 1 {} {}", p[0], p[1], q[0], q[1]);
+    let arc = parse_path_data(&d, 100).unwrap();
+    let ring = &arc.flatten(1e-4, 0, 10_000).unwrap()[0];
+    assert_on_ellipse(ring, [1.0, 2.0], a, b, phi, 1e-4);
+    // The small arc between the two parameters: its midpoint is the point at t = 1.4.
+    assert!(ring.iter().any(|r| distance(*r, at(1.4)) < 0.01));
+}
+
+#[test]
+fn transforms_compose_through_groups() {
+    // rect (0,0)-(4,2), rotated 90 degrees then shifted by (10, 0): corners (10,0), (10,4),
+    // (8,4), (8,0); no viewBox or height, so y' = -y.
+    let shape = import(r#"<g transform="translate(10 0)"><rect width="4" height="2" transform="rotate(90)"/></g>"#, "");
+    assert_ring(&shape.outlines[0].outer, &[[10.0, 0.0], [10.0, -4.0], [8.0, -4.0], [8.0, 0.0]]);
+    // Nested groups: scale(2) then skewX(45) then matrix; the unit square (0,0)-(1,1)
+    // goes through matrix(1 0 0 1 3 0) (shift 3), skewX(45) (x += y), scale(2).
+    let shape = import(
+        r#"<g transform="scale(2)"><g transform="skewX(45)"><path transform="matrix(1 0 0 1 3 0)" d="M0 0H1V1H0z"/></g></g>"#,
+        "",
+    );
+    assert_ring(&shape.outlines[0].outer, &[[6.0, 0.0], [8.0, 0.0], [10.0, -2.0], [8.0, -2.0]]);
+    // Rotation about a centre keeps the centre: rotate(180 5 5) of (4,4)-(6,5) is (4,5)-(6,6).
+    let shape = import(r#"<rect x="4" y="4" width="2" height="1" transform="rotate(180, 5, 5)"/>"#, "");
+    assert_ring(&shape.outlines[0].outer, &[[4.0, -5.0], [6.0, -5.0], [6.0, -6.0], [4.0, -6.0]]);
+    // A nested svg places its viewBox into its box (xMidYMid meet): viewBox 0 0 1 1 into a
+    // 4 x 2 box at (10, 0) scales by 2 and centres horizontally (offset 1).
+    let shape = import(r#"<svg x="10" width="4" height="2" viewBox="0 0 1 1"><rect width="1" height="1"/></svg>"#, "");
+    assert_ring(&shape.outlines[0].outer, &[[11.0, 0.0], [13.0, 0.0], [13.0, -2.0], [11.0, -2.0]]);
+}
+
+#[test]
+fn basic_shapes_have_their_areas() {
+    let tol = 1e-3;
+    let options = SvgOptions::default().with_tolerance(tol);
+    let area = |body: &str| {
+        let shape = import_svg(&svg(body, ""), &options).unwrap();
+        assert_eq!(shape.outlines.len(), 1);
+        shape.outlines[0].area()
+    };
+    // Rounded rect: the corners lose (4 - pi) r^2 in all.
+    let rounded = area(r#"<rect x="1" y="1" width="10" height="6" rx="2"/>"#);
+    let expected = 60.0 - (4.0 - PI) * 4.0;
+    assert!((rounded - expected).abs() < 30.0 * tol, "{rounded} vs {expected}");
+    // ry larger than half the height is clamped to 3.
+    let clamped = area(r#"<rect width="10" height="6" rx="1" ry="9"/>"#);
+    assert!((clamped - (60.0 - (4.0 - PI) * 3.0)).abs() < 30.0 * tol, "{clamped}");
+    let circle = area(r#"<circle cx="5" cy="5" r="3"/>"#);
+    assert!((circle - 9.0 * PI).abs() < 2.0 * PI * 3.0 * tol);
+    let ellipse = area(r#"<ellipse cx="5" cy="5" rx="4" ry="1"/>"#);
+    assert!((ellipse - 4.0 * PI).abs() < 2.0 * PI * 4.0 * tol);
+    assert_eq!(area(r#"<polyline points="0 0 4 0 4 4"/>"#), 8.0);
+    assert_eq!(area(r#"<polygon points="0,0,4,0,4,4,0,4"/>"#), 16.0);
+    // Units: 1in = 96 user units.
+    assert_eq!(area(r#"<rect width="1in" height="2"/>"#), 192.0);
+}
+
+#[test]
+fn fill_rules_holes_and_parts() {
+    let square = |x: f64, s: f64| format!("M{x} {x}h{s}v{s}h-{s}z");
+    let ring = |x: f64, s: f64| format!("M{x} {x}v{s}h{s}v-{s}z"); // the other way round
+                                                                   // Even-odd: an inner square is a hole whichever way it runs.
+    let d = format!("{}{}", square(0.0, 10.0), square(2.0, 2.0));
+    let shape = import(&format!(r#"<path fill-rule="evenodd" d="{d}"/>"#), "");
+    assert_eq!((shape.outlines.len(), shape.outlines[0].holes.len()), (1, 1));
+    assert_eq!(shape.outlines[0].area(), 96.0);
+    // Non-zero: the same path has no hole, the reversed inner square makes one.
+    let shape = import(&format!(r#"<path d="{d}"/>"#), "");
+    assert_eq!(shape.outlines[0].holes.len(), 0);
+    let shape =
+        import(&format!(r#"<path style="fill-rule: nonzero" d="{}{}"/>"#, square(0.0, 10.0), ring(2.0, 2.0)), "");
+    assert_eq!(shape.outlines[0].holes.len(), 1);
+    // A shape inside a hole is a separate part, and separate shapes are separate parts,
+    // largest first.
+    let body = format!(
+        r#"<path fill-rule="evenodd" d="{}{}"/><path d="{}"/><rect x="20" width="3" height="3"/>"#,
+        square(0.0, 10.0),
+        square(2.0, 6.0),
+        square(4.0, 1.0)
+    );
+    let areas: Vec<f64> = import(&body, "").outlines.iter().map(Outline::area).collect();
+    assert_eq!(areas, vec![64.0, 9.0, 1.0]);
+    // min_area drops small parts and fills small holes.
+    let options = SvgOptions { min_area: 5.0, ..SvgOptions::default() };
+    let areas: Vec<f64> = import_svg(&svg(&body, ""), &options).unwrap().outlines.iter().map(Outline::area).collect();
+    assert_eq!(areas, vec![64.0, 9.0]);
+}
+
+#[test]
+fn unfilled_and_hidden_elements_do_not_count() {
+    let body = r#"
+        <defs><rect width="100" height="100"/></defs>
+        <rect width="50" height="50" fill="none" stroke="black"/>
+        <g style="fill: none"><circle r="40"/><circle r="30" fill="red"/></g>
+        <g display="none"><rect width="70" height="70"/></g>
+        <line x2="100" y2="100"/>
+        <text>hello</text>
+        <rect width="1" height="1" style="fill:transparent"/>"#;
+    let shape = import(body, "");
+    assert_eq!(shape.outlines.len(), 1, "only the red circle");
+    assert!((shape.outlines[0].area() - 900.0 * PI).abs() < 10.0);
+    assert_eq!(shape.skipped, vec!["text".to_string()]);
+    assert_eq!(shape.paths.len(), 1);
+    assert_eq!(
+        error(r##"<use href="#a"/><text>hi</text>"##, ""),
+        "the SVG has no filled shape (unsupported elements skipped: use, text)"
+    );
+}
+
+#[test]
+fn malformed_documents_say_what_and_where() {
+    let cases: [(String, &str); 9] = [
+        (
+            svg("<path d='M0 0 L1'/>", ""),
+            "attribute d of <path> (line 1, column 42): expected a number, found the end (at character 7)",
+        ),
+        (
+            "<svg><path d='M0 0'></svg>".to_string(),
+            "not well-formed XML at line 1, column 21: expected 'path' tag, not 'svg'",
+        ),
+        (r#"<html xmlns="http://www.w3.org/2000/svg"/>"#.to_string(), "root element is <html>, not <svg>"),
+        (svg(r#"<path id="leg" transform="spin(3)" d="M0 0h1v1z"/>"#, ""), "attribute transform of <path id=\"leg\">"),
+        (svg(r#"<polygon points="0 0 1"/>"#, ""), "odd count of numbers"),
+        (svg(r#"<rect width="50%" height="1"/>"#, ""), "unsupported unit `%`"),
+        (svg(r#"<path d="M0 0H1e999V1z"/>"#, ""), "number out of range"),
+        (svg(r#"<path d="M0 0h1v1z"/>"#, r#"viewBox="0 0 0 1""#), "attribute viewBox"),
+        (svg(r#"<path fill-rule="odd" d="M0 0h1v1z"/>"#, ""), "`odd` is not nonzero or evenodd"),
+    ];
+    for (text, expected) in cases {
+        let message = import_svg(&text, &SvgOptions::default()).unwrap_err().to_string();
+        assert!(message.contains(expected), "{message:?} should contain {expected:?}");
+    }
+}
+
+#[test]
+fn overlapping_shapes_are_merged() {
+    // Two overlapping squares (union 7), an arm across a body, and a self-crossing path:
+    // the union is traced on a grid of at most 1024 cells across, so areas agree to a small
+    // fraction of a cell times the perimeter.
+    let shape = import(r#"<rect width="2" height="2"/><rect x="1" y="1" width="2" height="2"/>"#, "");
+    assert_eq!(shape.outlines.len(), 1);
+    assert!((shape.outlines[0].area() - 7.0).abs() < 0.01, "{}", shape.outlines[0].area());
+    let body =
+        r#"<circle cx="50" cy="50" r="30"/><rect x="70" y="45" width="25" height="10" transform="rotate(-20 70 50)"/>"#;
+    let shape = import(body, r#"viewBox="0 0 100 100""#);
+    assert_eq!(shape.outlines.len(), 1);
+    let mesh = triangulate(&shape.outlines[0], &TriangulationOptions::default().with_target_edge_length(3.0)).unwrap();
+    assert_eq!(mesh.connected_components(), 1);
+    // The disc plus the part of the arm outside it: more than the disc, less than both.
+    let (disc, arm) = (PI * 900.0, 250.0);
+    assert!(mesh.area() > disc + 100.0 && mesh.area() < disc + arm, "{}", mesh.area());
+    // A frame whose hole another shape covers: no hole (boundaries apart, so nesting
+    // decides exactly).
+    let body = r#"<path fill-rule="evenodd" d="M0 0H10V10H0Z M2 2H8V8H2Z"/><rect x="1" y="1" width="8" height="8"/>"#;
+    let shape = import(body, "");
+    assert_eq!((shape.outlines.len(), shape.outlines[0].holes.len()), (1, 0));
+    assert!((shape.outlines[0].area() - 100.0).abs() < 0.05);
+    let eight = import(r#"<path d="M0 0L2 2V0L0 2z"/>"#, "");
+    let area: f64 = eight.outlines.iter().map(Outline::area).sum();
+    assert!((area - 2.0).abs() < 0.01, "{area}");
+}
+
+#[test]
+fn hostile_documents_hit_limits_not_the_stack() {
+    // Deep nesting is refused (the walk is iterative, so this is a limit, not a crash).
+    let deep = format!("{}<rect width='1' height='1'/>{}", "<g>".repeat(300), "</g>".repeat(300));
+    assert!(error(&deep, "").contains("nests deeper than 256 elements"));
+    // Entity expansion is bounded by the XML parser.
+    let laughs = r#"<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;"><!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;"><!ENTITY d "&c;&c;&c;&c;&c;&c;&c;&c;&c;&c;">]><svg xmlns="http://www.w3.org/2000/svg"><text>&d;&d;&d;</text></svg>"#;
+    assert!(matches!(import_svg(laughs, &SvgOptions::default()), Err(ImportError::Xml { .. })));
+    // Size limits.
+    let small = SvgOptions { limits: Limits { max_bytes: 100, ..Limits::default() }, ..SvgOptions::default() };
+    assert!(matches!(
+        import_svg(&svg(&"<g/>".repeat(30), ""), &small),
+        Err(ImportError::TooLarge { what: "the SVG text", .. })
+    ));
+    let few = SvgOptions { limits: Limits { max_points: 50, ..Limits::default() }, ..SvgOptions::default() };
+    let circle = svg(r#"<circle r="1000"/>"#, "");
+    let too_fine = SvgOptions { tolerance: Some(1e-9), ..few };
+    assert!(import_svg(&circle, &too_fine).unwrap_err().to_string().contains("more than the limit of 50 points"));
+    // Thousands of segments stacked in one column: the crossing check gives up after its
+    // budget instead of taking quadratic time.
+    let zigzag: Vec<String> = (0..3000).map(|i| format!("{},{}", i % 2, i)).collect();
+    let text = svg(&format!(r#"<polygon points="{} -5,3000 -5,0"/>"#, zigzag.join(" ")), "");
+    let budget =
+        SvgOptions { limits: Limits { max_segment_pairs: 100_000, ..Limits::default() }, ..SvgOptions::default() };
+    let message = import_svg(&text, &budget).unwrap_err().to_string();
+    assert!(message.contains("more than 100000 pairs of segments close together"), "{message}");
+    // Huge but finite coordinates do not hang the flattener.
+    let huge = svg(r#"<path d="M0 0 C 1e300 -1e300 -1e300 1e300 1 1 Z"/>"#, "");
+    assert!(import_svg(&huge, &SvgOptions::default().with_tolerance(1.0)).is_err());
+    // Bad options.
+    assert!(import_svg(&circle, &SvgOptions::default().with_tolerance(0.0)).is_err());
+}
+
+#[test]
+fn imported_outlines_triangulate() {
+    let body = r#"<path fill-rule="evenodd" d="M10 10 C 40 -10 80 30 90 60 S 40 100 10 80 Q -10 50 10 10 Z
+        M 40 40 a 8 5 20 1 1 16 0 a 8 5 20 1 1 -16 0 Z"/>"#;
+    let shape = import(body, r#"viewBox="0 0 100 100""#);
+    let outline = &shape.outlines[0];
+    assert_eq!(outline.holes.len(), 1);
+    let mesh = triangulate(outline, &TriangulationOptions::default().with_target_edge_length(4.0)).unwrap();
+    assert!((mesh.area() - outline.area()).abs() < 1e-9 * outline.area());
+    assert_eq!(mesh.connected_components(), 1);
+}
+
+#[test]
+fn vector_paths_follow_the_deformed_mesh() {
+    let text = svg(r#"<path d="M10 10 C 30 0 60 0 90 10 L 90 60 Q 50 90 10 60 Z"/>"#, r#"viewBox="0 0 100 100""#);
+    let shape = import_svg(&text, &SvgOptions::default()).unwrap();
+    let path = &shape.paths[0].path;
+    // Writing the points back gives path data that parses to the same points.
+    let data = path.to_path_data(&path.points);
+    assert_eq!(parse_path_data(&data, 1000).unwrap(), *path);
+    // Through an affine deformation of the mesh, every point (control points outside the
+    // mesh included) moves by that same affine map.
+    let mesh = triangulate(&shape.outlines[0], &TriangulationOptions::default().with_target_edge_length(8.0)).unwrap();
+    let motion = |p: Point| [0.8 * p[0] - 0.6 * p[1] + 5.0, 0.6 * p[0] + 0.8 * p[1] - 2.0];
+    let deformed: Vec<Point> = mesh.positions().iter().map(|&p| motion(p)).collect();
+    let mapped = PointMapper::new(&mesh, &path.points).map(&deformed).unwrap();
+    for (q, &p) in mapped.iter().zip(&path.points) {
+        assert!(distance(*q, motion(p)) < 1e-9, "{p:?}");
+    }
+}

@@ -1,0 +1,168 @@
+/** The import API in Node, through the real wasm package (built by scripts/build.sh). */
+import { readFileSync } from "node:fs";
+import { beforeAll, describe, expect, it } from "vitest";
+import {
+  importSvg,
+  importSvgPaths,
+  init,
+  mapPoints,
+  meshFromJson,
+  meshFromObj,
+  meshToJson,
+  meshToObj,
+  pathData,
+  PointMapper,
+  textureCoordinates,
+  traceImage,
+  triangulate,
+} from "../../www/src/index.js";
+
+beforeAll(async () => {
+  await init();
+});
+
+function ringArea(ring: ArrayLike<number>): number {
+  let twice = 0;
+  const n = ring.length / 2;
+  for (let i = 0; i < n; i++) {
+    const j = (i + 1) % n;
+    twice += ring[2 * i]! * ring[2 * j + 1]! - ring[2 * j]! * ring[2 * i + 1]!;
+  }
+  return twice / 2;
+}
+
+const svg = (body: string, viewBox = "0 0 100 100") =>
+  `<svg xmlns="http://www.w3.org/2000/svg" viewBox="${viewBox}">${body}</svg>`;
+
+describe("importSvg", () => {
+  it("gives outlines with holes, y up, largest first", () => {
+    const outlines = importSvg(
+      svg(
+        '<path fill-rule="evenodd" d="M10 10 H90 V60 H10 Z M20 20 h10 v10 h-10 z"/><rect x="0" y="80" width="5" height="5"/>',
+      ),
+    );
+    expect(outlines).toHaveLength(2);
+    const [body, speck] = outlines;
+    expect(Math.abs(ringArea(body!.outer))).toBe(4000);
+    expect(body!.holes).toHaveLength(1);
+    expect(Math.abs(ringArea(body!.holes[0]!))).toBe(100);
+    // The viewBox's top edge (y = 0) is at y = 100 after the flip.
+    expect(Math.max(...body!.outer.filter((_, i) => i % 2 === 1))).toBe(90);
+    expect(Math.abs(ringArea(speck!.outer))).toBe(25);
+    const mesh = triangulate(body!, { targetEdgeLength: 5 });
+    expect(mesh.area).toBeCloseTo(3900, 9);
+  });
+
+  it("imports every gallery SVG into one piece that triangulates", () => {
+    const index = JSON.parse(readFileSync("www/gallery/index.json", "utf8")) as { file: string; kind: string }[];
+    const svgs = index.filter((entry) => entry.kind === "svg");
+    expect(svgs.length).toBeGreaterThanOrEqual(2);
+    for (const entry of svgs) {
+      const outlines = importSvg(readFileSync(`www/gallery/${entry.file}`, "utf8"));
+      expect(outlines).toHaveLength(1);
+      expect(outlines[0]!.holes.length).toBeGreaterThan(0);
+      expect(triangulate(outlines[0]!, { targetEdgeLength: 6 }).triangleCount).toBeGreaterThan(100);
+    }
+  });
+
+  it("throws Errors that say what and where, and checks option names", () => {
+    expect(() => importSvg(svg('<path d="M0 0 L 5"/>'))).toThrow(/attribute d of <path> \(line 1, column \d+\)/);
+    expect(() => importSvg("<svg")).toThrow(/not well-formed XML at line 1/);
+    expect(() => importSvg(svg("<text>hi</text>"))).toThrow(/no filled shape \(unsupported elements skipped: text\)/);
+    expect(() => importSvg(svg('<rect width="1" height="1"/>'), { tolerence: 1 } as never)).toThrow(
+      /unknown SVG import option `tolerence`/,
+    );
+    expect(() => importSvg(svg('<rect width="1" height="1"/>'), { tolerance: -1 })).toThrow(/option tolerance/);
+    expect(() => importSvg(svg('<rect width="1" height="1"/>'), { maxBytes: 10 })).toThrow(/more than the limit/);
+  });
+});
+
+describe("vector export", () => {
+  it("maps path points through a deformed mesh and writes path data", () => {
+    const text = svg('<path d="M10 10 C 30 0 70 0 90 10 L 90 90 H 10 Z"/>');
+    const [path] = importSvgPaths(text);
+    expect(path!.commands).toBe("MCLLZ");
+    expect(path!.fillRule).toBe("nonzero");
+    expect(path!.element).toMatch(/^<path> \(line 1/);
+    const mesh = triangulate(importSvg(text)[0]!, { targetEdgeLength: 10 });
+    // Shift the whole mesh by (5, -2): every point, control points outside included, follows.
+    const moved = mesh.positions.map((v, i) => v + (i % 2 === 0 ? 5 : -2));
+    const mapped = mapPoints(mesh.positions, mesh.triangles, moved, path!.points);
+    path!.points.forEach((v, i) => expect(mapped[i]).toBeCloseTo(v + (i % 2 === 0 ? 5 : -2), 9));
+    const mapper = new PointMapper(mesh.positions, mesh.triangles, path!.points);
+    expect(mapper.length).toBe(path!.points.length / 2);
+    expect(() => mapper.map([0, 0])).toThrow(/expected 2 per rest vertex/);
+    mapper.free();
+    expect(pathData(path!)).toBe("M 10 90 C 30 100 70 100 90 90 L 90 10 L 10 10 Z");
+    expect(pathData(path!, path!.points, { flipY: true })).toBe(
+      "M 10 -90 C 30 -100 70 -100 90 -90 L 90 -10 L 10 -10 Z",
+    );
+  });
+});
+
+/** A w x h RGBA image, opaque where `inside(x, y)` holds for the pixel centre (y down). */
+function image(w: number, h: number, inside: (x: number, y: number) => boolean): Uint8ClampedArray {
+  const rgba = new Uint8ClampedArray(w * h * 4);
+  for (let y = 0; y < h; y++) {
+    for (let x = 0; x < w; x++) {
+      if (inside(x + 0.5, y + 0.5)) rgba.set([30, 120, 200, 255], 4 * (y * w + x));
+    }
+  }
+  return rgba;
+}
+
+describe("traceImage", () => {
+  it("traces an annulus into one outline with a hole, within the pixel bound", () => {
+    const r = (x: number, y: number) => Math.hypot(x - 50, y - 40);
+    const rgba = image(100, 80, (x, y) => r(x, y) < 30 && r(x, y) >= 12);
+    const outlines = traceImage(rgba, 100, 80, { tolerance: 0.5 });
+    expect(outlines).toHaveLength(1);
+    expect(outlines[0]!.holes).toHaveLength(1);
+    const area = Math.abs(ringArea(outlines[0]!.outer)) - Math.abs(ringArea(outlines[0]!.holes[0]!));
+    const expected = Math.PI * (30 * 30 - 12 * 12);
+    expect(Math.abs(area - expected)).toBeLessThanOrEqual(2 * Math.PI * (30 + 12) * 1.5);
+    const mesh = triangulate(outlines[0]!, { targetEdgeLength: 4 });
+    const uvs = textureCoordinates(mesh.positions, 100, 80);
+    expect(uvs.length).toBe(mesh.positions.length);
+    expect(uvs.every((t) => t >= 0 && t <= 1)).toBe(true);
+  });
+
+  it("rejects bad sizes and options", () => {
+    const rgba = new Uint8Array(4 * 6);
+    expect(() => traceImage(rgba, 3, 3)).toThrow(/needs 36 bytes of RGBA pixels, but 24 were given/);
+    expect(() => traceImage(rgba, 3, 2)).toThrow(/no pixel of the image belongs to the shape/);
+    expect(() => traceImage(rgba, 3, 2, { mode: "grey" } as never)).toThrow(/option mode/);
+    expect(() => traceImage(rgba, 3, 2, { alphaThreshold: 0 })).toThrow(/alphaThreshold/);
+    expect(() => traceImage(rgba, 2.5, 2)).toThrow(RangeError);
+  });
+});
+
+describe("mesh files", () => {
+  const positions = [0, 0, 1, 0, 1, 1, 0, 1];
+  const triangles = [0, 1, 2, 0, 2, 3];
+  const uvs = [0, 1, 1, 1, 1, 0, 0, 0];
+
+  it("round-trips OBJ and JSON exactly, with texture coordinates", () => {
+    const obj = meshToObj({ positions, triangles, uvs });
+    expect(obj).toContain("vt 1 0");
+    const fromObj = meshFromObj(obj);
+    expect(Array.from(fromObj.positions)).toEqual(positions);
+    expect(Array.from(fromObj.triangles)).toEqual(triangles);
+    expect(Array.from(fromObj.uvs!)).toEqual(uvs);
+    const json = meshToJson({ positions: [0.1, 0.2, 1 / 3, 0, 0, 2 / 3], triangles: [0, 1, 2] });
+    const fromJson = meshFromJson(json);
+    expect(Array.from(fromJson.positions)).toEqual([0.1, 0.2, 1 / 3, 0, 0, 2 / 3]);
+    expect(fromJson.uvs).toBeUndefined();
+    expect(fromJson.boundaryVertices.length).toBe(3);
+  });
+
+  it("reads OBJ polygons and reports errors with their line", () => {
+    const mesh = meshFromObj("# square\nv 0 0\nv 1 0\nv 1 1\nv 0 1\nf 1 2 3 4\n");
+    expect(mesh.triangleCount).toBe(2);
+    expect(() => meshFromObj("v 0 0\nv 1 x\n")).toThrow(/OBJ error at line 2, column 5/);
+    expect(() => meshFromObj("v 0 0\nv 1 0\nv 0 1\nf 1 3 2\n")).toThrow(/counter-clockwise/);
+    expect(() => meshFromJson('{"positions": [], "triangles": [], "extra": 1}')).toThrow(/unknown field `extra`/);
+    expect(() => meshToObj({ positions, triangles: [0, 2, 1] })).toThrow(/clockwise/);
+    expect(() => meshToJson({ positions, triangles, uvs: [0, 1] })).toThrow(/one pair per vertex/);
+  });
+});

@@ -1,0 +1,270 @@
+/**
+ * Shapes in: SVG documents and images to outlines, mesh files (OBJ, our JSON) in and out,
+ * and helpers that carry imported art along with a deformed mesh. Re-exported by the
+ * package's main module; call `init()` first.
+ *
+ * @example
+ * ```ts
+ * import { init, importSvg, triangulate } from "akap";
+ * await init();
+ * const [largest] = importSvg(svgText); // separate parts come out largest first
+ * const mesh = triangulate(largest!, { targetEdgeLength: 5 });
+ * ```
+ *
+ * @module
+ */
+import { type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
+import { assertLoaded, raw } from "./internal/wasm.js";
+import type { MeshData } from "./core.js";
+
+/** An imported outline: an outer ring and holes, x and y interleaved, y pointing up. */
+export interface ImportedOutline {
+  outer: Float64Array;
+  holes: Float64Array[];
+}
+
+/** Options of {@link importSvg} and {@link importSvgPaths}. Every field is optional. */
+export interface SvgImportOptions {
+  /** Largest distance between a curve and its flattened outline, in SVG user units
+   * (default: 1/1000 of the drawing's size). */
+  tolerance?: number;
+  /** Parts and holes with a smaller area are dropped (default 0). */
+  minArea?: number;
+  /** Most outline points after flattening (default 100000). */
+  maxPoints?: number;
+  /** Largest SVG text, in bytes (default 32 MiB). */
+  maxBytes?: number;
+}
+
+/**
+ * The filled shapes of an SVG document as outlines with holes, one per separate part,
+ * largest first. Coordinates are the root `viewBox`'s user units with y flipped to point
+ * up (the `viewBox`'s bottom-left corner is the origin). The document is parsed as data,
+ * never inserted into a page. Overlapping shapes are merged (their union traced on a fine
+ * grid). Throws an `Error` that names the element (and line) at fault for malformed input
+ * or unsupported units, or says that the document has no filled shape.
+ */
+export function importSvg(text: string, options: SvgImportOptions = {}): ImportedOutline[] {
+  assertLoaded();
+  return raw.import_svg(text, options) as ImportedOutline[];
+}
+
+/** One filled SVG element's geometry, in the same coordinates as {@link importSvg}. */
+export interface VectorPath {
+  /** The element, e.g. `<path id="body"> (line 3, column 5)`. */
+  element: string;
+  /** One letter per command: M (1 point), L (1), Q (2), C (3), Z (0); arcs became C. */
+  commands: string;
+  /** The commands' points, x and y interleaved. */
+  points: Float64Array;
+  fillRule: "nonzero" | "evenodd";
+}
+
+/**
+ * The filled elements of an SVG document as vector paths (absolute M, L, Q, C, Z), for
+ * exporting the art deformed: map `points` through the mesh with a {@link PointMapper},
+ * then write them with {@link pathData}.
+ */
+export function importSvgPaths(text: string, options: SvgImportOptions = {}): VectorPath[] {
+  assertLoaded();
+  return raw.import_svg_paths(text, options) as VectorPath[];
+}
+
+/**
+ * SVG path data for a vector path with the given points (its own by default, or mapped
+ * ones). `flipY` negates y, turning the y-up coordinates back into SVG's y-down ones.
+ */
+export function pathData(
+  path: VectorPath,
+  points: NumberList = path.points,
+  options: { flipY?: boolean } = {},
+): string {
+  const p = toFloat64(points, "points");
+  const sign = options.flipY ? -1 : 1;
+  const counts: Record<string, number> = { M: 1, L: 1, Q: 2, C: 3, Z: 0 };
+  const parts: string[] = [];
+  let next = 0;
+  for (const command of path.commands) {
+    const count = counts[command];
+    if (count === undefined) throw new RangeError(`unknown path command ${command}`);
+    if (2 * (next + count) > p.length)
+      throw new RangeError(`points has ${p.length / 2} points, too few for the commands`);
+    let part = command;
+    for (let i = next; i < next + count; i++) part += ` ${p[2 * i]} ${sign * p[2 * i + 1]!}`;
+    parts.push(part);
+    next += count;
+  }
+  return parts.join(" ");
+}
+
+/** Options of {@link traceImage}. Every field is optional. */
+export interface TraceOptions {
+  /** "alpha": pixels whose alpha reaches `alphaThreshold`; "colour": pixels at least
+   * `colourThreshold` away from the corners' colour; "auto" (default): alpha when the
+   * corners are transparent, colour otherwise. */
+  mode?: "auto" | "alpha" | "colour";
+  /** Alpha from which a pixel is part of the shape, above 0 and at most 255 (default 128). */
+  alphaThreshold?: number;
+  /** RGB distance from the background from which a pixel is part of the shape (default 48). */
+  colourThreshold?: number;
+  /** Largest distance in pixels between the traced contour and the outline (default 0.75). */
+  tolerance?: number;
+  /** Parts and holes smaller than this many square pixels are dropped (default 12). */
+  minArea?: number;
+  /** Most outline points (default 100000). */
+  maxPoints?: number;
+  /** Largest image in pixels (default 4096 * 4096). */
+  maxPixels?: number;
+}
+
+/**
+ * Traces the shape in an image's RGBA pixels (rows from the top, as `ImageData.data`)
+ * into outlines in pixel units with y up (the image's bottom-left corner is the origin),
+ * one per separate part, largest first. Use {@link textureCoordinates} on the mesh's
+ * positions to warp the image with it.
+ */
+export function traceImage(
+  rgba: Uint8Array | Uint8ClampedArray,
+  width: number,
+  height: number,
+  options: TraceOptions = {},
+): ImportedOutline[] {
+  assertLoaded();
+  if (!(rgba instanceof Uint8Array || rgba instanceof Uint8ClampedArray)) {
+    throw new TypeError("rgba must be a Uint8Array or Uint8ClampedArray");
+  }
+  for (const [name, value] of [
+    ["width", width],
+    ["height", height],
+  ] as const) {
+    if (!Number.isInteger(value) || value < 1 || value > 0xffffffff)
+      throw new RangeError(`${name} is ${value}, not a pixel count`);
+  }
+  const bytes = rgba instanceof Uint8Array ? rgba : new Uint8Array(rgba.buffer, rgba.byteOffset, rgba.byteLength);
+  return raw.trace_image(bytes, width, height, options) as ImportedOutline[];
+}
+
+/** Texture coordinates for positions in a traced image's pixel frame: u = x / width,
+ * v = 1 - y / height (v = 0 at the image's top row), interleaved. */
+export function textureCoordinates(positions: NumberList, width: number, height: number): Float64Array {
+  assertLoaded();
+  return raw.texture_coordinates(toFloat64(positions, "positions"), width, height);
+}
+
+/** A mesh read from a file, with per-vertex texture coordinates if the file has them. */
+export interface MeshFileData extends MeshData {
+  /** u and v interleaved, one pair per vertex. */
+  uvs?: Float64Array;
+}
+
+function readMeshFile(file: raw.MeshFile): MeshFileData {
+  try {
+    const mesh = file.mesh();
+    try {
+      const data: MeshFileData = {
+        positions: mesh.positions(),
+        triangles: mesh.triangles(),
+        boundaryEdges: mesh.boundaryEdges(),
+        boundaryVertices: mesh.boundaryVertices(),
+        vertexCount: mesh.vertexCount,
+        triangleCount: mesh.triangleCount,
+        area: mesh.area(),
+      };
+      const uvs = file.uvs();
+      if (uvs !== undefined) data.uvs = uvs;
+      return data;
+    } finally {
+      mesh.free();
+    }
+  } finally {
+    file.free();
+  }
+}
+
+/**
+ * Reads a Wavefront OBJ mesh in the xy plane (`v`, `vt`, `f`; polygons are fanned into
+ * triangles, negative indices count back). Validated like {@link meshFromArrays}: throws
+ * an `Error` naming the line and column, or the mesh problem.
+ */
+export function meshFromObj(text: string): MeshFileData {
+  assertLoaded();
+  return readMeshFile(raw.mesh_from_obj(text));
+}
+
+/** Reads our JSON mesh format: `{ "positions": [...], "triangles": [...], "uvs"?: [...] }`. */
+export function meshFromJson(text: string): MeshFileData {
+  assertLoaded();
+  return readMeshFile(raw.mesh_from_json(text));
+}
+
+/** A mesh to write: positions and triangles, optionally texture coordinates. */
+export interface MeshToWrite {
+  positions: NumberList;
+  triangles: IndexList;
+  uvs?: NumberList;
+}
+
+function writeArgs(mesh: MeshToWrite): [Float64Array, Uint32Array, Float64Array | undefined] {
+  const uvs = mesh.uvs === undefined ? undefined : toFloat64(mesh.uvs, "uvs");
+  return [toFloat64(mesh.positions, "positions"), toUint32(mesh.triangles, "triangles"), uvs];
+}
+
+/** Writes a mesh (validated first) as Wavefront OBJ, with `vt` lines when it has uvs. */
+export function meshToObj(mesh: MeshToWrite): string {
+  assertLoaded();
+  return raw.mesh_to_obj(...writeArgs(mesh));
+}
+
+/** Writes a mesh (validated first) in our JSON format. */
+export function meshToJson(mesh: MeshToWrite): string {
+  assertLoaded();
+  return raw.mesh_to_json(...writeArgs(mesh));
+}
+
+/**
+ * Points (say, an SVG's path points) located once in a rest mesh by barycentric
+ * coordinates, then carried along to any deformed pose of it. Points outside the mesh
+ * follow the nearest triangle. Call {@link PointMapper.free} when done.
+ */
+export class PointMapper {
+  readonly #raw: raw.PointMapper;
+
+  constructor(restPositions: NumberList, triangles: IndexList, points: NumberList) {
+    assertLoaded();
+    this.#raw = new raw.PointMapper(
+      toFloat64(restPositions, "restPositions"),
+      toUint32(triangles, "triangles"),
+      toFloat64(points, "points"),
+    );
+  }
+
+  /** The points in the pose `deformedPositions` (one xy pair per rest vertex). */
+  map(deformedPositions: NumberList): Float64Array {
+    return this.#raw.map(toFloat64(deformedPositions, "deformedPositions"));
+  }
+
+  /** Number of points. */
+  get length(): number {
+    return this.#raw.length;
+  }
+
+  /** Releases the WebAssembly memory. */
+  free(): void {
+    this.#raw.free();
+  }
+}
+
+/** Carries `points` from the rest mesh to the deformed positions in one call. */
+export function mapPoints(
+  restPositions: NumberList,
+  triangles: IndexList,
+  deformedPositions: NumberList,
+  points: NumberList,
+): Float64Array {
+  const mapper = new PointMapper(restPositions, triangles, points);
+  try {
+    return mapper.map(deformedPositions);
+  } finally {
+    mapper.free();
+  }
+}

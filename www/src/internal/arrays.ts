@@ -1,0 +1,21 @@
+/** Conversions of user arrays to the typed arrays the wasm bindings take. Internal. */
+
+/** A list of numbers: a Float64Array or a plain array. */
+export type NumberList = Float64Array | readonly number[];
+
+/** Index triples or other indices: a Uint32Array or a plain array. */
+export type IndexList = Uint32Array | readonly number[];
+
+export function toFloat64(values: NumberList, what: string): Float64Array {
+  if (values instanceof Float64Array) return values;
+  if (Array.isArray(values)) return Float64Array.from(values, Number);
+  throw new TypeError(`${what} must be a Float64Array or an array of numbers`);
+}
+
+export function toUint32(values: IndexList, what: string): Uint32Array {
+  if (values instanceof Uint32Array) return values;
+  if (!Array.isArray(values)) throw new TypeError(`${what} must be a Uint32Array or an array of numbers`);
+  const bad = values.findIndex((i) => !Number.isInteger(i) || i < 0 || i > 0xffffffff);
+  if (bad >= 0) throw new RangeError(`${what}[${bad}] is ${values[bad]}, not an index`);
+  return Uint32Array.from(values);
+}
