@@ -491,3 +491,64 @@ test("switching to ARAP keeps the pose and handles, and ARAP poses the shape too
   expect(Math.hypot(px - qx, py - qy)).toBeLessThan(0.5);
   expectDrawnLikeTheMesh(await coverage(page));
 });
+
+test("a file opened through the picker becomes the shape, and it poses", async ({ page }) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  const path = await import("node:path");
+  await page.locator('input[name="shape-file"]').setInputFiles(path.resolve("www/gallery/pip.png"));
+  await expect.poll(() => page.evaluate(() => window.akapDemo!.widget.mesh.positions[0])).toBeGreaterThan(2);
+  // The traced image is the texture: the drawing still covers exactly the mesh.
+  expectDrawnLikeTheMesh(await coverage(page));
+  const { end } = await pinAndDrag(page, -50, 40);
+  const { toCss } = await mapping(page);
+  const h = await handles(page);
+  const [x, y] = toCss(h[2]!, h[3]!);
+  expect(Math.hypot(x - end[0], y - end[1])).toBeLessThan(1);
+  expectDrawnLikeTheMesh(await coverage(page));
+});
+
+test("an SVG with separate parts: the largest is shown, another can be picked, export stays vector", async ({
+  page,
+}) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  const svg =
+    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 100">' +
+    '<rect x="10" y="10" width="120" height="80"/><circle cx="220" cy="50" r="30"/></svg>';
+  await page.locator('input[name="shape-file"]').setInputFiles({
+    name: "two.svg",
+    mimeType: "image/svg+xml",
+    buffer: Buffer.from(svg),
+  });
+  await expect(page.locator(".status")).toContainText("2 separate parts");
+  const area = () => page.evaluate(() => window.akapDemo!.widget.mesh.area);
+  expect(await area()).toBeCloseTo(120 * 80, 6);
+  await page.getByRole("combobox", { name: "Part" }).selectOption("1");
+  await expect.poll(area).toBeLessThan(Math.PI * 30 * 30 + 1);
+  expect(await area()).toBeGreaterThan(0.99 * Math.PI * 30 * 30);
+  await pinAndDrag(page, 20, 20);
+  const exported = await page.evaluate(() => window.akapDemo!.widget.exportSvg());
+  // Both elements come back as paths (arcs of the circle as curves), moved with the mesh.
+  expect(exported.match(/<path /g)!.length).toBe(2);
+  expect(exported).toMatch(/ C /);
+});
+
+test("a file that cannot be read leaves the shape as it was", async ({ page }) => {
+  await open(page);
+  await pinAndDrag(page, 30, 30);
+  const before = await positions(page);
+  for (const [name, content] of [
+    ["broken.svg", "<svg><path d='M 0 0 L 10'/>"],
+    ["notes.txt", "hello"],
+    ["empty.obj", "# nothing"],
+  ]) {
+    await page.locator('input[name="shape-file"]').setInputFiles({
+      name: name!,
+      mimeType: "text/plain",
+      buffer: Buffer.from(content!),
+    });
+    await expect(page.locator(".status.error")).toContainText(name!);
+    expect(await positions(page)).toEqual(before);
+  }
+});

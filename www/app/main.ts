@@ -1,9 +1,23 @@
 /**
  * The app: the posing widget filling the window, with its toolbar and HUD. URL
- * parameters pick the start: `?shape=gingerbread&vertices=5000&method=akap`. Internal to
+ * parameters pick the start: `?shape=gingerbread&vertices=5000&method=akap`, or a file
+ * `?src=url`. The toolbar's shape list adds the gallery in `www/gallery/`. Internal to
  * this repository; embedding pages use `mount` or `<akap-deformer>` from the package.
  */
-import { mount, type Method, type Widget, type WidgetOptions } from "../src/index.js";
+/// <reference types="vite/client" />
+import { mount, type GalleryItem, type Method, type Widget, type WidgetOptions } from "../src/index.js";
+import galleryIndex from "../gallery/index.json";
+
+/** The gallery files, as URLs the bundler serves. */
+const galleryFiles = import.meta.glob<string>("../gallery/*.{svg,png}", {
+  query: "?url",
+  import: "default",
+  eager: true,
+});
+const gallery: GalleryItem[] = galleryIndex.flatMap((item) => {
+  const url = galleryFiles[`../gallery/${item.file}`];
+  return url ? [{ name: item.name, url }] : [];
+});
 
 /** What the browser tests and benchmarks read. */
 declare global {
@@ -16,7 +30,9 @@ async function main(): Promise<void> {
   const stage = document.getElementById("app");
   if (!stage) throw new Error("the page has no #app");
   const params = new URLSearchParams(window.location.search);
-  const options: WidgetOptions = {};
+  const options: WidgetOptions = { gallery };
+  const src = params.get("src");
+  if (src) options.src = src;
   const shape = params.get("shape");
   if (shape) options.shape = shape;
   const vertices = params.get("vertices");

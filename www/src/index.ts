@@ -19,7 +19,15 @@
  * @packageDocumentation
  */
 export * from "./core.js";
-export { METHODS, Widget, mount, type Method, type PoseDetail, type WidgetOptions } from "./widget/widget.js";
+export {
+  METHODS,
+  Widget,
+  mount,
+  type GalleryItem,
+  type Method,
+  type PoseDetail,
+  type WidgetOptions,
+} from "./widget/widget.js";
 export { defineElement, type AkapDeformerElement } from "./widget/element.js";
 export type { Session, SessionEvent, ShapeSpec } from "./widget/session.js";
 export { parseSession } from "./widget/session.js";

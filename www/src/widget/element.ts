@@ -8,7 +8,8 @@
  * </script>
  * <akap-deformer shape="gingerbread" vertices="1200" hud="false" style="height: 400px"></akap-deformer>
  * ```
- * Attributes (read when the element is connected): `shape`, `texture` (an image URL),
+ * Attributes (read when the element is connected): `shape`, `src` (an SVG, image or mesh
+ * file to pose instead), `texture` (an image URL),
  * `vertices`, `method`, `lambda`, `controls`, `hud`, `wireframe`, `field` (`"false"` turns
  * a default-on feature off). The element fires the widget's events (`akap-ready`,
  * `akap-pose`, `akap-handles`, `akap-error`); `element.widget` is the {@link Widget}.
@@ -89,6 +90,7 @@ function elementOptions(element: HTMLElement): WidgetOptions {
   };
   assign("shape", text("shape"));
   assign("texture", text("texture"));
+  assign("src", text("src"));
   assign("vertices", num("vertices"));
   assign("method", text("method") as Method | undefined);
   assign("lambda", num("lambda"));

@@ -2,6 +2,7 @@
  * Exports of the current pose: the mesh as JSON or Wavefront OBJ (with texture
  * coordinates), the outline as SVG, and a file download helper for pages.
  */
+import { pathData, type VectorPath } from "../import.js";
 import { boundaryLoops } from "./geometry.js";
 import { bounds } from "./view.js";
 
@@ -54,6 +55,24 @@ export function outlineSvg(positions: ArrayLike<number>, boundaryEdges: ArrayLik
     "</svg>",
     "",
   ].join("\n");
+}
+
+/**
+ * An imported SVG's filled paths with their points moved (as `map` gives them, y up) as
+ * an SVG document: vector art stays vector. Fill colours are not kept (the importer reads
+ * geometry only); each path keeps its fill rule.
+ */
+export function vectorSvg(paths: readonly { path: VectorPath; points: Float64Array }[], fill = "#c8773a"): string {
+  const all = paths.flatMap(({ points }) => Array.from(points));
+  const b = bounds(all);
+  const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
+  const [x0, y0] = [b.minX - margin, -b.maxY - margin];
+  const [w, h] = [b.maxX - b.minX + 2 * margin, b.maxY - b.minY + 2 * margin];
+  const body = paths.map(
+    ({ path, points }) =>
+      `  <path d="${pathData(path, points, { flipY: true })}" fill="${fill}" fill-rule="${path.fillRule}" stroke="#5a2d0c" stroke-width="${0.004 * Math.max(w, h)}"/>`,
+  );
+  return [`<svg xmlns="http://www.w3.org/2000/svg" viewBox="${x0} ${y0} ${w} ${h}">`, ...body, "</svg>", ""].join("\n");
 }
 
 /** Offers `data` to the user as a file download. */

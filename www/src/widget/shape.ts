@@ -4,11 +4,14 @@
  * it exactly).
  */
 import { builtinShape, meshFromArrays, triangulate, type MeshData, type Outline } from "../core.js";
+import type { VectorPath } from "../import.js";
 import type { Session, ShapeSpec } from "./session.js";
 import { boxUvs, uniqueEdges } from "./geometry.js";
 import { bounds } from "./view.js";
 
 export interface Shape {
+  /** What to call it (a built-in name, a file name). */
+  name: string;
   mesh: MeshData;
   /** Set for built-in shapes: how to rebuild the mesh. */
   spec: ShapeSpec | undefined;
@@ -17,6 +20,10 @@ export interface Shape {
   uvs: Float32Array;
   /** Largest side of the rest bounding box. */
   size: number;
+  /** The shape's own texture (an imported image); the widget's default otherwise. */
+  texture?: TexImageSource;
+  /** An imported SVG's filled paths in shape coordinates, for deformed vector export. */
+  vector?: VectorPath[];
 }
 
 /** Most vertices a widget mesh may have. */
@@ -27,7 +34,13 @@ export const MAX_VERTICES = 100_000;
  * about 2 / (sqrt(3) h^2) vertices per unit area, so aim with the outline's area, then
  * correct the edge length once with the count obtained. `name` marks a built-in shape.
  */
-export function meshOutline(outline: Outline, name: string | undefined, vertices: number, minAngle: number): Shape {
+export function meshOutline(
+  outline: Outline,
+  name: string | undefined,
+  vertices: number,
+  minAngle: number,
+  label = name ?? "custom shape",
+): Shape {
   if (!(Number.isFinite(vertices) && vertices >= 50 && vertices <= MAX_VERTICES)) {
     throw new RangeError(`the vertex count ${vertices} is outside 50..${MAX_VERTICES}`);
   }
@@ -38,16 +51,27 @@ export function meshOutline(outline: Outline, name: string | undefined, vertices
     edge *= Math.sqrt(mesh.vertexCount / vertices);
     mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: limit });
   }
-  return shapeFromMesh(mesh, name === undefined ? undefined : { name, targetEdgeLength: edge, minAngle });
+  return shapeFromMesh(
+    mesh,
+    name === undefined ? undefined : { name, targetEdgeLength: edge, minAngle },
+    undefined,
+    label,
+  );
 }
 
 /** A shape from a mesh; texture coordinates from its bounding box unless given. */
-export function shapeFromMesh(mesh: MeshData, spec: ShapeSpec | undefined, uvs?: ArrayLike<number>): Shape {
+export function shapeFromMesh(
+  mesh: MeshData,
+  spec: ShapeSpec | undefined,
+  uvs?: ArrayLike<number>,
+  name = spec?.name ?? "custom shape",
+): Shape {
   const b = bounds(mesh.positions);
   if (uvs !== undefined && uvs.length !== mesh.positions.length) {
     throw new Error(`the mesh has ${uvs.length / 2} texture coordinates for ${mesh.vertexCount} vertices`);
   }
   return {
+    name,
     mesh,
     spec,
     edges: uniqueEdges(mesh.triangles, mesh.vertexCount),

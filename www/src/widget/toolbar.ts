@@ -9,7 +9,13 @@ export interface ToolbarActions {
   redo(): void;
   reset(): void;
   clear(): void;
-  shape(name: string, vertices: number): void;
+  /** A shape from the list (`builtin:name` or `gallery:index`). */
+  shape(value: string): void;
+  remesh(vertices: number, minAngle: number): void;
+  /** A file chosen with the picker. */
+  open(file: File): void;
+  /** Another separate part of the imported file. */
+  part(index: number): void;
   method(method: string, lambda: number): void;
   display(options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }): void;
   hud(visible: boolean): void;
@@ -22,6 +28,7 @@ export interface ToolbarActions {
 
 export interface ToolbarSettings {
   vertices: number;
+  minAngle: number;
   method: string;
   lambda: number;
   wireframe: boolean;
@@ -35,8 +42,8 @@ export interface Toolbar {
   element: HTMLElement;
   /** Enables and labels the buttons that depend on state. */
   refresh(state: { canUndo: boolean; canRedo: boolean; recording: boolean; hasSession: boolean }): void;
-  /** Shows the current shape (undefined for a custom one) and its vertex count. */
-  showShape(name: string | undefined, vertices: number): void;
+  /** Shows the current shape (its list value, undefined for others), vertex count and parts. */
+  showShape(value: string | undefined, vertices: number, parts: { count: number; index: number }): void;
   /** Brings the toggles in line with settings changed by keys. */
   sync(settings: ToolbarSettings): void;
 }
@@ -44,7 +51,11 @@ export interface Toolbar {
 export function buildToolbar(
   document: Document,
   actions: ToolbarActions,
-  init: { shapes: string[]; methods: { value: string; label: string }[]; settings: ToolbarSettings },
+  init: {
+    shapes: { value: string; label: string }[];
+    methods: { value: string; label: string }[];
+    settings: ToolbarSettings;
+  },
 ): Toolbar {
   const bar = document.createElement("div");
   bar.className = "toolbar";
@@ -107,18 +118,42 @@ export function buildToolbar(
 
   const s = init.settings;
   const shapeGroup = group("Shape");
-  const shape = select(
-    init.shapes.map((name) => ({ value: name, label: name })),
-    init.shapes[0] ?? "",
-  );
+  const shape = select(init.shapes, init.shapes[0]?.value ?? "");
   shape.name = "shape";
   labelled(shapeGroup, "Shape ", shape);
+  shape.addEventListener("change", () => actions.shape(shape.value));
+  const picker = document.createElement("input");
+  picker.type = "file";
+  picker.accept = ".svg,.png,.jpg,.jpeg,.webp,.gif,.obj,.json,image/*";
+  picker.className = "hidden";
+  picker.name = "shape-file";
+  picker.addEventListener("change", () => {
+    const chosen = picker.files?.[0];
+    if (chosen) actions.open(chosen);
+    picker.value = "";
+  });
+  shapeGroup.append(picker);
+  button(
+    shapeGroup,
+    "Open…",
+    "Open an SVG, an image, a mesh (OBJ, JSON) or a session; or drop a file on the shape",
+    () => picker.click(),
+    "open",
+  );
+  const part = select([], "");
+  part.name = "part";
+  labelled(shapeGroup, "Part ", part);
+  part.parentElement!.classList.add("hidden");
+  part.addEventListener("change", () => actions.part(Number(part.value)));
   const vertices = number(s.vertices, 100, 50_000, 100);
   vertices.name = "vertices";
   labelled(shapeGroup, "Vertices ", vertices);
-  const remesh = (): void => actions.shape(shape.value, Number(vertices.value));
-  shape.addEventListener("change", remesh);
+  const minAngle = number(s.minAngle, 0, 34, 1);
+  minAngle.name = "min-angle";
+  labelled(shapeGroup, "Min angle ", minAngle);
+  const remesh = (): void => actions.remesh(Number(vertices.value), Number(minAngle.value));
   vertices.addEventListener("change", remesh);
+  minAngle.addEventListener("change", remesh);
 
   const methodGroup = group("Method");
   const method = select(init.methods, s.method);
@@ -194,9 +229,14 @@ export function buildToolbar(
       replay.disabled = !state.hasSession || state.recording;
       save.disabled = !state.hasSession;
     },
-    showShape(name, count) {
-      if (name !== undefined) shape.value = name;
+    showShape(value, count, parts) {
+      if (value !== undefined) shape.value = value;
       vertices.value = String(count);
+      part.replaceChildren(
+        ...Array.from({ length: parts.count }, (_, i) => new Option(`${i + 1} of ${parts.count}`, String(i))),
+      );
+      part.value = String(parts.index);
+      part.parentElement!.classList.toggle("hidden", parts.count < 2);
     },
     sync(settings) {
       wireframe.checked = settings.wireframe;

@@ -23,7 +23,9 @@ import {
 } from "../core.js";
 import { Canvas2dRenderer } from "./canvas2d.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
-import { download, meshJson, meshObj, outlineSvg } from "./export.js";
+import { download, meshJson, meshObj, outlineSvg, vectorSvg } from "./export.js";
+import { PointMapper } from "../import.js";
+import { FILE_LIMITS, asOutline, fileKind, imageUvs, readShapeFile, type Loaded } from "./sources.js";
 
 import { GlRenderer, type MeshRenderer } from "./gl.js";
 import { History } from "./history.js";
@@ -33,7 +35,7 @@ import { PointerInput } from "./pointer.js";
 import { HANDLE_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { locate, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, parseSession, type Session, type SessionEvent } from "./session.js";
-import { meshOutline, sessionShape, type Shape } from "./shape.js";
+import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
 import { buildToolbar, type Toolbar } from "./toolbar.js";
@@ -64,8 +66,15 @@ export interface WidgetOptions {
   shape?: string;
   /** A shape of your own instead of a built-in one. */
   outline?: Outline;
-  /** An image URL used as the texture (mapped onto the shape's bounding box). */
+  /** An image URL used as the texture of built-in shapes (mapped onto the bounding box). */
   texture?: string;
+  /**
+   * A file to start with instead: an SVG, an image (traced, and warped as the texture) or
+   * a mesh (OBJ or our JSON), by URL.
+   */
+  src?: string;
+  /** More shapes for the toolbar's list: files by URL (SVG, image, OBJ, JSON mesh). */
+  gallery?: readonly GalleryItem[];
   /** About how many mesh vertices (default 1500). */
   vertices?: number;
   /** Smallest triangle angle in degrees (default 28). */
@@ -88,6 +97,12 @@ export interface WidgetOptions {
   maxStep?: number;
   /** Most substeps per animation frame (default 8); longer moves continue next frame. */
   maxSubsteps?: number;
+}
+
+/** A file the toolbar offers beside the built-in shapes. */
+export interface GalleryItem {
+  name: string;
+  url: string;
 }
 
 /** `detail` of the `akap-pose` event, sent after every frame that moved the shape. */
@@ -146,7 +161,11 @@ export class Widget {
   readonly #resizeObserver: ResizeObserver;
   readonly #history = new History<Snapshot>();
   readonly #recorder = new Recorder();
-  readonly #settings: Required<Omit<WidgetOptions, "shape" | "outline" | "texture">>;
+  readonly #settings: Required<Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery">>;
+  readonly #gallery: readonly GalleryItem[];
+  #baseTexture: TexImageSource | undefined;
+  /** The parts of the last imported file (largest first) and the one shown. */
+  #parts: { loaded: Extract<Loaded, { kind: "outlines" }>; index: number } | undefined;
 
   #shape!: Shape;
   #deformer!: Deformer;
@@ -167,6 +186,7 @@ export class Widget {
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
     this.target = target;
+    this.#gallery = options.gallery ?? [];
     this.#settings = {
       vertices: options.vertices ?? DEFAULTS.vertices,
       minAngle: options.minAngle ?? DEFAULTS.minAngle,
@@ -216,7 +236,10 @@ export class Widget {
 
     if (this.#settings.controls) {
       this.#toolbar = buildToolbar(document, this.#toolbarActions(), {
-        shapes: builtinShapes(),
+        shapes: [
+          ...builtinShapes().map((name) => ({ value: `builtin:${name}`, label: name })),
+          ...this.#gallery.map((item, i) => ({ value: `gallery:${i}`, label: item.name })),
+        ],
         methods: Object.entries(METHODS).map(([value, m]) => ({ value, label: m.label })),
         settings: this.#settings,
       });
@@ -252,8 +275,9 @@ export class Widget {
     try {
       const name = options.outline ? undefined : (options.shape ?? builtinShapes()[0]!);
       const outline = options.outline ?? builtinShape(name!);
-      widget.#install(meshOutline(outline, name, widget.#settings.vertices, widget.#settings.minAngle));
-      widget.#renderer.setTexture(options.texture ? await loadImage(options.texture) : defaultTexture());
+      widget.#baseTexture = options.texture ? await loadImage(options.texture) : defaultTexture();
+      if (options.src) await widget.loadUrl(options.src);
+      else widget.#install(meshOutline(outline, name, widget.#settings.vertices, widget.#settings.minAngle));
     } catch (error) {
       widget.destroy();
       throw error;
@@ -398,6 +422,7 @@ export class Widget {
     if (!spec) throw new Error("this widget shows a custom outline; give a built-in shape name");
     const shape = meshOutline(builtinShape(spec), spec, vertices, this.#settings.minAngle);
     this.#settings.vertices = vertices;
+    this.#parts = undefined;
     this.#install(shape);
     this.#resize();
   }
@@ -406,6 +431,92 @@ export class Widget {
   setOutline(outline: Outline, vertices = this.#settings.vertices): void {
     this.#install(meshOutline(outline, undefined, vertices, this.#settings.minAngle));
     this.#resize();
+  }
+
+  /**
+   * Loads a shape from a file: an SVG document (its filled shapes), an image (the shape
+   * where it is opaque, or where it differs from the background; the image warps with
+   * it), a mesh (OBJ or our JSON), or a recorded session (JSON), which is replayed. Files
+   * with several separate parts show the largest; {@link choosePart} picks another.
+   * Throws (and changes nothing) for files it cannot use.
+   */
+  async loadFile(file: Blob, name = (file as File).name ?? "file"): Promise<void> {
+    if (fileKind(name, file.type) === "json" && file.size <= FILE_LIMITS.bytes) {
+      const text = await file.text();
+      if (/"format"\s*:\s*"akap-session"/.test(text)) {
+        const session = parseSession(text);
+        this.#lastSession = session;
+        await this.replay(session);
+        return;
+      }
+    }
+    const loaded = await readShapeFile(file, name);
+    if (loaded.kind === "mesh") {
+      const shape = shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name);
+      this.#install(shape);
+      this.#parts = undefined;
+    } else {
+      if (loaded.parts.length === 0) throw new Error(`${name}: no shape found`);
+      this.#installPart(loaded, 0);
+    }
+    this.#resize();
+    this.#toolbar?.showShape(undefined, this.vertexCount, this.#partsInfo());
+  }
+
+  /** Loads a shape file by URL (see {@link loadFile}). */
+  async loadUrl(url: string): Promise<void> {
+    const response = await fetch(url);
+    if (!response.ok) throw new Error(`${url}: ${response.status} ${response.statusText}`);
+    const name = decodeURIComponent(new URL(url, this.target.ownerDocument.baseURI).pathname.split("/").pop() ?? url);
+    await this.loadFile(await response.blob(), name);
+  }
+
+  /** Shows another separate part of the last imported file (0 is the largest). */
+  choosePart(index: number): void {
+    const parts = this.#parts;
+    if (!parts || !(index >= 0 && index < parts.loaded.parts.length)) {
+      throw new RangeError(`there is no part ${index} to choose`);
+    }
+    this.#installPart(parts.loaded, index);
+    this.#resize();
+  }
+
+  #installPart(loaded: Extract<Loaded, { kind: "outlines" }>, index: number): void {
+    const { vertices, minAngle } = this.#settings;
+    const shape = meshOutline(asOutline(loaded.parts[index]!), undefined, vertices, minAngle, loaded.name);
+    if (loaded.image) {
+      shape.uvs = imageUvs(shape.mesh.positions, loaded.image.width, loaded.image.height);
+      shape.texture = loaded.image.source;
+    }
+    if (loaded.vector) shape.vector = loaded.vector;
+    this.#parts = { loaded, index };
+    this.#install(shape);
+    if (loaded.parts.length > 1) {
+      this.#status.textContent = `${loaded.name} has ${loaded.parts.length} separate parts; showing part ${index + 1} (the parts are ordered by size)`;
+    }
+  }
+
+  #partsInfo(): { count: number; index: number } {
+    return this.#parts ? { count: this.#parts.loaded.parts.length, index: this.#parts.index } : { count: 1, index: 0 };
+  }
+
+  /**
+   * Re-meshes the current shape with about `vertices` vertices and the given smallest
+   * angle (a live preview of the triangulation with the wireframe on). Built-in shapes and
+   * imported outlines can be re-meshed; a mesh loaded from a file cannot.
+   */
+  remesh(vertices = this.#settings.vertices, minAngle = this.#settings.minAngle): void {
+    const previous = { vertices: this.#settings.vertices, minAngle: this.#settings.minAngle };
+    Object.assign(this.#settings, { vertices, minAngle });
+    try {
+      if (this.#parts) this.#installPart(this.#parts.loaded, this.#parts.index);
+      else if (this.#shape.spec) this.setShape(this.#shape.spec.name, vertices);
+      else throw new Error("this shape came as a mesh; it cannot be re-meshed");
+      this.#resize();
+    } catch (error) {
+      Object.assign(this.#settings, previous);
+      throw error;
+    }
   }
 
   setDisplay(options: { wireframe?: boolean; field?: boolean; flipped?: boolean; paperMode?: boolean }): void {
@@ -503,7 +614,21 @@ export class Widget {
 
   /** The outline of the current pose as an SVG document. */
   exportSvg(): string {
-    return outlineSvg(this.#deformer.positionsView(), this.#shape.mesh.boundaryEdges);
+    const positions = this.#deformer.positions();
+    const vector = this.#shape.vector;
+    if (!vector) return outlineSvg(positions, this.#shape.mesh.boundaryEdges);
+    // An imported SVG stays vector art: its path points follow the mesh.
+    const { positions: rest, triangles } = this.#shape.mesh;
+    return vectorSvg(
+      vector.map((path) => {
+        const mapper = new PointMapper(rest, triangles, path.points);
+        try {
+          return { path, points: mapper.map(positions) };
+        } finally {
+          mapper.free();
+        }
+      }),
+    );
   }
 
   /** The rendered image (the shape and its outline, no handles) as a PNG. */
@@ -566,7 +691,13 @@ export class Widget {
     this.#lastField = undefined;
     this.#metrics = deformer.metrics();
     this.#renderer.setMesh(shape.mesh.triangles, shape.edges, shape.uvs);
-    this.#toolbar?.showShape(shape.spec?.name, shape.mesh.vertexCount);
+    const texture = shape.texture ?? this.#baseTexture;
+    if (texture) this.#renderer.setTexture(texture);
+    this.#toolbar?.showShape(
+      shape.spec ? `builtin:${shape.spec.name}` : undefined,
+      shape.mesh.vertexCount,
+      this.#partsInfo(),
+    );
     this.#hud?.showMesh(shape.mesh.vertexCount, shape.mesh.triangleCount, METHODS[this.#settings.method].label);
     this.#refreshButtons();
   }
@@ -942,6 +1073,16 @@ export class Widget {
       },
     });
     this.#root.addEventListener("keydown", (e) => this.#key(e));
+    // Files dropped on the stage load like the Open button's.
+    this.#overlay.addEventListener("dragover", (e) => {
+      if (e.dataTransfer?.types.includes("Files")) e.preventDefault();
+    });
+    this.#overlay.addEventListener("drop", (e) => {
+      const file = e.dataTransfer?.files[0];
+      if (!file) return;
+      e.preventDefault();
+      this.loadFile(file).catch((error: unknown) => this.#showError(error));
+    });
   }
 
   #key(e: KeyboardEvent): void {
@@ -1010,7 +1151,14 @@ export class Widget {
       redo: guard(() => this.redo()),
       reset: guard(() => this.reset()),
       clear: guard(() => this.clearHandles()),
-      shape: guard((name: string, vertices: number) => this.setShape(name, vertices)),
+      shape: guard(async (value: string) => {
+        const [kind, rest] = [value.slice(0, value.indexOf(":")), value.slice(value.indexOf(":") + 1)];
+        if (kind === "builtin") this.setShape(rest);
+        else await this.loadUrl(this.#gallery[Number(rest)]!.url);
+      }),
+      remesh: guard((vertices: number, minAngle: number) => this.remesh(vertices, minAngle)),
+      open: guard((file: File) => this.loadFile(file)),
+      part: guard((index: number) => this.choosePart(index)),
       method: guard((method: string, lambda: number) => this.setMethod(method as Method, lambda)),
       display: guard((options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }) => {
         this.setDisplay(options);

@@ -1,0 +1,135 @@
+/**
+ * Reading the user's files into shapes: SVG documents (parsed as data by our Rust code,
+ * never put into the page), images (decoded by the browser, traced by our Rust code; the
+ * image becomes the texture), and mesh files (OBJ, our JSON). Size limits come first, so
+ * a huge file is refused before any work; every failure is an `Error` saying why, and
+ * nothing of the widget changes until a shape is fully built.
+ */
+import type { MeshData, Outline } from "../core.js";
+import {
+  importSvg,
+  importSvgPaths,
+  meshFromJson,
+  meshFromObj,
+  traceImage,
+  type ImportedOutline,
+  type VectorPath,
+} from "../import.js";
+
+/** Limits on what a user file may be. */
+export const FILE_LIMITS = {
+  /** Bytes of any file. */
+  bytes: 32 * 1024 * 1024,
+  /** Pixels of an image (width times height). */
+  pixels: 4096 * 4096,
+};
+
+/** What a file gives: outlines to mesh (largest first), or a ready mesh. */
+export type Loaded =
+  | {
+      kind: "outlines";
+      name: string;
+      parts: ImportedOutline[];
+      /** The texture and how shape coordinates map to it (u = x / width, v = y / height). */
+      image?: { source: TexImageSource; width: number; height: number };
+      /** The SVG's filled paths, for exporting the art deformed as vectors. */
+      vector?: VectorPath[];
+    }
+  | { kind: "mesh"; name: string; mesh: MeshData; uvs: Float64Array | undefined };
+
+export type FileKind = "svg" | "image" | "obj" | "json";
+
+/** The kind of a file from its name and type, or undefined if we cannot read it. */
+export function fileKind(name: string, type = ""): FileKind | undefined {
+  const extension = /\.([a-z0-9]+)$/i.exec(name)?.[1]?.toLowerCase() ?? "";
+  if (extension === "svg" || type === "image/svg+xml") return "svg";
+  if (["png", "jpg", "jpeg", "webp", "gif", "bmp", "avif"].includes(extension) || type.startsWith("image/")) {
+    return "image";
+  }
+  if (extension === "obj") return "obj";
+  if (extension === "json" || type === "application/json") return "json";
+  return undefined;
+}
+
+/** Reads a file (or a fetched blob with a name). Throws an `Error` naming the file. */
+export async function readShapeFile(file: Blob, name: string): Promise<Loaded> {
+  try {
+    return await read(file, name);
+  } catch (error) {
+    const message = error instanceof Error ? error.message : String(error);
+    if (message.startsWith(name)) throw error;
+    throw new Error(`${name}: ${message}`, { cause: error });
+  }
+}
+
+async function read(file: Blob, name: string): Promise<Loaded> {
+  const kind = fileKind(name, file.type);
+  if (!kind) {
+    throw new Error(`${name}: not a file we can read (SVG, PNG, JPEG, WebP, GIF, OBJ or JSON mesh)`);
+  }
+  if (file.size > FILE_LIMITS.bytes) {
+    throw new Error(`${name} is ${megabytes(file.size)}; the limit is ${megabytes(FILE_LIMITS.bytes)}`);
+  }
+  switch (kind) {
+    case "svg": {
+      const text = await file.text();
+      const parts = importSvg(text);
+      return { kind: "outlines", name, parts, vector: importSvgPaths(text) };
+    }
+    case "image":
+      return readImage(file, name);
+    case "obj": {
+      const mesh = meshFromObj(await file.text());
+      return { kind: "mesh", name, mesh, uvs: mesh.uvs };
+    }
+    case "json": {
+      const mesh = meshFromJson(await file.text());
+      return { kind: "mesh", name, mesh, uvs: mesh.uvs };
+    }
+  }
+}
+
+async function readImage(file: Blob, name: string): Promise<Loaded> {
+  let bitmap: ImageBitmap;
+  try {
+    bitmap = await createImageBitmap(file);
+  } catch {
+    throw new Error(`${name}: the browser could not decode this image`);
+  }
+  const { width, height } = bitmap;
+  if (width * height > FILE_LIMITS.pixels) {
+    bitmap.close();
+    throw new Error(`${name} is ${width} x ${height} pixels; the limit is ${FILE_LIMITS.pixels} pixels`);
+  }
+  const canvas = document.createElement("canvas");
+  canvas.width = width;
+  canvas.height = height;
+  const ctx = canvas.getContext("2d", { willReadFrequently: true });
+  if (!ctx) throw new Error("this browser cannot read image pixels");
+  ctx.drawImage(bitmap, 0, 0);
+  bitmap.close();
+  const pixels = ctx.getImageData(0, 0, width, height).data;
+  const parts = traceImage(pixels, width, height);
+  // The canvas, not the bitmap, is the texture: WebGL flips canvases for upload as asked,
+  // but ignores the flip for ImageBitmaps.
+  return { kind: "outlines", name, parts, image: { source: canvas, width, height } };
+}
+
+/** An imported outline as the core's `Outline`. */
+export function asOutline(part: ImportedOutline): Outline {
+  return { outer: part.outer, holes: part.holes };
+}
+
+/** Texture coordinates of positions in an image's pixel frame (y up): u = x / w, v = y / h. */
+export function imageUvs(positions: ArrayLike<number>, width: number, height: number): Float32Array {
+  const uvs = new Float32Array(positions.length);
+  for (let i = 0; i + 1 < positions.length; i += 2) {
+    uvs[i] = positions[i]! / width;
+    uvs[i + 1] = positions[i + 1]! / height;
+  }
+  return uvs;
+}
+
+function megabytes(bytes: number): string {
+  return `${(bytes / 1024 / 1024).toFixed(1)} MB`;
+}
