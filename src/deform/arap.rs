@@ -45,6 +45,7 @@ use std::sync::Arc;
 use sprs::CsMat;
 
 use super::deformer::{default_clock, Clock, DeformError, Timings};
+use super::handles::{self, HandlePoint};
 use super::metrics::{metrics, Metrics};
 use crate::geometry::{bounding_box, Point};
 use crate::mesh::Mesh;
@@ -109,6 +110,12 @@ struct Handle {
     triangle: usize,
     /// The vertex this handle pins (a hard constraint), or `NONE` for a penalty handle.
     pinned: usize,
+}
+
+impl Handle {
+    fn new(point: &HandlePoint, pinned: usize) -> Self {
+        Self { vertices: point.vertices, weights: point.weights, triangle: point.triangle, pinned }
+    }
 }
 
 /// The ARAP deformer for one mesh.
@@ -295,24 +302,8 @@ impl ArapDeformer {
     /// Puts one handle on each of these vertices (replacing any handles); each is a hard
     /// constraint.
     pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        let n = self.mesh.vertex_count();
-        let mut corner_of = vec![NONE; n];
-        for (t, tri) in self.mesh.triangles().iter().enumerate() {
-            for &v in tri {
-                corner_of[v as usize] = t;
-            }
-        }
-        let mut handles = Vec::with_capacity(vertices.len());
-        for (handle, &vertex) in vertices.iter().enumerate() {
-            if vertex as usize >= n {
-                return Err(DeformError::VertexOutOfRange { handle, vertex, vertex_count: n });
-            }
-            let triangle = corner_of[vertex as usize];
-            let vertices = self.mesh.triangles()[triangle];
-            let weights = vertices.map(|v| if v == vertex { 1.0 } else { 0.0 });
-            handles.push(Handle { vertices, weights, triangle, pinned: vertex as usize });
-        }
-        self.install(handles);
+        let points = handles::at_vertices(&self.mesh, vertices)?;
+        self.install(points.iter().zip(vertices).map(|(p, &v)| Handle::new(p, v as usize)).collect());
         Ok(())
     }
 
@@ -320,28 +311,17 @@ impl ArapDeformer {
     /// coordinates (replacing any handles). A point at a vertex pins that vertex; any
     /// other point is held by the penalty.
     pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        if barycentric.len() != triangles.len() {
-            return Err(DeformError::Length {
-                what: "barycentric",
-                expected: 3 * triangles.len(),
-                found: 3 * barycentric.len(),
-            });
-        }
-        let m = self.mesh.triangle_count();
-        let mut handles = Vec::with_capacity(triangles.len());
-        for (handle, (&triangle, &w)) in triangles.iter().zip(barycentric).enumerate() {
-            if triangle as usize >= m {
-                return Err(DeformError::TriangleOutOfRange { handle, triangle, triangle_count: m });
-            }
-            let valid = w.iter().all(|x| x.is_finite() && *x >= -1e-12) && (w.iter().sum::<f64>() - 1.0).abs() <= 1e-9;
-            if !valid {
-                return Err(DeformError::InvalidBarycentric { handle, coordinates: w });
-            }
-            let vertices = self.mesh.triangles()[triangle as usize];
-            let pinned = (0..3).find(|&k| w[k] >= 1.0 - AT_VERTEX).map_or(NONE, |k| vertices[k] as usize);
-            handles.push(Handle { vertices, weights: w, triangle: triangle as usize, pinned });
-        }
-        self.install(handles);
+        let points = handles::in_triangles(&self.mesh, triangles, barycentric)?;
+        self.install(
+            points
+                .iter()
+                .map(|p| {
+                    let pinned =
+                        (0..3).find(|&k| p.weights[k] >= 1.0 - AT_VERTEX).map_or(NONE, |k| p.vertices[k] as usize);
+                    Handle::new(p, pinned)
+                })
+                .collect(),
+        );
         Ok(())
     }
 

@@ -22,6 +22,7 @@ use std::sync::Arc;
 
 use sprs::CsMat;
 
+use super::handles;
 use super::killing::KillingMatrix;
 use super::metrics::{metrics, Metrics};
 use super::spiral::{linear_step, spiral_step};
@@ -367,49 +368,16 @@ impl Deformer {
 
     /// Puts one handle on each of these vertices (replacing any handles).
     pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        let n = self.mesh.vertex_count();
-        let mut corner_of = vec![NONE; n];
-        for (t, tri) in self.mesh.triangles().iter().enumerate() {
-            for &v in tri {
-                corner_of[v as usize] = t;
-            }
-        }
-        let mut handles = Vec::with_capacity(vertices.len());
-        for (handle, &vertex) in vertices.iter().enumerate() {
-            if vertex as usize >= n {
-                return Err(DeformError::VertexOutOfRange { handle, vertex, vertex_count: n });
-            }
-            let tri = self.mesh.triangles()[corner_of[vertex as usize]];
-            let weights = tri.map(|v| if v == vertex { 1.0 } else { 0.0 });
-            handles.push(Handle { vertices: tri, weights });
-        }
-        self.install(handles);
+        let points = handles::at_vertices(&self.mesh, vertices)?;
+        self.install(points.iter().map(|p| Handle { vertices: p.vertices, weights: p.weights }).collect());
         Ok(())
     }
 
     /// Puts handles at points inside triangles, given by triangle index and barycentric
     /// coordinates (replacing any handles).
     pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        if barycentric.len() != triangles.len() {
-            return Err(DeformError::Length {
-                what: "barycentric",
-                expected: 3 * triangles.len(),
-                found: 3 * barycentric.len(),
-            });
-        }
-        let m = self.mesh.triangle_count();
-        let mut handles = Vec::with_capacity(triangles.len());
-        for (handle, (&triangle, &w)) in triangles.iter().zip(barycentric).enumerate() {
-            if triangle as usize >= m {
-                return Err(DeformError::TriangleOutOfRange { handle, triangle, triangle_count: m });
-            }
-            let valid = w.iter().all(|x| x.is_finite() && *x >= -1e-12) && (w.iter().sum::<f64>() - 1.0).abs() <= 1e-9;
-            if !valid {
-                return Err(DeformError::InvalidBarycentric { handle, coordinates: w });
-            }
-            handles.push(Handle { vertices: self.mesh.triangles()[triangle as usize], weights: w });
-        }
-        self.install(handles);
+        let points = handles::in_triangles(&self.mesh, triangles, barycentric)?;
+        self.install(points.iter().map(|p| Handle { vertices: p.vertices, weights: p.weights }).collect());
         Ok(())
     }
 

@@ -10,6 +10,7 @@
 
 pub mod arap;
 pub mod deformer;
+mod handles;
 pub mod killing;
 pub mod method;
 pub mod metrics;

@@ -11,6 +11,8 @@
  * ```
  *
  */
+import { toFloat64, toUint32 } from "./internal/arrays.js";
+import { readMesh } from "./internal/mesh.js";
 import { assertLoaded, load, raw, wasmMemory, type WasmSource } from "./internal/wasm.js";
 
 export type { WasmSource };
@@ -63,24 +65,10 @@ export function init(source?: WasmSource): Promise<void> {
 
 function copyOut(mesh: raw.Mesh): MeshData {
   try {
-    return {
-      positions: mesh.positions(),
-      triangles: mesh.triangles(),
-      boundaryEdges: mesh.boundaryEdges(),
-      boundaryVertices: mesh.boundaryVertices(),
-      vertexCount: mesh.vertexCount,
-      triangleCount: mesh.triangleCount,
-      area: mesh.area(),
-    };
+    return readMesh(mesh);
   } finally {
     mesh.free();
   }
-}
-
-function asFloat64(coordinates: Coordinates, what: string): Float64Array {
-  if (coordinates instanceof Float64Array) return coordinates;
-  if (Array.isArray(coordinates)) return Float64Array.from(coordinates, Number);
-  throw new TypeError(`${what} must be a Float64Array or an array of numbers`);
 }
 
 /**
@@ -91,8 +79,8 @@ function asFloat64(coordinates: Coordinates, what: string): Float64Array {
  */
 export function triangulate(outline: Outline, options: TriangulationOptions = {}): MeshData {
   assertLoaded();
-  const outer = asFloat64(outline.outer, "outline.outer");
-  const holes = (outline.holes ?? []).map((hole, k) => asFloat64(hole, `outline.holes[${k}]`));
+  const outer = toFloat64(outline.outer, "outline.outer");
+  const holes = (outline.holes ?? []).map((hole, k) => toFloat64(hole, `outline.holes[${k}]`));
   return copyOut(raw.triangulate_outline(outer, holes, options));
 }
 
@@ -102,19 +90,11 @@ export function triangulate(outline: Outline, options: TriangulationOptions = {}
  */
 export function meshFromArrays(positions: Coordinates, triangles: Indices): MeshData {
   assertLoaded();
-  return copyOut(new raw.Mesh(asFloat64(positions, "positions"), asUint32(triangles, "triangles")));
+  return copyOut(new raw.Mesh(toFloat64(positions, "positions"), toUint32(triangles, "triangles")));
 }
 
 /** Vertex or triangle indices. */
 export type Indices = Uint32Array | readonly number[];
-
-function asUint32(indices: Indices, what: string): Uint32Array {
-  if (indices instanceof Uint32Array) return indices;
-  if (!Array.isArray(indices)) throw new TypeError(`${what} must be a Uint32Array or an array of numbers`);
-  const bad = indices.findIndex((i) => !Number.isInteger(i) || i < 0 || i > 0xffffffff);
-  if (bad >= 0) throw new RangeError(`${what}[${bad}] is ${indices[bad]}, not an index`);
-  return Uint32Array.from(indices);
-}
 
 /**
  * Options of the {@link Deformer}. `method` is chosen when the deformer is created;
@@ -170,7 +150,7 @@ export class Deformer {
    */
   constructor(positions: Coordinates, triangles: Indices, options: DeformerOptions = {}) {
     assertLoaded();
-    this.#raw = new raw.Deformer(asFloat64(positions, "positions"), asUint32(triangles, "triangles"), options);
+    this.#raw = new raw.Deformer(toFloat64(positions, "positions"), toUint32(triangles, "triangles"), options);
   }
 
   /** Changes some options; the others keep their values. The method cannot change. */
@@ -185,17 +165,17 @@ export class Deformer {
 
   /** One handle on each of these vertices, replacing the current handles. */
   setHandles(vertices: Indices): void {
-    this.#raw.setHandles(asUint32(vertices, "vertices"));
+    this.#raw.setHandles(toUint32(vertices, "vertices"));
   }
 
   /** Handles at points inside triangles: a triangle index and 3 barycentric coordinates each. */
   setHandlePoints(triangles: Indices, barycentric: Coordinates): void {
-    this.#raw.setHandlePoints(asUint32(triangles, "triangles"), asFloat64(barycentric, "barycentric"));
+    this.#raw.setHandlePoints(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
   }
 
   /** One step: two velocity components per handle, in handle order. */
   step(velocities: Coordinates): void {
-    this.#raw.step(asFloat64(velocities, "velocities"));
+    this.#raw.step(toFloat64(velocities, "velocities"));
   }
 
   /** A copy of the current positions, xy-interleaved. */
@@ -221,7 +201,7 @@ export class Deformer {
 
   /** Puts the mesh into a given pose (xy-interleaved, length 2n); handles stay. */
   setPositions(positions: Coordinates): void {
-    this.#raw.setPositions(asFloat64(positions, "positions"));
+    this.#raw.setPositions(toFloat64(positions, "positions"));
   }
 
   /** The last step's velocity field after the Dirichlet re-solve (U_opt; ARAP: the step's displacement), xy-interleaved. */

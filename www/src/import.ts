@@ -16,6 +16,7 @@
 import { type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
 import { assertLoaded, raw } from "./internal/wasm.js";
 import type { MeshData } from "./core.js";
+import { readMesh } from "./internal/mesh.js";
 
 /** An imported outline: an outer ring and holes, x and y interleaved, y pointing up. */
 export interface ImportedOutline {
@@ -161,15 +162,7 @@ function readMeshFile(file: raw.MeshFile): MeshFileData {
   try {
     const mesh = file.mesh();
     try {
-      const data: MeshFileData = {
-        positions: mesh.positions(),
-        triangles: mesh.triangles(),
-        boundaryEdges: mesh.boundaryEdges(),
-        boundaryVertices: mesh.boundaryVertices(),
-        vertexCount: mesh.vertexCount,
-        triangleCount: mesh.triangleCount,
-        area: mesh.area(),
-      };
+      const data: MeshFileData = readMesh(mesh);
       const uvs = file.uvs();
       if (uvs !== undefined) data.uvs = uvs;
       return data;

@@ -1,0 +1,16 @@
+/** Copying meshes out of wasm. Internal. */
+import type { MeshData } from "../core.js";
+import type { raw } from "./wasm.js";
+
+/** Copies a wasm mesh out as plain typed arrays (the caller frees it). Internal. */
+export function readMesh(mesh: raw.Mesh): MeshData {
+  return {
+    positions: mesh.positions(),
+    triangles: mesh.triangles(),
+    boundaryEdges: mesh.boundaryEdges(),
+    boundaryVertices: mesh.boundaryVertices(),
+    vertexCount: mesh.vertexCount,
+    triangleCount: mesh.triangleCount,
+    area: mesh.area(),
+  };
+}
