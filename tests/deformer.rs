@@ -344,3 +344,41 @@ fn a_pose_set_from_outside_is_deformed_from_there() {
     assert_eq!(deformer.set_positions(&bad), Err(DeformError::NonFinitePosition { vertex: 5 }));
     assert_eq!(deformer.positions(), &before[..]);
 }
+
+#[test]
+fn with_handles_on_the_boundary_only_step_two_is_step_one() {
+    // The penalties then touch boundary unknowns only, so U0 already satisfies step 2's
+    // condition (K U)_I = 0 and the deformer skips the second solve: check the condition
+    // holds for the field it returns, and that it is U0.
+    let mesh = figure();
+    let boundary: Vec<u32> = mesh.boundary_vertices().step_by(37).take(4).collect();
+    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    deformer.set_handle_vertices(&boundary).unwrap();
+    let velocities = [[0.01, 0.0], [0.0, -0.02], [0.015, 0.01], [-0.01, 0.005]];
+    let positions = deformer.positions().to_vec();
+    deformer.step(&velocities).unwrap();
+    assert_eq!(deformer.field(), deformer.soft_field());
+    let u: Vec<f64> = deformer.field().iter().flatten().copied().collect();
+    let ku = killing_times(&mesh, &positions, &u);
+    let interior: f64 = (0..mesh.vertex_count())
+        .filter(|&v| !mesh.is_boundary_vertex(v))
+        .map(|v| ku[2 * v].powi(2) + ku[2 * v + 1].powi(2))
+        .sum();
+    let reference: f64 = ku.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!(interior.sqrt() <= 1e-9 * reference, "{} vs {reference}", interior.sqrt());
+
+    // One handle point inside the shape brings step 2 back: the fields differ.
+    let interior_triangle = (0..mesh.triangle_count())
+        .find(|&t| mesh.triangles()[t].iter().all(|&v| !mesh.is_boundary_vertex(v as usize)))
+        .unwrap() as u32;
+    let mut tris = vec![interior_triangle];
+    let mut weights = vec![[0.2, 0.3, 0.5]];
+    for &v in &boundary[..3] {
+        let t = (0..mesh.triangle_count()).find(|&t| mesh.triangles()[t].contains(&v)).unwrap();
+        tris.push(t as u32);
+        weights.push(mesh.triangles()[t].map(|w| if w == v { 1.0 } else { 0.0 }));
+    }
+    deformer.set_handle_points(&tris, &weights).unwrap();
+    deformer.step(&velocities).unwrap();
+    assert_ne!(deformer.field(), deformer.soft_field());
+}

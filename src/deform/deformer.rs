@@ -278,6 +278,8 @@ pub struct Deformer {
     /// Per handle, for each of its 9 vertex pairs, the two diagonal slots of the block.
     penalty_slots: Vec<[[usize; 2]; 9]>,
     distinct_points: usize,
+    /// Whether every handle weighs only on boundary vertices (then step 2 changes nothing).
+    boundary_handles_only: bool,
     /// Last field of step 1 and of step 2, interleaved `u1 u2` per vertex.
     soft_field: Vec<f64>,
     field: Vec<f64>,
@@ -334,6 +336,7 @@ impl Deformer {
             handles: Vec::new(),
             penalty_slots: Vec::new(),
             distinct_points: 0,
+            boundary_handles_only: true,
             soft_field: vec![0.0; 2 * n],
             field: vec![0.0; 2 * n],
             next_soft: vec![0.0; 2 * n],
@@ -403,6 +406,9 @@ impl Deformer {
         self.distinct_points = (0..points.len())
             .filter(|&i| points[..i].iter().all(|q| (q[0] - points[i][0]).hypot(q[1] - points[i][1]) > 1e-12 * scale))
             .count();
+        self.boundary_handles_only = handles.iter().all(|h| {
+            h.vertices.iter().zip(h.weights).all(|(&v, w)| w == 0.0 || self.mesh.is_boundary_vertex(v as usize))
+        });
         self.handles = handles;
     }
 
@@ -509,7 +515,12 @@ impl Deformer {
                 rhs[2 * v + 1] += lambda * h.weights[i] * u[1];
             }
         }
-        if let Some(system) = &mut self.dirichlet {
+        // Step 2 re-solves the interior with U0's boundary values. When the penalties touch
+        // boundary unknowns only, U0 already makes the interior gradient of E_K vanish, which
+        // is step 2's condition, and step 2's solution is unique (K_II is positive definite):
+        // U_opt = U0, so the second factorisation is skipped.
+        let dirichlet = self.options.dirichlet && !self.boundary_handles_only;
+        if let (true, Some(system)) = (dirichlet, &mut self.dirichlet) {
             system.gather(k);
         }
         let t1 = clock();
@@ -522,7 +533,7 @@ impl Deformer {
         timings.solve = t3 - t2;
 
         self.next_field.copy_from_slice(&self.next_soft);
-        if !self.options.dirichlet {
+        if !dirichlet {
             return Ok(());
         }
         let Some(system) = &mut self.dirichlet else { return Ok(()) };
