@@ -892,7 +892,7 @@ export class Widget {
 
   #step(velocities: Float64Array, timings: Timings): void {
     this.#deformer.step(velocities);
-    this.#record({ step: Array.from(velocities) });
+    if (this.#recorder.recording) this.#record({ step: Array.from(velocities) });
     const t = this.#deformer.timings();
     timings.assembly += t.assembly;
     timings.factorisation += t.factorisation;
