@@ -5,6 +5,7 @@ import { meshObj, outlineSvg } from "../../www/src/widget/export.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
 import { History } from "../../www/src/widget/history.js";
 import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
+import { fileKind, imageUvs } from "../../www/src/widget/sources.js";
 import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
 import { Recorder, parseSession } from "../../www/src/widget/session.js";
 
@@ -191,5 +192,21 @@ describe("keyboard shortcuts", () => {
     expect(press("q")).toBeUndefined();
     expect(press("w", { ctrlKey: true })).toBeUndefined();
     expect(press("ArrowUp", { altKey: true })).toBeUndefined();
+  });
+});
+
+describe("user files", () => {
+  it("are recognised by extension or type", () => {
+    expect(fileKind("Cat.SVG")).toBe("svg");
+    expect(fileKind("drawing", "image/svg+xml")).toBe("svg");
+    expect(fileKind("photo.jpeg")).toBe("image");
+    expect(fileKind("scan", "image/webp")).toBe("image");
+    expect(fileKind("model.obj")).toBe("obj");
+    expect(fileKind("pose.json")).toBe("json");
+    expect(fileKind("notes.txt", "text/plain")).toBeUndefined();
+  });
+
+  it("map traced image coordinates (pixels, y up) to texture space", () => {
+    expect(Array.from(imageUvs([0, 0, 200, 100, 50, 25], 200, 100))).toEqual([0, 0, 1, 1, 0.25, 0.25]);
   });
 });
