@@ -552,3 +552,21 @@ test("a file that cannot be read leaves the shape as it was", async ({ page }) =
     expect(await positions(page)).toEqual(before);
   }
 });
+
+test("<akap-deformer src=...> poses a file given by URL", async ({ page }) => {
+  await page.goto("/www/examples/embed.html");
+  await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
+  const area = await page.evaluate(async () => {
+    const svg =
+      '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 120 60"><rect x="10" y="5" width="100" height="50"/></svg>';
+    const element = document.createElement("akap-deformer") as HTMLElement & {
+      ready: Promise<{ mesh: { area: number } }>;
+    };
+    element.setAttribute("src", `data:image/svg+xml,${encodeURIComponent(svg)}`);
+    element.setAttribute("vertices", "300");
+    element.style.height = "200px";
+    document.body.append(element);
+    return (await element.ready).mesh.area;
+  });
+  expect(area).toBeCloseTo(100 * 50, 6);
+});
