@@ -38,8 +38,7 @@ fn main() {
         ptr.push(adj.len());
     }
     if count_only {
-        let order = expand_blocks(&amd_order(n, &ptr, &adj), 2);
-        let mut numeric = Numeric::new(Arc::new(Symbolic::analyse(a.view(), &Ordering::Given(order)).unwrap()));
+        let mut numeric = Numeric::new(Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap()));
         for _ in 0..3 {
             numeric.refactor(a.view()).unwrap();
         }

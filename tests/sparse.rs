@@ -82,6 +82,52 @@ fn factor_reconstructs_and_solves_random_spd_matrices() {
     }
 }
 
+/// A random SPD matrix with two unknowns per vertex, every vertex pair coupled by a full
+/// 2x2 block (the pattern of the AKAP matrices), in full CSC.
+fn random_block_spd(vertices: usize, edges: usize, rng: &mut Rng) -> CsMat<f64> {
+    let n = 2 * vertices;
+    let mut tri = TriMat::new((n, n));
+    let mut row_sum = vec![0.0; n];
+    let mut add = |tri: &mut TriMat<f64>, i: usize, j: usize, v: f64| {
+        tri.add_triplet(i, j, v);
+        tri.add_triplet(j, i, v);
+        row_sum[i] += v.abs();
+        row_sum[j] += v.abs();
+    };
+    for v in 0..vertices {
+        add(&mut tri, 2 * v + 1, 2 * v, rng.unit() - 0.5);
+    }
+    for _ in 0..edges {
+        let (a, b) = (rng.below(vertices), rng.below(vertices));
+        if a != b {
+            for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                add(&mut tri, 2 * a + i, 2 * b + j, rng.unit() - 0.5);
+            }
+        }
+    }
+    for (i, s) in row_sum.iter().enumerate() {
+        tri.add_triplet(i, i, s + 0.5);
+    }
+    tri.to_csc()
+}
+
+#[test]
+fn minimum_degree_on_block_matrices_keeps_vertices_together() {
+    let mut rng = Rng::new(19);
+    for case in 0..20 {
+        let vertices = 1 + rng.below(40);
+        let a = random_block_spd(vertices, rng.below(3 * vertices + 1), &mut rng);
+        let symbolic = Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap());
+        let perm = symbolic.permutation();
+        for pair in perm.chunks(2) {
+            assert_eq!(pair[0] / 2, pair[1] / 2, "case {case}: a vertex's unknowns are split in {perm:?}");
+        }
+        let numeric = Numeric::factor(symbolic, a.view()).unwrap();
+        let err = reconstruction_error(&numeric, &a);
+        assert!(err <= 1e-12, "case {case}: reconstruction error {err}");
+    }
+}
+
 #[test]
 fn lower_triangle_alone_gives_the_same_factor() {
     let mut rng = Rng::new(11);

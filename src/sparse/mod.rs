@@ -19,6 +19,7 @@
 
 mod amd;
 mod dense;
+mod graph;
 mod nested_dissection;
 mod numeric;
 mod symbolic;

@@ -1,20 +1,27 @@
 //! Symbolic analysis: everything about the factor `L` of `P A P^T = L L^T` that depends
 //! only on the sparsity pattern of `A`, computed once per pattern.
 //!
-//! Steps and costs (n unknowns, |A| entries of the lower triangle, |L| entries of L):
-//! 1. fill-reducing order (AMD, or given), O(|A|) in practice;
+//! Steps and costs (n unknowns, |A| entries of the lower triangle, |L| entries of L). The
+//! pattern is read once into a symmetric adjacency [`Graph`]; every later step reads it
+//! through the permutation instead of building permuted copies.
+//! 1. fill-reducing order (AMD on the graph compressed to one node per group of
+//!    indistinguishable unknowns, such as the 2x2 blocks of a vertex; or given),
+//!    O(|A|) in practice;
 //! 2. elimination tree of the permuted pattern (Liu's algorithm with path compression),
 //!    O(|A| log n), and its postorder, which is folded into the permutation so that every
-//!    subtree, and so every supernode, is a contiguous range of columns;
+//!    subtree, and so every supernode, is a contiguous range of columns (the tree is
+//!    relabelled, not recomputed: a postorder is an equivalent order with the same tree);
 //! 3. column counts of L by walking each row subtree (row i of L is the union of the etree
 //!    paths from the entries of row i of A up to i), O(|L|);
 //! 4. fundamental supernodes (a column joins its only child's supernode when it is that
-//!    child's parent and its count is one less) and the sorted row pattern of each
+//!    child's parent and its count is one less), relaxed, and the row pattern of each
 //!    supernode: its columns, the rows of A below them and the rows of its child
-//!    supernodes below them, O(|L|) plus sorting;
-//! 5. a map from every lower-triangle entry of A to its slot in the supernodal storage of L.
+//!    supernodes below them, sorted all at once by a double transpose, O(|L|);
+//! 5. a map from every lower-triangle entry of A to its slot in the supernodal storage of
+//!    L, grouped by supernode with a counting sort, O(|A|).
 
-use super::{amd_order, CsMatView, FactorError, Ordering};
+use super::graph::{prefix_sums, Graph};
+use super::{CsMatView, FactorError, Ordering};
 
 const NONE: usize = usize::MAX;
 
@@ -57,12 +64,10 @@ impl Symbolic {
     pub fn analyse(a: CsMatView<'_>, ordering: &Ordering) -> Result<Self, FactorError> {
         let (indptr, indices) = pattern_of(a)?;
         let n = a.cols();
+        let graph = Graph::of_lower_pattern(n, &indptr, &indices);
         let order = match ordering {
             Ordering::Natural => (0..n).collect(),
-            Ordering::Amd => {
-                let (ptr, adj) = symmetric_adjacency(n, &indptr, &indices);
-                amd_order(n, &ptr, &adj)
-            }
+            Ordering::Amd => graph.amd_order(),
             Ordering::Given(order) => {
                 if !is_permutation(order, n) {
                     return Err(FactorError::InvalidOrdering);
@@ -72,23 +77,22 @@ impl Symbolic {
         };
 
         // Eliminate in the given order, then relabel by a postorder of the elimination
-        // tree: the same fill, with subtrees contiguous.
-        let lower = permuted_lower(n, &indptr, &indices, &inverse(&order));
-        let parent = elimination_tree(n, &lower);
-        let post = postorder(&parent);
+        // tree: the same fill, with subtrees contiguous, and the tree simply relabelled.
+        let parent_in_order = elimination_tree(&graph, &order, &inverse(&order));
+        let post = postorder(&parent_in_order);
         let perm: Vec<usize> = post.iter().map(|&k| order[k]).collect();
         let inv = inverse(&perm);
-        let lower = permuted_lower(n, &indptr, &indices, &inv);
-        let parent = elimination_tree(n, &lower);
-
-        let counts = column_counts(n, &lower, &parent);
+        let post_inv = inverse(&post);
+        let parent: Vec<usize> =
+            post.iter().map(|&k| parent_in_order[k]).map(|p| if p == NONE { NONE } else { post_inv[p] }).collect();
+        let counts = column_counts(&graph, &perm, &inv, &parent);
         let super_start = relax_supernodes(&fundamental_supernodes(&parent, &counts), &parent, &counts);
         let ns = super_start.len() - 1;
         let mut col_to_super = vec![0; n];
         for s in 0..ns {
             col_to_super[super_start[s]..super_start[s + 1]].fill(s);
         }
-        let (row_start, rows) = supernode_rows(n, &lower, &parent, &super_start, &col_to_super);
+        let (row_start, rows) = supernode_rows(&graph, &perm, &inv, &parent, &super_start, &col_to_super);
 
         let mut value_start = Vec::with_capacity(ns + 1);
         value_start.push(0);
@@ -99,29 +103,8 @@ impl Symbolic {
             max_update = max_update.max((height - width) * (height - width));
         }
 
-        let mut by_super: Vec<(usize, usize, usize)> = Vec::with_capacity(indices.len());
-        for j in 0..n {
-            for (p, &i) in indices.iter().enumerate().take(indptr[j + 1]).skip(indptr[j]) {
-                if i < j {
-                    continue;
-                }
-                let (r, c) = (inv[i].max(inv[j]), inv[i].min(inv[j]));
-                let s = col_to_super[c];
-                let s_rows = &rows[row_start[s]..row_start[s + 1]];
-                let pos = s_rows.binary_search(&r).expect("every entry of A lies in the pattern of L");
-                by_super.push((s, (c - super_start[s]) * s_rows.len() + pos, p));
-            }
-        }
-        by_super.sort_unstable();
-        let mut a_entry_start = vec![0; ns + 1];
-        for &(s, _, _) in &by_super {
-            a_entry_start[s + 1] += 1;
-        }
-        for s in 0..ns {
-            a_entry_start[s + 1] += a_entry_start[s];
-        }
-        let a_entries = by_super.into_iter().map(|(_, offset, p)| (offset, p)).collect();
-
+        let (a_entry_start, a_entries) =
+            a_entry_slots(&indptr, &indices, &inv, &super_start, &col_to_super, &row_start, &rows);
         let nnz_l = counts.iter().sum();
         let flops = counts.iter().map(|&c| (c * c) as f64).sum();
         Ok(Self {
@@ -217,109 +200,29 @@ fn inverse(perm: &[usize]) -> Vec<usize> {
     inv
 }
 
-/// The off-diagonal pattern of the lower triangle made symmetric, for the ordering.
-fn symmetric_adjacency(n: usize, indptr: &[usize], indices: &[usize]) -> (Vec<usize>, Vec<usize>) {
-    let mut count = vec![0; n + 1];
-    for j in 0..n {
-        for &i in &indices[indptr[j]..indptr[j + 1]] {
-            if i > j {
-                count[i] += 1;
-                count[j] += 1;
-            }
-        }
-    }
-    let ptr = prefix_sums(&count[..n]);
-    let mut next = ptr.clone();
-    let mut adj = vec![0; ptr[n]];
-    for j in 0..n {
-        for &i in &indices[indptr[j]..indptr[j + 1]] {
-            if i > j {
-                adj[next[i]] = j;
-                next[i] += 1;
-                adj[next[j]] = i;
-                next[j] += 1;
-            }
-        }
-    }
-    (ptr, adj)
-}
-
-fn prefix_sums(count: &[usize]) -> Vec<usize> {
-    let mut ptr = Vec::with_capacity(count.len() + 1);
-    ptr.push(0);
-    for &c in count {
-        ptr.push(ptr.last().expect("non-empty") + c);
-    }
-    ptr
-}
-
-/// The strictly-lower pattern of `P A P^T` stored both ways: by row (`row_ptr`, the
-/// columns `j < i` of row `i`) and by column (`col_ptr`, the rows `i > j` of column `j`).
-/// Duplicates may remain; they do no harm below.
-pub(super) struct LowerPattern {
-    row_ptr: Vec<usize>,
-    row_cols: Vec<usize>,
-    col_ptr: Vec<usize>,
-    col_rows: Vec<usize>,
-}
-
-fn permuted_lower(n: usize, indptr: &[usize], indices: &[usize], inv: &[usize]) -> LowerPattern {
-    let mut entries: Vec<(usize, usize)> = Vec::with_capacity(indices.len());
-    for j in 0..n {
-        for &i in &indices[indptr[j]..indptr[j + 1]] {
-            if i > j {
-                let (r, c) = (inv[i].max(inv[j]), inv[i].min(inv[j]));
-                entries.push((r, c));
-            }
-        }
-    }
-    let mut row_count = vec![0; n];
-    let mut col_count = vec![0; n];
-    for &(r, c) in &entries {
-        row_count[r] += 1;
-        col_count[c] += 1;
-    }
-    let row_ptr = prefix_sums(&row_count);
-    let col_ptr = prefix_sums(&col_count);
-    let (mut row_next, mut col_next) = (row_ptr.clone(), col_ptr.clone());
-    let mut row_cols = vec![0; entries.len()];
-    let mut col_rows = vec![0; entries.len()];
-    for &(r, c) in &entries {
-        row_cols[row_next[r]] = c;
-        row_next[r] += 1;
-        col_rows[col_next[c]] = r;
-        col_next[c] += 1;
-    }
-    LowerPattern { row_ptr, row_cols, col_ptr, col_rows }
-}
-
-impl LowerPattern {
-    fn row(&self, i: usize) -> &[usize] {
-        &self.row_cols[self.row_ptr[i]..self.row_ptr[i + 1]]
-    }
-
-    fn col(&self, j: usize) -> &[usize] {
-        &self.col_rows[self.col_ptr[j]..self.col_ptr[j + 1]]
-    }
-}
-
-/// Elimination tree: `parent[j]` is the row of the first off-diagonal entry of column j
-/// of L, or `NONE` for a root. Liu's algorithm: for each row i, climb from every entry j of
-/// row i to the root of its current subtree (compressing the path to i) and hang it on i.
-fn elimination_tree(n: usize, lower: &LowerPattern) -> Vec<usize> {
+/// Elimination tree of the pattern eliminated in `order` (`inv` its inverse), in
+/// positions of that order: `parent[k]` is the row of the first off-diagonal entry of
+/// column k of L, or `NONE` for a root. Liu's algorithm: for each row k, climb from every
+/// entry j < k of row k to the root of its current subtree (compressing the path to k)
+/// and hang that root on k.
+fn elimination_tree(graph: &Graph, order: &[usize], inv: &[usize]) -> Vec<usize> {
+    let n = order.len();
     let mut parent = vec![NONE; n];
     let mut ancestor = vec![NONE; n];
-    for i in 0..n {
-        for &j in lower.row(i) {
-            let mut r = j;
-            while ancestor[r] != NONE && ancestor[r] != i {
+    for (k, &v) in order.iter().enumerate() {
+        for &w in graph.neighbors(v) {
+            let mut r = inv[w];
+            if r >= k {
+                continue;
+            }
+            while ancestor[r] != NONE && ancestor[r] != k {
                 let next = ancestor[r];
-                ancestor[r] = i;
+                ancestor[r] = k;
                 r = next;
             }
             if ancestor[r] == NONE {
-                ancestor[r] = i;
-                parent[r] = i;
+                ancestor[r] = k;
+                parent[r] = k;
             }
         }
     }
@@ -357,14 +260,19 @@ fn postorder(parent: &[usize]) -> Vec<usize> {
     post
 }
 
-/// Entries per column of L (diagonal included), by walking every row subtree.
-fn column_counts(n: usize, lower: &LowerPattern, parent: &[usize]) -> Vec<usize> {
+/// Entries per column of L (diagonal included), by walking every row subtree: row i of
+/// L is the union of the tree paths from the entries j < i of row i of `P A P^T` up to i.
+fn column_counts(graph: &Graph, perm: &[usize], inv: &[usize], parent: &[usize]) -> Vec<usize> {
+    let n = perm.len();
     let mut counts = vec![1; n];
     let mut mark = vec![NONE; n];
     for i in 0..n {
         mark[i] = i;
-        for &j in lower.row(i) {
-            let mut r = j;
+        for &w in graph.neighbors(perm[i]) {
+            let mut r = inv[w];
+            if r > i {
+                continue;
+            }
             while mark[r] != i {
                 counts[r] += 1;
                 mark[r] = i;
@@ -454,13 +362,14 @@ fn relax_supernodes(start: &[usize], parent: &[usize], counts: &[usize]) -> Vec<
 /// The sorted row pattern of every supernode: its own columns, the rows of A below them,
 /// and the rows of its child supernodes below them.
 fn supernode_rows(
-    n: usize,
-    lower: &LowerPattern,
+    graph: &Graph,
+    perm: &[usize],
+    inv: &[usize],
     parent: &[usize],
     super_start: &[usize],
     col_to_super: &[usize],
 ) -> (Vec<usize>, Vec<usize>) {
-    let ns = super_start.len().saturating_sub(1);
+    let (n, ns) = (perm.len(), super_start.len().saturating_sub(1));
     // Child supernodes, as linked lists.
     let mut first_child = vec![NONE; ns];
     let mut next_sibling = vec![NONE; ns];
@@ -480,8 +389,8 @@ fn supernode_rows(
         let begin = rows.len();
         mark[first..end].fill(s);
         rows.extend(first..end);
-        for c in first..end {
-            for &r in lower.col(c) {
+        for (c, &v) in perm[first..end].iter().enumerate().map(|(k, v)| (first + k, v)) {
+            for r in graph.neighbors(v).iter().map(|&w| inv[w]).filter(|&r| r > c) {
                 if mark[r] != s {
                     mark[r] = s;
                     rows.push(r);
@@ -499,8 +408,91 @@ fn supernode_rows(
             }
             child = next_sibling[child];
         }
-        rows[begin..].sort_unstable();
+        debug_assert!(rows.len() > begin);
         row_start[s + 1] = rows.len();
     }
+    let rows = sort_lists(n, &row_start, &rows);
     (row_start, rows)
+}
+
+/// The lists `values[start[s]..start[s + 1]]` of indices below `n`, each sorted, without
+/// comparisons: transposing twice (list of lists for each index, then back) visits the
+/// indices in ascending order.
+fn sort_lists(n: usize, start: &[usize], values: &[usize]) -> Vec<usize> {
+    let lists = start.len() - 1;
+    let mut count = vec![0; n];
+    for &v in values {
+        count[v] += 1;
+    }
+    let by_value_start = prefix_sums(&count);
+    let mut next = by_value_start[..n].to_vec();
+    let mut by_value = vec![0; values.len()];
+    for s in 0..lists {
+        for &v in &values[start[s]..start[s + 1]] {
+            by_value[next[v]] = s;
+            next[v] += 1;
+        }
+    }
+    let mut next = start[..lists].to_vec();
+    let mut sorted = vec![0; values.len()];
+    for v in 0..n {
+        for &s in &by_value[by_value_start[v]..by_value_start[v + 1]] {
+            sorted[next[s]] = v;
+            next[s] += 1;
+        }
+    }
+    sorted
+}
+
+/// For every entry of the lower triangle of `A` (index `p` in its data), its offset in the
+/// values of the supernode of L that holds it, grouped by supernode (counting sort): `(a_entry_start, a_entries)` as stored in [`Symbolic`].
+fn a_entry_slots(
+    indptr: &[usize],
+    indices: &[usize],
+    inv: &[usize],
+    super_start: &[usize],
+    col_to_super: &[usize],
+    row_start: &[usize],
+    rows: &[usize],
+) -> (Vec<usize>, Vec<(usize, usize)>) {
+    let (n, ns) = (inv.len(), super_start.len() - 1);
+    // (row, column) in L of entry p, or None above the diagonal.
+    let place = |j: usize, p: usize| {
+        let i = indices[p];
+        (i >= j).then(|| (inv[i].max(inv[j]), inv[i].min(inv[j])))
+    };
+    let mut count = vec![0; ns];
+    for j in 0..n {
+        for p in indptr[j]..indptr[j + 1] {
+            if let Some((_, c)) = place(j, p) {
+                count[col_to_super[c]] += 1;
+            }
+        }
+    }
+    let start = prefix_sums(&count);
+    let mut next = start[..ns].to_vec();
+    // First (row, column, p) per supernode, then the offsets.
+    let mut placed = vec![(0, 0, 0); start[ns]];
+    for j in 0..n {
+        for p in indptr[j]..indptr[j + 1] {
+            if let Some((r, c)) = place(j, p) {
+                let s = col_to_super[c];
+                placed[next[s]] = (r, c, p);
+                next[s] += 1;
+            }
+        }
+    }
+    let mut position = vec![0; n];
+    let mut entries = Vec::with_capacity(placed.len());
+    for s in 0..ns {
+        let s_rows = &rows[row_start[s]..row_start[s + 1]];
+        for (k, &r) in s_rows.iter().enumerate() {
+            position[r] = k;
+        }
+        entries.extend(placed[start[s]..start[s + 1]].iter().map(|&(r, c, p)| {
+            debug_assert_eq!(s_rows[position[r]], r, "every entry of A lies in the pattern of L");
+            ((c - super_start[s]) * s_rows.len() + position[r], p)
+        }));
+    }
+    (start, entries)
 }
