@@ -129,6 +129,37 @@ fn minimum_degree_on_block_matrices_keeps_vertices_together() {
 }
 
 #[test]
+fn order_flops_equal_those_of_the_analysed_block_matrix() {
+    let mut rng = Rng::new(29);
+    for case in 0..20 {
+        let vertices = 1 + rng.below(50);
+        let a = random_block_spd(vertices, rng.below(3 * vertices + 1), &mut rng);
+        // The vertex graph of the block pattern.
+        let mut lists = vec![Vec::new(); vertices];
+        for (_, (i, j)) in a.iter() {
+            let (v, w) = (i / 2, j / 2);
+            if v != w && !lists[v].contains(&w) {
+                lists[v].push(w);
+            }
+        }
+        let mut ptr = vec![0];
+        let mut adj = Vec::new();
+        for list in &lists {
+            adj.extend_from_slice(list);
+            ptr.push(adj.len());
+        }
+        let mut shuffled: Vec<usize> = (0..vertices).collect();
+        for k in (1..vertices).rev() {
+            shuffled.swap(k, rng.below(k + 1));
+        }
+        for order in [amd_order(vertices, &ptr, &adj), shuffled, (0..vertices).collect()] {
+            let analysed = Symbolic::analyse(a.view(), &Ordering::Given(expand_blocks(&order, 2))).unwrap();
+            assert_eq!(order_flops(&ptr, &adj, &order, 2), analysed.flops(), "case {case}, order {order:?}");
+        }
+    }
+}
+
+#[test]
 fn lower_triangle_alone_gives_the_same_factor() {
     let mut rng = Rng::new(11);
     let a = random_spd(40, 120, &mut rng);

@@ -28,7 +28,9 @@ use super::metrics::{metrics, Metrics};
 use super::spiral::{linear_step, spiral_step};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
-use crate::sparse::{amd_order, expand_blocks, nested_dissection_order, FactorError, Numeric, Ordering, Symbolic};
+use crate::sparse::{
+    amd_order, expand_blocks, nested_dissection_order, order_flops, FactorError, Numeric, Ordering, Symbolic,
+};
 
 const NONE: usize = usize::MAX;
 
@@ -244,10 +246,11 @@ impl System {
             Symbolic::analyse(matrix.view(), &Ordering::Given(expand_blocks(&order, 2)))
                 .expect("a vertex order expanded to blocks is a valid ordering of a square CSC matrix")
         };
-        let by_degree = analyse(amd_order(points.len(), ptr, adj));
-        let by_dissection = analyse(nested_dissection_order(ptr, adj, points));
-        let best = if by_dissection.flops() < by_degree.flops() { by_dissection } else { by_degree };
-        let numeric = Numeric::new(Arc::new(best));
+        let by_degree = amd_order(points.len(), ptr, adj);
+        let by_dissection = nested_dissection_order(ptr, adj, points);
+        let flops = |order: &[usize]| order_flops(ptr, adj, order, 2);
+        let best = if flops(&by_dissection) < flops(&by_degree) { by_dissection } else { by_degree };
+        let numeric = Numeric::new(Arc::new(analyse(best)));
         Self { matrix, from_killing, numeric }
     }
 

@@ -49,6 +49,11 @@ impl Graph {
         graph
     }
 
+    /// A graph given by its adjacency lists (symmetric, without self-loops).
+    pub(super) fn from_adjacency(ptr: &[usize], adj: &[usize]) -> Self {
+        Self { ptr: ptr.to_vec(), adj: adj.to_vec() }
+    }
+
     /// Number of nodes.
     pub(super) fn len(&self) -> usize {
         self.ptr.len() - 1

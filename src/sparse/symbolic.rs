@@ -177,6 +177,31 @@ impl Symbolic {
     }
 }
 
+/// The flops ([`Symbolic::flops`]) of factoring a matrix with `block` unknowns per node of
+/// a graph, every pair of adjacent nodes coupled by a full `block x block` block (as the
+/// AKAP matrices couple the velocities of neighbouring vertices), eliminated node by node
+/// in `order` and each node's unknowns consecutively ([`super::expand_blocks`]).
+///
+/// Much cheaper than [`Symbolic::analyse`] on the expanded matrix (the elimination tree
+/// and column counts of the node graph only), so that several orders can be compared
+/// before one is analysed: the column of L of the k-th unknown of a node with `c` entries
+/// in its column of the node graph's factor has `block * c - k` entries. The graph is given
+/// by symmetric adjacency lists (`adj[ptr[v]..ptr[v + 1]]`, without self-loops).
+///
+/// # Panics
+/// If `order` is not a permutation of the nodes (a broken internal invariant of callers).
+pub fn order_flops(ptr: &[usize], adj: &[usize], order: &[usize], block: usize) -> f64 {
+    let n = ptr.len() - 1;
+    assert!(is_permutation(order, n), "order must be a permutation of the graph's nodes");
+    let graph = Graph::from_adjacency(ptr, adj);
+    let inv = inverse(order);
+    let parent = elimination_tree(&graph, order, &inv);
+    column_counts(&graph, order, &inv, &parent)
+        .iter()
+        .map(|&c| (0..block).map(|k| ((block * c - k) * (block * c - k)) as f64).sum::<f64>())
+        .sum()
+}
+
 /// Checks shape and storage order and returns the pattern with `indptr` starting at 0.
 fn pattern_of(a: CsMatView<'_>) -> Result<(Vec<usize>, Vec<usize>), FactorError> {
     if !a.is_csc() || a.rows() != a.cols() {
