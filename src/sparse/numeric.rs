@@ -110,10 +110,10 @@ impl Numeric {
                     *slot = self.relative[r];
                 }
                 for i in 0..q {
-                    let target = &mut block[(k_rows[p + i] - first) * height..];
-                    let source = &self.update[i * m..(i + 1) * m];
-                    for r in i..m {
-                        target[self.positions[r]] -= source[r];
+                    let target = &mut block[(k_rows[p + i] - first) * height..(k_rows[p + i] - first + 1) * height];
+                    let source = &self.update[i * m + i..(i + 1) * m];
+                    for (&position, &value) in self.positions[i..m].iter().zip(source) {
+                        target[position] -= value;
                     }
                 }
                 self.next_row[k] = p + q;
