@@ -193,7 +193,14 @@ fn refactorisation_equals_a_fresh_factorisation() {
         numeric.refactor(b.view()).unwrap();
         let fresh = Numeric::factor(symbolic.clone(), b.view()).unwrap();
         assert_eq!(numeric.to_dense_lower(), fresh.to_dense_lower(), "round {round}");
+        // The values alone, for callers that keep the pattern by construction.
+        let mut by_values = Numeric::new(symbolic.clone());
+        by_values.refactor_values(b.data()).unwrap();
+        assert_eq!(by_values.to_dense_lower(), fresh.to_dense_lower(), "round {round}");
     }
+    // Values of another length are refused, and leave no usable factor.
+    assert_eq!(numeric.refactor_values(&a.data()[1..]), Err(FactorError::PatternMismatch));
+    assert_eq!(numeric.solve_in_place(&mut [0.0; 60]), Err(FactorError::NotFactored));
 }
 
 #[test]

@@ -527,7 +527,7 @@ impl Deformer {
             system.gather(k);
         }
         let t1 = clock();
-        self.soft.numeric.refactor(self.soft.matrix.view())?;
+        self.soft.numeric.refactor_values(self.soft.matrix.data())?;
         let t2 = clock();
         self.soft.numeric.solve_in_place(&mut self.next_soft)?;
         let t3 = clock();
@@ -547,7 +547,7 @@ impl Deformer {
             rhs[row] -= k[slot] * self.next_soft[col];
         }
         let t5 = clock();
-        system.numeric.refactor(system.matrix.view())?;
+        system.numeric.refactor_values(system.matrix.data())?;
         let t6 = clock();
         system.numeric.solve_in_place(rhs)?;
         for (v, &i) in self.interior_index.iter().enumerate() {
