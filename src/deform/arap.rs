@@ -49,7 +49,7 @@ use super::handles::{self, HandlePoint};
 use super::metrics::{metrics, Metrics};
 use crate::geometry::{bounding_box, Point};
 use crate::mesh::Mesh;
-use crate::sparse::{amd_order, nested_dissection_order, order_flops, Numeric, Ordering, Symbolic};
+use crate::sparse::{amd_order, Numeric, Ordering, Symbolic};
 
 const NONE: usize = usize::MAX;
 
@@ -232,14 +232,10 @@ impl ArapDeformer {
             ptr.push(adj.len());
         }
         let matrix = CsMat::new_csc((n, n), indptr, indices, laplacian.clone());
-        let analyse = |order: Vec<usize>| {
-            Symbolic::analyse(matrix.view(), &Ordering::Given(order))
-                .expect("a vertex order is a valid ordering of the vertex Laplacian")
-        };
-        let by_degree = amd_order(n, &ptr, &adj);
-        let by_dissection = nested_dissection_order(&ptr, &adj, x);
-        let flops = |order: &[usize]| order_flops(&ptr, &adj, order, 1);
-        let best = analyse(if flops(&by_dissection) < flops(&by_degree) { by_dissection } else { by_degree });
+        // Minimum degree on the vertex graph (our geometric nested dissection needs more
+        // flops on every built-in shape; see the AKAP deformer's set-up).
+        let best = Symbolic::analyse(matrix.view(), &Ordering::Given(amd_order(n, &ptr, &adj)))
+            .expect("a vertex order is a valid ordering of the vertex Laplacian");
         let (lo, hi) = bounding_box(x.iter().copied()).expect("a mesh has vertices");
 
         Ok(Self {
