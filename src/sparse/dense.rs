@@ -9,6 +9,25 @@ fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
     }
 }
 
+/// `sum_i a[i] b[i]` over the shorter length, with four partial sums: a single running
+/// sum is one chain of dependent additions (wasm cannot reorder it), four chains keep
+/// the adder busy and let the compiler use f64x2 lanes.
+#[inline]
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 4];
+    let (a4, a_rest) = a.as_chunks::<4>();
+    let (b4, b_rest) = b.as_chunks::<4>();
+    for (x, y) in a4.iter().zip(b4) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = a_rest.iter().zip(b_rest).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[2]) + (acc[1] + acc[3]) + tail
+}
+
 /// In-place Cholesky of the `height x width` trapezoid `b` (column-major, leading
 /// dimension `height`, `height >= width`): on return its first `width` rows hold the lower
 /// triangle of L for the diagonal block and the rows below hold the off-diagonal block,

@@ -207,7 +207,7 @@ impl Numeric {
                 for r in j + 1..width {
                     sum -= col[r] * y[first + r];
                 }
-                sum -= col[width..].iter().zip(below.iter()).map(|(l, x)| l * x).sum::<f64>();
+                sum -= dense::dot(&col[width..], below);
                 y[first + j] = sum / col[j];
             }
         }
