@@ -9,7 +9,8 @@
 //! 2. [`Numeric::factor`] / [`Numeric::refactor`], for every new set of values on that
 //!    pattern: a left-looking supernodal factorisation that allocates nothing when
 //!    refactoring, and reports a non-positive pivot with its column instead of producing
-//!    NaNs.
+//!    NaNs ([`Numeric::refactor_values`] takes the values alone, for callers whose pattern
+//!    is fixed by construction, and skips the comparison of patterns).
 //! 3. [`Numeric::solve_in_place`]: the two triangular solves with the permutation applied,
 //!    in place and without allocating.
 //!
