@@ -405,3 +405,27 @@ fn nested_dissection_permutes_random_and_disconnected_graphs() {
         }
     }
 }
+
+#[test]
+fn nested_dissection_needs_fewer_flops_than_amd_on_a_gingerbread_mesh() {
+    // About 16k vertices: at 5k, nested dissection still needs about 1.1x AMD's flops.
+    use akap::{shapes, triangulate, TriangulationOptions};
+    let figure = shapes::gingerbread();
+    let target = 10_000;
+    let h = (figure.area() / (2.0 * target as f64) / (3f64.sqrt() / 4.0)).sqrt();
+    let options = TriangulationOptions::default().with_target_edge_length(h).with_max_vertices(4 * target);
+    let mesh = triangulate(&figure, &options).unwrap();
+    let n = mesh.vertex_count();
+    assert!((12_000..20_000).contains(&n), "{n} vertices");
+    let mut ptr = vec![0];
+    let mut adj = Vec::new();
+    for v in 0..n {
+        adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
+        ptr.push(adj.len());
+    }
+    let nd = nested_dissection_order(&ptr, &adj, mesh.positions());
+    assert_permutation(&nd, n);
+    let amd = amd_order(n, &ptr, &adj);
+    let (nd_flops, amd_flops) = (order_flops(&ptr, &adj, &nd, 2), order_flops(&ptr, &adj, &amd, 2));
+    assert!(nd_flops < amd_flops, "{n} vertices: nested dissection {nd_flops:.3e} flops, AMD {amd_flops:.3e}");
+}

@@ -6,13 +6,14 @@
 //! METIS uses for orderings: the graph is coarsened by heavy-edge matchings (each pair of
 //! matched vertices collapsed into one whose weight is their sum) down to about a hundred
 //! vertices; the coarsest graph is split by graph growing (breadth-first from several
-//! seeds, a pseudo-peripheral vertex first) with the frontier as separator; the separator
-//! is then projected back level by level and improved at each level by a
+//! seeds, a pseudo-peripheral vertex first) with the frontier as separator; the best few
+//! separators are each projected back level by level and improved at each level by a
 //! Fiduccia-Mattheyses-style refinement for vertex separators (Ashcraft and Liu, "A
 //! partition improvement algorithm for generalized nested dissection", 1994): a separator
 //! vertex moves into one part and pulls its neighbours of the other part into the
 //! separator, moves are taken by largest decrease of separator weight under a balance
-//! bound, uphill moves are allowed for a while, and each pass keeps its best prefix.
+//! bound, uphill moves are allowed for a while, and each pass keeps its best prefix. The
+//! smallest separator found at the finest level is returned.
 
 use std::collections::BinaryHeap;
 
@@ -24,6 +25,10 @@ const COARSEST: usize = 96;
 
 /// Graph-growing trials for the initial separator of the coarsest graph.
 const INITIAL_TRIALS: usize = 6;
+
+/// Initial separators carried through the refinement to the finest level.
+/// (Three need a tenth fewer flops on the built-in shapes than one, for twice the time.)
+const KEPT: usize = 3;
 
 /// Refinement passes per level (a pass stops the loop when it improves nothing).
 const PASSES: usize = 8;
@@ -89,14 +94,21 @@ pub(super) fn bisect(g: &WGraph) -> Vec<u8> {
     }
     let coarsest = graphs.last().unwrap_or(g);
     let max_part = (MAX_PART * coarsest.total_weight() as f64) as u64;
-    let mut where_ = initial_separator(coarsest, max_part);
     let mut refiner = Refiner::default();
-    for level in (0..maps.len()).rev() {
-        let fine = if level == 0 { g } else { &graphs[level - 1] };
-        where_ = maps[level].iter().map(|&c| where_[c as usize]).collect();
-        refiner.refine(fine, &mut where_, max_part, PASSES);
+    let mut best: Option<((u64, u64), Vec<u8>)> = None;
+    for mut where_ in initial_separators(coarsest, max_part) {
+        for level in (0..maps.len()).rev() {
+            let fine = if level == 0 { g } else { &graphs[level - 1] };
+            where_ = maps[level].iter().map(|&c| where_[c as usize]).collect();
+            refiner.refine(fine, &mut where_, max_part, PASSES);
+        }
+        let pw = part_weights(g, &where_);
+        let key = (pw[2], pw[0].abs_diff(pw[1]));
+        if best.as_ref().is_none_or(|(k, _)| key < *k) {
+            best = Some((key, where_));
+        }
     }
-    where_
+    best.expect("at least one separator").1
 }
 
 /// One level of coarsening by heavy-edge matching (vertices visited in a shuffled order,
@@ -210,8 +222,9 @@ fn bfs(g: &WGraph, seed: usize, dist: &mut [u32]) -> Vec<u32> {
     queue
 }
 
-/// Separators of the coarsest graph grown from several seeds, each refined; the best.
-fn initial_separator(g: &WGraph, max_part: u64) -> Vec<u8> {
+/// Separators of the coarsest graph grown from several seeds, each refined; the
+/// [`KEPT`] best, best first.
+fn initial_separators(g: &WGraph, max_part: u64) -> Vec<Vec<u8>> {
     let n = g.len();
     let total = g.total_weight();
     let mut dist = vec![NONE; n];
@@ -223,7 +236,7 @@ fn initial_separator(g: &WGraph, max_part: u64) -> Vec<u8> {
         seeds.push(k * n / INITIAL_TRIALS);
     }
     let mut refiner = Refiner::default();
-    let mut best: Option<((u64, u64), Vec<u8>)> = None;
+    let mut found: Vec<((u64, u64), Vec<u8>)> = Vec::new();
     for seed in seeds {
         let visit = bfs(g, seed, &mut dist);
         let mut where_ = vec![1u8; n];
@@ -244,11 +257,12 @@ fn initial_separator(g: &WGraph, max_part: u64) -> Vec<u8> {
         refiner.refine(g, &mut where_, max_part, PASSES);
         let pw = part_weights(g, &where_);
         let key = (pw[2], pw[0].abs_diff(pw[1]));
-        if best.as_ref().is_none_or(|(k, _)| key < *k) {
-            best = Some((key, where_));
+        if !found.iter().any(|(_, w)| *w == where_) {
+            found.push((key, where_));
         }
     }
-    best.expect("at least one trial").1
+    found.sort_by_key(|(key, _)| *key);
+    found.into_iter().take(KEPT).map(|(_, w)| w).collect()
 }
 
 fn part_weights(g: &WGraph, where_: &[u8]) -> [u64; 3] {
@@ -271,9 +285,17 @@ struct Move {
 #[derive(Default)]
 struct Refiner {
     locked: Vec<bool>,
+    /// Gains of moving a separator vertex to part 0 and to part 1 (valid for separator
+    /// vertices during a pass).
+    gains: [Vec<i64>; 2],
     heaps: [BinaryHeap<(i64, u32)>; 2],
     moves: Vec<Move>,
     pulled: Vec<u32>,
+    /// The separator vertices (and perhaps some that left it), and a stamp per vertex to
+    /// build that list without repeats.
+    separator: Vec<u32>,
+    seen: Vec<u32>,
+    stamp: u32,
 }
 
 /// Decrease of the separator weight if separator vertex `v` moved to part `to`.
@@ -285,11 +307,12 @@ fn gain(g: &WGraph, where_: &[u8], v: usize, to: u8) -> i64 {
 }
 
 impl Refiner {
-    fn push(&mut self, g: &WGraph, where_: &[u8], v: usize) {
-        if where_[v] == SEPARATOR && !self.locked[v] {
-            for to in 0..2u8 {
-                self.heaps[to as usize].push((gain(g, where_, v, to), v as u32));
-            }
+    /// Computes both gains of separator vertex `v` and queues them.
+    fn enter(&mut self, g: &WGraph, where_: &[u8], v: usize) {
+        for to in 0..2u8 {
+            let gain_v = gain(g, where_, v, to);
+            self.gains[to as usize][v] = gain_v;
+            self.heaps[to as usize].push((gain_v, v as u32));
         }
     }
 
@@ -299,15 +322,25 @@ impl Refiner {
         let n = g.len();
         self.locked.clear();
         self.locked.resize(n, false);
+        for gains in &mut self.gains {
+            gains.clear();
+            gains.resize(n, 0);
+        }
+        self.seen.clear();
+        self.seen.resize(n, 0);
+        self.stamp = 0;
+        self.separator.clear();
+        self.separator.extend((0..n as u32).filter(|&v| where_[v as usize] == SEPARATOR));
         let mut pw = part_weights(g, where_);
-        let limit = (n / 50).clamp(25, 150);
+        let limit = (n / 100).clamp(20, 100);
         for _ in 0..passes {
             let bound = max_part.max(pw[0]).max(pw[1]);
             for heap in &mut self.heaps {
                 heap.clear();
             }
-            for v in 0..n {
-                self.push(g, where_, v);
+            let separator = std::mem::take(&mut self.separator);
+            for &v in &separator {
+                self.enter(g, where_, v as usize);
             }
             self.moves.clear();
             self.pulled.clear();
@@ -317,15 +350,15 @@ impl Refiner {
             loop {
                 // Valid tops of both queues.
                 let mut tops = [None, None];
-                for to in 0..2 {
+                for (to, top) in tops.iter_mut().enumerate() {
                     while let Some(&(gain_v, v)) = self.heaps[to].peek() {
                         let vi = v as usize;
-                        if where_[vi] != SEPARATOR || self.locked[vi] || gain(g, where_, vi, to as u8) != gain_v {
+                        if where_[vi] != SEPARATOR || self.locked[vi] || self.gains[to][vi] != gain_v {
                             self.heaps[to].pop();
                             continue;
                         }
                         if pw[to] + u64::from(g.vwgt[vi]) <= bound {
-                            tops[to] = Some((gain_v, v));
+                            *top = Some(gain_v);
                         }
                         break;
                     }
@@ -334,41 +367,48 @@ impl Refiner {
                     [None, None] => break,
                     [Some(_), None] => 0,
                     [None, Some(_)] => 1,
-                    [Some(a), Some(b)] => {
-                        if a.0 > b.0 || (a.0 == b.0 && pw[0] <= pw[1]) {
-                            0
-                        } else {
-                            1
-                        }
-                    }
+                    [Some(a), Some(b)] => usize::from(!(a > b || (a == b && pw[0] <= pw[1]))),
                 };
                 let (_, v) = self.heaps[to].pop().expect("a valid top");
                 let vi = v as usize;
                 let other = 1 - to;
+                let wv = i64::from(g.vwgt[vi]);
                 where_[vi] = to as u8;
                 self.locked[vi] = true;
                 pw[2] -= u64::from(g.vwgt[vi]);
                 pw[to] += u64::from(g.vwgt[vi]);
+                // Separator neighbours of v would now pull v if they moved to `other`.
+                for &u in g.neighbors(vi) {
+                    let u = u as usize;
+                    if where_[u] == SEPARATOR && !self.locked[u] {
+                        self.gains[other][u] -= wv;
+                        self.heaps[other].push((self.gains[other][u], u as u32));
+                    }
+                }
                 let start = self.pulled.len();
                 for &u in g.neighbors(vi) {
-                    if where_[u as usize] == other as u8 {
-                        where_[u as usize] = SEPARATOR;
-                        pw[other] -= u64::from(g.vwgt[u as usize]);
-                        pw[2] += u64::from(g.vwgt[u as usize]);
-                        self.pulled.push(u);
+                    let u = u as usize;
+                    if where_[u] != other as u8 {
+                        continue;
+                    }
+                    where_[u] = SEPARATOR;
+                    let wu = i64::from(g.vwgt[u]);
+                    pw[other] -= g.vwgt[u] as u64;
+                    pw[2] += g.vwgt[u] as u64;
+                    self.pulled.push(u as u32);
+                    // Separator neighbours of u would no longer pull it moving to `to`.
+                    for &x in g.neighbors(u) {
+                        let x = x as usize;
+                        if where_[x] == SEPARATOR && !self.locked[x] {
+                            self.gains[to][x] += wu;
+                            self.heaps[to].push((self.gains[to][x], x as u32));
+                        }
+                    }
+                    if !self.locked[u] {
+                        self.enter(g, where_, u);
                     }
                 }
                 self.moves.push(Move { v, to: to as u8, start });
-                // Gains changed for the separator vertices next to v and to the pulled ones.
-                for &u in g.neighbors(vi) {
-                    self.push(g, where_, u as usize);
-                }
-                for k in start..self.pulled.len() {
-                    let u = self.pulled[k] as usize;
-                    for &w in g.neighbors(u) {
-                        self.push(g, where_, w as usize);
-                    }
-                }
                 let key = (pw[2], pw[0].abs_diff(pw[1]));
                 if key < best_key {
                     best_key = key;
@@ -394,6 +434,16 @@ impl Refiner {
             for m in &self.moves {
                 self.locked[m.v as usize] = false;
             }
+            // The separator now: the old one and the vertices pulled into it, if still there.
+            self.stamp += 1;
+            let mut next = separator;
+            next.extend_from_slice(&self.pulled);
+            next.retain(|&v| {
+                let keep = where_[v as usize] == SEPARATOR && self.seen[v as usize] != self.stamp;
+                self.seen[v as usize] = self.stamp;
+                keep
+            });
+            self.separator = next;
             if best_key >= start_key {
                 break;
             }
