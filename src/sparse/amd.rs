@@ -51,7 +51,19 @@ pub fn amd_order(n: usize, ptr: &[usize], indices: &[usize]) -> Vec<usize> {
     if n == 0 {
         return Vec::new();
     }
-    Amd::new(n, ptr, indices).run()
+    Amd::new(n, ptr, indices, Vec::new()).run()
+}
+
+/// [`amd_order`] under constraints, as CAMD (Davis's SuiteSparse) does: every vertex of
+/// class `c` is eliminated before any of class `c + 1` (dense rows still last), and minimum
+/// degree decides within a class, with the vertices of later classes counted in the degrees.
+/// `class.len()` must be `n`.
+pub(super) fn constrained_amd_order(n: usize, ptr: &[usize], indices: &[usize], class: Vec<usize>) -> Vec<usize> {
+    assert_eq!(class.len(), n, "constrained_amd_order: one class per vertex");
+    if n == 0 {
+        return Vec::new();
+    }
+    Amd::new(n, ptr, indices, class).run()
 }
 
 /// What a node of the quotient graph currently is.
@@ -127,11 +139,13 @@ struct DegreeLists {
     prev: Vec<usize>,
     /// No non-empty bucket lies below this degree.
     min: usize,
+    /// Variables in the lists.
+    count: usize,
 }
 
 impl DegreeLists {
     fn new(n: usize) -> Self {
-        Self { head: vec![NONE; n + 1], next: vec![NONE; n], prev: vec![NONE; n], min: n }
+        Self { head: vec![NONE; n + 1], next: vec![NONE; n], prev: vec![NONE; n], min: n, count: 0 }
     }
 
     fn insert(&mut self, i: usize, degree: usize) {
@@ -143,6 +157,7 @@ impl DegreeLists {
         }
         self.head[degree] = i;
         self.min = self.min.min(degree);
+        self.count += 1;
     }
 
     /// Unlinks `i`, which must be in the bucket of `degree`.
@@ -156,6 +171,7 @@ impl DegreeLists {
         if next != NONE {
             self.prev[next] = prev;
         }
+        self.count -= 1;
     }
 
     /// Removes and returns a variable of least degree; some bucket must be non-empty.
@@ -198,12 +214,15 @@ struct Amd {
     member_tail: Vec<usize>,
     /// The variables of the element being formed.
     lp: Vec<usize>,
+    /// Constraint class of each node (empty: all in class 0), and the class being eliminated.
+    class: Vec<usize>,
+    current: usize,
 }
 
 impl Amd {
     /// Builds the quotient graph of `pattern ∪ patternᵀ` without diagonal, duplicates and
     /// dense rows.
-    fn new(n: usize, ptr: &[usize], indices: &[usize]) -> Self {
+    fn new(n: usize, ptr: &[usize], indices: &[usize], class: Vec<usize>) -> Self {
         let mut len = vec![0usize; n];
         for i in 0..n {
             for &j in &indices[ptr[i]..ptr[i + 1]] {
@@ -287,20 +306,35 @@ impl Amd {
             member_next: vec![NONE; n],
             member_tail: (0..n).collect(),
             lp: Vec::with_capacity(n),
+            class,
+            current: 0,
         }
+    }
+
+    fn class(&self, i: usize) -> usize {
+        self.class.get(i).copied().unwrap_or(0)
     }
 
     fn run(mut self) -> Vec<usize> {
         let n = self.n;
         let mut order = Vec::with_capacity(n);
-        let mut left = 0;
-        for (i, node) in self.node.iter().enumerate() {
-            if node.kind == Kind::Variable {
-                self.buckets.insert(i, node.degree);
-                left += 1;
-            }
-        }
+        let left_total = self.node.iter().filter(|node| node.kind == Kind::Variable).count();
+        let mut by_class: Vec<usize> = (0..n).collect();
+        by_class.sort_by_key(|&i| self.class(i));
+        let mut next_class = 0;
+        let mut left = left_total;
         while left > 0 {
+            // Once a class is done, the variables of the next one enter the lists.
+            while self.buckets.count == 0 {
+                self.current = self.class(by_class[next_class]);
+                while next_class < n && self.class(by_class[next_class]) == self.current {
+                    let i = by_class[next_class];
+                    if self.node[i].kind == Kind::Variable {
+                        self.buckets.insert(i, self.node[i].degree);
+                    }
+                    next_class += 1;
+                }
+            }
             let p = self.buckets.pop_min();
             left -= self.eliminate(p, left);
             let mut m = p;
@@ -365,7 +399,10 @@ impl Amd {
         if node.kind == Kind::Variable && node.in_lp != self.step {
             node.in_lp = self.step;
             self.lp.push(j);
-            self.buckets.remove(j, node.degree);
+            let degree = node.degree;
+            if self.class(j) == self.current {
+                self.buckets.remove(j, degree);
+            }
         }
     }
 
@@ -436,8 +473,9 @@ impl Amd {
                 d += 1;
             }
             let new_len = d - s;
+            let same_class = self.class(i) == self.class(p);
             let node = &mut self.node[i];
-            if new_len == 0 {
+            if new_len == 0 && same_class {
                 // Only p is adjacent: i is eliminated together with p.
                 node.kind = Kind::Merged;
                 mass += node.nv;
@@ -527,7 +565,10 @@ impl Amd {
     /// lengths, so that their lists are worth comparing.
     fn may_match(&self, a: usize, b: usize) -> bool {
         let (na, nb) = (&self.node[self.lp[a]], &self.node[self.lp[b]]);
-        self.hkey[a] == self.hkey[b] && na.len == nb.len && na.elen == nb.elen
+        self.hkey[a] == self.hkey[b]
+            && na.len == nb.len
+            && na.elen == nb.elen
+            && self.class(self.lp[a]) == self.class(self.lp[b])
     }
 
     /// Whether every entry of the lists of the variable at position `b` of `L_p` is marked in
@@ -541,6 +582,8 @@ impl Amd {
     /// variables remain in the graph), puts them back in their buckets and drops the others
     /// from `L_p`.
     fn update_degrees(&mut self, p: usize, left: usize) {
+        let current = self.current;
+        let class = &self.class;
         let node = &mut self.node;
         let degme: usize = self.lp.iter().map(|&i| node[i].nv).sum();
         for (idx, &i) in self.lp.iter().enumerate() {
@@ -551,7 +594,9 @@ impl Amd {
             let others_in_lp = degme - v.nv;
             let bound = (left - v.nv).min(v.degree + others_in_lp).min(self.partial[idx] + others_in_lp);
             v.degree = bound;
-            self.buckets.insert(i, bound);
+            if class.get(i).copied().unwrap_or(0) == current {
+                self.buckets.insert(i, bound);
+            }
         }
         self.lp.retain(|&i| node[i].kind == Kind::Variable);
         node[p].degree = degme;
@@ -633,7 +678,7 @@ fn sort_dedup(list: &mut [usize]) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::amd_order;
+    use super::{amd_order, constrained_amd_order};
 
     /// Marsaglia's xorshift64: deterministic and dependency-free.
     struct Rng(u64);
@@ -1083,6 +1128,21 @@ mod tests {
                 let md = cholesky_nnz(&a, &minimum_degree(&a));
                 assert!(10 * amd <= 12 * md, "{stencil:?} k = {k}: amd {amd}, minimum degree {md}");
             }
+        }
+    }
+
+    #[test]
+    fn constrained_order_respects_classes() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        for n in [1, 2, 10, 60, 300] {
+            let edges = simple_edges(&mut rng, n, 3 * n);
+            let a = Pattern::from_edges(n, &edges);
+            let class: Vec<usize> = (0..n).map(|_| rng.below(3)).collect();
+            let order = constrained_amd_order(n, &a.ptr, &a.indices, class.clone());
+            assert_permutation(&order, n);
+            assert!(order.windows(2).all(|w| class[w[0]] <= class[w[1]]), "n {n}: classes out of order");
+            // One class: the unconstrained order.
+            assert_eq!(constrained_amd_order(n, &a.ptr, &a.indices, vec![7; n]), amd_order(n, &a.ptr, &a.indices));
         }
     }
 }

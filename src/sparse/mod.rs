@@ -23,6 +23,7 @@ mod dense;
 mod graph;
 mod nested_dissection;
 mod numeric;
+mod separator;
 mod symbolic;
 
 use std::fmt;
