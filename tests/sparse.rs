@@ -428,4 +428,24 @@ fn nested_dissection_needs_fewer_flops_than_amd_on_a_gingerbread_mesh() {
     let amd = amd_order(n, &ptr, &adj);
     let (nd_flops, amd_flops) = (order_flops(&ptr, &adj, &nd, 2), order_flops(&ptr, &adj, &amd, 2));
     assert!(nd_flops < amd_flops, "{n} vertices: nested dissection {nd_flops:.3e} flops, AMD {amd_flops:.3e}");
+    // The deformers' choice takes it.
+    assert_eq!(fill_reducing_order(&ptr, &adj, mesh.positions(), 2), nd);
+
+    // Below the size where dissection pays, the choice is minimum degree.
+    let small: Vec<usize> = (0..DISSECTION_MIN_NODES - 1).collect();
+    let (sptr, sadj) = induced(&ptr, &adj, &small);
+    let positions = &mesh.positions()[..small.len()];
+    assert_eq!(fill_reducing_order(&sptr, &sadj, positions, 2), amd_order(small.len(), &sptr, &sadj));
+}
+
+/// The subgraph induced by the first `keep.len()` vertices (`keep` = 0..k).
+fn induced(ptr: &[usize], adj: &[usize], keep: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let k = keep.len();
+    let mut sptr = vec![0];
+    let mut sadj = Vec::new();
+    for v in 0..k {
+        sadj.extend(adj[ptr[v]..ptr[v + 1]].iter().copied().filter(|&w| w < k));
+        sptr.push(sadj.len());
+    }
+    (sptr, sadj)
 }

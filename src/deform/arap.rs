@@ -49,7 +49,7 @@ use super::handles::{self, HandlePoint};
 use super::metrics::{metrics, Metrics};
 use crate::geometry::{bounding_box, Point};
 use crate::mesh::Mesh;
-use crate::sparse::{amd_order, Numeric, Ordering, Symbolic};
+use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
 
 const NONE: usize = usize::MAX;
 
@@ -232,9 +232,7 @@ impl ArapDeformer {
             ptr.push(adj.len());
         }
         let matrix = CsMat::new_csc((n, n), indptr, indices, laplacian.clone());
-        // Minimum degree on the vertex graph (our geometric nested dissection needs more
-        // flops on every built-in shape; see the AKAP deformer's set-up).
-        let best = Symbolic::analyse(matrix.view(), &Ordering::Given(amd_order(n, &ptr, &adj)))
+        let best = Symbolic::analyse(matrix.view(), &Ordering::Given(fill_reducing_order(&ptr, &adj, x, 1)))
             .expect("a vertex order is a valid ordering of the vertex Laplacian");
         let (lo, hi) = bounding_box(x.iter().copied()).expect("a mesh has vertices");
 

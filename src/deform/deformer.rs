@@ -28,7 +28,7 @@ use super::metrics::{metrics, Metrics};
 use super::spiral::{linear_step, spiral_step};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
-use crate::sparse::{amd_order, expand_blocks, FactorError, Numeric, Ordering, Symbolic};
+use crate::sparse::{expand_blocks, fill_reducing_order, FactorError, Numeric, Ordering, Symbolic};
 
 const NONE: usize = usize::MAX;
 
@@ -238,12 +238,17 @@ struct System {
 }
 
 impl System {
-    /// Orders the unknowns (two per vertex of a graph) by approximate minimum degree on
-    /// the vertex graph, and analyses. (Our geometric nested dissection needed 1.2-2.7x
-    /// the flops of this order on every built-in shape from 1.7k to 79k vertices, so the
-    /// set-up no longer computes it; see benches/README.md.)
-    fn new(matrix: CsMat<f64>, from_killing: Option<Vec<usize>>, ptr: &[usize], adj: &[usize]) -> Self {
-        let order = expand_blocks(&amd_order(ptr.len() - 1, ptr, adj), 2);
+    /// Orders the unknowns (two per vertex of a graph with positions) by
+    /// [`fill_reducing_order`] on the vertex graph (minimum degree, or nested dissection on
+    /// large meshes when it needs fewer flops), and analyses.
+    fn new(
+        matrix: CsMat<f64>,
+        from_killing: Option<Vec<usize>>,
+        ptr: &[usize],
+        adj: &[usize],
+        points: &[Point],
+    ) -> Self {
+        let order = expand_blocks(&fill_reducing_order(ptr, adj, points, 2), 2);
         let symbolic = Symbolic::analyse(matrix.view(), &Ordering::Given(order))
             .expect("a vertex order expanded to blocks is a valid ordering of a square CSC matrix");
         Self { matrix, from_killing, numeric: Numeric::new(Arc::new(symbolic)) }
@@ -308,21 +313,21 @@ impl Deformer {
         let k = killing.matrix();
 
         let (ptr, adj) = vertex_graph(&mesh, |_| true);
-        let soft = System::new(k.clone(), None, &ptr, &adj);
+        let soft = System::new(k.clone(), None, &ptr, &adj, mesh.positions());
 
         let mut interior_index = vec![NONE; n];
-        let mut interior_count = 0;
+        let mut interior_points = Vec::new();
         for v in (0..n).filter(|&v| !mesh.is_boundary_vertex(v)) {
-            interior_index[v] = interior_count;
-            interior_count += 1;
+            interior_index[v] = interior_points.len();
+            interior_points.push(mesh.positions()[v]);
         }
-        let (dirichlet, coupling) = if interior_count == 0 {
+        let (dirichlet, coupling) = if interior_points.is_empty() {
             (None, Vec::new())
         } else {
-            let (matrix, from_killing, coupling) = interior_system(k, &interior_index, interior_count);
+            let (matrix, from_killing, coupling) = interior_system(k, &interior_index, interior_points.len());
             let (ptr, adj) = vertex_graph(&mesh, |v| interior_index[v] != NONE);
             let (ptr, adj) = renumber(&ptr, &adj, &interior_index);
-            (Some(System::new(matrix, Some(from_killing), &ptr, &adj)), coupling)
+            (Some(System::new(matrix, Some(from_killing), &ptr, &adj, &interior_points)), coupling)
         };
 
         Ok(Self {
@@ -333,7 +338,7 @@ impl Deformer {
             killing,
             soft,
             dirichlet,
-            interior_rhs: vec![0.0; 2 * interior_count],
+            interior_rhs: vec![0.0; 2 * interior_points.len()],
             interior_index,
             coupling,
             handles: Vec::new(),
