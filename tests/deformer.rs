@@ -23,6 +23,13 @@ fn figure() -> Mesh {
     triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.08)).unwrap()
 }
 
+/// A figure large enough for the set-up to consider nested dissection.
+fn large_figure() -> Mesh {
+    let mesh = triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.011)).unwrap();
+    assert!(mesh.vertex_count() >= akap::sparse::DISSECTION_MIN_NODES, "{} vertices", mesh.vertex_count());
+    mesh
+}
+
 /// The infinitesimal rigid motion `u(p) = a i (p - c) + d` in complex notation.
 fn killing_field(a: f64, c: Point, d: [f64; 2]) -> impl Fn(Point) -> [f64; 2] {
     move |p| [-a * (p[1] - c[1]) + d[0], a * (p[0] - c[0]) + d[1]]
@@ -54,7 +61,7 @@ fn place_handles(deformer: &mut Deformer, barycentric: bool, rng: &mut Rng) {
 #[test]
 fn rigid_motions_are_reproduced_exactly() {
     let mut rng = Rng::new(2011);
-    for mesh in [bar_with_holes(), figure()] {
+    for mesh in [bar_with_holes(), figure(), large_figure()] {
         let size = scale(mesh.positions());
         for (a, c, d, lambda, dirichlet, barycentric) in [
             (0.3, [1.0, 0.2], [0.0, 0.0], 100.0, true, false),

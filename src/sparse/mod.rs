@@ -31,7 +31,7 @@ use std::fmt;
 pub use amd::amd_order;
 pub use nested_dissection::{expand_blocks, nested_dissection_order};
 pub use numeric::Numeric;
-pub use symbolic::{fill_reducing_order, order_flops, Symbolic, DISSECTION_MIN_NODES};
+pub use symbolic::{cheaper_order, fill_reducing_order, order_flops, Symbolic, DISSECTION_MIN_NODES};
 
 /// A matrix view in compressed sparse column form with `usize` indices.
 pub type CsMatView<'a> = sprs::CsMatView<'a, f64>;

@@ -218,11 +218,19 @@ pub fn fill_reducing_order(ptr: &[usize], adj: &[usize], positions: &[[f64; 2]],
     if n < DISSECTION_MIN_NODES {
         return by_degree;
     }
-    let by_dissection = super::nested_dissection_order(ptr, adj, positions);
-    if order_flops(ptr, adj, &by_dissection, block) < order_flops(ptr, adj, &by_degree, block) {
-        by_dissection
+    cheaper_order(ptr, adj, block, by_degree, super::nested_dissection_order(ptr, adj, positions))
+}
+
+/// Whichever of two orders of a graph's nodes needs fewer flops ([`order_flops`]); the
+/// first on a tie.
+///
+/// # Panics
+/// If an order is not a permutation of the nodes (a broken internal invariant of callers).
+pub fn cheaper_order(ptr: &[usize], adj: &[usize], block: usize, first: Vec<usize>, second: Vec<usize>) -> Vec<usize> {
+    if order_flops(ptr, adj, &second, block) < order_flops(ptr, adj, &first, block) {
+        second
     } else {
-        by_degree
+        first
     }
 }
 
