@@ -6,7 +6,12 @@
 //! ```text
 //! cargo run --release --example cholesky_table -- [--max-vertices N] [--min-vertices N]
 //!     [--shape bar|gingerbread] [--variant penalty|dirichlet] [--repeats N]
+//!     [--ordering amd|best]
 //! ```
+//!
+//! `--ordering best` orders ours as the deformer does (`sparse::fill_reducing_order` on the
+//! vertex graph: AMD, or from 8000 vertices nested dissection when it needs fewer flops);
+//! the default is AMD on the matrix. `ours sym` includes computing the order.
 //!
 //! Every solution of a random right-hand side is checked against faer's (relative
 //! difference below 1e-8), so a wrong factor cannot look fast; a mismatch is printed and
@@ -24,13 +29,14 @@ mod table {
     use std::sync::Arc;
     use std::time::Instant;
 
-    use akap::sparse::{Numeric, Ordering, Symbolic};
+    use akap::sparse::{Numeric, Symbolic};
     use sprs::{PermOwned, SymmetryCheck};
     use sprs_ldl::LdlSymbolic;
 
     use crate::common::faer_llt::FaerLlt;
     use crate::common::{
-        default_repeats, median, random_vector, relative_difference, size_label, Problem, Shape, Variant, SIZES,
+        default_repeats, median, random_vector, relative_difference, size_label, OrderChoice, Problem, Shape, Variant,
+        SIZES,
     };
 
     /// Largest relative difference accepted between our solution and faer's.
@@ -42,6 +48,7 @@ mod table {
         shapes: Vec<Shape>,
         variants: Vec<Variant>,
         repeats: Option<usize>,
+        ordering: OrderChoice,
     }
 
     fn parse_args() -> Result<Options, String> {
@@ -51,6 +58,7 @@ mod table {
             shapes: Shape::ALL.to_vec(),
             variants: Variant::ALL.to_vec(),
             repeats: None,
+            ordering: OrderChoice::Amd,
         };
         let mut args = std::env::args().skip(1);
         while let Some(flag) = args.next() {
@@ -68,6 +76,10 @@ mod table {
                     let name = value()?;
                     let variant = Variant::ALL.into_iter().find(|v| v.name() == name);
                     options.variants = vec![variant.ok_or(format!("unknown variant {name}"))?];
+                }
+                "--ordering" => {
+                    let name = value()?;
+                    options.ordering = OrderChoice::from_name(&name).ok_or(format!("unknown ordering {name}"))?;
                 }
                 "--bench" => {} // passed by `cargo bench --all-targets`
                 _ => return Err(format!("unknown argument {flag}")),
@@ -88,7 +100,7 @@ mod table {
     /// Every factorisation is set up first; then each of `repeats` rounds times every
     /// operation once, in turn, so that load from other processes hits all of them alike
     /// and the ratios stay meaningful. Each column is the median over the rounds.
-    fn row(problem: &Problem, repeats: usize) -> bool {
+    fn row(problem: &Problem, repeats: usize, ordering: OrderChoice) -> bool {
         let a = &problem.matrix;
         let n = problem.n();
         let b = random_vector(n, 7);
@@ -98,7 +110,7 @@ mod table {
             x
         };
 
-        let symbolic = match Symbolic::analyse(a.view(), &Ordering::Amd) {
+        let symbolic = match Symbolic::analyse(a.view(), &problem.ordering(ordering)) {
             Ok(symbolic) => Arc::new(symbolic),
             Err(e) => {
                 println!("| {} | our symbolic analysis failed: {e} |", problem.label());
@@ -117,7 +129,7 @@ mod table {
         let mut simplicial = FaerLlt::analyse(a, false);
         simplicial.factor(a);
         let simplicial_x = solve(&mut |x| simplicial.solve_in_place(x));
-        // sprs-ldl (simplicial up-looking LDL^T) with our AMD order.
+        // sprs-ldl (simplicial up-looking LDL^T) with our order.
         let perm = PermOwned::new(symbolic.permutation().to_vec());
         let mut ldl = LdlSymbolic::new_perm(a.view(), perm, SymmetryCheck::DontCheckSymmetry)
             .factor(a.view())
@@ -130,7 +142,7 @@ mod table {
         let mut x = b.clone();
         for _ in 0..repeats {
             samples[0].push(time_ms(|| {
-                black_box(Symbolic::analyse(a.view(), &Ordering::Amd).expect("our symbolic analysis"));
+                black_box(Symbolic::analyse(a.view(), &problem.ordering(ordering)).expect("our symbolic analysis"));
             }));
             samples[1].push(time_ms(|| numeric.refactor(a.view()).expect("our refactorisation")));
             x.copy_from_slice(&b);
@@ -194,6 +206,8 @@ mod table {
                 return ExitCode::from(2);
             }
         };
+        println!("ours ordered by: {}", options.ordering.name());
+        println!();
         println!(
             "| matrix | vertices | n | nnz(A) lower | nnz(L) ours | nnz(L) faer (simplicial) | nnz(L) sprs-ldl | flops ours \
              | ours sym ms | ours num ms | ours solve ms | faer sym ms | faer sn num ms | faer simpl num ms \
@@ -206,7 +220,7 @@ mod table {
                 for &variant in &options.variants {
                     let problem = Problem::new(shape, size, variant);
                     let repeats = options.repeats.unwrap_or_else(|| default_repeats(size));
-                    all_agree &= row(&problem, repeats);
+                    all_agree &= row(&problem, repeats, options.ordering);
                 }
             }
             eprintln!("cholesky_table: {} done", size_label(size));

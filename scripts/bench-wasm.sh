@@ -6,7 +6,7 @@
 # wasm-nosimd so that the two builds do not invalidate each other); then runs
 # scripts/bench-wasm.mjs on each, which prints a markdown table.
 #   scripts/bench-wasm.sh [--no-simd|--both] [--max-vertices N] [--min-vertices N]
-#                         [--shape bar|gingerbread] [--repeats N]
+#                         [--shape bar|gingerbread] [--repeats N] [--ordering amd|best]
 # Assumes scripts/setup.sh has run (wasm32 target, wasm-bindgen and wasm-pack on PATH).
 set -euo pipefail
 . "$(dirname "${BASH_SOURCE[0]}")/env.sh"

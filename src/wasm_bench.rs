@@ -13,14 +13,14 @@ use js_sys::{Function, Reflect};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
-use crate::sparse::{Numeric, Ordering, Symbolic};
+use crate::sparse::{Numeric, Symbolic};
 
 #[allow(dead_code)] // each includer uses part of the shared module
 #[path = "../benches/common/mod.rs"]
 mod common;
 
 use common::faer_llt::FaerLlt;
-use common::{median, random_vector, relative_difference, Problem, Shape, Variant};
+use common::{median, random_vector, relative_difference, OrderChoice, Problem, Shape, Variant};
 
 /// `globalThis.performance.now`, looked up once.
 struct Clock {
@@ -53,15 +53,24 @@ impl Clock {
 
 /// Builds the AKAP-like matrix of `shape` (`"bar"` or `"gingerbread"`) meshed with about
 /// `target_vertices` vertices, with four penalised handles or, if `dirichlet`, the boundary
-/// eliminated; times our ordering and symbolic analysis, numeric refactorisation and solve
+/// eliminated, ours ordered by `ordering` (`"amd"` or `"best"`, see the shared module);
+/// times our ordering and symbolic analysis, numeric refactorisation and solve
 /// (and faer's supernodal and simplicial ones) as medians of `repeats` rounds, and returns
 /// one JSON object: sizes, fill, milliseconds, and the relative difference between our
 /// solution of a random right-hand side and faer's. A failed factorisation is reported in
 /// its `error` field.
 #[wasm_bindgen]
 #[allow(unreachable_pub)] // exported to JavaScript; the module is private to the crate
-pub fn bench_cholesky(target_vertices: u32, shape: &str, dirichlet: bool, repeats: u32) -> Result<String, JsError> {
+pub fn bench_cholesky(
+    target_vertices: u32,
+    shape: &str,
+    dirichlet: bool,
+    repeats: u32,
+    ordering: &str,
+) -> Result<String, JsError> {
     let shape = Shape::from_name(shape).ok_or_else(|| JsError::new(&format!("unknown shape {shape:?}")))?;
+    let ordering =
+        OrderChoice::from_name(ordering).ok_or_else(|| JsError::new(&format!("unknown ordering {ordering:?}")))?;
     if !(100..=1_000_000).contains(&target_vertices) {
         return Err(JsError::new("target_vertices must be from 100 to 1000000"));
     }
@@ -83,7 +92,7 @@ pub fn bench_cholesky(target_vertices: u32, shape: &str, dirichlet: bool, repeat
 
     // Set everything up, untimed; then time each operation once per round, in turn, so
     // that load from other processes hits all of them alike.
-    let symbolic = match Symbolic::analyse(a.view(), &Ordering::Amd) {
+    let symbolic = match Symbolic::analyse(a.view(), &problem.ordering(ordering)) {
         Ok(symbolic) => Arc::new(symbolic),
         Err(e) => return Ok(json_with_error(fields, &e.to_string())),
     };
@@ -118,7 +127,7 @@ pub fn bench_cholesky(target_vertices: u32, shape: &str, dirichlet: bool, repeat
     let mut x = b.clone();
     for _ in 0..repeats.max(1) {
         samples[0].push(clock.time_ms(|| {
-            std::hint::black_box(Symbolic::analyse(a.view(), &Ordering::Amd).ok());
+            std::hint::black_box(Symbolic::analyse(a.view(), &problem.ordering(ordering)).ok());
         }));
         let (mut refactored, mut solved) = (Ok(()), Ok(()));
         samples[1].push(clock.time_ms(|| refactored = numeric.refactor(a.view())));

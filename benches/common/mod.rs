@@ -13,9 +13,19 @@
 use sprs::CsMat;
 
 #[cfg(target_arch = "wasm32")]
-use crate::{deform::killing::KillingMatrix, shapes, triangulate, Mesh, Outline, TriangulationOptions};
+use crate::{
+    deform::killing::KillingMatrix,
+    shapes,
+    sparse::{expand_blocks, fill_reducing_order, Ordering},
+    triangulate, Mesh, Outline, TriangulationOptions,
+};
 #[cfg(not(target_arch = "wasm32"))]
-use akap::{deform::killing::KillingMatrix, shapes, triangulate, Mesh, Outline, TriangulationOptions};
+use akap::{
+    deform::killing::KillingMatrix,
+    shapes,
+    sparse::{expand_blocks, fill_reducing_order, Ordering},
+    triangulate, Mesh, Outline, TriangulationOptions,
+};
 
 pub(crate) mod faer_llt;
 
@@ -82,6 +92,31 @@ impl Variant {
     }
 }
 
+/// How our factorisation orders the unknowns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum OrderChoice {
+    /// AMD on the matrix ([`Ordering::Amd`], on the graph compressed to 2x2 blocks).
+    Amd,
+    /// What the deformer uses: [`fill_reducing_order`] on the vertex graph (AMD, or from
+    /// 8000 vertices nested dissection when it needs fewer flops), expanded to blocks.
+    Best,
+}
+
+impl OrderChoice {
+    /// The name used in tables and on the command line.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            OrderChoice::Amd => "amd",
+            OrderChoice::Best => "best",
+        }
+    }
+
+    /// The choice of a name, if it is one.
+    pub(crate) fn from_name(name: &str) -> Option<Self> {
+        [OrderChoice::Amd, OrderChoice::Best].into_iter().find(|c| c.name() == name)
+    }
+}
+
 /// One benchmark matrix: what it was made from and the matrix (full symmetric, CSC).
 #[derive(Debug, Clone)]
 pub(crate) struct Problem {
@@ -95,6 +130,9 @@ pub(crate) struct Problem {
     pub(crate) vertices: usize,
     /// The matrix, both triangles stored.
     pub(crate) matrix: CsMat<f64>,
+    /// The graph of the vertices whose unknowns the matrix has (adjacency lists) and their
+    /// positions, for vertex orderings.
+    graph: (Vec<usize>, Vec<usize>, Vec<[f64; 2]>),
 }
 
 impl Problem {
@@ -105,7 +143,31 @@ impl Problem {
             Variant::Penalty => penalty_matrix(&mesh),
             Variant::Dirichlet => dirichlet_matrix(&mesh),
         };
-        Self { shape, variant, target_vertices, vertices: mesh.vertex_count(), matrix }
+        let keep = |v: usize| variant == Variant::Penalty || !mesh.is_boundary_vertex(v);
+        let mut index = vec![usize::MAX; mesh.vertex_count()];
+        let mut points = Vec::new();
+        for v in (0..mesh.vertex_count()).filter(|&v| keep(v)) {
+            index[v] = points.len();
+            points.push(mesh.positions()[v]);
+        }
+        let (mut ptr, mut adj) = (vec![0], Vec::new());
+        for v in (0..mesh.vertex_count()).filter(|&v| keep(v)) {
+            adj.extend(mesh.neighbors(v).iter().map(|&w| index[w as usize]).filter(|&w| w != usize::MAX));
+            ptr.push(adj.len());
+        }
+        Self { shape, variant, target_vertices, vertices: mesh.vertex_count(), matrix, graph: (ptr, adj, points) }
+    }
+
+    /// The ordering for our analysis (computing it, for [`OrderChoice::Best`]; time it with
+    /// the analysis).
+    pub(crate) fn ordering(&self, choice: OrderChoice) -> Ordering {
+        match choice {
+            OrderChoice::Amd => Ordering::Amd,
+            OrderChoice::Best => {
+                let (ptr, adj, points) = &self.graph;
+                Ordering::Given(expand_blocks(&fill_reducing_order(ptr, adj, points, 2), 2))
+            }
+        }
     }
 
     /// A short label: `bar/10k/penalty`.
