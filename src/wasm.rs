@@ -333,12 +333,15 @@ impl JsDeformer {
         ])
     }
 
-    /// `{ assembly, factorisation, solve, integration }`: milliseconds of the last step.
+    /// `{ assembly, factorisation, dirichletFactorisation, solve, integration }`:
+    /// milliseconds of the last step (`dirichletFactorisation` is the part of
+    /// `factorisation` spent on AKAP's step 2).
     pub fn timings(&self) -> Result<Object, JsValue> {
         let t = self.inner.timings();
         object(&[
             ("assembly", t.assembly.into()),
             ("factorisation", t.factorisation.into()),
+            ("dirichletFactorisation", t.dirichlet_factorisation.into()),
             ("solve", t.solve.into()),
             ("integration", t.integration.into()),
         ])

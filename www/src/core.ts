@@ -129,7 +129,10 @@ export interface Metrics {
 /** Milliseconds spent in each stage of the last step. */
 export interface Timings {
   assembly: number;
+  /** Both numeric factorisations (AKAP), or ARAP's when its handles changed. */
   factorisation: number;
+  /** The part of `factorisation` spent on AKAP's step 2 (the Dirichlet re-solve); 0 for ARAP. */
+  dirichletFactorisation: number;
   solve: number;
   integration: number;
 }
