@@ -813,7 +813,7 @@ export class Widget {
     this.#raf = 0;
     if (this.#destroyed || this.#replaying) return;
     const started = performance.now();
-    const timings: Timings = { assembly: 0, factorisation: 0, solve: 0, integration: 0 };
+    const timings: Timings = { assembly: 0, factorisation: 0, dirichletFactorisation: 0, solve: 0, integration: 0 };
     let substeps = 0;
     try {
       substeps = this.#advance(timings);
@@ -896,6 +896,7 @@ export class Widget {
     const t = this.#deformer.timings();
     timings.assembly += t.assembly;
     timings.factorisation += t.factorisation;
+    timings.dirichletFactorisation += t.dirichletFactorisation;
     timings.solve += t.solve;
     timings.integration += t.integration;
   }
@@ -1232,7 +1233,7 @@ export class Widget {
   #emitPose(
     frameMs = 0,
     steps = 0,
-    timings: Timings = { assembly: 0, factorisation: 0, solve: 0, integration: 0 },
+    timings: Timings = { assembly: 0, factorisation: 0, dirichletFactorisation: 0, solve: 0, integration: 0 },
   ): void {
     const detail: PoseDetail = {
       metrics: { ...this.#metrics },
