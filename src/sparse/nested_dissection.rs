@@ -17,7 +17,7 @@
 
 use super::amd::constrained_amd_order;
 use super::amd_order;
-use super::separator::{bisect, WGraph, NONE, SEPARATOR};
+use super::separator::{bisect, Refiner, WGraph, NONE, SEPARATOR};
 
 /// Parts with at most this many vertices are not split further.
 const LEAF_SIZE: usize = 128;
@@ -53,7 +53,8 @@ pub fn nested_dissection_order(ptr: &[usize], indices: &[usize], positions: &[[f
         graph.ptr.push(kept);
     }
     graph.ewgt = vec![1; graph.adj.len()];
-    let mut dissection = Dissection { class: vec![0; n], label: vec![NONE; n], local: vec![NONE; n] };
+    let mut dissection =
+        Dissection { class: vec![0; n], label: vec![NONE; n], local: vec![NONE; n], refiner: Refiner::default() };
     let all: Vec<u32> = (0..n as u32).collect();
     dissection.split(&graph, &all);
     constrained_amd_order(n, ptr, indices, dissection.class)
@@ -93,6 +94,7 @@ struct Dissection {
     class: Vec<usize>,
     label: Vec<u32>,
     local: Vec<u32>,
+    refiner: Refiner,
 }
 
 impl Dissection {
@@ -113,7 +115,7 @@ impl Dissection {
             }
             return;
         }
-        let where_ = bisect(g);
+        let where_ = bisect(g, &mut self.refiner);
         let mut parts: [Vec<u32>; 3] = Default::default();
         for (k, &p) in where_.iter().enumerate() {
             parts[p as usize].push(k as u32);
