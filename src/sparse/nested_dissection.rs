@@ -72,8 +72,14 @@ fn subgraph(g: &WGraph, vertices: &[u32], local: &mut [u32]) -> WGraph {
     for (k, &v) in vertices.iter().enumerate() {
         local[v as usize] = k as u32;
     }
-    let mut sub =
-        WGraph { ptr: Vec::with_capacity(vertices.len() + 1), adj: Vec::new(), ewgt: Vec::new(), vwgt: Vec::new() };
+    // At most all of their edges stay: one allocation.
+    let edges: usize = vertices.iter().map(|&v| g.ptr[v as usize + 1] - g.ptr[v as usize]).sum();
+    let mut sub = WGraph {
+        ptr: Vec::with_capacity(vertices.len() + 1),
+        adj: Vec::with_capacity(edges),
+        ewgt: Vec::new(),
+        vwgt: Vec::new(),
+    };
     sub.ptr.push(0);
     for &v in vertices {
         sub.adj.extend(g.neighbors(v as usize).iter().map(|&u| local[u as usize]).filter(|&k| k != NONE));

@@ -309,8 +309,8 @@ impl Refiner {
                 pulled[1 - p as usize] += i64::from(g.vwgt[u as usize]);
             }
         }
-        for to in 0..2 {
-            let gain_v = i64::from(g.vwgt[v]) - pulled[to];
+        for (to, pulled_to) in pulled.into_iter().enumerate() {
+            let gain_v = i64::from(g.vwgt[v]) - pulled_to;
             self.gains[to][v] = gain_v;
             self.heaps[to].push((gain_v, v as u32));
         }
