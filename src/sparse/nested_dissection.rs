@@ -17,7 +17,7 @@
 
 use super::amd::constrained_amd_order;
 use super::amd_order;
-use super::separator::{bisect, WGraph, NONE, SEPARATOR};
+use super::separator::{bisect, Refiner, WGraph, NONE, SEPARATOR};
 
 /// Parts with at most this many vertices are not split further.
 const LEAF_SIZE: usize = 128;
@@ -53,7 +53,8 @@ pub fn nested_dissection_order(ptr: &[usize], indices: &[usize], positions: &[[f
         graph.ptr.push(kept);
     }
     graph.ewgt = vec![1; graph.adj.len()];
-    let mut dissection = Dissection { class: vec![0; n], label: vec![NONE; n], local: vec![NONE; n] };
+    let mut dissection =
+        Dissection { class: vec![0; n], label: vec![NONE; n], local: vec![NONE; n], refiner: Refiner::default() };
     let all: Vec<u32> = (0..n as u32).collect();
     dissection.split(&graph, &all);
     constrained_amd_order(n, ptr, indices, dissection.class)
@@ -71,8 +72,14 @@ fn subgraph(g: &WGraph, vertices: &[u32], local: &mut [u32]) -> WGraph {
     for (k, &v) in vertices.iter().enumerate() {
         local[v as usize] = k as u32;
     }
-    let mut sub =
-        WGraph { ptr: Vec::with_capacity(vertices.len() + 1), adj: Vec::new(), ewgt: Vec::new(), vwgt: Vec::new() };
+    // At most all of their edges stay: one allocation.
+    let edges: usize = vertices.iter().map(|&v| g.ptr[v as usize + 1] - g.ptr[v as usize]).sum();
+    let mut sub = WGraph {
+        ptr: Vec::with_capacity(vertices.len() + 1),
+        adj: Vec::with_capacity(edges),
+        ewgt: Vec::new(),
+        vwgt: Vec::new(),
+    };
     sub.ptr.push(0);
     for &v in vertices {
         sub.adj.extend(g.neighbors(v as usize).iter().map(|&u| local[u as usize]).filter(|&k| k != NONE));
@@ -93,6 +100,7 @@ struct Dissection {
     class: Vec<usize>,
     label: Vec<u32>,
     local: Vec<u32>,
+    refiner: Refiner,
 }
 
 impl Dissection {
@@ -113,7 +121,7 @@ impl Dissection {
             }
             return;
         }
-        let where_ = bisect(g);
+        let where_ = bisect(g, &mut self.refiner);
         let mut parts: [Vec<u32>; 3] = Default::default();
         for (k, &p) in where_.iter().enumerate() {
             parts[p as usize].push(k as u32);

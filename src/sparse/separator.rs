@@ -76,7 +76,7 @@ impl Rng {
 
 /// Splits `g` (connected, at least two vertices) into parts 0 and 1 and a separator
 /// ([`SEPARATOR`]): `where_[v]` for every vertex. No edge joins parts 0 and 1.
-pub(super) fn bisect(g: &WGraph) -> Vec<u8> {
+pub(super) fn bisect(g: &WGraph, refiner: &mut Refiner) -> Vec<u8> {
     let mut rng = Rng(0x2545_F491_4F6C_DD1D);
     let mut graphs: Vec<WGraph> = Vec::new();
     let mut maps: Vec<Vec<u32>> = Vec::new();
@@ -94,9 +94,8 @@ pub(super) fn bisect(g: &WGraph) -> Vec<u8> {
     }
     let coarsest = graphs.last().unwrap_or(g);
     let max_part = (MAX_PART * coarsest.total_weight() as f64) as u64;
-    let mut refiner = Refiner::default();
     let mut best: Option<((u64, u64), Vec<u8>)> = None;
-    for mut where_ in initial_separators(coarsest, max_part) {
+    for mut where_ in initial_separators(coarsest, max_part, refiner) {
         for level in (0..maps.len()).rev() {
             let fine = if level == 0 { g } else { &graphs[level - 1] };
             where_ = maps[level].iter().map(|&c| where_[c as usize]).collect();
@@ -224,7 +223,7 @@ fn bfs(g: &WGraph, seed: usize, dist: &mut [u32]) -> Vec<u32> {
 
 /// Separators of the coarsest graph grown from several seeds, each refined; the
 /// [`KEPT`] best, best first.
-fn initial_separators(g: &WGraph, max_part: u64) -> Vec<Vec<u8>> {
+fn initial_separators(g: &WGraph, max_part: u64, refiner: &mut Refiner) -> Vec<Vec<u8>> {
     let n = g.len();
     let total = g.total_weight();
     let mut dist = vec![NONE; n];
@@ -235,7 +234,6 @@ fn initial_separators(g: &WGraph, max_part: u64) -> Vec<Vec<u8>> {
     for k in 1..INITIAL_TRIALS {
         seeds.push(k * n / INITIAL_TRIALS);
     }
-    let mut refiner = Refiner::default();
     let mut found: Vec<((u64, u64), Vec<u8>)> = Vec::new();
     for seed in seeds {
         let visit = bfs(g, seed, &mut dist);
@@ -281,10 +279,12 @@ struct Move {
     start: usize,
 }
 
-/// Scratch space of the Fiduccia-Mattheyses refinement, reused across levels.
+/// Scratch space of the Fiduccia-Mattheyses refinement, reused across levels and parts.
 #[derive(Default)]
-struct Refiner {
-    locked: Vec<bool>,
+pub(super) struct Refiner {
+    /// `locked[v] == call` while `v` is locked in the current call.
+    locked: Vec<u32>,
+    call: u32,
     /// Gains of moving a separator vertex to part 0 and to part 1 (valid for separator
     /// vertices during a pass).
     gains: [Vec<i64>; 2],
@@ -298,21 +298,21 @@ struct Refiner {
     stamp: u32,
 }
 
-/// Decrease of the separator weight if separator vertex `v` moved to part `to`.
-fn gain(g: &WGraph, where_: &[u8], v: usize, to: u8) -> i64 {
-    let other = 1 - to;
-    let pulled: i64 =
-        g.neighbors(v).iter().filter(|&&u| where_[u as usize] == other).map(|&u| i64::from(g.vwgt[u as usize])).sum();
-    i64::from(g.vwgt[v]) - pulled
-}
-
 impl Refiner {
     /// Computes both gains of separator vertex `v` and queues them.
     fn enter(&mut self, g: &WGraph, where_: &[u8], v: usize) {
-        for to in 0..2u8 {
-            let gain_v = gain(g, where_, v, to);
-            self.gains[to as usize][v] = gain_v;
-            self.heaps[to as usize].push((gain_v, v as u32));
+        // Moving to part 0 pulls the neighbours in part 1, and conversely: one scan.
+        let mut pulled = [0i64; 2];
+        for &u in g.neighbors(v) {
+            let p = where_[u as usize];
+            if p < 2 {
+                pulled[1 - p as usize] += i64::from(g.vwgt[u as usize]);
+            }
+        }
+        for (to, pulled_to) in pulled.into_iter().enumerate() {
+            let gain_v = i64::from(g.vwgt[v]) - pulled_to;
+            self.gains[to][v] = gain_v;
+            self.heaps[to].push((gain_v, v as u32));
         }
     }
 
@@ -320,15 +320,17 @@ impl Refiner {
     /// every part within `max_part` (or not heavier than it was).
     fn refine(&mut self, g: &WGraph, where_: &mut [u8], max_part: u64, passes: usize) {
         let n = g.len();
-        self.locked.clear();
-        self.locked.resize(n, false);
-        for gains in &mut self.gains {
-            gains.clear();
-            gains.resize(n, 0);
+        // Scratch space only grows: the gains are written before they are read, the
+        // stamps only increase, and a new call's lock is a new stamp.
+        if self.locked.len() < n {
+            self.locked.resize(n, 0);
+            self.seen.resize(n, 0);
+            for gains in &mut self.gains {
+                gains.resize(n, 0);
+            }
         }
-        self.seen.clear();
-        self.seen.resize(n, 0);
-        self.stamp = 0;
+        self.call += 1;
+        let call = self.call;
         self.separator.clear();
         self.separator.extend((0..n as u32).filter(|&v| where_[v as usize] == SEPARATOR));
         let mut pw = part_weights(g, where_);
@@ -353,7 +355,7 @@ impl Refiner {
                 for (to, top) in tops.iter_mut().enumerate() {
                     while let Some(&(gain_v, v)) = self.heaps[to].peek() {
                         let vi = v as usize;
-                        if where_[vi] != SEPARATOR || self.locked[vi] || self.gains[to][vi] != gain_v {
+                        if where_[vi] != SEPARATOR || self.locked[vi] == call || self.gains[to][vi] != gain_v {
                             self.heaps[to].pop();
                             continue;
                         }
@@ -374,13 +376,13 @@ impl Refiner {
                 let other = 1 - to;
                 let wv = i64::from(g.vwgt[vi]);
                 where_[vi] = to as u8;
-                self.locked[vi] = true;
+                self.locked[vi] = call;
                 pw[2] -= u64::from(g.vwgt[vi]);
                 pw[to] += u64::from(g.vwgt[vi]);
                 // Separator neighbours of v would now pull v if they moved to `other`.
                 for &u in g.neighbors(vi) {
                     let u = u as usize;
-                    if where_[u] == SEPARATOR && !self.locked[u] {
+                    if where_[u] == SEPARATOR && self.locked[u] != call {
                         self.gains[other][u] -= wv;
                         self.heaps[other].push((self.gains[other][u], u as u32));
                     }
@@ -399,12 +401,12 @@ impl Refiner {
                     // Separator neighbours of u would no longer pull it moving to `to`.
                     for &x in g.neighbors(u) {
                         let x = x as usize;
-                        if where_[x] == SEPARATOR && !self.locked[x] {
+                        if where_[x] == SEPARATOR && self.locked[x] != call {
                             self.gains[to][x] += wu;
                             self.heaps[to].push((self.gains[to][x], x as u32));
                         }
                     }
-                    if !self.locked[u] {
+                    if self.locked[u] != call {
                         self.enter(g, where_, u);
                     }
                 }
@@ -432,7 +434,7 @@ impl Refiner {
                 pw[2] += u64::from(g.vwgt[m.v as usize]);
             }
             for m in &self.moves {
-                self.locked[m.v as usize] = false;
+                self.locked[m.v as usize] = 0;
             }
             // The separator now: the old one and the vertices pulled into it, if still there.
             self.stamp += 1;
