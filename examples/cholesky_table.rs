@@ -10,7 +10,7 @@
 //! ```
 //!
 //! `--ordering best` orders ours as the deformer does (`sparse::fill_reducing_order` on the
-//! vertex graph: AMD, or from 8000 vertices nested dissection when it needs fewer flops);
+//! vertex graph: AMD, or from 12000 vertices nested dissection when it needs fewer flops);
 //! the default is AMD on the matrix. `ours sym` includes computing the order.
 //!
 //! Every solution of a random right-hand side is checked against faer's (relative

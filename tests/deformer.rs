@@ -25,7 +25,7 @@ fn figure() -> Mesh {
 
 /// A figure large enough for the set-up to consider nested dissection.
 fn large_figure() -> Mesh {
-    let mesh = triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.011)).unwrap();
+    let mesh = triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.0095)).unwrap();
     assert!(mesh.vertex_count() >= akap::sparse::DISSECTION_MIN_NODES, "{} vertices", mesh.vertex_count());
     mesh
 }

@@ -203,10 +203,10 @@ pub fn order_flops(ptr: &[usize], adj: &[usize], order: &[usize], block: usize) 
 }
 
 /// Graphs with fewer nodes than this are ordered by minimum degree alone: below it, our
-/// nested dissection needed more flops than AMD on every mesh measured (1.1-1.4x at 1.7k
-/// vertices, 0.91-1.05x at 8k, 0.89-0.90x at 16k; `cargo run --release --example orderings`),
-/// and it takes several times AMD's time.
-pub const DISSECTION_MIN_NODES: usize = 8000;
+/// nested dissection saved few flops or none on the meshes measured (1.1-1.4x AMD's at 1.7k
+/// vertices, 0.91-1.05x at 8k, 0.97x at 9.6k; 0.89-0.90x at 16k, 0.80-0.85x at 46k-79k;
+/// `cargo run --release --example orderings`), and it takes 5-8x AMD's time.
+pub const DISSECTION_MIN_NODES: usize = 12_000;
 
 /// A fill-reducing order of the nodes of a graph with `block` unknowns per node (as
 /// [`order_flops`] counts them): approximate minimum degree, or, for graphs of at least
