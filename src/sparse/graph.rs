@@ -72,26 +72,39 @@ impl Graph {
         if block <= 1 {
             return amd_order(n, &self.ptr, &self.adj);
         }
-        let groups = n / block;
+        let groups = self.compressed(block);
+        amd_order(groups.len(), &groups.ptr, &groups.adj)
+            .iter()
+            .flat_map(|&g| (0..block).map(move |k| block * g + k))
+            .collect()
+    }
+
+    /// The graph of the groups `b g .. b g + b` (`block` = b): groups adjacent when their
+    /// nodes are. Meant for a `block` from [`Self::uniform_block_size`].
+    pub(super) fn compressed(&self, block: usize) -> Self {
+        let groups = self.len() / block;
         let mut ptr = Vec::with_capacity(groups + 1);
         ptr.push(0);
         let mut adj = Vec::with_capacity(self.adj.len() / (block * block));
         for g in 0..groups {
+            let start = adj.len();
             for &w in self.neighbors(block * g) {
                 let h = w / block;
-                if h != g && adj.last() != Some(&h) {
+                // The list is sorted, so a repeated group comes right after itself (compare
+                // within this group's list only).
+                if h != g && adj[start..].last() != Some(&h) {
                     adj.push(h);
                 }
             }
             ptr.push(adj.len());
         }
-        amd_order(groups, &ptr, &adj).iter().flat_map(|&g| (0..block).map(move |k| block * g + k)).collect()
+        Self { ptr, adj }
     }
 
     /// The size b > 1 such that the nodes are consecutive groups `b g .. b g + b` of
     /// indistinguishable nodes (adjacent to each other, with the same other neighbours),
     /// or 1 if there is no such size.
-    fn uniform_block_size(&self) -> usize {
+    pub(super) fn uniform_block_size(&self) -> usize {
         let n = self.len();
         for block in [2, 3] {
             let groups = n / block;
@@ -164,6 +177,29 @@ mod tests {
         assert_eq!(Graph::of_lower_pattern(6, &indptr, &indices).uniform_block_size(), 2);
         let (indptr, indices) = block_path(true);
         assert_eq!(Graph::of_lower_pattern(6, &indptr, &indices).uniform_block_size(), 1);
+    }
+
+    #[test]
+    fn compressed_graph_keeps_every_edge() {
+        // The 2x2-block expansion of a star with centre 2 and leaves 0, 1: leaf 1's only
+        // neighbour equals leaf 0's last one, which a check against the previous list
+        // once dropped.
+        let edges = [(0, 2), (1, 2)];
+        let mut indptr = vec![0];
+        let mut indices = Vec::new();
+        for j in 0..6 {
+            for i in j..6 {
+                let (vi, vj): (usize, usize) = (i / 2, j / 2);
+                if vi == vj || edges.contains(&(vj.min(vi), vj.max(vi))) {
+                    indices.push(i);
+                }
+            }
+            indptr.push(indices.len());
+        }
+        let g = Graph::of_lower_pattern(6, &indptr, &indices);
+        assert_eq!(g.uniform_block_size(), 2);
+        let c = g.compressed(2);
+        assert_eq!((c.neighbors(0), c.neighbors(1), c.neighbors(2)), (&[2][..], &[2][..], &[0, 1][..]));
     }
 
     #[test]

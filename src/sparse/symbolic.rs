@@ -76,16 +76,18 @@ impl Symbolic {
             }
         };
 
-        // Eliminate in the given order, then relabel by a postorder of the elimination
-        // tree: the same fill, with subtrees contiguous, and the tree simply relabelled.
-        let parent_in_order = elimination_tree(&graph, &order, &inverse(&order));
-        let post = postorder(&parent_in_order);
-        let perm: Vec<usize> = post.iter().map(|&k| order[k]).collect();
+        let (perm, parent, counts) = match block_order(&graph, &order) {
+            Some((block, group_order)) => {
+                // Groups of indistinguishable unknowns eliminated together: the tree and the
+                // counts of the group graph (a quarter of the entries for 2x2 blocks) give
+                // those of the unknowns.
+                let groups = graph.compressed(block);
+                let (group_perm, group_parent, group_counts) = tree_and_counts(&groups, &group_order);
+                expand_tree_and_counts(block, &group_perm, &group_parent, &group_counts)
+            }
+            None => tree_and_counts(&graph, &order),
+        };
         let inv = inverse(&perm);
-        let post_inv = inverse(&post);
-        let parent: Vec<usize> =
-            post.iter().map(|&k| parent_in_order[k]).map(|p| if p == NONE { NONE } else { post_inv[p] }).collect();
-        let counts = column_counts(&graph, &perm, &inv, &parent);
         let super_start = relax_supernodes(&fundamental_supernodes(&parent, &counts), &parent, &counts);
         let ns = super_start.len() - 1;
         let mut col_to_super = vec![0; n];
@@ -232,6 +234,62 @@ pub fn cheaper_order(ptr: &[usize], adj: &[usize], block: usize, first: Vec<usiz
     } else {
         first
     }
+}
+
+/// Eliminates the nodes of `graph` in `order`, then relabels by a postorder of the
+/// elimination tree (the same fill, with subtrees contiguous; the tree is relabelled, not
+/// recomputed). Returns the postordered permutation, the tree in its positions and the
+/// column counts of L (diagonal included).
+fn tree_and_counts(graph: &Graph, order: &[usize]) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+    let parent_in_order = elimination_tree(graph, order, &inverse(order));
+    let post = postorder(&parent_in_order);
+    let perm: Vec<usize> = post.iter().map(|&k| order[k]).collect();
+    let inv = inverse(&perm);
+    let post_inv = inverse(&post);
+    let parent: Vec<usize> =
+        post.iter().map(|&k| parent_in_order[k]).map(|p| if p == NONE { NONE } else { post_inv[p] }).collect();
+    let counts = column_counts(graph, &perm, &inv, &parent);
+    (perm, parent, counts)
+}
+
+/// If the graph's nodes form groups `b g .. b g + b` of indistinguishable nodes (b > 1) and
+/// `order` eliminates each group's nodes together, in ascending order, returns b and the
+/// order of the groups.
+fn block_order(graph: &Graph, order: &[usize]) -> Option<(usize, Vec<usize>)> {
+    let block = graph.uniform_block_size();
+    if block <= 1 {
+        return None;
+    }
+    let keeps_groups =
+        order.chunks_exact(block).all(|c| c[0] % block == 0 && c.iter().enumerate().all(|(i, &v)| v == c[0] + i));
+    keeps_groups.then(|| (block, order.chunks_exact(block).map(|c| c[0] / block).collect()))
+}
+
+/// The permutation, elimination tree and column counts of the unknowns from those of their
+/// groups of `block` indistinguishable unknowns, eliminated together: within a group each
+/// unknown's parent is the next one, the last one's is the first unknown of the parent
+/// group; the k-th unknown of a group whose column in the group factor has `c` entries has
+/// `block * c - k` (the group's own rows after it, and all unknowns of the other rows).
+fn expand_tree_and_counts(
+    block: usize,
+    group_perm: &[usize],
+    group_parent: &[usize],
+    group_counts: &[usize],
+) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+    let perm = group_perm.iter().flat_map(|&g| (0..block).map(move |k| block * g + k)).collect();
+    let parent = group_parent
+        .iter()
+        .enumerate()
+        .flat_map(|(j, &p)| {
+            (0..block).map(move |k| match (k + 1 < block, p) {
+                (true, _) => block * j + k + 1,
+                (false, NONE) => NONE,
+                (false, p) => block * p,
+            })
+        })
+        .collect();
+    let counts = group_counts.iter().flat_map(|&c| (0..block).map(move |k| block * c - k)).collect();
+    (perm, parent, counts)
 }
 
 /// Checks shape and storage order and returns the pattern with `indptr` starting at 0.
