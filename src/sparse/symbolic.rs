@@ -12,7 +12,10 @@
 //!    subtree, and so every supernode, is a contiguous range of columns (the tree is
 //!    relabelled, not recomputed: a postorder is an equivalent order with the same tree);
 //! 3. column counts of L by walking each row subtree (row i of L is the union of the etree
-//!    paths from the entries of row i of A up to i), O(|L|);
+//!    paths from the entries of row i of A up to i), O(|L|); steps 2 and 3 run on the
+//!    graph of groups when the order eliminates each group of indistinguishable unknowns
+//!    together (a quarter of the entries for 2x2 blocks), and are expanded: within a group
+//!    the tree is a chain and the counts fall by one per unknown;
 //! 4. fundamental supernodes (a column joins its only child's supernode when it is that
 //!    child's parent and its count is one less), relaxed, and the row pattern of each
 //!    supernode: its columns, the rows of A below them and the rows of its child
