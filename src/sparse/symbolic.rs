@@ -68,10 +68,16 @@ impl Symbolic {
         let (indptr, indices) = pattern_of(a)?;
         let n = a.cols();
         let graph = Graph::of_lower_pattern(n, &indptr, &indices);
-        let order = match ordering {
-            Ordering::Natural => (0..n).collect(),
-            Ordering::Amd => graph.amd_order(),
-            Ordering::Given(order) => {
+        // Groups of indistinguishable unknowns (such as a vertex's 2x2 block), if the
+        // pattern has them: AMD runs on their graph, and so do the elimination tree and
+        // the column counts whenever the order keeps each group together.
+        let block = graph.uniform_block_size();
+        let groups = (block > 1).then(|| graph.compressed(block));
+        let order = match (ordering, &groups) {
+            (Ordering::Natural, _) => (0..n).collect(),
+            (Ordering::Amd, Some(groups)) => expand_groups(block, &groups.amd_order()),
+            (Ordering::Amd, None) => graph.amd_order(),
+            (Ordering::Given(order), _) => {
                 if !is_permutation(order, n) {
                     return Err(FactorError::InvalidOrdering);
                 }
@@ -79,16 +85,14 @@ impl Symbolic {
             }
         };
 
-        let (perm, parent, counts) = match block_order(&graph, &order) {
-            Some((block, group_order)) => {
-                // Groups of indistinguishable unknowns eliminated together: the tree and the
-                // counts of the group graph (a quarter of the entries for 2x2 blocks) give
-                // those of the unknowns.
-                let groups = graph.compressed(block);
-                let (group_perm, group_parent, group_counts) = tree_and_counts(&groups, &group_order);
+        let group_order = groups.as_ref().and_then(|_| group_order(block, &order));
+        let (perm, parent, counts) = match (&groups, group_order) {
+            (Some(groups), Some(group_order)) => {
+                // A quarter of the entries for 2x2 blocks.
+                let (group_perm, group_parent, group_counts) = tree_and_counts(groups, &group_order);
                 expand_tree_and_counts(block, &group_perm, &group_parent, &group_counts)
             }
-            None => tree_and_counts(&graph, &order),
+            _ => tree_and_counts(&graph, &order),
         };
         let inv = inverse(&perm);
         let super_start = relax_supernodes(&fundamental_supernodes(&parent, &counts), &parent, &counts);
@@ -255,17 +259,18 @@ fn tree_and_counts(graph: &Graph, order: &[usize]) -> (Vec<usize>, Vec<usize>, V
     (perm, parent, counts)
 }
 
-/// If the graph's nodes form groups `b g .. b g + b` of indistinguishable nodes (b > 1) and
-/// `order` eliminates each group's nodes together, in ascending order, returns b and the
-/// order of the groups.
-fn block_order(graph: &Graph, order: &[usize]) -> Option<(usize, Vec<usize>)> {
-    let block = graph.uniform_block_size();
-    if block <= 1 {
-        return None;
-    }
+/// If `order` eliminates each group `b g .. b g + b` (`block` = b) together, in ascending
+/// order, the order of the groups.
+fn group_order(block: usize, order: &[usize]) -> Option<Vec<usize>> {
     let keeps_groups =
         order.chunks_exact(block).all(|c| c[0] % block == 0 && c.iter().enumerate().all(|(i, &v)| v == c[0] + i));
-    keeps_groups.then(|| (block, order.chunks_exact(block).map(|c| c[0] / block).collect()))
+    keeps_groups.then(|| order.chunks_exact(block).map(|c| c[0] / block).collect())
+}
+
+/// The order of the unknowns that eliminates groups of `block` in `group_order`, each
+/// group's unknowns together and ascending.
+fn expand_groups(block: usize, group_order: &[usize]) -> Vec<usize> {
+    group_order.iter().flat_map(|&g| (0..block).map(move |k| block * g + k)).collect()
 }
 
 /// The permutation, elimination tree and column counts of the unknowns from those of their
@@ -279,7 +284,7 @@ fn expand_tree_and_counts(
     group_parent: &[usize],
     group_counts: &[usize],
 ) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
-    let perm = group_perm.iter().flat_map(|&g| (0..block).map(move |k| block * g + k)).collect();
+    let perm = expand_groups(block, group_perm);
     let parent = group_parent
         .iter()
         .enumerate()
