@@ -86,15 +86,23 @@ impl KillingMatrix {
         let data = self.matrix.data_mut();
         data.fill(0.0);
         for (t, slots) in self.triangles.iter().zip(&self.slots) {
-            let local = local_matrix([positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]]);
-            for i in 0..3 {
-                for j in 0..3 {
+            let (g, area) =
+                basis_gradients([positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]]);
+            // A R^T R entry by entry: for vertices (i, j), with h = 2A g,
+            //   (u1_i, u1_j): A (4 gx_i gx_j + 2 gy_i gy_j) = 2 h_x,i g_x,j + h_y,i g_y,j
+            //   (u2_i, u1_j): 2A gx_i gy_j                   = h_x,i g_y,j
+            //   (u1_i, u2_j): 2A gy_i gx_j                   = h_y,i g_x,j
+            //   (u2_i, u2_j): A (2 gx_i gx_j + 4 gy_i gy_j) = h_x,i g_x,j + 2 h_y,i g_y,j
+            let h = g.map(|gi| [2.0 * area * gi[0], 2.0 * area * gi[1]]);
+            for (i, hi) in h.iter().enumerate() {
+                for (j, gj) in g.iter().enumerate() {
                     let [c0, c1] = slots[3 * i + j];
+                    let (xx, yy) = (hi[0] * gj[0], hi[1] * gj[1]);
                     // Rows (2 v_i, 2 v_i + 1), columns (2 v_j, 2 v_j + 1).
-                    data[c0] += local[2 * i][2 * j];
-                    data[c0 + 1] += local[2 * i + 1][2 * j];
-                    data[c1] += local[2 * i][2 * j + 1];
-                    data[c1 + 1] += local[2 * i + 1][2 * j + 1];
+                    data[c0] += 2.0 * xx + yy;
+                    data[c0 + 1] += hi[0] * gj[1];
+                    data[c1] += hi[1] * gj[0];
+                    data[c1 + 1] += xx + 2.0 * yy;
                 }
             }
         }
@@ -122,31 +130,11 @@ impl KillingMatrix {
 /// triangle, and its area: `grad phi_a = rot90(p_c - p_b) / (2A)`, and so on.
 pub fn basis_gradients(p: [Point; 3]) -> ([Point; 3], f64) {
     let twice_area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+    let inverse = 1.0 / twice_area;
     let mut g = [[0.0; 2]; 3];
     for i in 0..3 {
         let (b, c) = (p[(i + 1) % 3], p[(i + 2) % 3]);
-        g[i] = [-(c[1] - b[1]) / twice_area, (c[0] - b[0]) / twice_area];
+        g[i] = [-(c[1] - b[1]) * inverse, (c[0] - b[0]) * inverse];
     }
     (g, 0.5 * twice_area)
-}
-
-/// The 6 x 6 matrix `A R^T R` of one triangle over `[u1_a, u2_a, u1_b, u2_b, u1_c, u2_c]`.
-fn local_matrix(p: [Point; 3]) -> [[f64; 6]; 6] {
-    let (g, area) = basis_gradients(p);
-    let s2 = std::f64::consts::SQRT_2;
-    // Rows of R: 2 gx.U1, sqrt2 (gy.U1 + gx.U2), 2 gy.U2.
-    let mut r = [[0.0; 6]; 3];
-    for i in 0..3 {
-        r[0][2 * i] = 2.0 * g[i][0];
-        r[1][2 * i] = s2 * g[i][1];
-        r[1][2 * i + 1] = s2 * g[i][0];
-        r[2][2 * i + 1] = 2.0 * g[i][1];
-    }
-    let mut k = [[0.0; 6]; 6];
-    for (a, row_a) in k.iter_mut().enumerate() {
-        for (b, entry) in row_a.iter_mut().enumerate() {
-            *entry = area * (r[0][a] * r[0][b] + r[1][a] * r[1][b] + r[2][a] * r[2][b]);
-        }
-    }
-    k
 }
