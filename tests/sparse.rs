@@ -204,6 +204,55 @@ fn refactorisation_equals_a_fresh_factorisation() {
 }
 
 #[test]
+fn a_principal_submatrix_factors_straight_from_the_whole_matrix_values() {
+    let mut rng = Rng::new(11);
+    let a = random_spd(70, 300, &mut rng);
+    // Keep every unknown but those divisible by 3; build the submatrix and, for each of its
+    // entries, the slot of A's data it comes from.
+    let keep: Vec<usize> = (0..70).filter(|i| i % 3 != 0).collect();
+    let mut index = vec![usize::MAX; 70];
+    for (k, &i) in keep.iter().enumerate() {
+        index[i] = k;
+    }
+    let mut tri = TriMat::new((keep.len(), keep.len()));
+    let mut map = Vec::new();
+    for (col, &c) in keep.iter().enumerate() {
+        for p in a.indptr().outer_inds_sz(c) {
+            let row = index[a.indices()[p]];
+            if row != usize::MAX {
+                tri.add_triplet(row, col, a.data()[p]);
+            }
+        }
+    }
+    let sub: CsMat<f64> = tri.to_csc();
+    for col in 0..keep.len() {
+        for p in sub.indptr().outer_inds_sz(col) {
+            let (i, j) = (keep[sub.indices()[p]], keep[col]);
+            map.push(a.indptr().outer_inds_sz(j).find(|&q| a.indices()[q] == i).unwrap());
+        }
+    }
+    let gathered =
+        Numeric::factor(Arc::new(Symbolic::analyse(sub.view(), &Ordering::Amd).unwrap()), sub.view()).unwrap();
+    let through = Symbolic::analyse(sub.view(), &Ordering::Amd).unwrap().reading_values_through(&map, a.nnz()).unwrap();
+    let mut numeric = Numeric::new(Arc::new(through));
+    numeric.refactor_values(a.data()).unwrap();
+    assert_eq!(numeric.to_dense_lower(), gathered.to_dense_lower());
+    assert!(reconstruction_error(&numeric, &sub) < 1e-13);
+    // The submatrix's own values are not what this analysis reads, and a pattern cannot
+    // be checked against a map: both refused, with no usable factor left.
+    assert_eq!(numeric.refactor_values(sub.data()), Err(FactorError::PatternMismatch));
+    assert_eq!(numeric.refactor(sub.view()), Err(FactorError::PatternMismatch));
+    assert_eq!(numeric.solve_in_place(&mut vec![0.0; keep.len()]), Err(FactorError::NotFactored));
+    // A map of the wrong length, or pointing outside the source, is refused.
+    let analyse = || Symbolic::analyse(sub.view(), &Ordering::Amd).unwrap();
+    let refused = Some(FactorError::ValueMap { entries: map.len(), source_len: a.nnz() });
+    assert_eq!(analyse().reading_values_through(&map[1..], a.nnz()).err(), refused);
+    let mut outside = map.clone();
+    outside[5] = a.nnz();
+    assert_eq!(analyse().reading_values_through(&outside, a.nnz()).err(), refused);
+}
+
+#[test]
 fn non_positive_pivots_name_their_column() {
     // Diagonal with one negative entry: whatever the order, that column fails.
     let n = 12;

@@ -232,34 +232,31 @@ struct Handle {
     weights: [f64; 3],
 }
 
-/// A sparse SPD system whose values are gathered from the Killing matrix, with its factor.
+/// A sparse SPD system on the Killing matrix's values, with its factor.
 #[derive(Debug, Clone)]
 struct System {
-    matrix: CsMat<f64>,
-    /// For each entry of `matrix`, the slot of the Killing matrix it copies; `None` when
-    /// `matrix` has the Killing matrix's pattern (entry `p` copies slot `p`).
-    from_killing: Option<Vec<usize>>,
+    /// Step 1's values: a copy of K's data that the handle penalties are added to. Empty for
+    /// step 2, whose factorisation reads K's data straight through its analysis's map.
+    values: Vec<f64>,
     numeric: Numeric,
 }
 
 impl System {
-    /// Analyses the matrix with its unknowns (two per vertex) in the given vertex order.
-    fn new(matrix: CsMat<f64>, from_killing: Option<Vec<usize>>, vertex_order: &[usize]) -> Self {
+    /// Analyses `matrix` with its unknowns (two per vertex) in the given vertex order. With
+    /// `from_killing = Some(map)`, `matrix` is a submatrix of the Killing matrix `k` whose
+    /// entry `p` is K's entry `map[p]`, and refactorisations read K's data; otherwise `matrix`
+    /// is `k` and they read the system's own copy, `values`.
+    fn new(matrix: &CsMat<f64>, k: &CsMat<f64>, from_killing: Option<&[usize]>, vertex_order: &[usize]) -> Self {
         let order = expand_blocks(vertex_order, 2);
         let symbolic = Symbolic::analyse(matrix.view(), &Ordering::Given(order))
             .expect("a vertex order expanded to blocks is a valid ordering of a square CSC matrix");
-        Self { matrix, from_killing, numeric: Numeric::new(Arc::new(symbolic)) }
-    }
-
-    fn gather(&mut self, killing: &[f64]) {
-        match &self.from_killing {
-            None => self.matrix.data_mut().copy_from_slice(killing),
-            Some(from) => {
-                for (value, &slot) in self.matrix.data_mut().iter_mut().zip(from) {
-                    *value = killing[slot];
-                }
+        let (symbolic, values) = match from_killing {
+            Some(map) => {
+                (symbolic.reading_values_through(map, k.nnz()).expect("the map has a slot of K per entry"), Vec::new())
             }
-        }
+            None => (symbolic, k.data().to_vec()),
+        };
+        Self { values, numeric: Numeric::new(Arc::new(symbolic)) }
     }
 }
 
@@ -322,7 +319,7 @@ impl Deformer {
                 None => by_degree,
             }
         };
-        let soft = System::new(k.clone(), None, &choose(&ptr, &adj, dissection.clone()));
+        let soft = System::new(k, k, None, &choose(&ptr, &adj, dissection.clone()));
 
         let mut interior_index = vec![NONE; n];
         let mut interior_count = 0;
@@ -338,7 +335,7 @@ impl Deformer {
             let (ptr, adj) = renumber(&ptr, &adj, &interior_index);
             let interior_dissection =
                 dissection.map(|order| order.iter().map(|&v| interior_index[v]).filter(|&i| i != NONE).collect());
-            (Some(System::new(matrix, Some(from_killing), &choose(&ptr, &adj, interior_dissection))), coupling)
+            (Some(System::new(&matrix, k, Some(&from_killing), &choose(&ptr, &adj, interior_dissection))), coupling)
         };
 
         Ok(Self {
@@ -518,8 +515,8 @@ impl Deformer {
         let t0 = clock();
         self.killing.assemble(&self.positions);
         let k = self.killing.matrix().data();
-        self.soft.gather(k);
-        let data = self.soft.matrix.data_mut();
+        self.soft.values.copy_from_slice(k);
+        let data = &mut self.soft.values;
         let rhs = &mut self.next_soft;
         rhs.fill(0.0);
         for ((h, slots), u) in self.handles.iter().zip(&self.penalty_slots).zip(velocities) {
@@ -539,11 +536,8 @@ impl Deformer {
         // is step 2's condition, and step 2's solution is unique (K_II is positive definite):
         // U_opt = U0, so the second factorisation is skipped.
         let dirichlet = self.options.dirichlet && !self.boundary_handles_only;
-        if let (true, Some(system)) = (dirichlet, &mut self.dirichlet) {
-            system.gather(k);
-        }
         let t1 = clock();
-        self.soft.numeric.refactor_values(self.soft.matrix.data())?;
+        self.soft.numeric.refactor_values(&self.soft.values)?;
         let t2 = clock();
         self.soft.numeric.solve_in_place(&mut self.next_soft)?;
         let t3 = clock();
@@ -563,7 +557,7 @@ impl Deformer {
             rhs[row] -= k[slot] * self.next_soft[col];
         }
         let t5 = clock();
-        system.numeric.refactor_values(system.matrix.data())?;
+        system.numeric.refactor_values(k)?;
         let t6 = clock();
         system.numeric.solve_in_place(rhs)?;
         for (v, &i) in self.interior_index.iter().enumerate() {

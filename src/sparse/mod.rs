@@ -72,6 +72,14 @@ pub enum FactorError {
     },
     /// A solve was asked of a factor whose last factorisation failed or never ran.
     NotFactored,
+    /// A value map ([`Symbolic::reading_values_through`]) does not have one slot per entry
+    /// of the analysed pattern, or names a slot outside its source.
+    ValueMap {
+        /// Entries of the analysed pattern.
+        entries: usize,
+        /// Length of the source.
+        source_len: usize,
+    },
     /// A right-hand side has the wrong length.
     DimensionMismatch {
         /// Expected length.
@@ -94,6 +102,9 @@ impl fmt::Display for FactorError {
                 "the matrix is not positive definite: pivot {pivot} at column {column} (of the original matrix)"
             ),
             Self::NotFactored => write!(f, "no valid factorisation: the last one failed or none was computed"),
+            Self::ValueMap { entries, source_len } => {
+                write!(f, "a value map must give a slot below {source_len} for each of the pattern's {entries} entries")
+            }
             Self::DimensionMismatch { expected, found } => {
                 write!(f, "right-hand side has length {found}, expected {expected}")
             }

@@ -86,12 +86,13 @@ impl Numeric {
 
     /// Factors new values on the analysed pattern: `a_data` is the data array of a matrix
     /// with exactly the analysed pattern (the same entries in the same compressed sparse
-    /// column order). Only its length can be checked. On error the factor is marked
-    /// unusable until a later refactorisation succeeds.
+    /// column order), or the source of [`Symbolic::reading_values_through`]. Only its length
+    /// can be checked. On error the factor is marked unusable until a later refactorisation
+    /// succeeds.
     pub fn refactor_values(&mut self, a_data: &[f64]) -> Result<(), FactorError> {
         self.valid = false;
         let sym = &*self.symbolic;
-        if a_data.len() != sym.a_indices.len() {
+        if a_data.len() != sym.source_len {
             return Err(FactorError::PatternMismatch);
         }
         self.list_head.fill(NONE);

@@ -44,6 +44,12 @@ pub struct Symbolic {
     /// of A are not read.
     pub(super) a_entry_start: Vec<usize>,
     pub(super) a_entries: Vec<(usize, usize)>,
+    /// Length of the value array a refactorisation reads: A's entry count, or that of the
+    /// source given to [`Self::reading_values_through`].
+    pub(super) source_len: usize,
+    /// Whether `a_entries` index a source other than A's own data (then the pattern of a
+    /// matrix cannot be checked against them).
+    pub(super) through_map: bool,
     /// Supernode `s` holds columns `super_start[s]..super_start[s + 1]` of L.
     pub(super) super_start: Vec<usize>,
     pub(super) col_to_super: Vec<usize>,
@@ -118,11 +124,13 @@ impl Symbolic {
         let flops = counts.iter().map(|&c| (c * c) as f64).sum();
         Ok(Self {
             n,
+            source_len: indices.len(),
             perm,
             a_indptr: indptr,
             a_indices: indices,
             a_entry_start,
             a_entries,
+            through_map: false,
             super_start,
             col_to_super,
             row_start,
@@ -176,9 +184,31 @@ impl Symbolic {
     }
 
     /// Whether `a` has exactly the analysed pattern.
+    /// The same analysis, with refactorisations reading the analysed pattern's entry `p` (in
+    /// its compressed-column order) from `source[map[p]]`, `source` having `source_len`
+    /// entries: a caller whose matrix is a submatrix of another one can factor straight from
+    /// the other's values, without gathering them first. Only
+    /// [`super::Numeric::refactor_values`] (given the source) works on the result;
+    /// [`super::Numeric::refactor`] reports [`FactorError::PatternMismatch`].
+    ///
+    /// Errors: [`FactorError::ValueMap`] if `map` does not have one entry per entry of the
+    /// analysed pattern, or if an entry of `map` is not below `source_len`.
+    pub fn reading_values_through(mut self, map: &[usize], source_len: usize) -> Result<Self, FactorError> {
+        if map.len() != self.a_indices.len() || map.iter().any(|&slot| slot >= source_len) {
+            return Err(FactorError::ValueMap { entries: self.a_indices.len(), source_len });
+        }
+        for entry in &mut self.a_entries {
+            entry.1 = map[entry.1];
+        }
+        self.source_len = source_len;
+        self.through_map = true;
+        Ok(self)
+    }
+
     pub(super) fn same_pattern(&self, a: CsMatView<'_>) -> bool {
         let offset = a.indptr().index(0);
-        a.is_csc()
+        !self.through_map
+            && a.is_csc()
             && a.rows() == self.n
             && a.cols() == self.n
             && a.indices() == self.a_indices.as_slice()
