@@ -171,9 +171,15 @@ impl Numeric {
         }
         let ns = sym.supernode_count();
         // Forward, L y = P b: per supernode, a dense triangular solve on its own columns,
-        // then the rows below get `L21 x` accumulated densely and subtracted once.
+        // then the rows below get `L21 x` accumulated densely and subtracted once. A
+        // supernode whose entries of y are all zero stays zero and sends nothing: skipped
+        // (right-hand sides that live on a few unknowns, as the deformer's do, reach only
+        // their ancestors in the elimination tree).
         for s in 0..ns {
             let (first, width, rows, range) = sym.supernode(s);
+            if y[first..first + width].iter().all(|&v| v == 0.0) {
+                continue;
+            }
             let block = &self.values[range];
             let height = rows.len();
             let below = &mut below[..height - width];
