@@ -274,8 +274,6 @@ pub struct Deformer {
     dirichlet: Option<System>,
     /// Interior vertex index of each vertex, or `NONE` on the boundary.
     interior_index: Vec<usize>,
-    /// K entries coupling interior rows to boundary columns: (slot, interior row, column).
-    coupling: Vec<(usize, usize, usize)>,
     handles: Vec<Handle>,
     /// Per handle, for each of its 9 vertex pairs, the two diagonal slots of the block.
     penalty_slots: Vec<[[usize; 2]; 9]>,
@@ -327,15 +325,15 @@ impl Deformer {
             interior_index[v] = interior_count;
             interior_count += 1;
         }
-        let (dirichlet, coupling) = if interior_count == 0 {
-            (None, Vec::new())
+        let dirichlet = if interior_count == 0 {
+            None
         } else {
-            let (matrix, from_killing, coupling) = interior_system(k, &interior_index, interior_count);
+            let (matrix, from_killing) = interior_system(k, &interior_index, interior_count);
             let (ptr, adj) = vertex_graph(&mesh, |v| interior_index[v] != NONE);
             let (ptr, adj) = renumber(&ptr, &adj, &interior_index);
             let interior_dissection =
                 dissection.map(|order| order.iter().map(|&v| interior_index[v]).filter(|&i| i != NONE).collect());
-            (Some(System::new(&matrix, k, Some(&from_killing), &choose(&ptr, &adj, interior_dissection))), coupling)
+            Some(System::new(&matrix, k, Some(&from_killing), &choose(&ptr, &adj, interior_dissection)))
         };
 
         Ok(Self {
@@ -348,7 +346,6 @@ impl Deformer {
             dirichlet,
             interior_rhs: vec![0.0; 2 * interior_count],
             interior_index,
-            coupling,
             handles: Vec::new(),
             penalty_slots: Vec::new(),
             distinct_points: 0,
@@ -550,11 +547,28 @@ impl Deformer {
             return Ok(());
         }
         let Some(system) = &mut self.dirichlet else { return Ok(()) };
+        // Step 2 as a correction of U0: K_II U_I = -K_IB U0_B is K_II (U0_I - U_I) = r_I with
+        // r = K U0, and step 1's optimality, (K + lambda P) U0 = lambda W^T u, makes
+        // r = lambda W^T (u - W U0): nonzero on handle vertices only, so the forward solve
+        // reaches only their ancestors in the elimination tree.
         let t4 = clock();
         let rhs = &mut self.interior_rhs;
         rhs.fill(0.0);
-        for &(slot, row, col) in &self.coupling {
-            rhs[row] -= k[slot] * self.next_soft[col];
+        let u0: &[[f64; 2]] = as_pairs(&self.next_soft);
+        for (h, u) in self.handles.iter().zip(velocities) {
+            let mut at = [0.0, 0.0];
+            for (&v, &w) in h.vertices.iter().zip(&h.weights) {
+                at[0] += w * u0[v as usize][0];
+                at[1] += w * u0[v as usize][1];
+            }
+            let force = [lambda * (u[0] - at[0]), lambda * (u[1] - at[1])];
+            for (&v, &w) in h.vertices.iter().zip(&h.weights) {
+                let i = self.interior_index[v as usize];
+                if i != NONE {
+                    rhs[2 * i] += w * force[0];
+                    rhs[2 * i + 1] += w * force[1];
+                }
+            }
         }
         let t5 = clock();
         system.numeric.refactor_values(k)?;
@@ -562,8 +576,8 @@ impl Deformer {
         system.numeric.solve_in_place(rhs)?;
         for (v, &i) in self.interior_index.iter().enumerate() {
             if i != NONE {
-                self.next_field[2 * v] = rhs[2 * i];
-                self.next_field[2 * v + 1] = rhs[2 * i + 1];
+                self.next_field[2 * v] -= rhs[2 * i];
+                self.next_field[2 * v + 1] -= rhs[2 * i + 1];
             }
         }
         let t7 = clock();
@@ -662,14 +676,9 @@ fn renumber(ptr: &[usize], adj: &[usize], index: &[usize]) -> (Vec<usize>, Vec<u
     (ptr.to_vec(), adj.iter().map(|&w| index[w]).collect())
 }
 
-/// The interior block `K_II` of the Killing matrix (pattern and source slots) and the
-/// entries coupling interior rows to boundary columns.
-#[allow(clippy::type_complexity)]
-fn interior_system(
-    k: &CsMat<f64>,
-    interior_index: &[usize],
-    interior_count: usize,
-) -> (CsMat<f64>, Vec<usize>, Vec<(usize, usize, usize)>) {
+/// The interior block `K_II` of the Killing matrix: its pattern, and for each of its
+/// entries the slot of K's data it comes from.
+fn interior_system(k: &CsMat<f64>, interior_index: &[usize], interior_count: usize) -> (CsMat<f64>, Vec<usize>) {
     let unknown = |g: usize| {
         let i = interior_index[g / 2];
         (i != NONE).then(|| 2 * i + g % 2)
@@ -677,19 +686,14 @@ fn interior_system(
     let mut indptr = vec![0];
     let mut indices = Vec::new();
     let mut from = Vec::new();
-    let mut coupling = Vec::new();
     for col in 0..k.cols() {
         let range = k.indptr().outer_inds_sz(col);
         let col_interior = unknown(col);
         for p in range {
             let row = k.indices()[p];
-            match (unknown(row), col_interior) {
-                (Some(r), Some(_)) => {
-                    indices.push(r);
-                    from.push(p);
-                }
-                (Some(r), None) => coupling.push((p, r, col)),
-                _ => {}
+            if let (Some(r), Some(_)) = (unknown(row), col_interior) {
+                indices.push(r);
+                from.push(p);
             }
         }
         if col_interior.is_some() {
@@ -698,5 +702,5 @@ fn interior_system(
     }
     let nnz = indices.len();
     let m = 2 * interior_count;
-    (CsMat::new_csc((m, m), indptr, indices, vec![0.0; nnz]), from, coupling)
+    (CsMat::new_csc((m, m), indptr, indices, vec![0.0; nnz]), from)
 }
