@@ -218,16 +218,16 @@ pub fn order_flops(ptr: &[usize], adj: &[usize], order: &[usize], block: usize) 
 pub const DISSECTION_MIN_NODES: usize = 12_000;
 
 /// A fill-reducing order of the nodes of a graph with `block` unknowns per node (as
-/// [`order_flops`] counts them): approximate minimum degree, or, for graphs of at least
+/// [`order_flops`] counts them): approximate minimum fill ([`super::amf_order`]), or, for graphs of at least
 /// [`DISSECTION_MIN_NODES`] nodes, nested dissection when it needs fewer flops. The graph
 /// is given by symmetric adjacency lists; `positions` has one point per node.
 pub fn fill_reducing_order(ptr: &[usize], adj: &[usize], positions: &[[f64; 2]], block: usize) -> Vec<usize> {
     let n = ptr.len() - 1;
-    let by_degree = super::amd_order(n, ptr, adj);
+    let by_fill = super::amf_order(n, ptr, adj);
     if n < DISSECTION_MIN_NODES {
-        return by_degree;
+        return by_fill;
     }
-    cheaper_order(ptr, adj, block, by_degree, super::nested_dissection_order(ptr, adj, positions))
+    cheaper_order(ptr, adj, block, by_fill, super::nested_dissection_order(ptr, adj, positions))
 }
 
 /// Whichever of two orders of a graph's nodes needs fewer flops ([`order_flops`]); the
