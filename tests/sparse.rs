@@ -444,7 +444,7 @@ fn minimum_fill_needs_fewer_flops_than_minimum_degree_on_meshes() {
     // About 10k vertices, where nested dissection saves little. Greedy orders depend on
     // the labels (AMD's flops alone vary by ±6%), so the flops are summed over the
     // triangulator's labels and three random relabellings. Measured (AMF over AMD): 0.91
-    // on the gingerbread (0.97 on its own labels), 0.84 on the toothed bar (0.84).
+    // on the gingerbread (0.97 on its own labels), 0.84 on the toothed bar (0.90).
     use akap::{shapes, triangulate, TriangulationOptions};
     for figure in [shapes::gingerbread(), shapes::toothed_bar()] {
         let target = 10_000.0 / 1.6;
