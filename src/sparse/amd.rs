@@ -53,7 +53,7 @@ pub fn amd_order(n: usize, ptr: &[usize], indices: &[usize]) -> Vec<usize> {
 /// but each pivot is a supervariable of least approximate mean local fill (the fill its
 /// elimination creates per variable eliminated, see [`super::priority`]) rather than of
 /// least approximate degree. About 2x the time of [`amd_order`]; on the vertex graphs of
-/// triangle meshes its orders need 0.81-0.94x the factorisation flops of AMD's.
+/// triangle meshes its orders need 0.81-0.96x the factorisation flops of AMD's.
 pub fn amf_order(n: usize, ptr: &[usize], indices: &[usize]) -> Vec<usize> {
     constrained_order(n, ptr, indices, Vec::new(), Score::MeanFill)
 }

@@ -19,7 +19,7 @@
 //!
 //! Measured on the vertex graphs of the built-in shapes (1k-50k vertices, averaged over
 //! random relabellings, flops of [`super::order_flops`] with 2x2 blocks), AMMF needs
-//! 0.81-0.94x the flops of AMD. Of the other scores of the paper, `fill - d w` (AMIND)
+//! 0.81-0.96x the flops of AMD. Of the other scores of the paper, `fill - d w` (AMIND)
 //! came within a few percent of AMMF but behind it at 10k vertices, and plain `fill` saved
 //! only 0-5%; breaking ties by degree instead of last-in-first-out did not help.
 
