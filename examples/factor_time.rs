@@ -1,6 +1,6 @@
 //! Minimum over repetitions of one numeric refactorisation of the step-1 matrix (Killing
-//! energy plus handle penalties) of the built-in figure, ordered by AMD and by nested
-//! dissection. `cargo run --release --example factor_time -- 10000`.
+//! energy plus handle penalties) of the built-in figure, ordered by AMD, by approximate
+//! minimum fill and by nested dissection. `cargo run --release --example factor_time -- 10000`.
 //!
 //! With `--count` it does a fixed amount of work instead (one AMD analysis, three
 //! factorisations, one solve) and prints no times, for instruction counting, which is
@@ -9,7 +9,7 @@
 use std::sync::Arc;
 
 use akap::deform::killing::KillingMatrix;
-use akap::sparse::{amd_order, expand_blocks, nested_dissection_order, Numeric, Ordering, Symbolic};
+use akap::sparse::{amd_order, amf_order, expand_blocks, nested_dissection_order, Numeric, Ordering, Symbolic};
 use akap::{shapes, triangulate, TriangulationOptions};
 
 fn main() {
@@ -47,9 +47,11 @@ fn main() {
         println!("n {n}, x[0] = {}", b[0]);
         return;
     }
-    for (name, order) in
-        [("amd", amd_order(n, &ptr, &adj)), ("nd", nested_dissection_order(&ptr, &adj, mesh.positions()))]
-    {
+    for (name, order) in [
+        ("amd", amd_order(n, &ptr, &adj)),
+        ("amf", amf_order(n, &ptr, &adj)),
+        ("nd", nested_dissection_order(&ptr, &adj, mesh.positions())),
+    ] {
         let t = std::time::Instant::now();
         let symbolic = Symbolic::analyse(a.view(), &Ordering::Given(expand_blocks(&order, 2))).unwrap();
         let analyse = t.elapsed().as_secs_f64() * 1e3;

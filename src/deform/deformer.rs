@@ -29,7 +29,7 @@ use super::spiral::{linear_step, spiral_step};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 use crate::sparse::{
-    amd_order, cheaper_order, expand_blocks, nested_dissection_order, FactorError, Numeric, Ordering, Symbolic,
+    amf_order, cheaper_order, expand_blocks, nested_dissection_order, FactorError, Numeric, Ordering, Symbolic,
     DISSECTION_MIN_NODES,
 };
 
@@ -304,17 +304,17 @@ impl Deformer {
         let killing = KillingMatrix::new(&mesh);
         let k = killing.matrix();
 
-        // Orders: minimum degree, and on large meshes nested dissection where it needs
+        // Orders: minimum fill, and on large meshes nested dissection where it needs
         // fewer flops. Dissection runs once, on the whole mesh; step 2 gets its interior
         // vertices in the same order (as good as dissecting the interior graph afresh, within
         // a few percent of flops either way, at no cost).
         let (ptr, adj) = vertex_graph(&mesh, |_| true);
         let dissection = (n >= DISSECTION_MIN_NODES).then(|| nested_dissection_order(&ptr, &adj, mesh.positions()));
         let choose = |ptr: &[usize], adj: &[usize], dissection: Option<Vec<usize>>| {
-            let by_degree = amd_order(ptr.len() - 1, ptr, adj);
+            let by_fill = amf_order(ptr.len() - 1, ptr, adj);
             match dissection {
-                Some(order) => cheaper_order(ptr, adj, 2, by_degree, order),
-                None => by_degree,
+                Some(order) => cheaper_order(ptr, adj, 2, by_fill, order),
+                None => by_fill,
             }
         };
         let soft = System::new(k, k, None, &choose(&ptr, &adj, dissection.clone()));

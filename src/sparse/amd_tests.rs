@@ -1,6 +1,6 @@
 //! Tests of approximate minimum degree ordering (`amd.rs`).
 
-use super::{amd_order, constrained_amd_order};
+use super::{amd_order, amf_order, constrained_order, Score};
 
 /// Marsaglia's xorshift64: deterministic and dependency-free.
 struct Rng(u64);
@@ -60,6 +60,14 @@ impl Pattern {
     fn amd(&self) -> Vec<usize> {
         let order = amd_order(self.n, &self.ptr, &self.indices);
         assert_permutation(&order, self.n);
+        order
+    }
+
+    /// The minimum fill order, checked to be a permutation and deterministic.
+    fn amf(&self) -> Vec<usize> {
+        let order = amf_order(self.n, &self.ptr, &self.indices);
+        assert_permutation(&order, self.n);
+        assert_eq!(order, amf_order(self.n, &self.ptr, &self.indices), "not deterministic");
         order
     }
 }
@@ -460,10 +468,124 @@ fn constrained_order_respects_classes() {
         let edges = simple_edges(&mut rng, n, 3 * n);
         let a = Pattern::from_edges(n, &edges);
         let class: Vec<usize> = (0..n).map(|_| rng.below(3)).collect();
-        let order = constrained_amd_order(n, &a.ptr, &a.indices, class.clone());
+        let order = constrained_order(n, &a.ptr, &a.indices, class.clone(), Score::Degree);
         assert_permutation(&order, n);
         assert!(order.windows(2).all(|w| class[w[0]] <= class[w[1]]), "n {n}: classes out of order");
         // One class: the unconstrained order.
-        assert_eq!(constrained_amd_order(n, &a.ptr, &a.indices, vec![7; n]), amd_order(n, &a.ptr, &a.indices));
+        assert_eq!(
+            constrained_order(n, &a.ptr, &a.indices, vec![7; n], Score::Degree),
+            amd_order(n, &a.ptr, &a.indices)
+        );
+    }
+}
+
+// Approximate minimum fill: the same machinery with another pivot score.
+
+#[test]
+fn minimum_fill_on_empty_and_single_vertex() {
+    assert!(amf_order(0, &[0], &[]).is_empty());
+    assert_eq!(amf_order(1, &[0, 0], &[]), vec![0]);
+    assert_eq!(amf_order(1, &[0, 2], &[0, 0]), vec![0]);
+}
+
+#[test]
+fn minimum_fill_on_random_and_disconnected_patterns_gives_permutations() {
+    let mut rng = Rng(2718);
+    // Density 30 makes some rows dense for n = 100 (threshold 100).
+    for n in [2, 3, 10, 100, 1000] {
+        for density in [0, 1, 3, 10, 30] {
+            random_graph(&mut rng, n, density * n).amf();
+        }
+    }
+    Pattern::from_edges(50, &[]).amf();
+    let label = rng.permutation(600);
+    let mut edges = Vec::new();
+    for c in 0..6 {
+        for (a, b) in simple_edges(&mut rng, 100, 250) {
+            edges.push((label[c * 100 + a], label[c * 100 + b]));
+        }
+    }
+    Pattern::from_edges(600, &edges).amf();
+}
+
+#[test]
+fn minimum_fill_on_trees_and_paths_has_no_fill() {
+    let mut rng = Rng(1618);
+    for n in [1, 2, 3, 10, 1000, 20000] {
+        let a = path_in_scrambled_order(&mut rng, n);
+        assert_eq!(cholesky_nnz(&a, &a.amf()), 2 * n - 1, "path, n = {n}");
+    }
+    for n in [2, 5, 100, 1000, 20000] {
+        let a = random_tree(&mut rng, n);
+        assert_eq!(cholesky_nnz(&a, &a.amf()), 2 * n - 1, "tree, n = {n}");
+    }
+}
+
+#[test]
+fn minimum_fill_orders_dense_rows_and_complete_graphs() {
+    let n = 1000;
+    let mut edges: Vec<(usize, usize)> = (1..n - 2).map(|i| (i, i + 1)).collect();
+    for dense in [0, n - 1] {
+        edges.extend((1..n - 1).map(|i| (dense, i)));
+    }
+    edges.push((0, n - 1));
+    let a = Pattern::from_edges(n, &edges);
+    let order = a.amf();
+    assert_eq!(&order[n - 2..], &[0, n - 1]);
+    assert_eq!(cholesky_nnz(&a, &order), (2 * 998 - 1) + (998 + 1) + (999 + 1));
+    for n in [2, 5, 30, 300] {
+        let edges: Vec<(usize, usize)> = (0..n).flat_map(|i| (0..i).map(move |j| (i, j))).collect();
+        let a = Pattern::from_edges(n, &edges);
+        assert_eq!(cholesky_nnz(&a, &a.amf()), n * (n + 1) / 2);
+    }
+}
+
+/// The pattern with vertex `i` relabelled `label[i]`, as adjacency lists.
+fn relabelled(a: &Pattern, label: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let mut rows = vec![Vec::new(); a.n];
+    for (i, &l) in label.iter().enumerate() {
+        rows[l] = a.row(i).iter().map(|&j| label[j]).collect();
+    }
+    let mut ptr = vec![0];
+    let mut adj = Vec::new();
+    for row in rows {
+        adj.extend(row);
+        ptr.push(adj.len());
+    }
+    (ptr, adj)
+}
+
+#[test]
+fn minimum_fill_needs_fewer_flops_than_minimum_degree_on_grids() {
+    // Summed over relabellings (greedy orders depend on the labels); measured 0.90
+    // (five-point), 0.93 (triangulated) and 0.93 (nine-point). On the 30 x 30 grids the
+    // two are within 1%, and nnz(L) of one labelling may go either way.
+    use crate::sparse::order_flops;
+    let k = 60;
+    for stencil in [Stencil::FivePoint, Stencil::Triangulated, Stencil::NinePoint] {
+        let a = grid(k, stencil);
+        let mut rng = Rng(99);
+        let (mut amd, mut amf) = (0.0, 0.0);
+        for r in 0..6 {
+            let label = if r == 0 { (0..k * k).collect() } else { rng.permutation(k * k) };
+            let (ptr, adj) = relabelled(&a, &label);
+            amd += order_flops(&ptr, &adj, &amd_order(k * k, &ptr, &adj), 2);
+            amf += order_flops(&ptr, &adj, &amf_order(k * k, &ptr, &adj), 2);
+        }
+        assert!(amf < 0.97 * amd, "{stencil:?}: amf {amf:.3e} flops, amd {amd:.3e}");
+    }
+}
+
+#[test]
+fn constrained_minimum_fill_respects_classes() {
+    let mut rng = Rng(0x0123_4567_89ab_cdef);
+    for n in [1, 2, 10, 60, 300] {
+        let edges = simple_edges(&mut rng, n, 3 * n);
+        let a = Pattern::from_edges(n, &edges);
+        let class: Vec<usize> = (0..n).map(|_| rng.below(3)).collect();
+        let order = constrained_order(n, &a.ptr, &a.indices, class.clone(), Score::MeanFill);
+        assert_permutation(&order, n);
+        assert!(order.windows(2).all(|w| class[w[0]] <= class[w[1]]), "n {n}: classes out of order");
+        assert_eq!(constrained_order(n, &a.ptr, &a.indices, vec![7; n], Score::MeanFill), a.amf());
     }
 }

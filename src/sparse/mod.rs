@@ -23,12 +23,13 @@ mod dense;
 mod graph;
 mod nested_dissection;
 mod numeric;
+mod priority;
 mod separator;
 mod symbolic;
 
 use std::fmt;
 
-pub use amd::amd_order;
+pub use amd::{amd_order, amf_order};
 pub use nested_dissection::{expand_blocks, nested_dissection_order};
 pub use numeric::Numeric;
 pub use symbolic::{cheaper_order, fill_reducing_order, order_flops, Symbolic, DISSECTION_MIN_NODES};

@@ -8,15 +8,17 @@
 //! turn (each of their connected components on its own) until parts have at most
 //! [`LEAF_SIZE`] vertices. The order itself is a multisection (Ashcraft and Liu, "Robust
 //! ordering of sparse matrices using multisection", SIAM J. Matrix Anal. Appl. 19(3),
-//! 1998): constrained minimum degree ([`super::amd::constrained_amd_order`]) eliminates
-//! first all the leaves (the domains), with the separators around them counted in the
-//! degrees, then the union of all separators (the multisector). Measured on the built-in
-//! shapes (`examples/orderings.rs`), this needs clearly fewer flops than both pure
-//! minimum degree and the strict nested-dissection order (each separator after both of
-//! its halves), which the multisector's minimum degree is free to improve on.
+//! 1998): constrained approximate minimum fill ([`super::amd::constrained_order`],
+//! [`super::amf_order`]) eliminates first all the leaves (the domains), with the separators
+//! around them counted in the degrees, then the union of all separators (the multisector).
+//! Measured on the built-in shapes (`examples/orderings.rs`), this needs clearly fewer
+//! flops than both pure minimum degree and the strict nested-dissection order (each
+//! separator after both of its halves), which the multisector's greedy order is free to
+//! improve on; minimum fill there instead of minimum degree saves another 2-8%.
 
-use super::amd::constrained_amd_order;
-use super::amd_order;
+use super::amd::constrained_order;
+use super::amf_order;
+use super::priority::Score;
 use super::separator::{bisect, Refiner, WGraph, NONE, SEPARATOR};
 
 /// Parts with at most this many vertices are not split further.
@@ -33,7 +35,7 @@ pub fn nested_dissection_order(ptr: &[usize], indices: &[usize], positions: &[[f
     let n = positions.len();
     assert_eq!(ptr.len(), n + 1, "ptr must have one entry per vertex plus one");
     if n <= LEAF_SIZE || n >= NONE as usize {
-        return amd_order(n, ptr, indices);
+        return amf_order(n, ptr, indices);
     }
     // The graph without self-loops and repeated entries.
     let mut graph = WGraph { ptr: Vec::with_capacity(n + 1), adj: Vec::new(), ewgt: Vec::new(), vwgt: vec![1; n] };
@@ -57,7 +59,7 @@ pub fn nested_dissection_order(ptr: &[usize], indices: &[usize], positions: &[[f
         Dissection { class: vec![0; n], label: vec![NONE; n], local: vec![NONE; n], refiner: Refiner::default() };
     let all: Vec<u32> = (0..n as u32).collect();
     dissection.split(&graph, &all);
-    constrained_amd_order(n, ptr, indices, dissection.class)
+    constrained_order(n, ptr, indices, dissection.class, Score::MeanFill)
 }
 
 /// Expands an order of vertices to `block` unknowns per vertex, numbered

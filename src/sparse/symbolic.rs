@@ -241,23 +241,25 @@ pub fn order_flops(ptr: &[usize], adj: &[usize], order: &[usize], block: usize) 
         .sum()
 }
 
-/// Graphs with fewer nodes than this are ordered by minimum degree alone: below it, our
-/// nested dissection saved few flops or none on the meshes measured (1.1-1.4x AMD's at 1.7k
-/// vertices, 0.91-1.05x at 8k, 0.97x at 9.6k; 0.89-0.90x at 16k, 0.80-0.85x at 46k-79k;
-/// `cargo run --release --example orderings`), and it takes 5-8x AMD's time.
+/// Graphs with fewer nodes than this are ordered by minimum fill alone: below it, our
+/// nested dissection saved few flops or none on the meshes measured (relative to AMD's
+/// flops, averaged over relabellings: 1.3-1.4x at 1k vertices, 1.0-1.07x at 5k, 0.91-0.93x
+/// at 10k, where minimum fill needs 0.86-0.90x; at 16k 0.85-0.91x against 0.86-0.88x, at
+/// 50k 0.78-0.80x against 0.81-0.85x; `cargo run --release --example orderings -- --relabel
+/// 4`), and it takes 3-4x minimum fill's time (5-8x AMD's).
 pub const DISSECTION_MIN_NODES: usize = 12_000;
 
 /// A fill-reducing order of the nodes of a graph with `block` unknowns per node (as
-/// [`order_flops`] counts them): approximate minimum degree, or, for graphs of at least
+/// [`order_flops`] counts them): approximate minimum fill ([`super::amf_order`]), or, for graphs of at least
 /// [`DISSECTION_MIN_NODES`] nodes, nested dissection when it needs fewer flops. The graph
 /// is given by symmetric adjacency lists; `positions` has one point per node.
 pub fn fill_reducing_order(ptr: &[usize], adj: &[usize], positions: &[[f64; 2]], block: usize) -> Vec<usize> {
     let n = ptr.len() - 1;
-    let by_degree = super::amd_order(n, ptr, adj);
+    let by_fill = super::amf_order(n, ptr, adj);
     if n < DISSECTION_MIN_NODES {
-        return by_degree;
+        return by_fill;
     }
-    cheaper_order(ptr, adj, block, by_degree, super::nested_dissection_order(ptr, adj, positions))
+    cheaper_order(ptr, adj, block, by_fill, super::nested_dissection_order(ptr, adj, positions))
 }
 
 /// Whichever of two orders of a graph's nodes needs fewer flops ([`order_flops`]); the
