@@ -78,11 +78,12 @@ pub(super) fn cholesky_trapezoid(b: &mut [f64], height: usize, width: usize) -> 
 /// `panel[r, c] -= sum_{t < j0} done[r, t] done[j0 + c, t]` for the four panel columns c
 /// and rows `r >= j0` (all column-major with leading dimension `height`).
 fn subtract_panel_update(panel: &mut [f64], done: &[f64], height: usize, j0: usize) {
+    // Stated once, so that the compiler can drop the bounds checks of the inner loop.
+    assert!(j0 + 4 <= height && done.len() >= j0 * height);
     let mut r = j0;
     while r + 4 <= height {
         let mut acc = [[0.0f64; 4]; 4];
-        for t in 0..j0 {
-            let col = &done[t * height..(t + 1) * height];
+        for col in done.chunks_exact(height).take(j0) {
             let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
             let b: [f64; 4] = col[j0..j0 + 4].try_into().expect("four columns");
             for (acc_c, bc) in acc.iter_mut().zip(b) {
@@ -117,13 +118,15 @@ fn subtract_panel_update(panel: &mut [f64], done: &[f64], height: usize, j0: usi
 /// Register-blocked: four columns of `c` and four rows at a time accumulate over `t`, so
 /// each element of `a` loaded serves four multiply-adds and `c` is written once.
 pub(super) fn update_block(c: &mut [f64], a: &[f64], lda: usize, m: usize, q: usize, k: usize) {
+    // Stated once, so that the compiler can drop the bounds checks of the inner loops.
+    assert!(q <= m && m <= lda);
     let mut i0 = 0;
     while i0 + 4 <= q {
         let mut r = i0;
         while r + 4 <= m {
             let mut acc = [[0.0f64; 4]; 4];
             for t in 0..k {
-                let col = &a[t * lda..];
+                let col = &a[t * lda..t * lda + m];
                 let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
                 let b: [f64; 4] = col[i0..i0 + 4].try_into().expect("four columns");
                 for (acc_c, bc) in acc.iter_mut().zip(b) {
@@ -140,7 +143,7 @@ pub(super) fn update_block(c: &mut [f64], a: &[f64], lda: usize, m: usize, q: us
         for r in r..m {
             let mut acc = [0.0f64; 4];
             for t in 0..k {
-                let col = &a[t * lda..];
+                let col = &a[t * lda..t * lda + m];
                 for (j, acc_j) in acc.iter_mut().enumerate() {
                     *acc_j += col[r] * col[i0 + j];
                 }
