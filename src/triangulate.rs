@@ -3,7 +3,9 @@
 //! This is the only module that touches spade. The outline's segments become constraint
 //! edges; refinement inserts Steiner points until every triangle inside the shape is below
 //! the area limit and above the minimum angle (near sharp input corners no triangulation can
-//! promise the angle, and refinement leaves those corners alone). Constraint edges may be
+//! promise the angle, and refinement leaves those corners alone; spade does so at every
+//! convex corner, so a triangle whose shortest edge joins the two sides of a corner can stay
+//! below the angle even when the corner is wider than 60 degrees). Constraint edges may be
 //! split, never moved, so the boundary of the mesh traces the outline exactly.
 
 use std::fmt;
