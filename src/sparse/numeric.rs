@@ -125,11 +125,34 @@ impl Numeric {
                 for (slot, &r) in self.positions.iter_mut().zip(&k_rows[p..]) {
                     *slot = self.relative[r];
                 }
-                for i in 0..q {
-                    let target = &mut block[(k_rows[p + i] - first) * height..(k_rows[p + i] - first + 1) * height];
-                    let source = &self.update[i * m + i..(i + 1) * m];
-                    for (&position, &value) in self.positions[i..m].iter().zip(source) {
-                        target[position] -= value;
+                if sym.paired {
+                    // Columns i, i + 1 and rows in pairs: m and q are even, and the pair of
+                    // rows (i, i + 1) lands on the target's diagonal block, whose entry above
+                    // the diagonal (column i + 1, row i) is scratch.
+                    for i in (0..q).step_by(2) {
+                        let column = k_rows[p + i] - first;
+                        let (left, right) = block.split_at_mut((column + 1) * height);
+                        let (target_a, target_b) = (&mut left[column * height..], &mut right[..height]);
+                        let (positions, _) = self.positions[i..m].as_chunks::<2>();
+                        let (source_a, _) = self.update[i * m + i..(i + 1) * m].as_chunks::<2>();
+                        let (source_b, _) = self.update[(i + 1) * m + i..(i + 2) * m].as_chunks::<2>();
+                        for ((position, a), b) in positions.iter().zip(source_a).zip(source_b) {
+                            let r = position[0];
+                            let pair_a = &mut target_a[r..r + 2];
+                            pair_a[0] -= a[0];
+                            pair_a[1] -= a[1];
+                            let pair_b = &mut target_b[r..r + 2];
+                            pair_b[0] -= b[0];
+                            pair_b[1] -= b[1];
+                        }
+                    }
+                } else {
+                    for i in 0..q {
+                        let target = &mut block[(k_rows[p + i] - first) * height..(k_rows[p + i] - first + 1) * height];
+                        let source = &self.update[i * m + i..(i + 1) * m];
+                        for (&position, &value) in self.positions[i..m].iter().zip(source) {
+                            target[position] -= value;
+                        }
                     }
                 }
                 self.next_row[k] = p + q;

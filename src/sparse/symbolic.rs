@@ -62,6 +62,10 @@ pub struct Symbolic {
     pub(super) value_start: Vec<usize>,
     /// Largest update block a supernode sends to an ancestor (rows below its columns, squared).
     pub(super) max_update: usize,
+    /// Whether every supernode starts at an even column and its rows come in pairs
+    /// `(2v, 2v + 1)` (a matrix of 2x2 vertex blocks, ordered vertex by vertex): updates are
+    /// then scattered two rows and two columns at a time.
+    pub(super) paired: bool,
     nnz_l: usize,
     flops: f64,
 }
@@ -120,6 +124,11 @@ impl Symbolic {
 
         let (a_entry_start, a_entries) =
             a_entry_slots(&indptr, &indices, &inv, &super_start, &col_to_super, &row_start, &rows);
+        let paired = super_start.iter().all(|&s| s % 2 == 0)
+            && (0..ns).all(|s| {
+                let rows = &rows[row_start[s]..row_start[s + 1]];
+                rows.len() % 2 == 0 && rows.chunks_exact(2).all(|pair| pair[0] % 2 == 0 && pair[1] == pair[0] + 1)
+            });
         let nnz_l = counts.iter().sum();
         let flops = counts.iter().map(|&c| (c * c) as f64).sum();
         Ok(Self {
@@ -137,6 +146,7 @@ impl Symbolic {
             rows,
             value_start,
             max_update,
+            paired,
             nnz_l,
             flops,
         })
