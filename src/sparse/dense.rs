@@ -154,6 +154,40 @@ pub(super) fn update_block(c: &mut [f64], a: &[f64], lda: usize, m: usize, q: us
         }
         i0 += 4;
     }
+    if i0 + 2 <= q {
+        // Two columns left (as with 2x2 vertex blocks): four rows by two columns at a time.
+        let mut r = i0;
+        while r + 4 <= m {
+            let mut acc = [[0.0f64; 4]; 2];
+            for t in 0..k {
+                let col = &a[t * lda..t * lda + m];
+                let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
+                let b: [f64; 2] = col[i0..i0 + 2].try_into().expect("two columns");
+                for (acc_c, bc) in acc.iter_mut().zip(b) {
+                    for (acc_cr, xr) in acc_c.iter_mut().zip(x) {
+                        *acc_cr += xr * bc;
+                    }
+                }
+            }
+            for (j, acc_c) in acc.iter().enumerate() {
+                c[(i0 + j) * m + r..(i0 + j) * m + r + 4].copy_from_slice(acc_c);
+            }
+            r += 4;
+        }
+        for r in r..m {
+            let mut acc = [0.0f64; 2];
+            for t in 0..k {
+                let col = &a[t * lda..t * lda + m];
+                for (j, acc_j) in acc.iter_mut().enumerate() {
+                    *acc_j += col[r] * col[i0 + j];
+                }
+            }
+            for (j, acc_j) in acc.iter().enumerate() {
+                c[(i0 + j) * m + r] = *acc_j;
+            }
+        }
+        i0 += 2;
+    }
     for i in i0..q {
         let out = &mut c[i * m + i..i * m + m];
         out.fill(0.0);
