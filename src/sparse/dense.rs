@@ -34,15 +34,18 @@ pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// `L21 = A21 L11^-T`. Returns the failing column and its pivot if one is not positive.
 /// Entries above the diagonal are scratch and may be overwritten.
 ///
-/// Left-looking by panels of four columns: a panel is first updated by all columns to
-/// its left with a register-blocked kernel, then factored column by column.
+/// Left-looking by panels of four columns (the last one of two or one): a panel is first
+/// updated by all columns to its left with a register-blocked kernel (with plain `axpy`s
+/// for a single column), then factored column by column.
 pub(super) fn cholesky_trapezoid(b: &mut [f64], height: usize, width: usize) -> Result<(), (usize, f64)> {
     let mut j0 = 0;
     while j0 < width {
         let panel = (width - j0).min(4);
         let (done, rest) = b.split_at_mut(j0 * height);
         if panel == 4 {
-            subtract_panel_update(rest, done, height, j0);
+            subtract_panel_update::<4>(rest, done, height, j0);
+        } else if panel == 2 {
+            subtract_panel_update::<2>(rest, done, height, j0);
         } else {
             for j in 0..panel {
                 let col = &mut rest[j * height + j0 + j..(j + 1) * height];
@@ -75,17 +78,18 @@ pub(super) fn cholesky_trapezoid(b: &mut [f64], height: usize, width: usize) -> 
     Ok(())
 }
 
-/// `panel[r, c] -= sum_{t < j0} done[r, t] done[j0 + c, t]` for the four panel columns c
-/// and rows `r >= j0` (all column-major with leading dimension `height`).
-fn subtract_panel_update(panel: &mut [f64], done: &[f64], height: usize, j0: usize) {
+/// `panel[r, c] -= sum_{t < j0} done[r, t] done[j0 + c, t]` for the `P` panel columns c
+/// and rows `r >= j0` (all column-major with leading dimension `height`): four rows by `P`
+/// columns at a time in registers.
+fn subtract_panel_update<const P: usize>(panel: &mut [f64], done: &[f64], height: usize, j0: usize) {
     // Stated once, so that the compiler can drop the bounds checks of the inner loop.
-    assert!(j0 + 4 <= height && done.len() >= j0 * height);
+    assert!(j0 + P <= height && done.len() >= j0 * height);
     let mut r = j0;
     while r + 4 <= height {
-        let mut acc = [[0.0f64; 4]; 4];
+        let mut acc = [[0.0f64; 4]; P];
         for col in done.chunks_exact(height).take(j0) {
             let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
-            let b: [f64; 4] = col[j0..j0 + 4].try_into().expect("four columns");
+            let b: [f64; P] = col[j0..j0 + P].try_into().expect("P columns");
             for (acc_c, bc) in acc.iter_mut().zip(b) {
                 for (acc_cr, xr) in acc_c.iter_mut().zip(x) {
                     *acc_cr += xr * bc;
@@ -100,7 +104,7 @@ fn subtract_panel_update(panel: &mut [f64], done: &[f64], height: usize, j0: usi
         r += 4;
     }
     for r in r..height {
-        for c in 0..4 {
+        for c in 0..P {
             let mut sum = 0.0;
             for t in 0..j0 {
                 sum += done[t * height + r] * done[t * height + j0 + c];
