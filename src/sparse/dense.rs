@@ -126,70 +126,12 @@ pub(super) fn update_block(c: &mut [f64], a: &[f64], lda: usize, m: usize, q: us
     assert!(q <= m && m <= lda);
     let mut i0 = 0;
     while i0 + 4 <= q {
-        let mut r = i0;
-        while r + 4 <= m {
-            let mut acc = [[0.0f64; 4]; 4];
-            for t in 0..k {
-                let col = &a[t * lda..t * lda + m];
-                let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
-                let b: [f64; 4] = col[i0..i0 + 4].try_into().expect("four columns");
-                for (acc_c, bc) in acc.iter_mut().zip(b) {
-                    for (acc_cr, xr) in acc_c.iter_mut().zip(x) {
-                        *acc_cr += xr * bc;
-                    }
-                }
-            }
-            for (j, acc_c) in acc.iter().enumerate() {
-                c[(i0 + j) * m + r..(i0 + j) * m + r + 4].copy_from_slice(acc_c);
-            }
-            r += 4;
-        }
-        for r in r..m {
-            let mut acc = [0.0f64; 4];
-            for t in 0..k {
-                let col = &a[t * lda..t * lda + m];
-                for (j, acc_j) in acc.iter_mut().enumerate() {
-                    *acc_j += col[r] * col[i0 + j];
-                }
-            }
-            for (j, acc_j) in acc.iter().enumerate() {
-                c[(i0 + j) * m + r] = *acc_j;
-            }
-        }
+        update_columns::<4>(c, a, lda, m, i0, k);
         i0 += 4;
     }
+    // Two columns left (as with 2x2 vertex blocks): four rows by two columns at a time.
     if i0 + 2 <= q {
-        // Two columns left (as with 2x2 vertex blocks): four rows by two columns at a time.
-        let mut r = i0;
-        while r + 4 <= m {
-            let mut acc = [[0.0f64; 4]; 2];
-            for t in 0..k {
-                let col = &a[t * lda..t * lda + m];
-                let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
-                let b: [f64; 2] = col[i0..i0 + 2].try_into().expect("two columns");
-                for (acc_c, bc) in acc.iter_mut().zip(b) {
-                    for (acc_cr, xr) in acc_c.iter_mut().zip(x) {
-                        *acc_cr += xr * bc;
-                    }
-                }
-            }
-            for (j, acc_c) in acc.iter().enumerate() {
-                c[(i0 + j) * m + r..(i0 + j) * m + r + 4].copy_from_slice(acc_c);
-            }
-            r += 4;
-        }
-        for r in r..m {
-            let mut acc = [0.0f64; 2];
-            for t in 0..k {
-                let col = &a[t * lda..t * lda + m];
-                for (j, acc_j) in acc.iter_mut().enumerate() {
-                    *acc_j += col[r] * col[i0 + j];
-                }
-            }
-            for (j, acc_j) in acc.iter().enumerate() {
-                c[(i0 + j) * m + r] = *acc_j;
-            }
-        }
+        update_columns::<2>(c, a, lda, m, i0, k);
         i0 += 2;
     }
     for i in i0..q {
@@ -198,6 +140,42 @@ pub(super) fn update_block(c: &mut [f64], a: &[f64], lda: usize, m: usize, q: us
         for t in 0..k {
             let src = &a[t * lda + i..t * lda + m];
             axpy(out, src[0], src);
+        }
+    }
+}
+
+/// [`update_block`] for the `C` columns `i0..i0 + C` of `c` and rows `i0..m`: four rows by
+/// `C` columns accumulate in registers over the `k` columns of `a`.
+#[inline(always)]
+fn update_columns<const C: usize>(c: &mut [f64], a: &[f64], lda: usize, m: usize, i0: usize, k: usize) {
+    let mut r = i0;
+    while r + 4 <= m {
+        let mut acc = [[0.0f64; 4]; C];
+        for t in 0..k {
+            let col = &a[t * lda..t * lda + m];
+            let x: [f64; 4] = col[r..r + 4].try_into().expect("four rows");
+            let b: [f64; C] = col[i0..i0 + C].try_into().expect("C columns");
+            for (acc_c, bc) in acc.iter_mut().zip(b) {
+                for (acc_cr, xr) in acc_c.iter_mut().zip(x) {
+                    *acc_cr += xr * bc;
+                }
+            }
+        }
+        for (j, acc_c) in acc.iter().enumerate() {
+            c[(i0 + j) * m + r..(i0 + j) * m + r + 4].copy_from_slice(acc_c);
+        }
+        r += 4;
+    }
+    for r in r..m {
+        let mut acc = [0.0f64; C];
+        for t in 0..k {
+            let col = &a[t * lda..t * lda + m];
+            for (j, acc_j) in acc.iter_mut().enumerate() {
+                *acc_j += col[r] * col[i0 + j];
+            }
+        }
+        for (j, acc_j) in acc.iter().enumerate() {
+            c[(i0 + j) * m + r] = *acc_j;
         }
     }
 }
