@@ -3,7 +3,8 @@
 //! Left-looking supernodal Cholesky: supernodes are factored in order; before supernode J
 //! is factored, every descendant K whose rows reach J's columns sends its update
 //! `L_K[rows >= J] L_K[rows in J]^T` (a dense product, [`dense::update_block`]), which is
-//! scattered into J's block through relative row positions; then J's dense trapezoid is
+//! scattered into J's block through relative row positions (two rows and two columns at a
+//! time when the matrix has 2x2 vertex blocks kept together); then J's dense trapezoid is
 //! factored ([`dense::cholesky_trapezoid`]). Descendants wait in linked lists keyed by the
 //! next supernode they update (as in Ng and Peyton's left-looking scheme), so each
 //! K -> J update is found in constant time. Cost: [`Symbolic::flops`] multiply-adds, about.
