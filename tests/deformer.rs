@@ -306,11 +306,10 @@ fn long_random_runs_stay_finite() {
         let velocities: Vec<[f64; 2]> =
             (0..deformer.handle_count()).map(|_| [0.02 * (rng.unit() - 0.5), 0.02 * (rng.unit() - 0.5)]).collect();
         let before = deformer.positions().to_vec();
-        match deformer.step(&velocities) {
-            Ok(()) => assert!(deformer.positions().iter().all(|p| p[0].is_finite() && p[1].is_finite())),
-            // A collapsed mesh may refuse a step; then nothing changed.
-            Err(_) => assert_eq!(deformer.positions(), before.as_slice()),
-        }
+        // Random pushes fold triangles over; the step must still be taken.
+        deformer.step(&velocities).unwrap_or_else(|e| panic!("step {step}: {e}"));
+        assert!(deformer.positions().iter().all(|p| p[0].is_finite() && p[1].is_finite()));
+        assert_ne!(deformer.positions(), before.as_slice());
     }
 }
 
@@ -388,4 +387,80 @@ fn with_handles_on_the_boundary_only_step_two_is_step_one() {
     deformer.set_handle_points(&tris, &weights).unwrap();
     deformer.step(&velocities).unwrap();
     assert_ne!(deformer.field(), deformer.soft_field());
+}
+
+#[test]
+fn a_drag_that_flips_triangles_never_sticks() {
+    // The reproduction: the default figure, one handle still and one circling; at
+    // step 406 a triangle flips, and the deformer used to refuse every later step (its
+    // matrix then had a negative pivot). Every step must succeed, triangles flipped or not.
+    let mesh = triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.05)).unwrap();
+    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    deformer.set_handle_vertices(&[0, 500]).unwrap();
+    let mut most_flipped = 0;
+    for i in 0..700 {
+        let t = f64::from(i) / 20.0;
+        deformer.step(&[[0.0, 0.0], [0.02 * t.cos(), 0.02 * t.sin()]]).unwrap_or_else(|e| panic!("step {i}: {e}"));
+        most_flipped = most_flipped.max(deformer.metrics().flipped);
+    }
+    assert!(most_flipped > 0, "the drag should fold some triangles over");
+    deformer.step(&[[0.0, 0.0], [0.0, 0.0]]).unwrap();
+}
+
+#[test]
+fn rigid_motions_are_reproduced_from_flipped_and_collapsed_poses() {
+    // The Killing energy of a rigid field is zero on any triangle, flipped or collapsed, so
+    // from any pose a rigid handle motion must give that rigid field, and the spiral step
+    // must rotate every vertex exactly (a vertex's edges of zero length carry no spiral).
+    let mesh = figure();
+    let rest = mesh.positions().to_vec();
+    let interior = |t: &[u32; 3]| t.iter().all(|&v| !mesh.is_boundary_vertex(v as usize));
+    let t = *mesh.triangles().iter().find(|t| interior(t)).unwrap();
+    let [a, b, c] = t.map(|v| v as usize);
+    let mid = [0.5 * (rest[b][0] + rest[c][0]), 0.5 * (rest[b][1] + rest[c][1])];
+    let past = |s: f64| [rest[a][0] + s * (mid[0] - rest[a][0]), rest[a][1] + s * (mid[1] - rest[a][1])];
+    let (angle, centre) = (0.2, [0.3, -0.1]);
+    let u = killing_field(angle, centre, [0.05, 0.02]);
+    for (name, moved) in [
+        ("flipped", past(1.5)),
+        ("sliver", past(1.0)),
+        ("almost a sliver", past(1.0 - 1e-12)),
+        ("two vertices at one place", rest[b]),
+    ] {
+        let mut pose = rest.clone();
+        pose[a] = moved;
+        let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+        deformer.set_positions(&pose).unwrap();
+        deformer.set_handle_vertices(&[0, 500, a as u32, 100]).unwrap();
+        let velocities: Vec<[f64; 2]> = deformer.handle_positions().into_iter().map(&u).collect();
+        deformer.step(&velocities).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let size = scale(&pose);
+        for (f, &p) in deformer.field().iter().zip(&pose) {
+            let want = u(p);
+            assert!((f[0] - want[0]).hypot(f[1] - want[1]) <= 1e-9 * size, "{name}: field {f:?} vs {want:?}");
+        }
+        // The step is the rotation by `angle` about the field's centre, plus nothing else.
+        let fixed = [centre[0] - 0.02 / angle, centre[1] + 0.05 / angle];
+        for (got, &p) in deformer.positions().iter().zip(&pose) {
+            let (s, co) = angle.sin_cos();
+            let (x, y) = (p[0] - fixed[0], p[1] - fixed[1]);
+            let want = [fixed[0] + co * x - s * y, fixed[1] + s * x + co * y];
+            assert!((got[0] - want[0]).hypot(got[1] - want[1]) <= 1e-9 * size, "{name}: {got:?} vs {want:?}");
+        }
+    }
+}
+
+#[test]
+fn a_step_that_fails_leaves_the_deformer_ready_for_smaller_ones() {
+    // A velocity far too large for the mesh overflows the spiral step: the step is refused,
+    // nothing changes, and a smaller step from there succeeds.
+    let mesh = figure();
+    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    deformer.set_handle_vertices(&[0, 40]).unwrap();
+    deformer.step(&[[0.0, 0.0], [0.01, 0.0]]).unwrap();
+    let before = deformer.positions().to_vec();
+    assert_eq!(deformer.step(&[[0.0, 0.0], [1e300, -1e300]]), Err(DeformError::NonFiniteResult));
+    assert_eq!(deformer.positions(), before.as_slice());
+    deformer.step(&[[0.0, 0.0], [0.01, -0.01]]).unwrap();
+    assert_ne!(deformer.positions(), before.as_slice());
 }

@@ -288,7 +288,7 @@ pub struct Deformer {
     next_soft: Vec<f64>,
     next_field: Vec<f64>,
     interior_rhs: Vec<f64>,
-    spiral_sums: Vec<[f64; 2]>,
+    spiral_sums: Vec<[f64; 3]>,
     timings: Timings,
 }
 
@@ -354,7 +354,7 @@ impl Deformer {
             field: vec![0.0; 2 * n],
             next_soft: vec![0.0; 2 * n],
             next_field: vec![0.0; 2 * n],
-            spiral_sums: vec![[0.0; 2]; n],
+            spiral_sums: vec![[0.0; 3]; n],
             timings: Timings::default(),
             mesh,
         })

@@ -81,19 +81,21 @@ impl KillingMatrix {
     }
 
     /// Recomputes the values for vertex positions `positions` (same vertex count as the
-    /// mesh; triangles must keep positive area for the energy to be meaningful).
+    /// mesh). Any positions will do: each triangle's energy is weighted by its unsigned area
+    /// (the integral of a square over it), so the matrix is positive semidefinite for flipped
+    /// triangles too, and no triangle counts as thinner than [`SLIVER_LIMIT`] (see there), so
+    /// its entries stay finite.
     pub fn assemble(&mut self, positions: &[Point]) {
         let data = self.matrix.data_mut();
         data.fill(0.0);
         for (t, slots) in self.triangles.iter().zip(&self.slots) {
-            let (g, area) =
-                basis_gradients([positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]]);
+            let corners = [positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]];
+            let Some((h, g)) = scaled_gradients(corners) else { continue };
             // A R^T R entry by entry: for vertices (i, j), with h = 2A g,
             //   (u1_i, u1_j): A (4 gx_i gx_j + 2 gy_i gy_j) = 2 h_x,i g_x,j + h_y,i g_y,j
             //   (u2_i, u1_j): 2A gx_i gy_j                   = h_x,i g_y,j
             //   (u1_i, u2_j): 2A gy_i gx_j                   = h_y,i g_x,j
             //   (u2_i, u2_j): A (2 gx_i gx_j + 4 gy_i gy_j) = h_x,i g_x,j + 2 h_y,i g_y,j
-            let h = g.map(|gi| [2.0 * area * gi[0], 2.0 * area * gi[1]]);
             for (i, hi) in h.iter().enumerate() {
                 for (j, gj) in g.iter().enumerate() {
                     let [c0, c1] = slots[3 * i + j];
@@ -126,15 +128,35 @@ impl KillingMatrix {
     }
 }
 
-/// The gradients of the three barycentric basis functions of a counter-clockwise
-/// triangle, and its area: `grad phi_a = rot90(p_c - p_b) / (2A)`, and so on.
-pub fn basis_gradients(p: [Point; 3]) -> ([Point; 3], f64) {
-    let twice_area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
-    let inverse = 1.0 / twice_area;
-    let mut g = [[0.0; 2]; 3];
-    for i in 0..3 {
+/// The smallest area a triangle counts with in [`KillingMatrix::assemble`], as a fraction
+/// of the square of its longest edge (an equilateral triangle has 0.43, a triangle with a
+/// 0.01 degree angle about 1e-4).
+///
+/// A triangle's Killing energy is `|S|^2 / (4 |A|)`, with `S` bilinear in its edge vectors
+/// and the field, so it grows without bound as the triangle collapses: at zero area the
+/// matrix would hold infinities, and near it entries large enough to ruin the
+/// factorisation's accuracy. Thinner triangles are treated as if their area were this
+/// bound (same edges, same orientation): their energy is capped at `1 / SLIVER_LIMIT`
+/// times that of a well-shaped triangle with the same edges. Triangles above it are
+/// untouched. A triangle collapsed to a point has no energy.
+pub const SLIVER_LIMIT: f64 = 1e-6;
+
+/// For a triangle, `(h, g)` with `g_i` the gradient of its barycentric basis function i and
+/// `h_i = 2A g_i = rot90(e_i)`, `e_i` the edge opposite corner i; A is the area, unsigned
+/// and bounded below by [`SLIVER_LIMIT`] times the longest edge squared. `None` for a
+/// triangle collapsed to a point. The gradients' common sign (that of the orientation) is
+/// left out: the energy takes them in products of two.
+fn scaled_gradients(p: [Point; 3]) -> Option<([Point; 3], [Point; 3])> {
+    let h = [0, 1, 2].map(|i| {
         let (b, c) = (p[(i + 1) % 3], p[(i + 2) % 3]);
-        g[i] = [-(c[1] - b[1]) * inverse, (c[0] - b[0]) * inverse];
+        [b[1] - c[1], c[0] - b[0]]
+    });
+    let length = |v: Point| v[0] * v[0] + v[1] * v[1];
+    let longest = length(h[0]).max(length(h[1])).max(length(h[2]));
+    if longest == 0.0 {
+        return None;
     }
-    (g, 0.5 * twice_area)
+    let twice_area = (h[1][0] * h[2][1] - h[1][1] * h[2][0]).abs().max(2.0 * SLIVER_LIMIT * longest);
+    let inverse = 1.0 / twice_area;
+    Some((h, h.map(|v| [v[0] * inverse, v[1] * inverse])))
 }

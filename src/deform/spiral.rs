@@ -72,17 +72,17 @@ fn div(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 }
 
 /// The spiral step: writes the new position of every vertex into `out`. Neighbours of `v`
-/// are `neighbors(v)`; `field[v]` is the velocity of vertex v. `sums` (one per vertex) is
-/// scratch. `s` is the same seen from either end of an edge, so each edge's factor is
+/// are `neighbors(v)`; `field[v]` is the velocity of vertex v. `sums` (one per vertex: the
+/// factors' sum and their count) is scratch. `s` is the same seen from either end of an edge, so each edge's factor is
 /// computed once, for its lower-numbered end, and added to both ends.
 pub fn spiral_step<'a>(
     positions: &[Point],
     field: &[[f64; 2]],
     neighbors: impl Fn(usize) -> &'a [u32],
-    sums: &mut [[f64; 2]],
+    sums: &mut [[f64; 3]],
     out: &mut [Point],
 ) {
-    sums.fill([0.0, 0.0]);
+    sums.fill([0.0; 3]);
     for (v, (p, u)) in positions.iter().zip(field).enumerate() {
         for &w in neighbors(v) {
             let w = w as usize;
@@ -91,18 +91,24 @@ pub fn spiral_step<'a>(
             }
             let du = [u[0] - field[w][0], u[1] - field[w][1]];
             let dp = [p[0] - positions[w][0], p[1] - positions[w][1]];
+            if dp == [0.0, 0.0] {
+                // Two vertices at one place (a collapsed edge) have no spiral between them.
+                continue;
+            }
             let ratio = exp_ratio(div(du, dp));
             for end in [v, w] {
                 sums[end][0] += ratio[0];
                 sums[end][1] += ratio[1];
+                sums[end][2] += 1.0;
             }
         }
     }
-    for (v, ((p, u), sum)) in positions.iter().zip(field).zip(sums.iter()).enumerate() {
-        let k = neighbors(v).len();
-        let factor = if k == 0 { [1.0, 0.0] } else { [sum[0] / k as f64, sum[1] / k as f64] };
+    for (((o, p), u), sum) in out.iter_mut().zip(positions).zip(field).zip(sums.iter()) {
+        // A vertex without edges of positive length moves straight.
+        let k = sum[2];
+        let factor = if k == 0.0 { [1.0, 0.0] } else { [sum[0] / k, sum[1] / k] };
         let step = mul(*u, factor);
-        out[v] = [p[0] + step[0], p[1] + step[1]];
+        *o = [p[0] + step[0], p[1] + step[1]];
     }
 }
 
@@ -164,7 +170,7 @@ mod tests {
             positions.iter().map(|p| [-a * (p[1] - c[1]) + d[0], a * (p[0] - c[0]) + d[1]]).collect();
         let centre = [c[0] - d[1] / a, c[1] + d[0] / a];
         let mut out = [[0.0; 2]; 4];
-        spiral_step(&positions, &field, |v| neighbors[v], &mut [[0.0; 2]; 4], &mut out);
+        spiral_step(&positions, &field, |v| neighbors[v], &mut [[0.0; 3]; 4], &mut out);
         let (sin, cos) = a.sin_cos();
         for (p, q) in positions.iter().zip(out) {
             let r = [p[0] - centre[0], p[1] - centre[1]];
