@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { bounds, fitView, toPixel } from "../../www/src/widget/view.js";
+import { bounds, fitView, fromPixel, panBy, toPixel, zoomAt } from "../../www/src/widget/view.js";
 
 describe("fitView", () => {
   it("centres the box and fits its limiting side inside the margin", () => {
@@ -26,5 +26,36 @@ describe("fitView", () => {
 
   it("rejects an empty list", () => {
     expect(() => bounds([])).toThrow(/empty/);
+  });
+});
+
+describe("zoomAt and panBy", () => {
+  const view = { scale: 120, offsetX: 300, offsetY: 400 };
+
+  it("keeps the shape point under the zoom centre where it was", () => {
+    const [x, y] = fromPixel(view, 512, 77);
+    const zoomed = zoomAt(view, 512, 77, 2.5);
+    expect(zoomed.scale).toBe(300);
+    const [px, py] = toPixel(zoomed, x, y);
+    expect(px).toBeCloseTo(512, 9);
+    expect(py).toBeCloseTo(77, 9);
+    // Distances between shape points grow by the factor.
+    const a = toPixel(zoomed, 0, 0);
+    const b = toPixel(zoomed, 1, 0);
+    expect(b[0] - a[0]).toBeCloseTo(300, 9);
+  });
+
+  it("moves every shape point by the pan, scale unchanged", () => {
+    const moved = panBy(view, -40, 25);
+    for (const [x, y] of [
+      [0, 0],
+      [1.5, -2],
+    ] as const) {
+      const [px, py] = toPixel(view, x, y);
+      const [qx, qy] = toPixel(moved, x, y);
+      expect(qx - px).toBeCloseTo(-40, 9);
+      expect(qy - py).toBeCloseTo(25, 9);
+    }
+    expect(moved.scale).toBe(view.scale);
   });
 });

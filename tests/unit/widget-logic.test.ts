@@ -187,6 +187,19 @@ describe("keyboard shortcuts", () => {
     expect(press("ArrowLeft", { shiftKey: true })).toEqual({ kind: "nudge", dx: -10, dy: 0 });
     expect(press("w")).toEqual({ kind: "toggle", what: "wireframe" });
     expect(press("Escape")).toEqual({ kind: "deselect" });
+    expect(press("v")).toEqual({ kind: "toggle", what: "field" });
+    expect(press("f")).toEqual({ kind: "fit" });
+    expect(press("?", { shiftKey: true })).toEqual({ kind: "help" });
+    expect(press("+")).toEqual({ kind: "zoom", factor: 1.25 });
+  });
+  it("leaves keys typed into fields to the field, and Space and Enter to buttons", () => {
+    const typed = (key: string, focus: "text" | "control") =>
+      keyCommand({ key, ctrlKey: false, metaKey: false, altKey: false, shiftKey: false }, focus);
+    for (const key of ["Backspace", "Delete", "ArrowUp", "End", "9", "w", "f"])
+      expect(typed(key, "text")).toBe(undefined);
+    expect(typed(" ", "control")).toBe(undefined);
+    expect(typed("Enter", "control")).toBe(undefined);
+    expect(typed("Delete", "control")).toEqual({ kind: "delete" });
   });
   it("leaves other keys and browser shortcuts alone", () => {
     expect(press("q")).toBeUndefined();

@@ -17,6 +17,10 @@ export interface FrameReport {
 
 const SPARK_FRAMES = 120;
 
+function metricsLine(m: Metrics): string {
+  return `E_area ${m.areaDistortion.toFixed(4)}  E_angle ${m.angleDistortion.toFixed(4)}  flipped ${m.flipped}`;
+}
+
 export class Hud {
   readonly element: HTMLElement;
   readonly #text: HTMLElement;
@@ -37,38 +41,85 @@ export class Hud {
     this.element.append(this.#text, this.#spark);
   }
 
-  /** Shows the mesh size (before any frame ran). */
-  showMesh(vertices: number, triangles: number, method: string): void {
+  /** Shows the mesh, the method and the pose's distortion (before any frame ran). */
+  showMesh(vertices: number, triangles: number, method: string, metrics: Metrics): void {
     this.#vertices = vertices;
     this.#triangles = triangles;
     this.#method = method;
     this.#works.length = 0;
     this.#times.length = 0;
-    this.#text.textContent = `${method}\n${vertices} vertices, ${triangles} triangles\ndrag the shape to add a handle`;
+    this.#last = undefined;
+    this.showMetrics(metrics);
     this.#drawSpark();
+  }
+
+  /** Shows the distortion of a pose reached outside the frame loop (undo, reset, a load). */
+  showMetrics(metrics: Metrics): void {
+    clearTimeout(this.#trailing);
+    this.#trailing = undefined;
+    this.#last = this.#last === undefined ? undefined : { ...this.#last, metrics };
+    this.#text.textContent = this.#last
+      ? this.#lines(this.#last)
+      : [
+          this.#method,
+          `${this.#vertices} vertices, ${this.#triangles} triangles`,
+          metricsLine(metrics),
+          "click the shape to add a handle",
+        ].join("\n");
+  }
+
+  /** The method's name (after a switch). */
+  showMethod(method: string): void {
+    this.#method = method;
+    this.#text.textContent = this.#last ? this.#lines(this.#last) : this.#text.textContent;
   }
 
   #vertices = 0;
   #triangles = 0;
   #method = "";
+  #last: FrameReport | undefined;
+  #trailing: ReturnType<typeof setTimeout> | undefined;
 
-  /** Adds a frame; the text refreshes at most four times a second. */
+  /**
+   * Adds a frame. The text refreshes at most four times a second, and always shows the
+   * last frame's figures once frames stop.
+   */
   report(frame: FrameReport): void {
     this.#works.push(frame.work);
     if (this.#works.length > SPARK_FRAMES) this.#works.shift();
     this.#times.push(frame.time);
     while (this.#times.length > 0 && this.#times[0]! < frame.time - 1000) this.#times.shift();
     this.#drawSpark();
-    if (frame.time - this.#lastText < 250) return;
+    this.#last = frame;
+    const wait = 250 - (frame.time - this.#lastText);
+    if (wait > 0) {
+      this.#trailing ??= setTimeout(() => {
+        this.#trailing = undefined;
+        if (this.#last) this.#write(this.#last);
+      }, wait);
+      return;
+    }
+    this.#write(frame);
+  }
+
+  #write(frame: FrameReport): void {
     this.#lastText = frame.time;
+    this.#text.textContent = this.#lines(frame);
+  }
+
+  #lines(frame: FrameReport): string {
     const t = frame.timings;
-    const m = frame.metrics;
-    this.#text.textContent = [
+    return [
       `${this.#method}   ${this.#times.length} fps   ${frame.work.toFixed(1)} ms/frame (${frame.substeps} steps)`,
       `assembly ${t.assembly.toFixed(1)}  factor ${t.factorisation.toFixed(1)}  solve ${t.solve.toFixed(1)}  spiral ${t.integration.toFixed(1)} ms`,
       `${this.#vertices} vertices, ${this.#triangles} triangles`,
-      `E_area ${m.areaDistortion.toFixed(4)}  E_angle ${m.angleDistortion.toFixed(4)}  flipped ${m.flipped}`,
+      metricsLine(frame.metrics),
     ].join("\n");
+  }
+
+  /** Stops pending updates (the widget is going away). */
+  destroy(): void {
+    clearTimeout(this.#trailing);
   }
 
   #drawSpark(): void {

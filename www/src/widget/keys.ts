@@ -1,4 +1,8 @@
-/** The widget's keyboard shortcuts, as commands (pure: the widget carries them out). */
+/**
+ * The widget's keyboard shortcuts, as commands (pure: the widget carries them out), and
+ * the list the help panel shows. Keys typed into a text field or list belong to it: no
+ * shortcut fires there, and Space and Enter on a button or checkbox press it.
+ */
 
 export type KeyCommand =
   | { kind: "undo" }
@@ -7,7 +11,10 @@ export type KeyCommand =
   /** Move the selected handles by (dx, dy) CSS pixels, y up. */
   | { kind: "nudge"; dx: number; dy: number }
   | { kind: "deselect" }
-  | { kind: "toggle"; what: "wireframe" | "field" };
+  | { kind: "toggle"; what: "wireframe" | "field" }
+  | { kind: "fit" }
+  | { kind: "zoom"; factor: number }
+  | { kind: "help" };
 
 export interface KeyPress {
   key: string;
@@ -17,10 +24,18 @@ export interface KeyPress {
   shiftKey: boolean;
 }
 
+/** Where the key press happened: a text field or list, a button or checkbox, or elsewhere. */
+export type KeyFocus = "text" | "control" | "other";
+
+/** Zoom step of the + and - keys. */
+export const ZOOM_STEP = 1.25;
+
 /** The command of a key press, or undefined for keys the widget leaves alone. */
-export function keyCommand(e: KeyPress): KeyCommand | undefined {
+export function keyCommand(e: KeyPress, focus: KeyFocus = "other"): KeyCommand | undefined {
+  if (focus === "text") return undefined;
   const mod = e.ctrlKey || e.metaKey;
   const key = e.key.toLowerCase();
+  if (focus === "control" && (key === " " || key === "enter")) return undefined;
   if (mod && key === "z") return { kind: e.shiftKey ? "redo" : "undo" };
   if (mod && key === "y") return { kind: "redo" };
   if (mod || e.altKey) return undefined;
@@ -36,6 +51,43 @@ export function keyCommand(e: KeyPress): KeyCommand | undefined {
   if (arrow) return { kind: "nudge", dx: arrow[0], dy: arrow[1] };
   if (key === "escape") return { kind: "deselect" };
   if (key === "w") return { kind: "toggle", what: "wireframe" };
-  if (key === "f") return { kind: "toggle", what: "field" };
+  if (key === "v") return { kind: "toggle", what: "field" };
+  if (key === "f" || key === "0") return { kind: "fit" };
+  if (key === "+" || key === "=") return { kind: "zoom", factor: ZOOM_STEP };
+  if (key === "-") return { kind: "zoom", factor: 1 / ZOOM_STEP };
+  if (key === "?") return { kind: "help" };
   return undefined;
 }
+
+/** Where a key event came from, by the element that has focus inside the widget. */
+export function keyFocus(target: EventTarget | null): KeyFocus {
+  const element = target as HTMLElement | null;
+  if (!element || typeof element.tagName !== "string") return "other";
+  const tag = element.tagName.toLowerCase();
+  if (tag === "textarea" || tag === "select" || element.isContentEditable) return "text";
+  if (tag === "input") {
+    const type = (element as HTMLInputElement).type;
+    return ["checkbox", "radio", "button", "submit", "reset", "file", "color", "range"].includes(type)
+      ? "control"
+      : "text";
+  }
+  return tag === "button" || tag === "summary" ? "control" : "other";
+}
+
+/** What the help panel lists: gestures and keys, in the order a new user needs them. */
+export const HELP: readonly { keys: string; does: string }[] = [
+  { keys: "Click or tap the shape", does: "add a handle there and drag it right away" },
+  { keys: "Drag a handle", does: "pose; the other handles are pins and stay" },
+  { keys: "Double-click, or long-press, a handle", does: "remove it" },
+  { keys: "Click a handle, Shift-click for more", does: "select" },
+  { keys: "Arrows (Shift: ×10)", does: "nudge the selected handles by 1 px" },
+  { keys: "Delete or Backspace", does: "remove the selected handles" },
+  { keys: "Esc", does: "deselect; close this panel" },
+  { keys: "Ctrl+Z, Ctrl+Shift+Z or Ctrl+Y", does: "undo, redo" },
+  { keys: "Wheel or pinch; + and -", does: "zoom" },
+  { keys: "Drag the background, Space-drag, two fingers", does: "pan the view" },
+  { keys: "F or 0", does: "fit the shape in view" },
+  { keys: "W", does: "wireframe" },
+  { keys: "V", does: "velocity field arrows" },
+  { keys: "?", does: "this help" },
+];

@@ -24,6 +24,12 @@ export interface ToolbarActions {
   saveSession(): void;
   loadSession(file: File): void;
   export(format: "json" | "obj" | "svg" | "png"): void;
+  /** Fit the shape into the view. */
+  fit(): void;
+  /** Open or close the help panel. */
+  help(): void;
+  /** Forget the saved work and start again with the default shape (shown when work is saved). */
+  startOver?(): void;
 }
 
 export interface ToolbarSettings {
@@ -44,7 +50,9 @@ export interface Toolbar {
   refresh(state: { canUndo: boolean; canRedo: boolean; recording: boolean; hasSession: boolean }): void;
   /** Shows the current shape (its list value, undefined for others), vertex count and parts. */
   showShape(value: string | undefined, vertices: number, parts: { count: number; index: number }): void;
-  /** Brings the toggles in line with settings changed by keys. */
+  /** Adds a shape to the list (an imported file) and shows it as the current one. */
+  addShape(option: { value: string; label: string }): void;
+  /** Brings every field in line with the settings (changed by keys, a load, or a refused value). */
   sync(settings: ToolbarSettings): void;
 }
 
@@ -57,16 +65,31 @@ export function buildToolbar(
     settings: ToolbarSettings;
   },
 ): Toolbar {
+  const element = document.createElement("div");
+  element.className = "toolbar";
+  // On narrow screens the tools fold away behind this button (see style.ts).
+  const more = document.createElement("button");
+  more.type = "button";
+  more.className = "more";
+  more.textContent = "☰ Tools";
+  more.setAttribute("aria-expanded", "false");
+  more.addEventListener("click", () => {
+    const open = element.classList.toggle("open");
+    more.setAttribute("aria-expanded", String(open));
+  });
+  const quick = document.createElement("div");
+  quick.className = "quick";
   const bar = document.createElement("div");
-  bar.className = "toolbar";
+  bar.className = "tools";
   bar.setAttribute("role", "toolbar");
   bar.setAttribute("aria-label", "Posing tools");
-  const group = (label: string): HTMLElement => {
+  element.append(more, quick, bar);
+  const group = (label: string, parent = bar): HTMLElement => {
     const g = document.createElement("div");
     g.className = "group";
     g.setAttribute("role", "group");
     g.setAttribute("aria-label", label);
-    bar.append(g);
+    parent.append(g);
     return g;
   };
   const labelled = (parent: HTMLElement, text: string, control: HTMLElement): void => {
@@ -176,7 +199,7 @@ export function buildToolbar(
     });
   const wireframe = checkbox(view, "Wireframe (W)", s.wireframe, display);
   wireframe.name = "wireframe";
-  const field = checkbox(view, "Field (F)", s.field, display);
+  const field = checkbox(view, "Field (V)", s.field, display);
   field.name = "field";
   const flipped = checkbox(view, "Flipped", s.flipped, display);
   flipped.name = "flipped";
@@ -185,11 +208,18 @@ export function buildToolbar(
   const hud = checkbox(view, "HUD", s.hud, () => actions.hud(hud.checked));
   hud.name = "hud";
 
-  const edit = group("Edit");
+  // Always in reach, also with the tools folded away.
+  const edit = group("Edit", quick);
   const undo = button(edit, "Undo", "Undo the last gesture (Ctrl+Z)", actions.undo);
   const redo = button(edit, "Redo", "Redo (Ctrl+Shift+Z or Ctrl+Y)", actions.redo);
   button(edit, "Reset", "Back to the rest pose", actions.reset);
-  button(edit, "Clear handles", "Remove every handle", actions.clear);
+  button(edit, "Fit", "Fit the shape into the view (F)", actions.fit);
+  button(edit, "?", "Gestures and keys (?)", actions.help, "help");
+  const tidy = group("Handles");
+  button(tidy, "Clear handles", "Remove every handle", actions.clear);
+  if (actions.startOver) {
+    button(tidy, "Start over", "Forget the saved work and start again with the default shape", actions.startOver);
+  }
 
   const session = group("Session");
   const record = button(session, "Record", "Record the interaction", actions.record);
@@ -220,7 +250,7 @@ export function buildToolbar(
   }
 
   return {
-    element: bar,
+    element,
     refresh(state) {
       undo.disabled = !state.canUndo;
       redo.disabled = !state.canRedo;
@@ -238,7 +268,12 @@ export function buildToolbar(
       part.value = String(parts.index);
       part.parentElement!.classList.toggle("hidden", parts.count < 2);
     },
+    addShape(option) {
+      shape.append(new Option(option.label, option.value));
+      shape.value = option.value;
+    },
     sync(settings) {
+      minAngle.value = String(settings.minAngle);
       wireframe.checked = settings.wireframe;
       field.checked = settings.field;
       flipped.checked = settings.flipped;

@@ -52,3 +52,17 @@ export function toPixel(view: View, x: number, y: number): [number, number] {
 export function fromPixel(view: View, px: number, py: number): [number, number] {
   return [(px - view.offsetX) / view.scale, (view.offsetY - py) / view.scale];
 }
+
+/** The view zoomed by `factor` about the pixel (px, py), which stays over the same shape point. */
+export function zoomAt(view: View, px: number, py: number, factor: number): View {
+  return {
+    scale: view.scale * factor,
+    offsetX: px - (px - view.offsetX) * factor,
+    offsetY: py - (py - view.offsetY) * factor,
+  };
+}
+
+/** The view moved by (dx, dy) pixels. */
+export function panBy(view: View, dx: number, dy: number): View {
+  return { scale: view.scale, offsetX: view.offsetX + dx, offsetY: view.offsetY + dy };
+}

@@ -27,19 +27,22 @@ import { download, meshJson, meshObj, outlineSvg, vectorSvg } from "./export.js"
 import { PointMapper } from "../import.js";
 import { FILE_LIMITS, asOutline, fileKind, imageUvs, readShapeFile, type Loaded } from "./sources.js";
 
+import { Camera } from "./camera.js";
 import { GlRenderer, type MeshRenderer } from "./gl.js";
+import { HelpPanel } from "./help.js";
 import { History } from "./history.js";
 import { Hud } from "./hud.js";
-import { keyCommand } from "./keys.js";
+import { keyCommand, keyFocus } from "./keys.js";
 import { PointerInput } from "./pointer.js";
 import { HANDLE_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { locate, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, parseSession, type Session, type SessionEvent } from "./session.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
+import { BusyIndicator, StatusLine } from "./status.js";
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
 import { buildToolbar, type Toolbar } from "./toolbar.js";
-import { fitView, fromPixel, type View } from "./view.js";
+import { fromPixel, toPixel, type View } from "./view.js";
 
 /** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
 export const METHODS = {
@@ -129,9 +132,21 @@ interface Handle {
   pending: [number, number];
 }
 
+/** Everything undo restores: the shape and its parts, the method, the pose and the handles. */
 interface Snapshot {
+  shape: Shape;
+  parts: Parts | undefined;
+  method: Method;
+  lambda: number;
   positions: Float64Array;
+  atRest: boolean;
   handles: { point: MeshPoint; target: [number, number] }[];
+}
+
+/** The parts of an imported file (largest first) and the one shown. */
+interface Parts {
+  loaded: Extract<Loaded, { kind: "outlines" }>;
+  index: number;
 }
 
 const DEFAULTS = {
@@ -145,6 +160,8 @@ const DEFAULTS = {
 
 /** Frames without input after which the loop stops even if pins have not settled. */
 const SETTLE_FRAMES = 240;
+/** A failed step is tried again with its velocities scaled by these, in turn. */
+const RETRY_SCALES = [0.5, 0.25, 0.125];
 
 export class Widget {
   /** The element the widget was mounted into; events are dispatched on it. */
@@ -154,23 +171,26 @@ export class Widget {
   readonly #glCanvas: HTMLCanvasElement;
   readonly #overlay: HTMLCanvasElement;
   readonly #overlayContext: CanvasRenderingContext2D;
-  readonly #status: HTMLElement;
+  readonly #status: StatusLine;
+  readonly #busy: BusyIndicator;
+  readonly #help: HelpPanel;
   readonly #renderer: MeshRenderer;
-  readonly #hud: Hud | undefined;
+  readonly #hud: Hud;
   readonly #toolbar: Toolbar | undefined;
   readonly #resizeObserver: ResizeObserver;
   readonly #history = new History<Snapshot>();
   readonly #recorder = new Recorder();
+  readonly #camera = new Camera();
   readonly #settings: Required<Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery">>;
   readonly #gallery: readonly GalleryItem[];
+  /** Files opened so far, offered again in the shape list as `file:index`. */
+  readonly #files: Loaded[] = [];
   #baseTexture: TexImageSource | undefined;
-  /** The parts of the last imported file (largest first) and the one shown. */
-  #parts: { loaded: Extract<Loaded, { kind: "outlines" }>; index: number } | undefined;
+  #parts: Parts | undefined;
 
   #shape!: Shape;
   #deformer!: Deformer;
   #handles: Handle[] = [];
-  #view: View = { scale: 1, offsetX: 0, offsetY: 0 };
   #ratio = 1;
   #raf = 0;
   #idleFrames = 0;
@@ -178,6 +198,7 @@ export class Widget {
   #gestureBefore: Snapshot | undefined;
   #gestureChanged = false;
   #pointer: PointerInput | undefined;
+  #spaceHeld = false;
   #lastField: Float64Array | undefined;
   #metrics: Metrics = { areaDistortion: 2, angleDistortion: 2, flipped: 0 };
   #replaying = false;
@@ -228,11 +249,13 @@ export class Widget {
     this.#overlay = document.createElement("canvas");
     this.#overlay.className = "overlay";
     this.#overlay.setAttribute("aria-label", "The shape; click to add a handle, drag a handle to move it");
-    this.#status = document.createElement("div");
-    this.#status.className = "status";
-    this.#status.setAttribute("role", "status");
-    this.#status.setAttribute("aria-live", "polite");
-    stage.append(this.#glCanvas, this.#overlay, this.#status);
+    this.#status = new StatusLine(document);
+    this.#busy = new BusyIndicator(document);
+    this.#help = new HelpPanel(document, () => this.#toggleHelp(false));
+    this.#hud = new Hud(document);
+    this.#hud.element.classList.toggle("hidden", !this.#settings.hud);
+    stage.append(this.#glCanvas, this.#overlay, this.#status.element, this.#hud.element, this.#busy.element);
+    stage.append(this.#help.element);
 
     if (this.#settings.controls) {
       this.#toolbar = buildToolbar(document, this.#toolbarActions(), {
@@ -246,10 +269,6 @@ export class Widget {
       this.#root.append(this.#toolbar.element);
     }
     this.#root.append(stage);
-    if (this.#settings.hud) {
-      this.#hud = new Hud(document);
-      stage.append(this.#hud.element);
-    }
 
     const overlayContext = this.#overlay.getContext("2d");
     if (!overlayContext) throw new Error("this browser cannot draw on a 2D canvas");
@@ -278,6 +297,7 @@ export class Widget {
       widget.#baseTexture = options.texture ? await loadImage(options.texture) : defaultTexture();
       if (options.src) await widget.loadUrl(options.src);
       else widget.#install(meshOutline(outline, name, widget.#settings.vertices, widget.#settings.minAngle));
+      widget.#history.clear();
     } catch (error) {
       widget.destroy();
       throw error;
@@ -303,9 +323,14 @@ export class Widget {
     return this.#shape.mesh;
   }
 
+  /** The method in use and lambda. */
+  get method(): { method: Method; lambda: number } {
+    return { method: this.#settings.method, lambda: this.#settings.lambda };
+  }
+
   /** How shape units map to device pixels of the canvas, and the device pixel ratio. */
   get view(): View & { pixelRatio: number } {
-    return { ...this.#view, pixelRatio: this.#ratio };
+    return { ...this.#camera.view, pixelRatio: this.#ratio };
   }
 
   /** Which renderer draws the mesh: "webgl2", or "2d" where WebGL2 is missing. */
@@ -327,8 +352,18 @@ export class Widget {
     return this.#handles.length;
   }
 
+  /** Distortion of the pose on screen. */
   get metrics(): Metrics {
     return { ...this.#metrics };
+  }
+
+  /** Undo and redo as the buttons offer them. */
+  get canUndo(): boolean {
+    return this.#history.canUndo;
+  }
+
+  get canRedo(): boolean {
+    return this.#history.canRedo;
   }
 
   /** Adds a handle at the shape point (x, y) (shape units). Returns its index, or -1 off the shape. */
@@ -364,21 +399,16 @@ export class Widget {
       this.#record({ reset: true });
       this.#atRest = true;
       this.#pinHandlesWhereTheyAre();
+      this.#poseChanged();
     });
   }
 
   undo(): boolean {
-    const previous = this.#history.undo(this.#snapshot());
-    if (previous) this.#restore(previous);
-    this.#refreshButtons();
-    return previous !== undefined;
+    return this.#travel(this.#history.undo(this.#snapshot()));
   }
 
   redo(): boolean {
-    const next = this.#history.redo(this.#snapshot());
-    if (next) this.#restore(next);
-    this.#refreshButtons();
-    return next !== undefined;
+    return this.#travel(this.#history.redo(this.#snapshot()));
   }
 
   /** Changes the method and/or lambda. */
@@ -387,50 +417,44 @@ export class Widget {
     const options = methodOptions(method, lambda);
     this.#useOptions(options); // throws (and changes nothing) for a bad lambda
     this.#record({ options });
-    this.#settings.method = method;
-    this.#settings.lambda = lambda;
-    this.#hud?.showMesh(this.vertexCount, this.triangleCount, METHODS[method].label);
+    this.#showMethod(method, lambda);
+  }
+
+  /** Zooms the view by `factor` about its centre, or fits the pose on screen into it (`"fit"`). */
+  zoom(factor: number | "fit"): void {
+    if (factor === "fit") this.#camera.fit(this.#deformer.positionsView());
+    else this.#camera.zoom(this.#glCanvas.width / 2, this.#glCanvas.height / 2, factor);
+    this.#draw();
+  }
+
+  /** Shows a message in the status line until the next action that succeeds. */
+  showMessage(message: string, kind: "info" | "error" = "info"): void {
+    if (kind === "error") this.#showError(new Error(message));
+    else this.#status.info(message);
   }
 
   /**
-   * Applies deformer options. The same method only changes settings; another method (AKAP
-   * and ARAP are different solvers) gets a new deformer with the current pose and handles.
+   * Switches to a built-in shape, or re-meshes the current one with about `vertices`
+   * vertices. Undoable; the handles of another shape are dropped.
    */
-  #useOptions(options: DeformerOptions): void {
-    const { method = "akap", ...settings } = options;
-    if (method === this.#deformer.method) {
-      this.#deformer.setOptions(settings);
-      return;
-    }
-    const { positions, triangles } = this.#shape.mesh;
-    const next = new Deformer(positions, triangles, options);
-    try {
-      next.setPositions(this.#deformer.positionsView());
-      const event = this.#handlesEvent();
-      next.setHandlePoints(event.handles.triangles, event.handles.barycentric);
-    } catch (error) {
-      next.free();
-      throw error;
-    }
-    this.#deformer.free();
-    this.#deformer = next;
-  }
-
-  /** Switches to a built-in shape, or re-meshes the current one with about `vertices` vertices. */
   setShape(name: string | undefined, vertices = this.#settings.vertices): void {
     const spec = name ?? this.#shape.spec?.name;
     if (!spec) throw new Error("this widget shows a custom outline; give a built-in shape name");
     const shape = meshOutline(builtinShape(spec), spec, vertices, this.#settings.minAngle);
-    this.#settings.vertices = vertices;
-    this.#parts = undefined;
-    this.#install(shape);
-    this.#resize();
+    this.#gesture(() => {
+      this.#settings.vertices = vertices;
+      this.#parts = undefined;
+      this.#install(shape);
+    });
   }
 
-  /** Shows a custom outline instead (triangulated to about `vertices` vertices). */
+  /** Shows a custom outline instead (triangulated to about `vertices` vertices). Undoable. */
   setOutline(outline: Outline, vertices = this.#settings.vertices): void {
-    this.#install(meshOutline(outline, undefined, vertices, this.#settings.minAngle));
-    this.#resize();
+    const shape = meshOutline(outline, undefined, vertices, this.#settings.minAngle);
+    this.#gesture(() => {
+      this.#parts = undefined;
+      this.#install(shape);
+    });
   }
 
   /**
@@ -438,50 +462,66 @@ export class Widget {
    * where it is opaque, or where it differs from the background; the image warps with
    * it), a mesh (OBJ or our JSON), or a recorded session (JSON), which is replayed. Files
    * with several separate parts show the largest; {@link choosePart} picks another.
-   * Throws (and changes nothing) for files it cannot use.
+   * Throws (and changes nothing) for files it cannot use; a load is one undoable step.
    */
   async loadFile(file: Blob, name = (file as File).name ?? "file"): Promise<void> {
     if (fileKind(name, file.type) === "json" && file.size <= FILE_LIMITS.bytes) {
       const text = await file.text();
       if (/"format"\s*:\s*"akap-session"/.test(text)) {
         const session = parseSession(text);
-        this.#lastSession = session;
         await this.replay(session);
+        this.#lastSession = session;
+        this.#refreshButtons();
         return;
       }
     }
     const loaded = await readShapeFile(file, name);
-    if (loaded.kind === "mesh") {
-      const shape = shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name);
-      this.#install(shape);
-      this.#parts = undefined;
-    } else {
-      if (loaded.parts.length === 0) throw new Error(`${name}: no shape found`);
-      this.#installPart(loaded, 0);
-    }
-    this.#resize();
-    this.#toolbar?.showShape(undefined, this.vertexCount, this.#partsInfo());
+    if (loaded.kind === "outlines" && loaded.parts.length === 0) throw new Error(`${name}: no shape found`);
+    this.#showFile(loaded, 0);
+    this.#files.push(loaded);
+    this.#toolbar?.addShape({ value: `file:${this.#files.length - 1}`, label: loaded.name });
   }
 
   /** Loads a shape file by URL (see {@link loadFile}). */
   async loadUrl(url: string): Promise<void> {
-    const response = await fetch(url);
+    let response: Response;
+    try {
+      response = await fetch(url);
+    } catch {
+      throw new Error(`${url} could not be loaded (the address is wrong, or the server refused it)`);
+    }
     if (!response.ok) throw new Error(`${url}: ${response.status} ${response.statusText}`);
     const name = decodeURIComponent(new URL(url, this.target.ownerDocument.baseURI).pathname.split("/").pop() ?? url);
     await this.loadFile(await response.blob(), name);
   }
 
-  /** Shows another separate part of the last imported file (0 is the largest). */
+  /** Shows another separate part of the last imported file (0 is the largest). Undoable. */
   choosePart(index: number): void {
     const parts = this.#parts;
     if (!parts || !(index >= 0 && index < parts.loaded.parts.length)) {
       throw new RangeError(`there is no part ${index} to choose`);
     }
-    this.#installPart(parts.loaded, index);
-    this.#resize();
+    this.#showFile(parts.loaded, index);
   }
 
-  #installPart(loaded: Extract<Loaded, { kind: "outlines" }>, index: number): void {
+  /** Makes a loaded file (part `index` of it) the shape, as one undoable step. */
+  #showFile(loaded: Loaded, index: number): void {
+    const shape =
+      loaded.kind === "mesh"
+        ? shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name)
+        : this.#partShape(loaded, index);
+    this.#gesture(() => {
+      this.#parts = loaded.kind === "outlines" ? { loaded, index } : undefined;
+      this.#install(shape);
+    });
+    if (loaded.kind === "outlines" && loaded.parts.length > 1) {
+      this.#status.info(
+        `${loaded.name} has ${loaded.parts.length} separate parts; showing part ${index + 1} (the parts are ordered by size)`,
+      );
+    }
+  }
+
+  #partShape(loaded: Extract<Loaded, { kind: "outlines" }>, index: number): Shape {
     const { vertices, minAngle } = this.#settings;
     const shape = meshOutline(asOutline(loaded.parts[index]!), undefined, vertices, minAngle, loaded.name);
     if (loaded.image) {
@@ -489,11 +529,7 @@ export class Widget {
       shape.texture = loaded.image.source;
     }
     if (loaded.vector) shape.vector = loaded.vector;
-    this.#parts = { loaded, index };
-    this.#install(shape);
-    if (loaded.parts.length > 1) {
-      this.#status.textContent = `${loaded.name} has ${loaded.parts.length} separate parts; showing part ${index + 1} (the parts are ordered by size)`;
-    }
+    return shape;
   }
 
   #partsInfo(): { count: number; index: number } {
@@ -502,25 +538,56 @@ export class Widget {
 
   /**
    * Re-meshes the current shape with about `vertices` vertices and the given smallest
-   * angle (a live preview of the triangulation with the wireframe on). Built-in shapes and
+   * angle (a live preview of the triangulation with the wireframe on). The pose carries
+   * over (every new vertex is placed where the old mesh's pose takes its rest position),
+   * and so do the handles, at the same places; one undoable step. Built-in shapes and
    * imported outlines can be re-meshed; a mesh loaded from a file cannot.
    */
   remesh(vertices = this.#settings.vertices, minAngle = this.#settings.minAngle): void {
     const previous = { vertices: this.#settings.vertices, minAngle: this.#settings.minAngle };
     Object.assign(this.#settings, { vertices, minAngle });
+    let shape: Shape;
     try {
-      if (this.#parts) this.#installPart(this.#parts.loaded, this.#parts.index);
-      else if (this.#shape.spec) this.setShape(this.#shape.spec.name, vertices);
+      if (this.#parts) shape = this.#partShape(this.#parts.loaded, this.#parts.index);
+      else if (this.#shape.spec)
+        shape = meshOutline(builtinShape(this.#shape.spec.name), this.#shape.spec.name, vertices, minAngle);
       else throw new Error("this shape came as a mesh; it cannot be re-meshed");
-      this.#resize();
     } catch (error) {
       Object.assign(this.#settings, previous);
       throw error;
     }
+    const old = { shape: this.#shape, positions: this.#deformer.positions(), atRest: this.#atRest };
+    const handles = this.#handles.map((h) => ({
+      rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
+      target: h.target,
+    }));
+    this.#gesture(() => {
+      this.#adopt(shape);
+      this.#handles = [];
+      if (!old.atRest) {
+        const mapper = new PointMapper(old.shape.mesh.positions, old.shape.mesh.triangles, shape.mesh.positions);
+        try {
+          this.#deformer.setPositions(mapper.map(old.positions));
+        } finally {
+          mapper.free();
+        }
+      }
+      this.#atRest = old.atRest;
+      const rest = shape.mesh.positions;
+      for (const { rest: at, target } of handles) {
+        const point =
+          locate(rest, shape.mesh.triangles, at[0], at[1], 1e-6 * shape.size) ??
+          locate(rest, shape.mesh.triangles, at[0], at[1], 0.05 * shape.size);
+        if (point) this.#handles.push({ ...newHandle(point), target: [...target] });
+      }
+      this.#applyHandles();
+      this.#poseChanged();
+    });
   }
 
   setDisplay(options: { wireframe?: boolean; field?: boolean; flipped?: boolean; paperMode?: boolean }): void {
     Object.assign(this.#settings, options);
+    if (options.field) this.#lastField = this.#deformer.field();
     this.#draw();
   }
 
@@ -550,9 +617,10 @@ export class Widget {
     this.#refreshButtons();
   }
 
-  /** Stops recording and returns the session. */
+  /** Stops recording and returns the session (which Replay and Save then offer). */
   stopRecording(): Session | undefined {
     const session = this.#recorder.stop();
+    if (session) this.#lastSession = session;
     this.#refreshButtons();
     return session;
   }
@@ -560,7 +628,9 @@ export class Widget {
   /**
    * Replays a session (an object, or JSON text): rebuilds its mesh if needed, then repeats
    * its calls, drawing every `stepsPerFrame` steps. Resolves with the final positions.
-   * The result is bit-for-bit the pose the recording ended in.
+   * The result is bit-for-bit the pose the recording ended in, with the session's method;
+   * the whole replay is one undoable step, and a session that fails partway leaves
+   * everything as it was before.
    */
   async replay(session: Session | string, stepsPerFrame = 4): Promise<Float64Array> {
     const s = typeof session === "string" ? parseSession(session) : session;
@@ -573,16 +643,17 @@ export class Widget {
           `but rebuilding it gave ${shape.mesh.vertexCount} and ${shape.mesh.triangleCount}`,
       );
     }
-    if (shape !== this.#shape) {
-      this.#install(shape);
-      this.#resize();
-    }
+    const before = this.#snapshot();
     this.#replaying = true;
     this.#root.dataset.replaying = "true";
     try {
+      if (shape !== this.#shape) {
+        this.#parts = undefined;
+        this.#install(shape);
+      }
       const defaults: DeformerOptions =
         s.options.method === "arap" ? {} : { ...METHODS.akap.options, lambda: DEFAULTS.lambda };
-      this.#useOptions({ ...defaults, ...s.options });
+      this.#applyOptions({ ...defaults, ...s.options });
       let steps = 0;
       for (const event of s.events) {
         if (this.#destroyed) break;
@@ -592,17 +663,18 @@ export class Widget {
           await nextFrame();
         }
       }
-      this.#pinHandlesWhereTheyAre();
-      this.#history.clear();
-      this.#refreshButtons();
-      this.#metrics = this.#deformer.metrics();
-      this.#draw();
-      this.#emitPose();
-      return this.#deformer.positions();
+    } catch (error) {
+      if (!this.#destroyed) this.#restore(before);
+      throw error;
     } finally {
       this.#replaying = false;
       delete this.#root.dataset.replaying;
     }
+    this.#pinHandlesWhereTheyAre();
+    this.#history.push(before);
+    this.#refreshButtons();
+    this.#poseChanged();
+    return this.#deformer.positions();
   }
 
   /** The current pose as JSON (`positions`, `triangles`, `uvs`) or OBJ text. */
@@ -671,34 +743,51 @@ export class Widget {
     this.#pointer?.destroy();
     this.#resizeObserver.disconnect();
     this.#renderer.destroy();
+    this.#hud.destroy();
+    this.#busy.done();
     this.#deformer?.free();
     this.#host.remove();
     for (const resolve of this.#idleWaiters.splice(0)) resolve();
   }
 
-  // ---------------------------------------------------------------- shape and deformer
+  // ---------------------------------------------------------------- shape, method and deformer
 
-  /** Makes `shape` current with a fresh deformer; fails without changing anything. */
+  /** Makes `shape` current with a fresh deformer, without handles, at rest. */
   #install(shape: Shape): void {
+    this.#adopt(shape);
+    this.#handles = [];
+    this.#atRest = true;
+    this.#camera.reset(shape.mesh.positions, this.#glCanvas.width, this.#glCanvas.height);
+    this.#applyHandles();
+    this.#poseChanged();
+  }
+
+  /**
+   * Makes `shape` current with a fresh deformer of the current method (handles and pose
+   * are the caller's to set); fails without changing anything. A recording ends.
+   */
+  #adopt(shape: Shape): void {
     const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.#deformerOptions());
     this.#deformer?.free();
     this.#deformer = deformer;
     this.#shape = shape;
-    this.#handles = [];
-    this.#history.clear();
     this.#recorder.stop();
-    this.#atRest = true;
     this.#lastField = undefined;
-    this.#metrics = deformer.metrics();
     this.#renderer.setMesh(shape.mesh.triangles, shape.edges, shape.uvs);
     const texture = shape.texture ?? this.#baseTexture;
     if (texture) this.#renderer.setTexture(texture);
+    const file = this.#files.findIndex((f) => f === this.#parts?.loaded);
     this.#toolbar?.showShape(
-      shape.spec ? `builtin:${shape.spec.name}` : undefined,
+      shape.spec ? `builtin:${shape.spec.name}` : file >= 0 ? `file:${file}` : undefined,
       shape.mesh.vertexCount,
       this.#partsInfo(),
     );
-    this.#hud?.showMesh(shape.mesh.vertexCount, shape.mesh.triangleCount, METHODS[this.#settings.method].label);
+    this.#hud.showMesh(
+      shape.mesh.vertexCount,
+      shape.mesh.triangleCount,
+      METHODS[this.#settings.method].label,
+      deformer.metrics(),
+    );
     this.#refreshButtons();
   }
 
@@ -706,18 +795,49 @@ export class Widget {
     return methodOptions(this.#settings.method, this.#settings.lambda);
   }
 
+  /**
+   * Applies deformer options. The same method only changes settings; another method (AKAP
+   * and ARAP are different solvers) gets a new deformer with the current pose and handles.
+   */
+  #useOptions(options: DeformerOptions): void {
+    const { method = "akap", ...settings } = options;
+    if (method === this.#deformer.method) {
+      this.#deformer.setOptions(settings);
+      return;
+    }
+    const { positions, triangles } = this.#shape.mesh;
+    const next = new Deformer(positions, triangles, options);
+    try {
+      next.setPositions(this.#deformer.positionsView());
+      const event = this.#handlesEvent();
+      next.setHandlePoints(event.handles.triangles, event.handles.barycentric);
+    } catch (error) {
+      next.free();
+      throw error;
+    }
+    this.#deformer.free();
+    this.#deformer = next;
+  }
+
+  /** Deformer options from a session: applied, and shown as the widget's method. */
+  #applyOptions(options: DeformerOptions): void {
+    this.#useOptions(options);
+    const { method, lambda } = widgetMethod(options, this.#settings.lambda);
+    this.#showMethod(method, lambda);
+  }
+
+  #showMethod(method: Method, lambda: number): void {
+    this.#settings.method = method;
+    this.#settings.lambda = lambda;
+    this.#toolbar?.sync(this.#settings);
+    this.#hud.showMethod(METHODS[method].label);
+  }
+
   // ---------------------------------------------------------------- handles
 
   #addHandle(point: MeshPoint): Handle {
     const [x, y] = pointPosition(this.#deformer.positionsView(), this.#shape.mesh.triangles, point);
-    const handle: Handle = {
-      point,
-      target: [x, y],
-      selected: false,
-      pointerId: undefined,
-      grab: [0, 0],
-      pending: [0, 0],
-    };
+    const handle: Handle = { ...newHandle(point), target: [x, y] };
     this.#handles.push(handle);
     this.#applyHandles();
     return handle;
@@ -754,34 +874,54 @@ export class Widget {
 
   #snapshot(): Snapshot {
     return {
+      shape: this.#shape,
+      parts: this.#parts,
+      method: this.#settings.method,
+      lambda: this.#settings.lambda,
       positions: this.#deformer.positions(),
+      atRest: this.#atRest,
       handles: this.#handles.map((h) => ({ point: h.point, target: [...h.target] })),
     };
   }
 
+  /** Undo or redo to `snapshot`, if there is one. */
+  #travel(snapshot: Snapshot | undefined): boolean {
+    if (snapshot) {
+      this.#restore(snapshot);
+      this.#status.succeeded();
+    }
+    this.#refreshButtons();
+    return snapshot !== undefined;
+  }
+
   #restore(snapshot: Snapshot): void {
     this.#releasePointers();
+    if (snapshot.method !== this.#settings.method || snapshot.lambda !== this.#settings.lambda) {
+      this.#settings.method = snapshot.method;
+      this.#settings.lambda = snapshot.lambda;
+      if (snapshot.shape === this.#shape) this.#useOptions(this.#deformerOptions());
+      this.#showMethod(snapshot.method, snapshot.lambda);
+    }
+    if (snapshot.shape !== this.#shape) {
+      this.#parts = snapshot.parts;
+      this.#adopt(snapshot.shape);
+      this.#camera.reset(snapshot.shape.mesh.positions, this.#glCanvas.width, this.#glCanvas.height);
+    }
     this.#deformer.setPositions(snapshot.positions);
     this.#record({ positions: Array.from(snapshot.positions) });
-    this.#atRest = false;
-    this.#handles = snapshot.handles.map((h) => ({
-      point: h.point,
-      target: [...h.target],
-      selected: false,
-      pointerId: undefined,
-      grab: [0, 0],
-      pending: [0, 0],
-    }));
+    this.#atRest = snapshot.atRest;
+    this.#handles = snapshot.handles.map((h) => ({ ...newHandle(h.point), target: [...h.target] }));
     this.#applyHandles();
-    this.#draw();
-    this.#emitPose();
+    this.#poseChanged();
   }
 
   /** Runs one complete gesture (an undoable unit) that is not a drag. */
   #gesture(change: () => void): void {
-    const before = this.#snapshot();
+    // The first shape, while the widget is made, has nothing before it.
+    const before = (this.#shape as Shape | undefined) && this.#snapshot();
     change();
-    this.#history.push(before);
+    if (before) this.#history.push(before);
+    this.#status.succeeded();
     this.#refreshButtons();
     this.#draw();
   }
@@ -798,6 +938,15 @@ export class Widget {
       this.#gestureChanged = false;
       this.#refreshButtons();
     }
+  }
+
+  /** The pose on screen changed outside the frame loop: distortion, HUD, event, picture. */
+  #poseChanged(): void {
+    this.#metrics = this.#deformer.metrics();
+    if (this.#settings.field) this.#lastField = this.#deformer.field();
+    this.#hud.showMetrics(this.#metrics);
+    this.#draw();
+    this.#emitPose();
   }
 
   // ---------------------------------------------------------------- the frame loop
@@ -817,12 +966,15 @@ export class Widget {
     let substeps = 0;
     try {
       substeps = this.#advance(timings);
-      this.#status.textContent = "";
-      this.#status.classList.remove("error");
+      if (substeps > 0) this.#status.succeeded();
     } catch (error) {
-      this.#showError(error);
-      this.#releasePointers();
-      this.#pinHandlesWhereTheyAre();
+      // The deformer is unchanged; pins stay where they are, dragged handles keep their
+      // targets and are tried again next frame, in smaller steps.
+      this.#showError(new Error(`${messageOf(error)}. Try a smaller move, or Undo (Ctrl+Z) or Reset.`));
+      const p = this.#deformer.handlePositions();
+      this.#handles.forEach((h, i) => {
+        if (h.pointerId === undefined) h.target = [p[2 * i]!, p[2 * i + 1]!];
+      });
     }
     const dragging = this.#handles.some((h) => h.pointerId !== undefined);
     this.#idleFrames = substeps > 0 && dragging ? 0 : this.#idleFrames + 1;
@@ -835,7 +987,8 @@ export class Widget {
     this.#draw();
     if (substeps > 0) {
       const work = performance.now() - started;
-      this.#hud?.report({ time, work, timings, substeps, metrics: this.#metrics });
+      this.#hud.report({ time, work, timings, substeps, metrics: this.#metrics });
+      if (dragging) this.#keepHudClear();
       this.#emitPose(work, substeps, timings);
     }
     if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
@@ -890,9 +1043,27 @@ export class Widget {
     return count;
   }
 
+  /**
+   * One deformer step; a step that fails (the deformer is then unchanged) is tried again
+   * with smaller velocities before the error is passed on.
+   */
   #step(velocities: Float64Array, timings: Timings): void {
-    this.#deformer.step(velocities);
-    if (this.#recorder.recording) this.#record({ step: Array.from(velocities) });
+    let taken = velocities;
+    try {
+      this.#deformer.step(velocities);
+    } catch (error) {
+      const smaller = RETRY_SCALES.map((f) => velocities.map((v) => v * f)).find((v) => {
+        try {
+          this.#deformer.step(v);
+          return true;
+        } catch {
+          return false;
+        }
+      });
+      if (!smaller) throw error;
+      taken = smaller;
+    }
+    if (this.#recorder.recording) this.#record({ step: Array.from(taken) });
     const t = this.#deformer.timings();
     timings.assembly += t.assembly;
     timings.factorisation += t.factorisation;
@@ -905,14 +1076,12 @@ export class Widget {
     if ("handles" in event) {
       const { triangles, barycentric } = event.handles;
       this.#deformer.setHandlePoints(triangles, barycentric);
-      this.#handles = triangles.map((triangle, i) => ({
-        point: { triangle, barycentric: [barycentric[3 * i]!, barycentric[3 * i + 1]!, barycentric[3 * i + 2]!] },
-        target: [0, 0],
-        selected: false,
-        pointerId: undefined,
-        grab: [0, 0],
-        pending: [0, 0],
-      }));
+      this.#handles = triangles.map((triangle, i) =>
+        newHandle({
+          triangle,
+          barycentric: [barycentric[3 * i]!, barycentric[3 * i + 1]!, barycentric[3 * i + 2]!],
+        }),
+      );
       this.#pinHandlesWhereTheyAre();
     } else if ("step" in event) {
       this.#deformer.step(event.step);
@@ -921,7 +1090,7 @@ export class Widget {
       this.#deformer.setPositions(event.positions);
       this.#atRest = false;
     } else if ("options" in event) {
-      this.#useOptions(event.options);
+      this.#applyOptions(event.options);
     } else {
       this.#deformer.reset();
       this.#atRest = true;
@@ -932,7 +1101,7 @@ export class Widget {
     if (!this.#replaying) this.#recorder.record(event);
   }
 
-  // ---------------------------------------------------------------- drawing
+  // ---------------------------------------------------------------- drawing and the view
 
   #resize(): void {
     if (this.#destroyed) return;
@@ -947,15 +1116,15 @@ export class Widget {
       }
     }
     this.#ratio = ratio;
-    // Fit the rest shape with room around it for poses that reach out.
-    this.#view = fitView(this.#shape.mesh.positions, width, height, 0.12);
+    this.#camera.resize(this.#shape.mesh.positions, width, height);
+    this.#root.classList.toggle("compact", rect.width < 640);
     this.#draw();
   }
 
   #draw(): void {
     if (this.#destroyed) return;
     const s = this.#settings;
-    this.#renderer.draw(this.#deformer.positionsView(), this.#view, {
+    this.#renderer.draw(this.#deformer.positionsView(), this.#camera.view, {
       wireframe: s.wireframe,
       pixelRatio: this.#ratio,
       background: "#f6f1e7",
@@ -990,9 +1159,32 @@ export class Widget {
         field: withHandles && this.#settings.field ? this.#lastField : undefined,
         showFlipped: this.#settings.flipped,
       },
-      this.#view,
+      this.#camera.view,
       this.#ratio,
     );
+  }
+
+  /** Moves the HUD to the other side when a dragged handle comes under it. */
+  #keepHudClear(): void {
+    const hud = this.#hud.element;
+    if (hud.classList.contains("hidden")) return;
+    const box = hud.getBoundingClientRect();
+    const canvas = this.#overlay.getBoundingClientRect();
+    const p = this.#deformer.handlePositions();
+    const margin = 24;
+    const under = this.#handles.some((h, i) => {
+      if (h.pointerId === undefined) return false;
+      const [px, py] = toPixel(this.#camera.view, p[2 * i]!, p[2 * i + 1]!);
+      const [x, y] = [canvas.left + px / this.#ratio, canvas.top + py / this.#ratio];
+      return x > box.left - margin && x < box.right + margin && y > box.top - margin && y < box.bottom + margin;
+    });
+    if (under) hud.classList.toggle("other-side");
+  }
+
+  /** Client (CSS) pixels to device pixels of the canvas. */
+  #devicePixel(clientX: number, clientY: number): [number, number] {
+    const rect = this.#overlay.getBoundingClientRect();
+    return [(clientX - rect.left) * this.#ratio, (clientY - rect.top) * this.#ratio];
   }
 
   // ---------------------------------------------------------------- input
@@ -1002,23 +1194,21 @@ export class Widget {
     this.#pointer = new PointerInput(this.#overlay, {
       accepting: () => !this.#replaying,
       focus: () => this.#root.focus({ preventScroll: true }),
-      toShape: (clientX, clientY) => {
-        const rect = this.#overlay.getBoundingClientRect();
-        return fromPixel(this.#view, (clientX - rect.left) * ratio(), (clientY - rect.top) * ratio());
-      },
+      toShape: (clientX, clientY) => fromPixel(this.#camera.view, ...this.#devicePixel(clientX, clientY)),
       handleAt: (x, y) => {
-        const radius = (1.6 * HANDLE_RADIUS * ratio()) / this.#view.scale;
+        const radius = (1.6 * HANDLE_RADIUS * ratio()) / this.#camera.view.scale;
         return nearestPoint(this.#deformer.handlePositions(), x, y, radius);
       },
       beginGesture: () => {
         this.#gestureBefore ??= this.#snapshot();
       },
       addHandleAt: (x, y) => {
-        const tolerance = (4 * ratio()) / this.#view.scale;
+        const tolerance = (4 * ratio()) / this.#camera.view.scale;
         const point = locate(this.#deformer.positionsView(), this.#shape.mesh.triangles, x, y, tolerance);
         if (!point) return -1;
         this.#addHandle(point);
         this.#gestureChanged = true;
+        this.#status.succeeded();
         return this.#handles.length - 1;
       },
       grab: (index, pointerId, x, y, additive) => {
@@ -1063,7 +1253,7 @@ export class Widget {
         this.#draw();
       },
       removeAt: (x, y) => {
-        const radius = (1.6 * HANDLE_RADIUS * ratio()) / this.#view.scale;
+        const radius = (1.6 * HANDLE_RADIUS * ratio()) / this.#camera.view.scale;
         const index = nearestPoint(this.#deformer.handlePositions(), x, y, radius);
         if (index >= 0) this.removeHandle(index);
       },
@@ -1072,8 +1262,21 @@ export class Widget {
         this.#endDragGesture();
         this.#draw();
       },
+      panMode: () => this.#spaceHeld,
+      pan: (dx, dy) => {
+        this.#camera.pan(dx * ratio(), dy * ratio());
+        this.#draw();
+      },
+      zoom: (clientX, clientY, factor) => {
+        this.#camera.zoom(...this.#devicePixel(clientX, clientY), factor);
+        this.#draw();
+      },
     });
     this.#root.addEventListener("keydown", (e) => this.#key(e));
+    this.#root.addEventListener("keyup", (e) => {
+      if (e.key === " ") this.#setSpace(false);
+    });
+    this.#root.addEventListener("blur", () => this.#setSpace(false), true);
     // Files dropped on the stage load like the Open button's.
     this.#overlay.addEventListener("dragover", (e) => {
       if (e.dataTransfer?.types.includes("Files")) e.preventDefault();
@@ -1086,8 +1289,19 @@ export class Widget {
     });
   }
 
+  #setSpace(held: boolean): void {
+    this.#spaceHeld = held;
+    this.#overlay.classList.toggle("panning", held);
+  }
+
   #key(e: KeyboardEvent): void {
-    const command = keyCommand(e);
+    const focus = keyFocus(e.composedPath()[0] ?? null);
+    if (e.key === " " && focus === "other") {
+      e.preventDefault();
+      this.#setSpace(true);
+      return;
+    }
+    const command = keyCommand(e, focus);
     if (!command) return;
     e.preventDefault();
     switch (command.kind) {
@@ -1109,7 +1323,7 @@ export class Widget {
       }
       case "nudge": {
         const selected = this.#handles.filter((h) => h.selected);
-        const unit = this.#ratio / this.#view.scale;
+        const unit = this.#ratio / this.#camera.view.scale;
         const [dx, dy] = [command.dx * unit, command.dy * unit];
         if (selected.length === 0) break;
         this.#gesture(() => {
@@ -1122,29 +1336,47 @@ export class Widget {
         break;
       }
       case "deselect":
+        if (this.#help.open) this.#toggleHelp(false);
         this.#handles.forEach((h) => (h.selected = false));
         this.#draw();
         break;
       case "toggle":
-        this.#settings[command.what] = !this.#settings[command.what];
-        if (command.what === "field") this.#lastField = this.#settings.field ? this.#deformer.field() : undefined;
+        this.setDisplay({ [command.what]: !this.#settings[command.what] });
         this.#toolbar?.sync(this.#settings);
-        this.#draw();
+        break;
+      case "fit":
+        this.zoom("fit");
+        break;
+      case "zoom":
+        this.zoom(command.factor);
+        break;
+      case "help":
+        this.#toggleHelp();
         break;
     }
+  }
+
+  #toggleHelp(open = !this.#help.open): void {
+    this.#help.open = open;
+    if (!open) this.#root.focus({ preventScroll: true });
   }
 
   // ---------------------------------------------------------------- toolbar, events, errors
 
   #toolbarActions(): Parameters<typeof buildToolbar>[1] {
+    // An action that fails says why, and its fields show the settings in force again.
     const guard =
       <A extends unknown[]>(action: (...args: A) => unknown) =>
       (...args: A): void => {
+        const failed = (error: unknown): void => {
+          this.#showError(error);
+          this.#syncToolbar();
+        };
         try {
           const result = action(...args);
-          if (result instanceof Promise) result.catch((error: unknown) => this.#showError(error));
+          if (result instanceof Promise) result.catch(failed);
         } catch (error) {
-          this.#showError(error);
+          failed(error);
         }
       };
     return {
@@ -1155,25 +1387,24 @@ export class Widget {
       shape: guard(async (value: string) => {
         const [kind, rest] = [value.slice(0, value.indexOf(":")), value.slice(value.indexOf(":") + 1)];
         if (kind === "builtin") this.setShape(rest);
+        else if (kind === "file") this.#showFile(this.#files[Number(rest)]!, 0);
         else await this.loadUrl(this.#gallery[Number(rest)]!.url);
       }),
       remesh: guard((vertices: number, minAngle: number) => this.remesh(vertices, minAngle)),
       open: guard((file: File) => this.loadFile(file)),
       part: guard((index: number) => this.choosePart(index)),
-      method: guard((method: string, lambda: number) => this.setMethod(method as Method, lambda)),
-      display: guard((options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }) => {
-        this.setDisplay(options);
-        if (options.field) this.#lastField = this.#deformer.field();
+      method: guard((method: string, lambda: number) => {
+        this.setMethod(method as Method, lambda);
+        this.#status.succeeded();
       }),
-      hud: (visible: boolean) => this.#hud?.element.classList.toggle("hidden", !visible),
-      record: guard(() => {
-        if (this.recording) {
-          const session = this.stopRecording();
-          if (session) this.#lastSession = session;
-        } else {
-          this.startRecording();
-        }
-      }),
+      display: guard((options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }) =>
+        this.setDisplay(options),
+      ),
+      hud: (visible: boolean) => {
+        this.#settings.hud = visible;
+        this.#hud.element.classList.toggle("hidden", !visible);
+      },
+      record: guard(() => (this.recording ? this.stopRecording() : this.startRecording())),
       replay: guard(() => (this.#lastSession ? this.replay(this.#lastSession) : undefined)),
       saveSession: guard(() => {
         if (this.#lastSession) {
@@ -1189,8 +1420,9 @@ export class Widget {
         if (file.size > 80_000_000)
           throw new Error(`${file.name} is ${file.size} bytes; sessions are limited to 80 MB`);
         const session = parseSession(await file.text());
-        this.#lastSession = session;
         await this.replay(session);
+        this.#lastSession = session;
+        this.#refreshButtons();
       }),
       export: guard(async (format: "json" | "obj" | "svg" | "png") => {
         const doc = this.target.ownerDocument;
@@ -1204,6 +1436,8 @@ export class Widget {
             format === "json" ? "application/json" : "text/plain",
           );
       }),
+      fit: () => this.zoom("fit"),
+      help: () => this.#toggleHelp(),
     };
   }
 
@@ -1223,10 +1457,16 @@ export class Widget {
     });
   }
 
+  /** Every field of the toolbar back to the settings in force. */
+  #syncToolbar(): void {
+    this.#toolbar?.sync(this.#settings);
+    this.#toolbar?.showShape(undefined, this.vertexCount, this.#partsInfo());
+  }
+
   #showError(error: unknown): void {
-    const message = error instanceof Error ? error.message : String(error);
-    this.#status.textContent = message;
-    this.#status.classList.add("error");
+    const message = messageOf(error);
+    if (this.#status.kind === "error" && this.#status.text === message) return;
+    this.#status.error(message);
     this.#emit("akap-error", { message });
   }
 
@@ -1264,6 +1504,27 @@ function methodOptions(method: Method, lambda: number): DeformerOptions {
   const options: DeformerOptions = { ...METHODS[method].options };
   if (options.method === "akap") options.lambda = lambda;
   return options;
+}
+
+/** The widget method (and lambda) that deformer options describe, e.g. a session's. */
+export function widgetMethod(options: DeformerOptions, lambda: number): { method: Method; lambda: number } {
+  if (options.method === "arap") return { method: "arap", lambda };
+  const dirichlet = options.dirichlet ?? true;
+  const integrator = options.integrator ?? "spiral";
+  const found = (Object.keys(METHODS) as Method[]).find((key) => {
+    const m: DeformerOptions = METHODS[key].options;
+    return m.method === "akap" && m.dirichlet === dirichlet && m.integrator === integrator;
+  });
+  return { method: found ?? "akap", lambda: options.lambda ?? lambda };
+}
+
+/** A handle at a mesh point, not held, not selected; its target is the caller's to set. */
+function newHandle(point: MeshPoint): Handle {
+  return { point, target: [0, 0], selected: false, pointerId: undefined, grab: [0, 0], pending: [0, 0] };
+}
+
+function messageOf(error: unknown): string {
+  return error instanceof Error ? error.message : String(error);
 }
 
 function nextFrame(): Promise<void> {
