@@ -5,7 +5,7 @@
  * a reload, and imported colours.
  */
 import { expect, test, type Page } from "@playwright/test";
-import { handles, idle, mapping, open, usePrepared } from "./helpers.js";
+import { handles, idle, mapping, open, pinAndDrag, positions, usePrepared } from "./helpers.js";
 
 usePrepared();
 
@@ -90,3 +90,202 @@ for (const [what, end] of [
     expect(await page.evaluate(() => window.akapDemo!.widget.metrics.flipped)).toBeGreaterThan(0);
   });
 }
+
+test("a step that fails says what to do, stays on screen, and the next drags work", async ({ page }) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  await pinAndDrag(page, -20, 20);
+  // A lambda this large overflows every step: the failure is provoked through the API.
+  await page.evaluate(() => window.akapDemo!.widget.setMethod("akap", 1e308));
+  const { toCss } = await mapping(page);
+  const h = await handles(page);
+  const [x, y] = toCss(h[2]!, h[3]!);
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  await page.mouse.move(x - 30, y + 30, { steps: 5 });
+  await page.mouse.up();
+  await idle(page);
+  const status = page.locator(".akap-host >> .status.error");
+  await expect(status).toContainText("Try a smaller move, or Undo");
+  expect(await handles(page)).toEqual(h);
+  await page.waitForTimeout(600);
+  await expect(status).toBeVisible();
+  // Back to a sane lambda through the toolbar: a successful action clears the message.
+  const lambda = page.getByRole("spinbutton", { name: "λ" });
+  await lambda.fill("100");
+  await lambda.press("Enter");
+  await expect(page.locator(".akap-host >> .status")).toHaveText("");
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  await page.mouse.move(x - 30, y + 30, { steps: 5 });
+  await page.mouse.up();
+  await idle(page);
+  const after = await handles(page);
+  const [ax, ay] = toCss(after[2]!, after[3]!);
+  expect(Math.hypot(ax - (x - 30), ay - (y + 30))).toBeLessThan(1);
+});
+
+test("keys typed into toolbar fields and lists stay there", async ({ page }) => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page);
+  await pinAndDrag(page, 0, 0); // two handles, the second selected
+  const vertices = page.getByRole("spinbutton", { name: "Vertices" });
+  const before = await vertices.inputValue();
+  await vertices.focus();
+  await page.keyboard.press("End");
+  await page.keyboard.press("Backspace");
+  await page.keyboard.press("Backspace");
+  await page.keyboard.type("99");
+  expect(await vertices.inputValue()).toBe(`${before.slice(0, -2)}99`);
+  // Arrow keys move through the method list.
+  const method = page.getByRole("combobox", { name: "Method" });
+  await method.focus();
+  await page.keyboard.press("ArrowDown");
+  await expect(method).toHaveValue("akap-no-dirichlet");
+  // Backspace in the lambda field edits the number; the selected handle stays.
+  const lambda = page.getByRole("spinbutton", { name: "λ" });
+  await lambda.focus();
+  await page.keyboard.press("End");
+  await page.keyboard.press("Backspace");
+  expect(await lambda.inputValue()).toBe("10");
+  expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
+});
+
+/** Downloads what the toolbar button `name` saves; returns its text. */
+async function downloaded(page: Page, name: string): Promise<{ text: string; path: string }> {
+  const download = page.waitForEvent("download");
+  await page.getByRole("button", { name, exact: true }).click();
+  const d = await download;
+  const path = (await d.path())!;
+  const fs = await import("node:fs/promises");
+  return { text: await fs.readFile(path, "utf8"), path };
+}
+
+test("Replay and Save are ready when Stop is pressed; a loaded ARAP session shows ARAP and undoes in one step", async ({
+  page,
+}) => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page, "");
+  await page.getByRole("combobox", { name: "Method" }).selectOption("arap");
+  await page.getByRole("button", { name: "Record" }).click();
+  await pinAndDrag(page, -60, 50);
+  await page.getByRole("button", { name: "Stop" }).click();
+  await expect(page.getByRole("button", { name: "Replay" })).toBeEnabled();
+  await expect(page.getByRole("button", { name: "Save" })).toBeEnabled();
+  const recorded = await positions(page);
+  const { path } = await downloaded(page, "Save");
+
+  await open(page, "");
+  await pinAndDrag(page, 30, 30);
+  const before = await positions(page);
+  await page.locator('input[name="session-file"]').setInputFiles(path);
+  await expect.poll(() => positions(page)).toEqual(recorded);
+  await expect(page.getByRole("combobox", { name: "Method" })).toHaveValue("arap");
+  await expect(page.locator(".akap-host >> .hud")).toContainText("ARAP");
+  await page.getByRole("button", { name: "Undo" }).click();
+  expect(await positions(page)).toEqual(before);
+  await expect(page.getByRole("combobox", { name: "Method" })).toHaveValue("akap");
+  await expect(page.locator(".akap-host >> .hud")).toContainText("AKAP");
+});
+
+test("messages: an import error goes once a file loads; information is not shown as an error", async ({ page }) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  const file = (name: string, text: string) => ({ name, mimeType: "image/svg+xml", buffer: Buffer.from(text) });
+  const picker = page.locator('input[name="shape-file"]');
+  await picker.setInputFiles(file("broken.svg", "<svg><path d='M 0 0 L 10'/>"));
+  await expect(page.locator(".akap-host >> .status.error")).toContainText("broken.svg");
+  const two =
+    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 100">' +
+    '<rect x="10" y="10" width="120" height="80"/><circle cx="220" cy="50" r="30"/></svg>';
+  await picker.setInputFiles(file("two.svg", two));
+  const status = page.locator(".akap-host >> .status");
+  await expect(status).toContainText("2 separate parts");
+  await expect(status).toHaveClass(/info/);
+  await expect(status).not.toHaveClass(/error/);
+  // The imported file is in the shape list, chosen.
+  await expect(page.getByRole("combobox", { name: "Shape" }).locator("option:checked")).toHaveText("two.svg");
+  // The next action that succeeds clears the information too.
+  await pinAndDrag(page, 10, 10);
+  await expect(status).toHaveText("");
+});
+
+for (const [query, complaint] of [
+  ["?shape=x", "?shape=x"],
+  ["?method=foo", "?method=foo"],
+  ["?vertices=abc", "?vertices=abc"],
+  ["?src=/no-such-file.svg", "no-such-file.svg"],
+] as const) {
+  test(`a bad URL parameter (${query}) starts the default figure and says what was wrong`, async ({ page }) => {
+    await page.goto(`/${query}`);
+    await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
+    await expect(page.locator(".akap-host >> .status.error")).toContainText(complaint);
+    const c = await page.evaluate(() => window.akapDemo!.widget.vertexCount);
+    expect(c).toBeGreaterThan(1000);
+    await expect(page.getByRole("combobox", { name: "Shape" })).toHaveValue("builtin:gingerbread");
+  });
+}
+
+test("the HUD checkbox shows a HUD that started hidden, with the figures of the pose on screen", async ({ page }) => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page, "?hud=false");
+  const hud = page.locator(".akap-host >> .hud");
+  await expect(hud).toBeHidden();
+  await page.getByRole("checkbox", { name: "HUD" }).check();
+  await expect(hud).toBeVisible();
+  // Fold triangles over: the HUD counts them; after Undo it shows the rest pose's figures.
+  const points = await figurePoints(page);
+  for (const foot of points.feet) await page.mouse.click(...foot);
+  await page.mouse.move(...points.head);
+  await page.mouse.down();
+  await page.mouse.move(620, 560, { steps: 30 });
+  await page.mouse.up();
+  await idle(page);
+  const flipped = await page.evaluate(() => window.akapDemo!.widget.metrics.flipped);
+  expect(flipped).toBeGreaterThan(0);
+  await expect(hud).toContainText(`flipped ${flipped}`);
+  await page.keyboard.press("Control+z");
+  await expect(hud).toContainText("E_area 2.0000");
+  await expect(hud).toContainText("flipped 0");
+});
+
+test("a refused number goes back to the value in force; re-meshing keeps pose and handles, and undoes", async ({
+  page,
+}) => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page);
+  const vertices = page.getByRole("spinbutton", { name: "Vertices" });
+  const count = await vertices.inputValue();
+  await vertices.fill("10");
+  await vertices.press("Enter");
+  await expect(page.locator(".akap-host >> .status.error")).toContainText("10");
+  await expect(vertices).toHaveValue(count);
+
+  await pinAndDrag(page, -60, 80);
+  const { toCss } = await mapping(page);
+  const before = { handles: await handles(page), positions: await positions(page) };
+  await vertices.fill("3000");
+  await vertices.press("Enter");
+  await expect.poll(() => page.evaluate(() => window.akapDemo!.widget.vertexCount)).toBeGreaterThan(2500);
+  await idle(page);
+  const after = await handles(page);
+  expect(after.length).toBe(before.handles.length);
+  for (let i = 0; i < after.length; i += 2) {
+    const [x0, y0] = toCss(before.handles[i]!, before.handles[i + 1]!);
+    const [x1, y1] = toCss(after[i]!, after[i + 1]!);
+    expect(Math.hypot(x1 - x0, y1 - y0)).toBeLessThan(2);
+  }
+  // The new mesh is posed like the old one: the posed bounding boxes agree to a few pixels.
+  const box = (p: number[]) => {
+    const xs = p.filter((_, i) => i % 2 === 0);
+    const ys = p.filter((_, i) => i % 2 === 1);
+    return [Math.min(...xs), Math.min(...ys), Math.max(...xs), Math.max(...ys)];
+  };
+  const [a, b] = [box(before.positions), box(await positions(page))];
+  const { unit } = await mapping(page);
+  for (let k = 0; k < 4; k++) expect(Math.abs(a[k]! - b[k]!) / unit).toBeLessThan(3);
+  await page.getByRole("button", { name: "Undo" }).click();
+  expect(await positions(page)).toEqual(before.positions);
+  expect(await handles(page)).toEqual(before.handles);
+  await expect(vertices).toHaveValue(count);
+});

@@ -5,7 +5,17 @@
  * this repository; embedding pages use `mount` or `<akap-deformer>` from the package.
  */
 /// <reference types="vite/client" />
-import { mount, type GalleryItem, type Method, type Widget, type WidgetOptions } from "../src/index.js";
+import {
+  METHODS,
+  builtinShapes,
+  init,
+  mount,
+  type GalleryItem,
+  type Method,
+  type Widget,
+  type WidgetOptions,
+} from "../src/index.js";
+import { MAX_VERTICES } from "../src/widget/shape.js";
 import galleryIndex from "../gallery/index.json";
 
 /** The gallery files, as URLs the bundler serves. */
@@ -26,21 +36,56 @@ declare global {
   }
 }
 
+/**
+ * Widget options from the URL, and what was wrong with it: a parameter that cannot be used
+ * is left out (the widget starts with its default) and named in the message.
+ */
+function optionsFromUrl(params: URLSearchParams): { options: WidgetOptions; problems: string[] } {
+  const options: WidgetOptions = { gallery };
+  const problems: string[] = [];
+  const shape = params.get("shape");
+  if (shape !== null) {
+    if (builtinShapes().includes(shape)) options.shape = shape;
+    else problems.push(`?shape=${shape} is not a built-in shape (${builtinShapes().join(", ")})`);
+  }
+  const vertices = params.get("vertices");
+  if (vertices !== null) {
+    const count = Number(vertices);
+    if (vertices.trim() !== "" && Number.isFinite(count) && count >= 50 && count <= MAX_VERTICES) {
+      options.vertices = count;
+    } else {
+      problems.push(`?vertices=${vertices} is not a number from 50 to ${MAX_VERTICES}`);
+    }
+  }
+  const method = params.get("method");
+  if (method !== null) {
+    if (Object.hasOwn(METHODS, method)) options.method = method as Method;
+    else problems.push(`?method=${method} is not a method (${Object.keys(METHODS).join(", ")})`);
+  }
+  const hud = params.get("hud");
+  if (hud === "false") options.hud = false;
+  else if (hud !== null && hud !== "true") problems.push(`?hud=${hud} is not true or false`);
+  const src = params.get("src");
+  if (src) options.src = src;
+  return { options, problems };
+}
+
 async function main(): Promise<void> {
   const stage = document.getElementById("app");
   if (!stage) throw new Error("the page has no #app");
-  const params = new URLSearchParams(window.location.search);
-  const options: WidgetOptions = { gallery };
-  const src = params.get("src");
-  if (src) options.src = src;
-  const shape = params.get("shape");
-  if (shape) options.shape = shape;
-  const vertices = params.get("vertices");
-  if (vertices) options.vertices = Number(vertices);
-  const method = params.get("method");
-  if (method) options.method = method as Method;
-  if (params.get("hud") === "false") options.hud = false;
-  const widget = await mount(stage, options);
+  await init();
+  const { options, problems } = optionsFromUrl(new URLSearchParams(window.location.search));
+  let widget: Widget;
+  try {
+    widget = await mount(stage, options);
+  } catch (error) {
+    // Most likely the file of ?src=: start with the default figure and say why.
+    problems.push(error instanceof Error ? error.message : String(error));
+    widget = await mount(stage, { ...options, src: undefined });
+  }
+  if (problems.length > 0) {
+    widget.showMessage(`${problems.join("; ")}. Showing the default instead.`, "error");
+  }
   window.akapDemo = { widget };
   document.body.dataset.ready = "true";
 }
