@@ -31,7 +31,7 @@ canvas.overlay.panning { cursor: grab; }
   position: absolute; right: 0.5em; top: 0.5em; padding: 0.4em 0.6em; border-radius: 6px;
   background: rgba(20, 28, 40, 0.78); color: #e8f1ff; pointer-events: none;
 }
-.hud.other-side { right: auto; left: 0.5em; }
+.hud.clear { opacity: 0.1; }
 .hud pre { margin: 0 0 0.3em; font: 11px/1.35 ui-monospace, monospace; }
 .hud canvas { display: block; width: 240px; height: 48px; }
 .busy {

@@ -985,10 +985,10 @@ export class Widget {
       if (this.#settings.field) this.#lastField = this.#deformer.field();
     }
     this.#draw();
+    this.#keepHudClear(dragging);
     if (substeps > 0) {
       const work = performance.now() - started;
       this.#hud.report({ time, work, timings, substeps, metrics: this.#metrics });
-      if (dragging) this.#keepHudClear();
       this.#emitPose(work, substeps, timings);
     }
     if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
@@ -1164,21 +1164,24 @@ export class Widget {
     );
   }
 
-  /** Moves the HUD to the other side when a dragged handle comes under it. */
-  #keepHudClear(): void {
+  /** Fades the HUD out while a dragged handle is under it (or near), so the handle shows. */
+  #keepHudClear(dragging: boolean): void {
     const hud = this.#hud.element;
     if (hud.classList.contains("hidden")) return;
-    const box = hud.getBoundingClientRect();
-    const canvas = this.#overlay.getBoundingClientRect();
-    const p = this.#deformer.handlePositions();
-    const margin = 24;
-    const under = this.#handles.some((h, i) => {
-      if (h.pointerId === undefined) return false;
-      const [px, py] = toPixel(this.#camera.view, p[2 * i]!, p[2 * i + 1]!);
-      const [x, y] = [canvas.left + px / this.#ratio, canvas.top + py / this.#ratio];
-      return x > box.left - margin && x < box.right + margin && y > box.top - margin && y < box.bottom + margin;
-    });
-    if (under) hud.classList.toggle("other-side");
+    let under = false;
+    if (dragging) {
+      const box = hud.getBoundingClientRect();
+      const canvas = this.#overlay.getBoundingClientRect();
+      const p = this.#deformer.handlePositions();
+      const margin = 24;
+      under = this.#handles.some((h, i) => {
+        if (h.pointerId === undefined) return false;
+        const [px, py] = toPixel(this.#camera.view, p[2 * i]!, p[2 * i + 1]!);
+        const [x, y] = [canvas.left + px / this.#ratio, canvas.top + py / this.#ratio];
+        return x > box.left - margin && x < box.right + margin && y > box.top - margin && y < box.bottom + margin;
+      });
+    }
+    hud.classList.toggle("clear", under);
   }
 
   /** Client (CSS) pixels to device pixels of the canvas. */
