@@ -200,3 +200,42 @@ test("on a phone the tools fold away, targets are finger-sized, and the HUD fade
   await expect.poll(() => hud.evaluate((e) => Number(getComputedStyle(e).opacity))).toBeGreaterThan(0.9);
   await context.close();
 });
+
+test("the work survives a reload, and Start over begins afresh", async ({ page }) => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page);
+  await page.getByRole("combobox", { name: "Method" }).selectOption("arap");
+  await page.getByLabel("Wireframe").check();
+  await pinAndDrag(page, -50, 60);
+  const work = { positions: await positions(page), handles: await handles(page) };
+  // Saved a moment after the last change.
+  await page.waitForTimeout(1000);
+  await page.reload();
+  await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
+  expect(await positions(page)).toEqual(work.positions);
+  expect(await handles(page)).toEqual(work.handles);
+  await expect(page.getByRole("combobox", { name: "Method" })).toHaveValue("arap");
+  await expect(page.getByLabel("Wireframe")).toBeChecked();
+  // The restored pose poses on: the dragged handle follows another drag.
+  const { toCss } = await mapping(page);
+  const [x, y] = toCss(work.handles[2]!, work.handles[3]!);
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  await page.mouse.move(x + 20, y - 20, { steps: 4 });
+  await page.mouse.up();
+  await idle(page);
+  const h = await handles(page);
+  const [hx, hy] = toCss(h[2]!, h[3]!);
+  expect(Math.hypot(hx - (x + 20), hy - (y - 20))).toBeLessThan(1);
+
+  await page.getByRole("button", { name: "Start over" }).click();
+  await expect.poll(() => handleCount(page)).toBe(0);
+  const rest = await page.evaluate(() => Array.from(window.akapDemo!.widget.mesh.positions));
+  expect(await positions(page)).toEqual(rest);
+  await expect(page.getByRole("combobox", { name: "Method" })).toHaveValue("akap");
+  await page.waitForTimeout(1000);
+  await page.reload();
+  await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
+  expect(await handleCount(page)).toBe(0);
+  expect(await positions(page)).toEqual(rest);
+});

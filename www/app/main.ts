@@ -41,7 +41,8 @@ declare global {
  * is left out (the widget starts with its default) and named in the message.
  */
 function optionsFromUrl(params: URLSearchParams): { options: WidgetOptions; problems: string[] } {
-  const options: WidgetOptions = { gallery };
+  // The app keeps the user's work across reloads (not when the URL asks for a shape).
+  const options: WidgetOptions = { gallery, storageKey: "akap-app" };
   const problems: string[] = [];
   const shape = params.get("shape");
   if (shape !== null) {

@@ -15,6 +15,8 @@ import {
   builtinShape,
   builtinShapes,
   init,
+  meshFromArrays,
+  triangulate,
   type DeformerOptions,
   type MeshData,
   type Metrics,
@@ -39,6 +41,7 @@ import { locate, nearestPoint, pointPosition, type MeshPoint } from "./picking.j
 import { Recorder, parseSession, type Session, type SessionEvent } from "./session.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
 import { BusyIndicator, StatusLine } from "./status.js";
+import { WorkStore, textureBlob, textureCanvas, type SavedWork } from "./persist.js";
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
 import { buildToolbar, type Toolbar } from "./toolbar.js";
@@ -100,6 +103,12 @@ export interface WidgetOptions {
   maxStep?: number;
   /** Most substeps per animation frame (default 8); longer moves continue next frame. */
   maxSubsteps?: number;
+  /**
+   * Keep the work (shape, pose, handles, settings) across reloads, in the browser's
+   * IndexedDB under this key; it comes back when the widget starts without `shape`, `src`
+   * or `outline`. Off by default; the app uses it. The toolbar then has "Start over".
+   */
+  storageKey?: string;
 }
 
 /** A file the toolbar offers beside the built-in shapes. */
@@ -181,7 +190,11 @@ export class Widget {
   readonly #history = new History<Snapshot>();
   readonly #recorder = new Recorder();
   readonly #camera = new Camera();
-  readonly #settings: Required<Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery">>;
+  readonly #settings: Required<Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey">>;
+  readonly #store: WorkStore | undefined;
+  #saveTimer: ReturnType<typeof setTimeout> | undefined;
+  /** PNG encodings of imported images' textures, made once per shape for saving. */
+  readonly #savedTextures = new WeakMap<Shape, Promise<Blob | undefined>>();
   readonly #gallery: readonly GalleryItem[];
   /** Files opened so far, offered again in the shape list as `file:index`. */
   readonly #files: Loaded[] = [];
@@ -208,6 +221,7 @@ export class Widget {
   private constructor(target: HTMLElement, options: WidgetOptions) {
     this.target = target;
     this.#gallery = options.gallery ?? [];
+    this.#store = options.storageKey ? new WorkStore(options.storageKey) : undefined;
     this.#settings = {
       vertices: options.vertices ?? DEFAULTS.vertices,
       minAngle: options.minAngle ?? DEFAULTS.minAngle,
@@ -295,8 +309,15 @@ export class Widget {
       const name = options.outline ? undefined : (options.shape ?? builtinShapes()[0]!);
       const outline = options.outline ?? builtinShape(name!);
       widget.#baseTexture = options.texture ? await loadImage(options.texture) : defaultTexture();
+      const chosen = options.src !== undefined || options.shape !== undefined || options.outline !== undefined;
+      const saved = chosen ? undefined : await widget.#store?.load().catch(() => undefined);
       if (options.src) await widget.loadUrl(options.src);
       else widget.#install(meshOutline(outline, name, widget.#settings.vertices, widget.#settings.minAngle));
+      if (saved) {
+        await widget.#resume(saved).catch((error: unknown) => {
+          widget.#status.info(`The saved work could not be restored (${messageOf(error)}); starting afresh.`);
+        });
+      }
       widget.#history.clear();
     } catch (error) {
       widget.destroy();
@@ -745,9 +766,114 @@ export class Widget {
     this.#renderer.destroy();
     this.#hud.destroy();
     this.#busy.done();
+    clearTimeout(this.#saveTimer);
     this.#deformer?.free();
     this.#host.remove();
     for (const resolve of this.#idleWaiters.splice(0)) resolve();
+  }
+
+  /**
+   * Forgets the saved work and starts again: the default shape at its default density, at
+   * rest, without handles, with the default method and display. Undoable.
+   */
+  async startOver(): Promise<void> {
+    await this.#store?.clear();
+    const name = builtinShapes()[0]!;
+    const shape = meshOutline(builtinShape(name), name, DEFAULTS.vertices, DEFAULTS.minAngle);
+    this.#gesture(() => {
+      Object.assign(this.#settings, { vertices: DEFAULTS.vertices, minAngle: DEFAULTS.minAngle });
+      Object.assign(this.#settings, { wireframe: false, field: false, flipped: true, paperMode: false });
+      this.#showMethod(DEFAULTS.method, DEFAULTS.lambda);
+      this.#parts = undefined;
+      this.#install(shape);
+    });
+    this.#syncToolbar();
+  }
+
+  // ---------------------------------------------------------------- keeping the work
+
+  /** Puts back saved work (over the shape just installed); throws, changing nothing, if it cannot. */
+  async #resume(saved: SavedWork): Promise<void> {
+    const { shape: kept, settings } = saved;
+    let shape: Shape;
+    if (kept.kind === "builtin") {
+      const spec = kept.spec;
+      const mesh = triangulate(builtinShape(spec.name), {
+        targetEdgeLength: spec.targetEdgeLength,
+        minAngle: spec.minAngle,
+      });
+      shape = shapeFromMesh(mesh, { ...spec });
+    } else {
+      shape = shapeFromMesh(meshFromArrays(kept.positions, kept.triangles), undefined, kept.uvs, kept.name);
+      if (kept.texture) shape.texture = await textureCanvas(this.target.ownerDocument, kept.texture);
+      if (kept.vector) shape.vector = kept.vector;
+    }
+    if (!(METHODS as Record<string, unknown>)[settings.method]) throw new Error(`unknown method ${settings.method}`);
+    const before = this.#snapshot();
+    try {
+      Object.assign(this.#settings, settings);
+      this.#hud.element.classList.toggle("hidden", !this.#settings.hud);
+      this.#install(shape);
+      this.#restore({ ...saved, shape, parts: undefined, method: settings.method as Method, lambda: settings.lambda });
+    } catch (error) {
+      this.#restore(before);
+      throw error;
+    }
+    this.#syncToolbar();
+  }
+
+  /** Saves the work a moment after the last change (nothing while a replay runs). */
+  #scheduleSave(): void {
+    if (!this.#store || this.#replaying) return;
+    clearTimeout(this.#saveTimer);
+    this.#saveTimer = setTimeout(() => {
+      this.#save().catch((error: unknown) => {
+        this.#status.info(`Your work cannot be kept in this browser: ${messageOf(error)}`);
+      });
+    }, 400);
+  }
+
+  async #save(): Promise<void> {
+    if (!this.#store || this.#destroyed) return;
+    const shape = this.#shape;
+    const { mesh } = shape;
+    let texture: Promise<Blob | undefined> | undefined;
+    if (!shape.spec && shape.texture && !shape.vector) {
+      texture = this.#savedTextures.get(shape) ?? textureBlob(shape.texture);
+      this.#savedTextures.set(shape, texture);
+    }
+    const snapshot = this.#snapshot();
+    const s = this.#settings;
+    const work: SavedWork = {
+      format: "akap-work",
+      version: 1,
+      settings: {
+        vertices: s.vertices,
+        minAngle: s.minAngle,
+        method: s.method,
+        lambda: s.lambda,
+        wireframe: s.wireframe,
+        field: s.field,
+        flipped: s.flipped,
+        paperMode: s.paperMode,
+        hud: s.hud,
+      },
+      shape: shape.spec
+        ? { kind: "builtin", spec: { ...shape.spec } }
+        : {
+            kind: "mesh",
+            name: shape.name,
+            positions: Float64Array.from(mesh.positions),
+            triangles: Uint32Array.from(mesh.triangles),
+            uvs: shape.uvs,
+            ...(texture ? { texture: await texture } : {}),
+            ...(shape.vector ? { vector: shape.vector } : {}),
+          },
+      positions: snapshot.positions,
+      atRest: snapshot.atRest,
+      handles: snapshot.handles,
+    };
+    await this.#store.save(work);
   }
 
   // ---------------------------------------------------------------- shape, method and deformer
@@ -1133,6 +1259,7 @@ export class Widget {
     });
     this.#drawOverlayOn(this.#overlayContext, true);
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
+    this.#scheduleSave();
   }
 
   #drawOverlayOn(ctx: CanvasRenderingContext2D, withHandles: boolean): void {
@@ -1441,6 +1568,7 @@ export class Widget {
       }),
       fit: () => this.zoom("fit"),
       help: () => this.#toggleHelp(),
+      ...(this.#store ? { startOver: guard(() => this.startOver()) } : {}),
     };
   }
 
