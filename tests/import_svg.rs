@@ -422,3 +422,49 @@ fn unknown_fills_still_fill() {
         assert_eq!(shape.outlines[0].area(), 6.0, "{value}");
     }
 }
+
+#[test]
+fn coordinates_beyond_the_limit_are_refused_in_the_users_terms() {
+    let limit = Limits::default().max_coordinate;
+    let cases = [
+        (svg(r#"<rect width="1e308" height="1e308"/>"#, r#"viewBox="0 0 1e308 1e308""#), "<rect>", "1e308"),
+        (svg(r#"<path id="huge" d="M 0 0 L 1e308 0 L 1e308 1e308 Z"/>"#, ""), "<path id=\"huge\">", "1e308"),
+        (
+            svg(r#"<g transform="scale(1e300)"><rect width="10" height="10"/></g>"#, r#"viewBox="0 0 10 10""#),
+            "<rect>",
+            "1e301",
+        ),
+    ];
+    for (text, element, value) in cases {
+        let error = import_svg(&text, &SvgOptions::default()).unwrap_err();
+        assert!(matches!(error, ImportError::CoordinateTooLarge { .. }), "{error:?}");
+        let message = error.to_string();
+        for part in [element, &format!("coordinates reach {value} in magnitude"), &format!("within ±{limit:e}")] {
+            assert!(message.contains(part), "{message:?} should contain {part:?}");
+        }
+    }
+    // Overflow on the way (1e300 x 1e300) is refused the same way.
+    let text = svg(r#"<rect transform="scale(1e300)" width="1e300" height="1"/>"#, "");
+    let message = import_svg(&text, &SvgOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("<rect> (line 1, column 42) is too large: its coordinates overflow"), "{message}");
+    // The limit is an option.
+    let tight = SvgOptions { limits: Limits { max_coordinate: 100.0, ..Limits::default() }, ..SvgOptions::default() };
+    let text = svg(r#"<rect x="50" width="60" height="1"/>"#, "");
+    assert!(import_svg(&text, &tight).unwrap_err().to_string().contains("reach 1.1e2 in magnitude"));
+}
+
+#[test]
+fn drawings_up_to_the_coordinate_limit_triangulate() {
+    // A square with a square hole, reaching exactly the limit: import and meshing work in
+    // double precision, and the mesh has the area of the square less the hole's.
+    let limit = Limits::default().max_coordinate;
+    let text = svg(
+        &format!(r#"<path fill-rule="evenodd" d="M0 0H{limit}V{limit}H0Z M{q} {q}h{q}v{q}h-{q}z"/>"#, q = limit / 4.0),
+        &format!(r#"viewBox="0 0 {limit} {limit}""#),
+    );
+    let shape = import_svg(&text, &SvgOptions::default()).unwrap();
+    let options = TriangulationOptions::default().with_target_edge_length(limit / 10.0);
+    let mesh = triangulate(&shape.outlines[0], &options).unwrap();
+    let expected = limit * limit * (1.0 - 1.0 / 16.0);
+    assert!((mesh.area() - expected).abs() < 1e-12 * expected, "{}", mesh.area());
+}

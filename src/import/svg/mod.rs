@@ -6,6 +6,7 @@
 //! filled element keeps its fill colour. Curves are flattened to a tolerance and the rings
 //! become outlines with holes by nesting (see `regions`), exactly; when boundaries cross or
 //! touch (overlapping shapes), the union is traced on a fine grid instead (see `merge`).
+//! Elements reaching coordinates beyond [`Limits::max_coordinate`] are refused.
 //!
 //! Output coordinates are the root's user units (its `viewBox`) with y flipped to point
 //! up: the bottom-left corner of the `viewBox` is the origin.
@@ -244,13 +245,7 @@ impl<'a, 'input> Walk<'a, 'input> {
                     }
                     if let Some(mut path) = self.shape(node)? {
                         path.map_points(|p| transform.apply(p));
-                        if let Some(i) = path.points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-                            return Err(self.attribute_error(
-                                node,
-                                "(geometry)",
-                                format!("point {i} is too large to represent once transformed"),
-                            ));
-                        }
+                        self.check_coordinates(node, &path)?;
                         self.paths.push(SvgPath {
                             element: self.element_ref(node),
                             path,
@@ -269,6 +264,16 @@ impl<'a, 'input> Walk<'a, 'input> {
             }
         }
         Ok(())
+    }
+
+    /// Refuses an element whose points, placed in the drawing, lie beyond
+    /// [`Limits::max_coordinate`] (or overflowed on the way there).
+    fn check_coordinates(&self, node: Node, path: &VectorPath) -> Result<(), ImportError> {
+        let limit = self.limits.max_coordinate;
+        match path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit) {
+            Some(&value) => Err(ImportError::CoordinateTooLarge { element: self.element_ref(node), value, limit }),
+            None => Ok(()),
+        }
     }
 
     fn syntax_error(&self, node: Node, attribute: &str, e: SyntaxError) -> ImportError {
