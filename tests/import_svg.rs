@@ -439,7 +439,9 @@ fn coordinates_beyond_the_limit_are_refused_in_the_users_terms() {
         let error = import_svg(&text, &SvgOptions::default()).unwrap_err();
         assert!(matches!(error, ImportError::CoordinateTooLarge { .. }), "{error:?}");
         let message = error.to_string();
-        for part in [element, &format!("coordinates reach {value} in magnitude"), &format!("within ±{limit:e}")] {
+        for part in
+            [element, &format!("it reaches {value} in the drawing's units"), &format!("beyond ±{limit:e}, the limit")]
+        {
             assert!(message.contains(part), "{message:?} should contain {part:?}");
         }
     }
@@ -450,7 +452,10 @@ fn coordinates_beyond_the_limit_are_refused_in_the_users_terms() {
     // The limit is an option.
     let tight = SvgOptions { limits: Limits { max_coordinate: 100.0, ..Limits::default() }, ..SvgOptions::default() };
     let text = svg(r#"<rect x="50" width="60" height="1"/>"#, "");
-    assert!(import_svg(&text, &tight).unwrap_err().to_string().contains("reach 1.1e2 in magnitude"));
+    assert!(import_svg(&text, &tight)
+        .unwrap_err()
+        .to_string()
+        .contains("it reaches 1.1e2 in the drawing's units (after its transforms and viewBoxes), beyond ±1e2"));
 }
 
 #[test]

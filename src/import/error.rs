@@ -151,14 +151,14 @@ impl fmt::Display for ImportError {
             Self::CoordinateTooLarge { element, value, limit } => {
                 write!(f, "{element} is too large: ")?;
                 if value.is_finite() {
-                    write!(f, "its coordinates reach {:e} in magnitude", value.abs())?;
+                    write!(f, "it reaches {:e}", value.abs())?;
                 } else {
                     write!(f, "its coordinates overflow")?;
                 }
                 write!(
                     f,
-                    " in the drawing's units (after its transforms and viewBoxes), and coordinates must \
-                     stay within ±{limit:e} for the geometry to work in double precision; scale the drawing down"
+                    " in the drawing's units (after its transforms and viewBoxes), beyond ±{limit:e}, the \
+                     limit for the geometry to work in double precision; scale the drawing down"
                 )
             }
             Self::NoShapes { skipped } if skipped.is_empty() => write!(f, "the SVG has no filled shape"),
