@@ -27,11 +27,22 @@ export function meshObj(positions: ArrayLike<number>, triangles: ArrayLike<numbe
   return lines.join("\n") + "\n";
 }
 
+/** The fill of exported shapes and of vector art whose colour the importer does not know. */
+export const DEFAULT_FILL = "#c8773a";
+
 /**
- * The outline of the current pose as an SVG document: one path with every boundary loop
- * (holes included, even-odd fill), y pointing down as SVG expects, a small margin.
+ * The outline of the current pose as an SVG document: one path with every boundary loop,
+ * y pointing down as SVG expects, a small margin. Each loop follows the mesh's boundary
+ * edges in their direction (the shape on their left: the outer boundary counter-clockwise
+ * and holes clockwise at rest), and the path fills by the nonzero rule: inside the posed
+ * shape the winding number is positive (2 where a posed arm lies over the body, so the
+ * overlap stays filled, as the canvas draws it), and 0 in holes and outside.
  */
-export function outlineSvg(positions: ArrayLike<number>, boundaryEdges: ArrayLike<number>, fill = "#c8773a"): string {
+export function outlineSvg(
+  positions: ArrayLike<number>,
+  boundaryEdges: ArrayLike<number>,
+  fill = DEFAULT_FILL,
+): string {
   const b = bounds(positions);
   const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
   const width = b.maxX - b.minX + 2 * margin;
@@ -51,7 +62,7 @@ export function outlineSvg(positions: ArrayLike<number>, boundaryEdges: ArrayLik
     .join(" ");
   return [
     `<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 ${fmt(width)} ${fmt(height)}" width="${fmt(width * 400)}" height="${fmt(height * 400)}">`,
-    `  <path d="${d}" fill="${fill}" fill-rule="evenodd" stroke="#5a2d0c" stroke-width="${fmt(0.004 * Math.max(width, height))}" stroke-linejoin="round"/>`,
+    `  <path d="${d}" fill="${fill}" fill-rule="nonzero" stroke="#5a2d0c" stroke-width="${fmt(0.004 * Math.max(width, height))}" stroke-linejoin="round"/>`,
     "</svg>",
     "",
   ].join("\n");

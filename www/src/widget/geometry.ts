@@ -20,7 +20,9 @@ export function uniqueEdges(triangles: ArrayLike<number>, vertexCount: number): 
 
 /**
  * Chains boundary edges (pairs, the shape on their left) into closed loops of vertex
- * indices: the outer boundary counter-clockwise, holes clockwise.
+ * indices, each edge in its own direction: the outer boundary counter-clockwise, holes
+ * clockwise (at rest, y up). The loops' winding number around a point therefore counts the
+ * layers of the shape over it in any pose without flipped triangles.
  */
 export function boundaryLoops(boundaryEdges: ArrayLike<number>): number[][] {
   const next = new Map<number, number[]>();
