@@ -1,7 +1,7 @@
 /** SVG exports of a pose: the outline's fill where parts overlap, vector art's colours. */
 import { beforeAll, describe, expect, it } from "vitest";
-import { init, triangulate } from "../../www/src/index.js";
-import { outlineSvg } from "../../www/src/widget/export.js";
+import { importSvgPaths, init, triangulate, type VectorPath } from "../../www/src/index.js";
+import { outlineSvg, vectorSvg } from "../../www/src/widget/export.js";
 import { bounds } from "../../www/src/widget/view.js";
 
 beforeAll(async () => {
@@ -79,5 +79,36 @@ describe("outline SVG of a pose whose parts overlap", () => {
     expect(layers(polar(2.5, 1.5 * Math.PI))).toBe(1); // one layer: x = 6
     expect(layers(curl(4.5, 0.5))).toBe(0); // the centre of the hole
     expect(layers([0, 0])).toBe(0); // the middle of the curl, outside the strip
+  });
+});
+
+describe("vector SVG export", () => {
+  const text =
+    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 20">' +
+    '<g fill="red" opacity="0.5"><rect width="10" height="10" fill-opacity="0.5"/></g>' +
+    '<rect x="20" width="10" height="10" fill="#0f0" fill-rule="evenodd"/>' +
+    '<rect x="40" width="10" height="10" fill="url(#gradient)"/></svg>';
+
+  it("writes each path in its own colour and opacity, the default only when unknown", () => {
+    const paths = importSvgPaths(text);
+    const svg = vectorSvg(paths.map((path) => ({ path, points: path.points })));
+    const written = [...svg.matchAll(/<path d="[^"]*" ([^/]*)\/>/g)].map((m) => m[1]);
+    expect(written).toEqual([
+      'fill="#ff0000" fill-opacity="0.25" fill-rule="nonzero"',
+      'fill="#00ff00" fill-rule="evenodd"',
+      'fill="#c8773a" fill-rule="nonzero"',
+    ]);
+    expect(vectorSvg([{ path: paths[2]!, points: paths[2]!.points }], "teal")).toContain('fill="teal"');
+  });
+
+  it("writes other CSS colours as they are, escaped", () => {
+    const path: VectorPath = {
+      element: "<path>",
+      commands: "MLLZ",
+      points: Float64Array.from([0, 0, 1, 0, 0, 1]),
+      fillRule: "nonzero",
+      fill: 'cornflowerblue"<',
+    };
+    expect(vectorSvg([{ path, points: path.points }])).toContain('fill="cornflowerblue&quot;&lt;"');
   });
 });
