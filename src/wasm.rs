@@ -555,7 +555,9 @@ pub fn import_svg(text: &str, options: JsValue) -> Result<Array, JsError> {
 }
 
 /// The filled elements' paths in output coordinates:
-/// `[{ element, commands: "MLQCZ"-letters, points: Float64Array, fillRule }]`.
+/// `[{ element, commands: "MLQCZ"-letters, points: Float64Array, fillRule, fill }]`, where
+/// `fill` is `"rgba(R, G, B, A)"` (channels 0-255, alpha 0-1 with every opacity folded in)
+/// or `undefined` when the importer does not know the colour (a gradient, say).
 #[wasm_bindgen]
 pub fn import_svg_paths(text: &str, options: JsValue) -> Result<Array, JsError> {
     let options = parse_svg_options(&options)?;
@@ -572,11 +574,18 @@ pub fn import_svg_paths(text: &str, options: JsValue) -> Result<Array, JsError> 
             ("commands", commands.into()),
             ("points", flat(&p.path.points).into()),
             ("fillRule", rule.into()),
+            ("fill", p.fill.map_or(JsValue::UNDEFINED, |c| css_colour(c).into())),
         ])
         .map_err(|_| JsError::new("could not build a path object"))?;
         list.push(&entry);
     }
     Ok(list)
+}
+
+/// A fill colour as CSS writes it, `rgba(R, G, B, A)`: exact, and usable as it is by a
+/// canvas, in SVG and in CSS.
+fn css_colour(c: svg_import::FillColour) -> String {
+    format!("rgba({}, {}, {}, {})", c.red, c.green, c.blue, c.alpha)
 }
 
 /// Traces the shape in RGBA pixels (rows from the top) into outlines in pixel units, y up.

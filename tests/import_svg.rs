@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 
 use akap::geometry::{distance, polygon_area, Point};
-use akap::import::svg::{import_svg, parse_path_data, SvgOptions, SvgShape};
+use akap::import::svg::{import_svg, parse_path_data, FillColour, SvgOptions, SvgShape};
 use akap::import::warp::PointMapper;
 use akap::import::{ImportError, Limits};
 use akap::{triangulate, Outline, TriangulationOptions};
@@ -342,4 +342,134 @@ fn vector_paths_follow_the_deformed_mesh() {
     for (q, &p) in mapped.iter().zip(&path.points) {
         assert!(distance(*q, motion(p)) < 1e-9, "{p:?}");
     }
+}
+
+/// The fill colour of each filled element, in document order.
+fn fills(body: &str, attributes: &str) -> Vec<Option<FillColour>> {
+    import(body, attributes).paths.iter().map(|p| p.fill).collect()
+}
+
+fn rgba(red: u8, green: u8, blue: u8, alpha: f64) -> Option<FillColour> {
+    Some(FillColour { red, green, blue, alpha })
+}
+
+const SQUARE: &str = r#"width="1" height="1""#;
+
+#[test]
+fn fill_colours_follow_the_css_cascade() {
+    let r = |attributes: &str| format!("<rect {SQUARE} {attributes}/>");
+    // No fill anywhere: the initial value, opaque black.
+    assert_eq!(fills(&r(""), ""), vec![rgba(0, 0, 0, 1.0)]);
+    // fill inherits; a group's opacity applies to its children and multiplies with the
+    // element's fill-opacity: 1 x 0.5 x 0.5.
+    let body = format!(r#"<g fill="red" opacity="0.5">{}</g>"#, r(r#"fill-opacity="0.5""#));
+    assert_eq!(fills(&body, ""), vec![rgba(255, 0, 0, 0.25)]);
+    // opacity multiplies down the tree (and takes percentages); fill-opacity inherits, and
+    // an element's own replaces its parent's instead of multiplying.
+    let body = format!(r#"<g opacity="50%"><g opacity="0.5">{}</g></g>"#, r(""));
+    assert_eq!(fills(&body, ""), vec![rgba(0, 0, 0, 0.25)]);
+    let body = format!(r#"<g fill-opacity="0.5">{}{}</g>"#, r(""), r(r#"fill-opacity="0.75""#));
+    assert_eq!(fills(&body, ""), vec![rgba(0, 0, 0, 0.5), rgba(0, 0, 0, 0.75)]);
+    // Alpha values are clamped to 0..1; invalid ones are ignored, as CSS ignores them.
+    assert_eq!(fills(&r(r#"fill-opacity="3" opacity="lots""#), ""), vec![rgba(0, 0, 0, 1.0)]);
+    // currentColor takes the inherited color; the root's color counts too.
+    let body = format!(r##"<g color="#0f0">{}</g>"##, r(r#"fill="currentColor""#));
+    assert_eq!(fills(&body, ""), vec![rgba(0, 255, 0, 1.0)]);
+    assert_eq!(fills(&r(r#"fill="currentcolor""#), r#"color="blue""#), vec![rgba(0, 0, 255, 1.0)]);
+    // A fill of currentColor inherits as the keyword, so it uses each element's own color.
+    let body = format!(r#"<g fill="currentColor" color="red">{}{}</g>"#, r(r#"color="blue""#), r(""));
+    assert_eq!(fills(&body, ""), vec![rgba(0, 0, 255, 1.0), rgba(255, 0, 0, 1.0)]);
+    // A style declaration overrides the attribute; inherit keeps the parent's value.
+    assert_eq!(fills(&r(r#"fill="red" style="fill: #00f""#), ""), vec![rgba(0, 0, 255, 1.0)]);
+    let body = format!(r#"<g style="fill:lime;opacity:0.5">{}</g>"#, r(r#"fill="inherit" opacity="inherit""#));
+    assert_eq!(fills(&body, ""), vec![rgba(0, 255, 0, 0.25)]);
+}
+
+#[test]
+fn fill_colours_in_every_css_notation() {
+    // Values from CSS Color: the named colours' table, hex digits doubled in #rgb,
+    // percentages of 255, hsl(120, 100%, 50%) is lime.
+    let cases = [
+        ("cornflowerblue", (100, 149, 237)),
+        ("#abc", (0xaa, 0xbb, 0xcc)),
+        ("#FF8000", (255, 128, 0)),
+        ("rgb(10, 20, 30)", (10, 20, 30)),
+        ("rgb(100%, 0%, 100%)", (255, 0, 255)),
+        ("hsl(120, 100%, 50%)", (0, 255, 0)),
+    ];
+    for (value, (red, green, blue)) in cases {
+        assert_eq!(
+            fills(&format!(r#"<rect {SQUARE} fill="{value}"/>"#), ""),
+            vec![rgba(red, green, blue, 1.0)],
+            "{value}"
+        );
+    }
+    // An alpha in the colour itself is kept to 1/255 and multiplies with the opacities.
+    let [Some(c)] = fills(&format!(r#"<rect {SQUARE} fill="rgba(0, 0, 255, 0.5)" opacity="0.5"/>"#), "")[..] else {
+        panic!("one colour expected")
+    };
+    assert_eq!((c.red, c.green, c.blue), (0, 0, 255));
+    assert!((c.alpha - 0.25).abs() <= 0.5 / 255.0, "{}", c.alpha);
+}
+
+#[test]
+fn unknown_fills_still_fill() {
+    // Paint servers and unparsable values: the colour is unknown, the shape still counts.
+    for value in ["url(#missing)", "url(#gradient) red", "context-fill", "glitter"] {
+        let shape = import(&format!(r#"<rect width="2" height="3" fill="{value}"/>"#), "");
+        assert_eq!(shape.paths.len(), 1, "{value}");
+        assert_eq!(shape.paths[0].fill, None, "{value}");
+        assert_eq!(shape.outlines[0].area(), 6.0, "{value}");
+    }
+}
+
+#[test]
+fn coordinates_beyond_the_limit_are_refused_in_the_users_terms() {
+    let limit = Limits::default().max_coordinate;
+    let cases = [
+        (svg(r#"<rect width="1e308" height="1e308"/>"#, r#"viewBox="0 0 1e308 1e308""#), "<rect>", "1e308"),
+        (svg(r#"<path id="huge" d="M 0 0 L 1e308 0 L 1e308 1e308 Z"/>"#, ""), "<path id=\"huge\">", "1e308"),
+        (
+            svg(r#"<g transform="scale(1e300)"><rect width="10" height="10"/></g>"#, r#"viewBox="0 0 10 10""#),
+            "<rect>",
+            "1e301",
+        ),
+    ];
+    for (text, element, value) in cases {
+        let error = import_svg(&text, &SvgOptions::default()).unwrap_err();
+        assert!(matches!(error, ImportError::CoordinateTooLarge { .. }), "{error:?}");
+        let message = error.to_string();
+        for part in
+            [element, &format!("it reaches {value} in the drawing's units"), &format!("beyond ±{limit:e}, the limit")]
+        {
+            assert!(message.contains(part), "{message:?} should contain {part:?}");
+        }
+    }
+    // Overflow on the way (1e300 x 1e300) is refused the same way.
+    let text = svg(r#"<rect transform="scale(1e300)" width="1e300" height="1"/>"#, "");
+    let message = import_svg(&text, &SvgOptions::default()).unwrap_err().to_string();
+    assert!(message.contains("<rect> (line 1, column 42) is too large: its coordinates overflow"), "{message}");
+    // The limit is an option.
+    let tight = SvgOptions { limits: Limits { max_coordinate: 100.0, ..Limits::default() }, ..SvgOptions::default() };
+    let text = svg(r#"<rect x="50" width="60" height="1"/>"#, "");
+    assert!(import_svg(&text, &tight)
+        .unwrap_err()
+        .to_string()
+        .contains("it reaches 1.1e2 in the drawing's units (after its transforms and viewBoxes), beyond ±1e2"));
+}
+
+#[test]
+fn drawings_up_to_the_coordinate_limit_triangulate() {
+    // A square with a square hole, reaching exactly the limit: import and meshing work in
+    // double precision, and the mesh has the area of the square less the hole's.
+    let limit = Limits::default().max_coordinate;
+    let text = svg(
+        &format!(r#"<path fill-rule="evenodd" d="M0 0H{limit}V{limit}H0Z M{q} {q}h{q}v{q}h-{q}z"/>"#, q = limit / 4.0),
+        &format!(r#"viewBox="0 0 {limit} {limit}""#),
+    );
+    let shape = import_svg(&text, &SvgOptions::default()).unwrap();
+    let options = TriangulationOptions::default().with_target_edge_length(limit / 10.0);
+    let mesh = triangulate(&shape.outlines[0], &options).unwrap();
+    let expected = limit * limit * (1.0 - 1.0 / 16.0);
+    assert!((mesh.area() - expected).abs() < 1e-12 * expected, "{}", mesh.area());
 }

@@ -72,6 +72,17 @@ pub enum ImportError {
         /// The nesting limit.
         limit: usize,
     },
+    /// An SVG element reaches coordinates too large for the geometry (see
+    /// [`crate::import::Limits::max_coordinate`]).
+    CoordinateTooLarge {
+        /// The element.
+        element: ElementRef,
+        /// The first coordinate beyond the limit, in the drawing's units (infinite or NaN
+        /// when it overflowed).
+        value: f64,
+        /// The limit on the magnitude of coordinates.
+        limit: f64,
+    },
     /// The SVG has no filled shape that could become an outline.
     NoShapes {
         /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
@@ -137,6 +148,19 @@ impl fmt::Display for ImportError {
                 write!(f, "attribute {attribute} of {element}: {message}")
             }
             Self::TooDeep { element, limit } => write!(f, "{element} nests deeper than {limit} elements"),
+            Self::CoordinateTooLarge { element, value, limit } => {
+                write!(f, "{element} is too large: ")?;
+                if value.is_finite() {
+                    write!(f, "it reaches {:e}", value.abs())?;
+                } else {
+                    write!(f, "its coordinates overflow")?;
+                }
+                write!(
+                    f,
+                    " in the drawing's units (after its transforms and viewBoxes), beyond ±{limit:e}, the \
+                     limit for the geometry to work in double precision; scale the drawing down"
+                )
+            }
             Self::NoShapes { skipped } if skipped.is_empty() => write!(f, "the SVG has no filled shape"),
             Self::NoShapes { skipped } => {
                 write!(f, "the SVG has no filled shape (unsupported elements skipped: {})", skipped.join(", "))

@@ -27,7 +27,7 @@ pub mod warp;
 pub use error::{ElementRef, ImportError};
 
 /// Size limits for untrusted input. The defaults suit interactive use in a browser.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
     /// Largest text input (SVG, OBJ, JSON), in bytes.
     pub max_bytes: usize,
@@ -43,6 +43,14 @@ pub struct Limits {
     /// touch (a sweep; only adversarial inputs, thousands of segments stacked in one
     /// place, come near the default).
     pub max_segment_pairs: usize,
+    /// Largest magnitude of a coordinate of an SVG's shapes once placed in the drawing (in
+    /// the root `viewBox`'s units, after every transform), which also bounds the drawing's
+    /// extent. The default, 1e30, is far beyond any real drawing and keeps everything
+    /// downstream working in double precision: products of coordinates (areas, orientation
+    /// tests, squared distances, summed over every point) stay far from overflowing, the
+    /// triangulator's exact predicates accept up to 2^201 (about 3.2e60), and positions
+    /// still fit in single precision (3.4e38) for drawing.
+    pub max_coordinate: f64,
 }
 
 impl Default for Limits {
@@ -54,6 +62,7 @@ impl Default for Limits {
             max_vertices: 1_000_000,
             max_elements: 200_000,
             max_segment_pairs: 50_000_000,
+            max_coordinate: 1e30,
         }
     }
 }

@@ -98,6 +98,64 @@ describe("vector export", () => {
       "M 10 -90 C 30 -100 70 -100 90 -90 L 90 -10 L 10 -10 Z",
     );
   });
+
+  it("gives each path its fill colour as rgba(), opacities folded in, undefined when unknown", () => {
+    const paths = importSvgPaths(
+      svg(
+        '<g fill="red" opacity="0.5"><rect width="10" height="10" fill-opacity="0.5"/></g>' +
+          '<g color="#0f0"><rect x="20" width="10" height="10" fill="currentColor"/></g>' +
+          '<rect x="40" width="10" height="10" fill="url(#missing)"/>' +
+          '<rect x="60" width="10" height="10" fill="red" style="fill: hsl(240, 100%, 50%)"/>' +
+          '<rect x="80" width="10" height="10"/>',
+      ),
+    );
+    // 1 (red) x 0.5 (fill-opacity) x 0.5 (the group's opacity); currentColor is the
+    // inherited color; a paint server is unknown; style overrides the attribute
+    // (hsl(240, 100%, 50%) is blue); no fill at all is black.
+    expect(paths.map((p) => p.fill)).toEqual([
+      "rgba(255, 0, 0, 0.25)",
+      "rgba(0, 255, 0, 1)",
+      undefined,
+      "rgba(0, 0, 255, 1)",
+      "rgba(0, 0, 0, 1)",
+    ]);
+    expect(paths.every((p) => "fill" in p)).toBe(true);
+  });
+});
+
+describe("huge coordinates", () => {
+  // A drawing whose coordinates the geometry cannot work with in double precision is
+  // refused by the import, naming the element and the limit, not later by the mesher in
+  // its own terms.
+  const cases = [
+    [
+      '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 1e308 1e308"><rect width="1e308" height="1e308"/></svg>',
+      "<rect>",
+    ],
+    ['<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 1e308 0 L 1e308 1e308 Z"/></svg>', "<path>"],
+    [svg('<rect transform="scale(1e300)" width="10" height="10"/>', "0 0 10 10"), "<rect>"],
+  ] as const;
+  for (const [text, element] of cases) {
+    it(`refuses ${text.slice(text.indexOf(">") + 1, -6)}`, () => {
+      for (const read of [importSvg, importSvgPaths]) {
+        let message = "";
+        try {
+          read(text);
+        } catch (e) {
+          message = (e as Error).message;
+        }
+        expect(message).toContain(`${element} (line 1, column`);
+        expect(message).toMatch(/is too large: it reaches 1e30[18] in the drawing's units/);
+        expect(message).toContain("beyond ±1e30, the limit for the geometry to work in double precision");
+      }
+    });
+  }
+
+  it("imports and meshes a drawing just inside the limit", () => {
+    const [shape] = importSvg(svg('<rect width="1e29" height="5e28"/>', "0 0 1e29 1e29"));
+    const mesh = triangulate(shape!, { targetEdgeLength: 1e28 });
+    expect(mesh.area / 5e57).toBeCloseTo(1, 12);
+  });
 });
 
 /** A w x h RGBA image, opaque where `inside(x, y)` holds for the pixel centre (y down). */

@@ -59,12 +59,21 @@ export interface VectorPath {
   /** The commands' points, x and y interleaved. */
   points: Float64Array;
   fillRule: "nonzero" | "evenodd";
+  /**
+   * The fill colour as a CSS colour, always `rgba(R, G, B, A)` when it comes from
+   * {@link importSvgPaths}: R, G, B whole numbers from 0 to 255, A from 0 to 1 with the
+   * element's `fill-opacity` and the `opacity` of the element and its groups multiplied
+   * in. Usable as it is as a canvas `fillStyle` or an SVG `fill`. `undefined` when the
+   * colour is unknown (a gradient or pattern, `url(#...)`, or a value the importer does not
+   * understand): the element is still filled, so draw it in a colour of your choice.
+   */
+  fill: string | undefined;
 }
 
 /**
- * The filled elements of an SVG document as vector paths (absolute M, L, Q, C, Z), for
- * exporting the art deformed: map `points` through the mesh with a {@link PointMapper},
- * then write them with {@link pathData}.
+ * The filled elements of an SVG document as vector paths (absolute M, L, Q, C, Z) with
+ * their fill rule and colour, for exporting the art deformed: map `points` through the
+ * mesh with a {@link PointMapper}, then write them with {@link pathData}.
  */
 export function importSvgPaths(text: string, options: SvgImportOptions = {}): VectorPath[] {
   assertLoaded();

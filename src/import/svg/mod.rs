@@ -1,20 +1,24 @@
 //! SVG documents to outlines: the document is read as data (roxmltree), never rendered or
 //! run. Filled `path`, `rect` (with rounded corners), `circle`, `ellipse`, `polygon` and
 //! `polyline` elements count, through `g`, `a`, `switch` and nested `svg` elements, with
-//! their `transform`s and `viewBox`es; `fill`, `fill-rule` and `display` are read from
-//! attributes and `style`. Curves are flattened to a tolerance and the rings become
-//! outlines with holes by nesting (see `regions`), exactly; when boundaries cross or touch
-//! (overlapping shapes), the union is traced on a fine grid instead (see `merge`).
+//! their `transform`s and `viewBox`es; `fill`, `fill-rule`, `fill-opacity`, `color`,
+//! `opacity` and `display` are read from attributes and `style` (see `style`), and each
+//! filled element keeps its fill colour. Curves are flattened to a tolerance and the rings
+//! become outlines with holes by nesting (see `regions`), exactly; when boundaries cross or
+//! touch (overlapping shapes), the union is traced on a fine grid instead (see `merge`).
+//! Elements reaching coordinates beyond [`Limits::max_coordinate`] are refused.
 //!
 //! Output coordinates are the root's user units (its `viewBox`) with y flipped to point
 //! up: the bottom-left corner of the `viewBox` is the origin.
 
 mod path_data;
+mod style;
 mod transform;
 
 use roxmltree::{Document, Node, ParsingOptions};
 
 pub use path_data::{parse_path_data, SyntaxError};
+pub use style::FillColour;
 pub use transform::{parse_transform, Affine};
 
 use crate::geometry::{bounding_box, Point};
@@ -24,6 +28,7 @@ use crate::import::regions::{assemble, RegionError, SourceRing};
 use crate::import::vector::{FillRule, VectorPath, Verb};
 use crate::import::Limits;
 use crate::outline::Outline;
+use style::Style;
 
 const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
@@ -89,6 +94,10 @@ pub struct SvgPath {
     pub path: VectorPath,
     /// Its fill rule.
     pub fill_rule: FillRule,
+    /// Its fill colour, with `fill-opacity` and every `opacity` on the way from the root
+    /// folded into the alpha; `None` when the fill is a paint server (`url(#gradient)`) or
+    /// a value the importer does not understand (still filled: the shape counts).
+    pub fill: Option<FillColour>,
 }
 
 /// What an SVG document gave.
@@ -177,13 +186,6 @@ fn in_svg_namespace(node: Node) -> bool {
     matches!(node.tag_name().namespace(), None | Some(SVG_NAMESPACE))
 }
 
-/// Inherited style.
-#[derive(Clone, Copy)]
-struct Style {
-    filled: bool,
-    fill_rule: FillRule,
-}
-
 struct Walk<'a, 'input> {
     document: &'a Document<'input>,
     limits: &'a Limits,
@@ -214,12 +216,14 @@ impl<'a, 'input> Walk<'a, 'input> {
     /// Walks the tree without recursion: (node, transform to output, style, depth).
     fn run(&mut self, root: Node<'a, 'input>) -> Result<(), ImportError> {
         let viewport = self.root_viewport(root)?;
-        let mut stack = vec![(root, viewport, Style { filled: true, fill_rule: FillRule::NonZero }, 0usize)];
+        let mut stack = vec![(root, viewport, Style::initial(), 0usize)];
         while let Some((node, parent_transform, parent_style, depth)) = stack.pop() {
             if depth > MAX_DEPTH {
                 return Err(ImportError::TooDeep { element: self.element_ref(node), limit: MAX_DEPTH });
             }
-            let Some(style) = self.style(node, parent_style)? else { continue };
+            let style =
+                Style::of(node, &parent_style).map_err(|e| self.attribute_error(node, e.property, e.message))?;
+            let Some(style) = style else { continue };
             let mut transform = parent_transform;
             if let Some(text) = node.attribute("transform") {
                 let local = parse_transform(text).map_err(|e| self.syntax_error(node, "transform", e))?;
@@ -236,19 +240,18 @@ impl<'a, 'input> Walk<'a, 'input> {
                     stack.extend(children.into_iter().rev().map(|c| (c, transform, style, depth + 1)));
                 }
                 "path" | "rect" | "circle" | "ellipse" | "polygon" | "polyline" => {
-                    if !style.filled {
+                    if !style.filled() {
                         continue;
                     }
                     if let Some(mut path) = self.shape(node)? {
                         path.map_points(|p| transform.apply(p));
-                        if let Some(i) = path.points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-                            return Err(self.attribute_error(
-                                node,
-                                "(geometry)",
-                                format!("point {i} is too large to represent once transformed"),
-                            ));
-                        }
-                        self.paths.push(SvgPath { element: self.element_ref(node), path, fill_rule: style.fill_rule });
+                        self.check_coordinates(node, &path)?;
+                        self.paths.push(SvgPath {
+                            element: self.element_ref(node),
+                            path,
+                            fill_rule: style.fill_rule,
+                            fill: style.fill_colour(),
+                        });
                     }
                 }
                 "text" | "use" | "image" | "foreignObject" | "textPath" | "tspan"
@@ -263,44 +266,18 @@ impl<'a, 'input> Walk<'a, 'input> {
         Ok(())
     }
 
-    fn syntax_error(&self, node: Node, attribute: &str, e: SyntaxError) -> ImportError {
-        self.attribute_error(node, attribute, format!("{} (at character {})", e.message, e.offset))
+    /// Refuses an element whose points, placed in the drawing, lie beyond
+    /// [`Limits::max_coordinate`] (or overflowed on the way there).
+    fn check_coordinates(&self, node: Node, path: &VectorPath) -> Result<(), ImportError> {
+        let limit = self.limits.max_coordinate;
+        match path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit) {
+            Some(&value) => Err(ImportError::CoordinateTooLarge { element: self.element_ref(node), value, limit }),
+            None => Ok(()),
+        }
     }
 
-    /// The style of `node` given its parent's, or `None` when it is not displayed.
-    fn style(&self, node: Node, parent: Style) -> Result<Option<Style>, ImportError> {
-        let mut style = parent;
-        let mut declarations: Vec<(&str, &str)> = Vec::new();
-        for name in ["fill", "fill-rule", "display"] {
-            if let Some(value) = node.attribute(name) {
-                declarations.push((name, value));
-            }
-        }
-        // The style attribute overrides presentation attributes.
-        if let Some(text) = node.attribute("style") {
-            for declaration in text.split(';') {
-                if let Some((name, value)) = declaration.split_once(':') {
-                    let value = value.trim();
-                    let value = value.strip_suffix("!important").map_or(value, str::trim_end);
-                    declarations.push((name.trim(), value));
-                }
-            }
-        }
-        for (name, value) in declarations {
-            match (name, value.trim()) {
-                (_, "inherit") => {}
-                ("display", "none") => return Ok(None),
-                ("fill", "none" | "transparent") => style.filled = false,
-                ("fill", _) => style.filled = true,
-                ("fill-rule", "evenodd") => style.fill_rule = FillRule::EvenOdd,
-                ("fill-rule", "nonzero") => style.fill_rule = FillRule::NonZero,
-                ("fill-rule", other) => {
-                    return Err(self.attribute_error(node, "fill-rule", format!("`{other}` is not nonzero or evenodd")))
-                }
-                _ => {}
-            }
-        }
-        Ok(Some(style))
+    fn syntax_error(&self, node: Node, attribute: &str, e: SyntaxError) -> ImportError {
+        self.attribute_error(node, attribute, format!("{} (at character {})", e.message, e.offset))
     }
 
     /// The map from the root's user units to output coordinates (y up).

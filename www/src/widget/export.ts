@@ -27,11 +27,22 @@ export function meshObj(positions: ArrayLike<number>, triangles: ArrayLike<numbe
   return lines.join("\n") + "\n";
 }
 
+/** The fill of exported shapes and of vector art whose colour the importer does not know. */
+export const DEFAULT_FILL = "#c8773a";
+
 /**
- * The outline of the current pose as an SVG document: one path with every boundary loop
- * (holes included, even-odd fill), y pointing down as SVG expects, a small margin.
+ * The outline of the current pose as an SVG document: one path with every boundary loop,
+ * y pointing down as SVG expects, a small margin. Each loop follows the mesh's boundary
+ * edges in their direction (the shape on their left: the outer boundary counter-clockwise
+ * and holes clockwise at rest), and the path fills by the nonzero rule: inside the posed
+ * shape the winding number is positive (2 where a posed arm lies over the body, so the
+ * overlap stays filled, as the canvas draws it), and 0 in holes and outside.
  */
-export function outlineSvg(positions: ArrayLike<number>, boundaryEdges: ArrayLike<number>, fill = "#c8773a"): string {
+export function outlineSvg(
+  positions: ArrayLike<number>,
+  boundaryEdges: ArrayLike<number>,
+  fill = DEFAULT_FILL,
+): string {
   const b = bounds(positions);
   const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
   const width = b.maxX - b.minX + 2 * margin;
@@ -51,7 +62,7 @@ export function outlineSvg(positions: ArrayLike<number>, boundaryEdges: ArrayLik
     .join(" ");
   return [
     `<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 ${fmt(width)} ${fmt(height)}" width="${fmt(width * 400)}" height="${fmt(height * 400)}">`,
-    `  <path d="${d}" fill="${fill}" fill-rule="evenodd" stroke="#5a2d0c" stroke-width="${fmt(0.004 * Math.max(width, height))}" stroke-linejoin="round"/>`,
+    `  <path d="${d}" fill="${fill}" fill-rule="nonzero" stroke="#5a2d0c" stroke-width="${fmt(0.004 * Math.max(width, height))}" stroke-linejoin="round"/>`,
     "</svg>",
     "",
   ].join("\n");
@@ -59,10 +70,13 @@ export function outlineSvg(positions: ArrayLike<number>, boundaryEdges: ArrayLik
 
 /**
  * An imported SVG's filled paths with their points moved (as `map` gives them, y up) as
- * an SVG document: vector art stays vector. Fill colours are not kept (the importer reads
- * geometry only); each path keeps its fill rule.
+ * an SVG document: vector art stays vector. Each path keeps its fill rule and its fill
+ * colour, written as `fill="#rrggbb"` with `fill-opacity` when not opaque (a `fill` that
+ * is not in the `rgba(R, G, B, A)` form of {@link VectorPath.fill} is written as it is);
+ * paths whose colour is unknown (gradients, say) get `fill`. Strokes are not imported, so
+ * none are written.
  */
-export function vectorSvg(paths: readonly { path: VectorPath; points: Float64Array }[], fill = "#c8773a"): string {
+export function vectorSvg(paths: readonly { path: VectorPath; points: Float64Array }[], fill = DEFAULT_FILL): string {
   const all = paths.flatMap(({ points }) => Array.from(points));
   const b = bounds(all);
   const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
@@ -70,9 +84,25 @@ export function vectorSvg(paths: readonly { path: VectorPath; points: Float64Arr
   const [w, h] = [b.maxX - b.minX + 2 * margin, b.maxY - b.minY + 2 * margin];
   const body = paths.map(
     ({ path, points }) =>
-      `  <path d="${pathData(path, points, { flipY: true })}" fill="${fill}" fill-rule="${path.fillRule}" stroke="#5a2d0c" stroke-width="${0.004 * Math.max(w, h)}"/>`,
+      `  <path d="${pathData(path, points, { flipY: true })}" ${fillAttributes(path.fill ?? fill)} fill-rule="${path.fillRule}"/>`,
   );
   return [`<svg xmlns="http://www.w3.org/2000/svg" viewBox="${x0} ${y0} ${w} ${h}">`, ...body, "</svg>", ""].join("\n");
+}
+
+/** `fill` (and `fill-opacity`) attributes for a CSS colour: `rgba()` as SVG 1.1 writes it. */
+function fillAttributes(colour: string): string {
+  const rgba = /^rgba\((\d{1,3}), (\d{1,3}), (\d{1,3}), ([^)]+)\)$/.exec(colour);
+  const channels = rgba?.slice(1, 4).map(Number);
+  const alpha = Number(rgba?.[4]);
+  if (!channels || channels.some((c) => c > 255) || !(alpha >= 0 && alpha <= 1)) {
+    return `fill="${escapeAttribute(colour)}"`;
+  }
+  const hex = "#" + channels.map((c) => c.toString(16).padStart(2, "0")).join("");
+  return alpha === 1 ? `fill="${hex}"` : `fill="${hex}" fill-opacity="${alpha}"`;
+}
+
+function escapeAttribute(text: string): string {
+  return text.replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/"/g, "&quot;");
 }
 
 /** Offers `data` to the user as a file download. */

@@ -20,7 +20,9 @@ export function uniqueEdges(triangles: ArrayLike<number>, vertexCount: number): 
 
 /**
  * Chains boundary edges (pairs, the shape on their left) into closed loops of vertex
- * indices: the outer boundary counter-clockwise, holes clockwise.
+ * indices, each edge in its own direction: the outer boundary counter-clockwise, holes
+ * clockwise (at rest, y up). The loops' winding number around a point therefore counts the
+ * layers of the shape over it in any pose without flipped triangles.
  */
 export function boundaryLoops(boundaryEdges: ArrayLike<number>): number[][] {
   const next = new Map<number, number[]>();
@@ -48,20 +50,39 @@ export function boundaryLoops(boundaryEdges: ArrayLike<number>): number[][] {
 }
 
 /**
- * Texture coordinates from rest positions: the bounding box mapped into [0, 1]^2 with its
- * aspect ratio kept (the longer side spans 0..1), centred in the shorter direction.
+ * The square that {@link boxUvs} maps onto the unit square: a bounding box grown in its
+ * shorter direction about its centre, `[x0, x0 + size] x [y0, y0 + size]` (size 1 for a
+ * box of no size).
  */
-export function boxUvs(positions: ArrayLike<number>): Float32Array {
-  const b = bounds(positions);
-  const span = Math.max(b.maxX - b.minX, b.maxY - b.minY) || 1;
-  const padX = (span - (b.maxX - b.minX)) / 2;
-  const padY = (span - (b.maxY - b.minY)) / 2;
+export interface UvSquare {
+  x0: number;
+  y0: number;
+  size: number;
+}
+
+/** The {@link UvSquare} of a bounding box. */
+export function uvSquare(b: { minX: number; minY: number; maxX: number; maxY: number }): UvSquare {
+  const size = Math.max(b.maxX - b.minX, b.maxY - b.minY) || 1;
+  return { x0: b.minX - (size - (b.maxX - b.minX)) / 2, y0: b.minY - (size - (b.maxY - b.minY)) / 2, size };
+}
+
+/** Texture coordinates through a square: u = (x - x0) / size, v = (y - y0) / size (v up). */
+export function squareUvs(positions: ArrayLike<number>, square: UvSquare): Float32Array {
   const uvs = new Float32Array(positions.length);
   for (let i = 0; i + 1 < positions.length; i += 2) {
-    uvs[i] = (positions[i]! - b.minX + padX) / span;
-    uvs[i + 1] = (positions[i + 1]! - b.minY + padY) / span;
+    uvs[i] = (positions[i]! - square.x0) / square.size;
+    uvs[i + 1] = (positions[i + 1]! - square.y0) / square.size;
   }
   return uvs;
+}
+
+/**
+ * Texture coordinates from rest positions: the bounding box mapped into [0, 1]^2 with its
+ * aspect ratio kept (the longer side spans 0..1), centred in the shorter direction; that
+ * is, through the {@link uvSquare} of the positions' bounding box.
+ */
+export function boxUvs(positions: ArrayLike<number>): Float32Array {
+  return squareUvs(positions, uvSquare(bounds(positions)));
 }
 
 /** Signed doubled area of triangle `t` (positive when counter-clockwise). */

@@ -115,9 +115,13 @@ export class GlRenderer implements MeshRenderer {
   setTexture(image: TexImageSource): void {
     const gl = this.#gl;
     gl.bindTexture(gl.TEXTURE_2D, this.#texture);
-    // Texture coordinates have v up, images have rows top down.
+    // Texture coordinates have v up, images have rows top down. The blending takes
+    // premultiplied colours, so translucent texels (vector art's fill-opacity) are
+    // premultiplied on upload.
     gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, true);
+    gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, true);
     gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, gl.RGBA, gl.UNSIGNED_BYTE, image);
+    gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
     gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
     gl.generateMipmap(gl.TEXTURE_2D);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
