@@ -289,3 +289,116 @@ test("a refused number goes back to the value in force; re-meshing keeps pose an
   expect(await handles(page)).toEqual(before.handles);
   await expect(vertices).toHaveValue(count);
 });
+
+/** The colour of the screen at a shape point: the mesh canvas under the overlay, as composited. */
+async function colourAt(page: Page, x: number, y: number): Promise<[number, number, number]> {
+  return page.evaluate(
+    ({ x, y }) => {
+      const shadow = document.querySelector("#app .akap-host")!.shadowRoot!;
+      const gl = shadow.querySelector("canvas.mesh") as HTMLCanvasElement;
+      const view = window.akapDemo!.widget.view;
+      const screen = document.createElement("canvas");
+      screen.width = gl.width;
+      screen.height = gl.height;
+      const ctx = screen.getContext("2d")!;
+      ctx.drawImage(gl, 0, 0);
+      const px = Math.round(view.offsetX + view.scale * x);
+      const py = Math.round(view.offsetY - view.scale * y);
+      const d = ctx.getImageData(px, py, 1, 1).data;
+      return [d[0]!, d[1]!, d[2]!] as [number, number, number];
+    },
+    { x, y },
+  );
+}
+
+test("an imported SVG is drawn in its own colours, and exported in them", async ({ page }) => {
+  await page.setViewportSize({ width: 1000, height: 700 });
+  await open(page);
+  const svg =
+    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 200 100">' +
+    '<rect width="120" height="100" fill="#dd2222"/><circle cx="150" cy="50" r="45" style="fill: rgb(34, 34, 221)"/></svg>';
+  await page.locator('input[name="shape-file"]').setInputFiles({
+    name: "two-colours.svg",
+    mimeType: "image/svg+xml",
+    buffer: Buffer.from(svg),
+  });
+  await expect(page.getByRole("combobox", { name: "Shape" }).locator("option:checked")).toHaveText("two-colours.svg");
+  // Shape coordinates are the viewBox's with y up: the rect's middle (40, 50), the circle's (170, 50).
+  const near = (c: number[], want: number[]) => Math.max(...c.map((v, i) => Math.abs(v - want[i]!)));
+  expect(near(await colourAt(page, 40, 50), [0xdd, 0x22, 0x22])).toBeLessThan(12);
+  expect(near(await colourAt(page, 170, 50), [0x22, 0x22, 0xdd])).toBeLessThan(12);
+  // Posed, the colours move with the mesh; the SVG export keeps each path's colour.
+  await pinAndDrag(page, 20, -30);
+  const exported = await page.evaluate(() => window.akapDemo!.widget.exportSvg());
+  expect(exported).toContain('fill="#dd2222"');
+  expect(exported).toContain('fill="#2222dd"');
+});
+
+test("the SVG export of a pose whose parts overlap fills the overlap, as the canvas does", async ({ page }) => {
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page);
+  const points = await figurePoints(page);
+  for (const foot of points.feet) await page.mouse.click(...foot);
+  await page.mouse.move(...points.hand);
+  await page.mouse.down();
+  await page.mouse.move(760, 520, { steps: 30 });
+  await page.mouse.up();
+  await idle(page);
+  const { text } = await downloaded(page, "SVG");
+  const filled = await page.evaluate(async (svg) => {
+    const p = window.akapDemo!.widget.positions();
+    const t = window.akapDemo!.widget.mesh.triangles;
+    // A point covered by two triangles (the arm over the body), away from any edge.
+    const inside = (x: number, y: number, f: number) => {
+      const [a, b, c] = [t[3 * f]!, t[3 * f + 1]!, t[3 * f + 2]!];
+      const side = (i: number, j: number) =>
+        (p[2 * j]! - p[2 * i]!) * (y - p[2 * i + 1]!) - (p[2 * j + 1]! - p[2 * i + 1]!) * (x - p[2 * i]!);
+      const s = [side(a, b), side(b, c), side(c, a)];
+      return s.every((v) => v > 1e-6) || s.every((v) => v < -1e-6);
+    };
+    let minX = Infinity;
+    let minY = Infinity;
+    let maxX = -Infinity;
+    let maxY = -Infinity;
+    for (let i = 0; i < p.length; i += 2) {
+      minX = Math.min(minX, p[i]!);
+      maxX = Math.max(maxX, p[i]!);
+      minY = Math.min(minY, p[i + 1]!);
+      maxY = Math.max(maxY, p[i + 1]!);
+    }
+    const overlaps: [number, number][] = [];
+    for (let gx = 0; gx <= 60; gx++) {
+      for (let gy = 0; gy <= 60; gy++) {
+        const x = minX + ((maxX - minX) * gx) / 60;
+        const y = minY + ((maxY - minY) * gy) / 60;
+        let count = 0;
+        for (let f = 0; f < t.length / 3 && count < 2; f++) if (inside(x, y, f)) count++;
+        if (count >= 2) overlaps.push([x, y]);
+      }
+    }
+    // The export fits the pose in its viewBox with equal margins, y down.
+    const [vx, vy, vw, vh] = /viewBox="([^"]+)"/.exec(svg)![1]!.split(" ").map(Number) as [
+      number,
+      number,
+      number,
+      number,
+    ];
+    const margin = (vw - (maxX - minX)) / 2;
+    const image = new Image();
+    image.src = URL.createObjectURL(new Blob([svg], { type: "image/svg+xml" }));
+    await image.decode();
+    const k = 800 / vw;
+    const canvas = document.createElement("canvas");
+    canvas.width = 800;
+    canvas.height = Math.ceil(vh * k);
+    const ctx = canvas.getContext("2d")!;
+    ctx.drawImage(image, 0, 0, canvas.width, canvas.height);
+    return overlaps.map(([x, y]) => {
+      const px = Math.round((x - minX + margin - vx) * k);
+      const py = Math.round((maxY + margin - y - vy) * k);
+      return ctx.getImageData(px, py, 1, 1).data[3]!;
+    });
+  }, text);
+  expect(filled.length).toBeGreaterThan(3);
+  for (const alpha of filled) expect(alpha).toBe(255);
+});

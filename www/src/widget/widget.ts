@@ -26,7 +26,7 @@ import {
 import { Canvas2dRenderer } from "./canvas2d.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
 import { download, meshJson, meshObj, outlineSvg, vectorSvg } from "./export.js";
-import { PointMapper } from "../import.js";
+import { PointMapper, type VectorPath } from "../import.js";
 import { FILE_LIMITS, asOutline, fileKind, imageUvs, readShapeFile, type Loaded } from "./sources.js";
 
 import { Camera } from "./camera.js";
@@ -45,7 +45,8 @@ import { WorkStore, textureBlob, textureCanvas, type SavedWork } from "./persist
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
 import { buildToolbar, type Toolbar } from "./toolbar.js";
-import { fromPixel, toPixel, type View } from "./view.js";
+import { vectorTexture } from "./vector-texture.js";
+import { bounds, fromPixel, toPixel, type View } from "./view.js";
 
 /** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
 export const METHODS = {
@@ -549,8 +550,14 @@ export class Widget {
       shape.uvs = imageUvs(shape.mesh.positions, loaded.image.width, loaded.image.height);
       shape.texture = loaded.image.source;
     }
-    if (loaded.vector) shape.vector = loaded.vector;
+    if (loaded.vector) this.#paintVector(shape, loaded.vector);
     return shape;
+  }
+
+  /** An imported SVG's art: kept for vector export and drawn, in its colours, as the texture. */
+  #paintVector(shape: Shape, vector: VectorPath[]): void {
+    shape.vector = vector;
+    shape.texture = vectorTexture(this.target.ownerDocument, vector, bounds(shape.mesh.positions)).canvas;
   }
 
   #partsInfo(): { count: number; index: number } {
@@ -806,7 +813,7 @@ export class Widget {
     } else {
       shape = shapeFromMesh(meshFromArrays(kept.positions, kept.triangles), undefined, kept.uvs, kept.name);
       if (kept.texture) shape.texture = await textureCanvas(this.target.ownerDocument, kept.texture);
-      if (kept.vector) shape.vector = kept.vector;
+      if (kept.vector) this.#paintVector(shape, kept.vector);
     }
     if (!(METHODS as Record<string, unknown>)[settings.method]) throw new Error(`unknown method ${settings.method}`);
     const before = this.#snapshot();
