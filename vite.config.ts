@@ -7,6 +7,8 @@ export default defineConfig({
     target: "es2022",
     rollupOptions: { input: { main: "index.html", embed: "www/examples/embed.html" } },
   },
+  // The set-up worker is an ES module (it imports the wasm package).
+  worker: { format: "es" },
   server: { host: "127.0.0.1", port: 5173 },
   preview: { host: "127.0.0.1", port: 4173 },
   test: {

@@ -5,11 +5,11 @@
 //! the message of the Rust error; nothing here panics on bad input. The TypeScript wrapper
 //! in `www/src/` gives these functions their public, documented shape.
 
-use js_sys::{Array, Float64Array, Object, Reflect};
+use js_sys::{Array, Float64Array, Object, Reflect, Uint32Array};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions};
+use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions, Orders};
 use crate::mesh::Mesh;
 use crate::outline::Outline;
 use crate::shapes;
@@ -202,6 +202,20 @@ pub struct JsDeformer {
     inner: Box<dyn Deform>,
 }
 
+/// The fill-reducing orders a deformer of the method in `options` needs for this mesh (the
+/// bulk of its set-up), as an array of `Uint32Array`s for `Deformer.withOrders`.
+#[wasm_bindgen]
+pub fn deformer_orders(positions: &[f64], triangles: &[u32], options: JsValue) -> Result<Array, JsError> {
+    let options = parse_deformer_options(options, MethodOptions::default())?;
+    let mesh = Mesh::from_flat(positions, triangles).map_err(to_js)?;
+    let list = Array::new();
+    for order in options.orders(&mesh).systems {
+        let order: Vec<u32> = order.into_iter().map(|v| v as u32).collect();
+        list.push(&Uint32Array::from(order.as_slice()));
+    }
+    Ok(list)
+}
+
 #[wasm_bindgen(js_class = Deformer)]
 impl JsDeformer {
     /// Validates the mesh (xy-interleaved positions, counter-clockwise index triples) and
@@ -213,6 +227,30 @@ impl JsDeformer {
         let options = parse_deformer_options(options, MethodOptions::default())?;
         let mesh = Mesh::from_flat(positions, triangles).map_err(to_js)?;
         let mut inner = options.build(mesh).map_err(to_js)?;
+        inner.set_clock(performance_now);
+        Ok(Self { inner })
+    }
+
+    /// The constructor with the fill-reducing orders computed beforehand by
+    /// `deformer_orders` (for the same mesh and method), perhaps in a worker: the bulk of the
+    /// set-up is then done. `orders`: an array of `Uint32Array`s.
+    #[wasm_bindgen(js_name = withOrders)]
+    pub fn with_orders(
+        positions: &[f64],
+        triangles: &[u32],
+        options: JsValue,
+        orders: &Array,
+    ) -> Result<JsDeformer, JsError> {
+        let options = parse_deformer_options(options, MethodOptions::default())?;
+        let mesh = Mesh::from_flat(positions, triangles).map_err(to_js)?;
+        let mut systems = Vec::with_capacity(orders.length() as usize);
+        for (i, order) in orders.iter().enumerate() {
+            let order = order
+                .dyn_into::<Uint32Array>()
+                .map_err(|_| JsError::new(&format!("orders[{i}] is not a Uint32Array")))?;
+            systems.push(order.to_vec().into_iter().map(|v| v as usize).collect());
+        }
+        let mut inner = options.build_with_orders(mesh, &Orders { systems }).map_err(to_js)?;
         inner.set_clock(performance_now);
         Ok(Self { inner })
     }

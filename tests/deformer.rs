@@ -3,7 +3,7 @@
 //! handle edge cases and untouched state after bad input. Runs natively and as wasm.
 
 use akap::deform::killing::KillingMatrix;
-use akap::deform::{DeformError, Deformer, DeformerOptions, Integrator};
+use akap::deform::{ArapOptions, DeformError, Deformer, DeformerOptions, Integrator, Method, MethodOptions, Orders};
 use akap::geometry::Point;
 use akap::shapes::{ellipse, gingerbread};
 use akap::{triangulate, Mesh, Outline, TriangulationOptions};
@@ -463,4 +463,45 @@ fn a_step_that_fails_leaves_the_deformer_ready_for_smaller_ones() {
     assert_eq!(deformer.positions(), before.as_slice());
     deformer.step(&[[0.0, 0.0], [0.01, -0.01]]).unwrap();
     assert_ne!(deformer.positions(), before.as_slice());
+}
+
+#[test]
+fn orders_made_beforehand_give_the_same_deformation_and_bad_ones_are_refused() {
+    // Any permutation orders a system correctly (only the fill differs), so a deformer made
+    // with the identity order or the reversed one poses like one that ordered itself, to
+    // rounding; orders of the wrong sizes, or with a vertex twice, are refused.
+    let mesh = figure();
+    let n = mesh.vertex_count();
+    let interior = (0..n).filter(|&v| !mesh.is_boundary_vertex(v)).count();
+    for options in [MethodOptions::Akap(DeformerOptions::default()), MethodOptions::Arap(ArapOptions::default())] {
+        let own = options.orders(&mesh);
+        let sizes: Vec<usize> = own.systems.iter().map(Vec::len).collect();
+        assert_eq!(sizes, if options.method() == Method::Akap { vec![n, interior] } else { vec![n] });
+        let pose = |orders: &Orders| {
+            let mut deformer = options.build_with_orders(mesh.clone(), orders).unwrap();
+            deformer.set_handle_vertices(&[0, 40, 90]).unwrap();
+            for _ in 0..5 {
+                deformer.step(&[[0.0, 0.0], [0.01, -0.02], [-0.015, 0.01]]).unwrap();
+            }
+            deformer.positions().to_vec()
+        };
+        let reference = pose(&own);
+        let identity = Orders { systems: sizes.iter().map(|&s| (0..s).collect()).collect() };
+        let reversed = Orders { systems: sizes.iter().map(|&s| (0..s).rev().collect()).collect() };
+        for other in [identity, reversed] {
+            for (p, q) in pose(&other).iter().zip(&reference) {
+                assert!((p[0] - q[0]).hypot(p[1] - q[1]) <= 1e-10, "{p:?} vs {q:?}");
+            }
+        }
+        let mut twice = own.clone();
+        twice.systems[0][1] = twice.systems[0][0];
+        let mut short = own.clone();
+        short.systems[0].pop();
+        let mut extra = own.clone();
+        extra.systems.push(Vec::new());
+        for (bad, system) in [(twice, 0), (short, 0), (extra, sizes.len() + 1)] {
+            let error = options.build_with_orders(mesh.clone(), &bad).unwrap_err();
+            assert!(matches!(error, DeformError::OrdersMismatch { system: s, .. } if s == system), "{error}");
+        }
+    }
 }

@@ -44,8 +44,9 @@ use std::sync::Arc;
 
 use sprs::CsMat;
 
-use super::deformer::{default_clock, Clock, DeformError, Timings};
+use super::deformer::{default_clock, vertex_graph, Clock, DeformError, Timings};
 use super::handles::{self, HandlePoint};
+use super::method::Orders;
 use super::metrics::{metrics, Metrics};
 use crate::geometry::{bounding_box, Point};
 use crate::mesh::Mesh;
@@ -167,12 +168,25 @@ impl ArapDeformer {
     /// Prepares a deformer for a connected mesh: cotangent weights, the Laplacian, its
     /// ordering and symbolic analysis, and every buffer.
     pub fn new(mesh: Mesh, options: ArapOptions) -> Result<Self, DeformError> {
+        let orders = Self::orders(&mesh);
+        Self::with_orders(mesh, options, &orders)
+    }
+
+    /// The fill-reducing order of the Laplacian (one system), the bulk of the set-up.
+    pub fn orders(mesh: &Mesh) -> Orders {
+        let (ptr, adj) = vertex_graph(mesh, |_| true);
+        Orders { systems: vec![fill_reducing_order(&ptr, &adj, mesh.positions(), 1)] }
+    }
+
+    /// [`Self::new`] with the order computed beforehand by [`Self::orders`].
+    pub fn with_orders(mesh: Mesh, options: ArapOptions, orders: &Orders) -> Result<Self, DeformError> {
         check_options(&options)?;
         let components = mesh.connected_components();
         if components != 1 {
             return Err(DeformError::Disconnected { components });
         }
         let n = mesh.vertex_count();
+        orders.check(&[n])?;
         let m = mesh.triangle_count();
         let x = mesh.positions();
 
@@ -225,15 +239,9 @@ impl ArapDeformer {
         let diagonal_sum: f64 = (0..n).map(|v| laplacian[slot(v, v)]).sum();
         let penalty = PENALTY * diagonal_sum / n as f64;
 
-        // Vertex graph without self loops, for the orderings.
-        let (mut ptr, mut adj) = (vec![0], Vec::new());
-        for v in 0..n {
-            adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
-            ptr.push(adj.len());
-        }
         let matrix = CsMat::new_csc((n, n), indptr, indices, laplacian.clone());
-        let best = Symbolic::analyse(matrix.view(), &Ordering::Given(fill_reducing_order(&ptr, &adj, x, 1)))
-            .expect("a vertex order is a valid ordering of the vertex Laplacian");
+        let best = Symbolic::analyse(matrix.view(), &Ordering::Given(orders.systems[0].clone()))
+            .expect("a checked vertex order is a valid ordering of the vertex Laplacian");
         let (lo, hi) = bounding_box(x.iter().copied()).expect("a mesh has vertices");
 
         Ok(Self {

@@ -24,6 +24,7 @@ use sprs::CsMat;
 
 use super::handles;
 use super::killing::KillingMatrix;
+use super::method::Orders;
 use super::metrics::{metrics, Metrics};
 use super::spiral::{linear_step, spiral_step};
 use crate::geometry::Point;
@@ -144,6 +145,14 @@ pub enum DeformError {
         /// Which vertex.
         vertex: usize,
     },
+    /// Orders computed beforehand do not fit the mesh: too few or too many, or one is not a
+    /// permutation of its system's vertices.
+    OrdersMismatch {
+        /// Which order (or, when their number is wrong, how many were given).
+        system: usize,
+        /// The number of vertices it must order (or the number of orders expected).
+        expected: usize,
+    },
     /// Options of another method were given; the method is chosen when the deformer is made.
     WrongMethod {
         /// The deformer's method.
@@ -178,6 +187,10 @@ impl fmt::Display for DeformError {
             Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
             Self::NonFiniteResult => write!(f, "the step produced positions that are not finite; use smaller steps"),
             Self::NonFinitePosition { vertex } => write!(f, "the position of vertex {vertex} is not a finite number"),
+            Self::OrdersMismatch { system, expected } => write!(
+                f,
+                "the orders given do not fit this mesh and method: order {system} must be a permutation of 0..{expected}"
+            ),
             Self::WrongMethod { current, given } => write!(
                 f,
                 "the deformer uses method {current}, options for {given} were given; \
@@ -295,20 +308,19 @@ pub struct Deformer {
 impl Deformer {
     /// Prepares a deformer for a connected mesh: orderings, symbolic analyses and buffers.
     pub fn new(mesh: Mesh, options: DeformerOptions) -> Result<Self, DeformError> {
-        check_options(&options)?;
-        let components = mesh.connected_components();
-        if components != 1 {
-            return Err(DeformError::Disconnected { components });
-        }
-        let n = mesh.vertex_count();
-        let killing = KillingMatrix::new(&mesh);
-        let k = killing.matrix();
+        let orders = Self::orders(&mesh);
+        Self::with_orders(mesh, options, &orders)
+    }
 
-        // Orders: minimum fill, and on large meshes nested dissection where it needs
-        // fewer flops. Dissection runs once, on the whole mesh; step 2 gets its interior
-        // vertices in the same order (as good as dissecting the interior graph afresh, within
-        // a few percent of flops either way, at no cost).
-        let (ptr, adj) = vertex_graph(&mesh, |_| true);
+    /// The fill-reducing vertex orders of the two systems, the bulk of the set-up:
+    /// minimum fill, and on large meshes nested dissection where it needs fewer flops.
+    /// Dissection runs once, on the whole mesh; step 2 gets its interior vertices in the
+    /// same order (as good as dissecting the interior graph afresh, within a few percent of
+    /// flops either way, at no cost). `systems[0]` orders every vertex (step 1),
+    /// `systems[1]` the interior vertices, numbered in vertex order (step 2).
+    pub fn orders(mesh: &Mesh) -> Orders {
+        let n = mesh.vertex_count();
+        let (ptr, adj) = vertex_graph(mesh, |_| true);
         let dissection = (n >= DISSECTION_MIN_NODES).then(|| nested_dissection_order(&ptr, &adj, mesh.positions()));
         let choose = |ptr: &[usize], adj: &[usize], dissection: Option<Vec<usize>>| {
             let by_fill = amf_order(ptr.len() - 1, ptr, adj);
@@ -317,24 +329,39 @@ impl Deformer {
                 None => by_fill,
             }
         };
-        let soft = System::new(k, k, None, &choose(&ptr, &adj, dissection.clone()));
-
-        let mut interior_index = vec![NONE; n];
-        let mut interior_count = 0;
-        for v in (0..n).filter(|&v| !mesh.is_boundary_vertex(v)) {
-            interior_index[v] = interior_count;
-            interior_count += 1;
-        }
-        let dirichlet = if interior_count == 0 {
-            None
+        let soft = choose(&ptr, &adj, dissection.clone());
+        let (interior_index, interior_count) = interior_numbering(mesh);
+        let interior = if interior_count == 0 {
+            Vec::new()
         } else {
-            let (matrix, from_killing) = interior_system(k, &interior_index, interior_count);
-            let (ptr, adj) = vertex_graph(&mesh, |v| interior_index[v] != NONE);
+            let (ptr, adj) = vertex_graph(mesh, |v| interior_index[v] != NONE);
             let (ptr, adj) = renumber(&ptr, &adj, &interior_index);
             let interior_dissection =
                 dissection.map(|order| order.iter().map(|&v| interior_index[v]).filter(|&i| i != NONE).collect());
-            Some(System::new(&matrix, k, Some(&from_killing), &choose(&ptr, &adj, interior_dissection)))
+            choose(&ptr, &adj, interior_dissection)
         };
+        Orders { systems: vec![soft, interior] }
+    }
+
+    /// [`Self::new`] with orders computed beforehand by [`Self::orders`] (perhaps in a
+    /// worker): only the analyses and buffers are made here. Orders that are not
+    /// permutations of the right sizes are refused ([`DeformError::OrdersMismatch`]).
+    pub fn with_orders(mesh: Mesh, options: DeformerOptions, orders: &Orders) -> Result<Self, DeformError> {
+        check_options(&options)?;
+        let components = mesh.connected_components();
+        if components != 1 {
+            return Err(DeformError::Disconnected { components });
+        }
+        let n = mesh.vertex_count();
+        let (interior_index, interior_count) = interior_numbering(&mesh);
+        orders.check(&[n, interior_count])?;
+        let killing = KillingMatrix::new(&mesh);
+        let k = killing.matrix();
+        let soft = System::new(k, k, None, &orders.systems[0]);
+        let dirichlet = (interior_count > 0).then(|| {
+            let (matrix, from_killing) = interior_system(k, &interior_index, interior_count);
+            System::new(&matrix, k, Some(&from_killing), &orders.systems[1])
+        });
 
         Ok(Self {
             positions: mesh.positions().to_vec(),
@@ -661,7 +688,7 @@ fn as_pairs(flat: &[f64]) -> &[[f64; 2]] {
 }
 
 /// The vertex adjacency of the vertices that `keep`, in CSR form (indices still global).
-fn vertex_graph(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> (Vec<usize>, Vec<usize>) {
+pub(crate) fn vertex_graph(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> (Vec<usize>, Vec<usize>) {
     let mut ptr = vec![0];
     let mut adj = Vec::new();
     for v in (0..mesh.vertex_count()).filter(|&v| keep(v)) {
@@ -674,6 +701,17 @@ fn vertex_graph(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> (Vec<usize>, Vec<u
 /// Renumbers global vertex indices in an adjacency list through `index`.
 fn renumber(ptr: &[usize], adj: &[usize], index: &[usize]) -> (Vec<usize>, Vec<usize>) {
     (ptr.to_vec(), adj.iter().map(|&w| index[w]).collect())
+}
+
+/// Each vertex's index among the interior vertices (`NONE` on the boundary), and their number.
+fn interior_numbering(mesh: &Mesh) -> (Vec<usize>, usize) {
+    let mut index = vec![NONE; mesh.vertex_count()];
+    let mut count = 0;
+    for v in (0..mesh.vertex_count()).filter(|&v| !mesh.is_boundary_vertex(v)) {
+        index[v] = count;
+        count += 1;
+    }
+    (index, count)
 }
 
 /// The interior block `K_II` of the Killing matrix: its pattern, and for each of its

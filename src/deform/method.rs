@@ -62,10 +62,53 @@ impl MethodOptions {
 
     /// A deformer of this method for a connected mesh.
     pub fn build(self, mesh: Mesh) -> Result<Box<dyn Deform>, DeformError> {
+        let orders = self.orders(&mesh);
+        self.build_with_orders(mesh, &orders)
+    }
+
+    /// The fill-reducing orders this method's deformer needs for `mesh` (see [`Orders`]).
+    pub fn orders(&self, mesh: &Mesh) -> Orders {
+        match self {
+            Self::Akap(_) => Deformer::orders(mesh),
+            Self::Arap(_) => ArapDeformer::orders(mesh),
+        }
+    }
+
+    /// [`Self::build`] with orders from [`Self::orders`] (for this method and mesh).
+    pub fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
         Ok(match self {
-            Self::Akap(options) => Box::new(Deformer::new(mesh, options)?),
-            Self::Arap(options) => Box::new(ArapDeformer::new(mesh, options)?),
+            Self::Akap(options) => Box::new(Deformer::with_orders(mesh, options, orders)?),
+            Self::Arap(options) => Box::new(ArapDeformer::with_orders(mesh, options, orders)?),
         })
+    }
+}
+
+/// The fill-reducing vertex orders a deformer's linear systems are factored in: the bulk
+/// of its set-up (ordering the mesh's vertex graph). [`MethodOptions::orders`] computes them
+/// for a mesh, possibly elsewhere (a worker), and [`MethodOptions::build_with_orders`] makes
+/// the deformer with them, which then only analyses the systems and allocates.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Orders {
+    /// One vertex order per system, in the method's order (AKAP: step 1 over every vertex,
+    /// then step 2 over the interior vertices in their own numbering; ARAP: its Laplacian).
+    pub systems: Vec<Vec<usize>>,
+}
+
+impl Orders {
+    /// Checks that there is one order per size in `sizes`, each a permutation of `0..size`.
+    pub(crate) fn check(&self, sizes: &[usize]) -> Result<(), DeformError> {
+        if self.systems.len() != sizes.len() {
+            return Err(DeformError::OrdersMismatch { system: self.systems.len(), expected: sizes.len() });
+        }
+        for (system, (order, &size)) in self.systems.iter().zip(sizes).enumerate() {
+            let mut seen = vec![false; size];
+            let permutation =
+                order.len() == size && order.iter().all(|&v| v < size && !std::mem::replace(&mut seen[v], true));
+            if !permutation {
+                return Err(DeformError::OrdersMismatch { system, expected: size });
+            }
+        }
+        Ok(())
     }
 }
 

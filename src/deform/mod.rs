@@ -18,5 +18,5 @@ pub mod spiral;
 
 pub use arap::{ArapDeformer, ArapOptions, IterationReport};
 pub use deformer::{Clock, DeformError, Deformer, DeformerOptions, Integrator, Timings};
-pub use method::{Deform, Method, MethodOptions};
+pub use method::{Deform, Method, MethodOptions, Orders};
 pub use metrics::Metrics;

@@ -292,6 +292,7 @@ test("a refused number goes back to the value in force; re-meshing keeps pose an
 
 /** The colour of the screen at a shape point: the mesh canvas under the overlay, as composited. */
 async function colourAt(page: Page, x: number, y: number): Promise<[number, number, number]> {
+  await idle(page);
   return page.evaluate(
     ({ x, y }) => {
       const shadow = document.querySelector("#app .akap-host")!.shadowRoot!;

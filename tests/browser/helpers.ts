@@ -63,6 +63,8 @@ export interface Coverage {
  * widget's view, and counts disagreements.
  */
 export async function coverage(page: Page, positions?: number[], which: Which = "app"): Promise<Coverage> {
+  // The widget draws in animation frames: read the picture once it is drawn.
+  await page.evaluate((which) => window.widgetFor(which).whenIdle(), which);
   return page.evaluate(
     ({ positions, which }) => {
       const typed = window.widgetFor(which);

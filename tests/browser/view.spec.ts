@@ -239,3 +239,51 @@ test("the work survives a reload, and Start over begins afresh", async ({ page }
   expect(await handleCount(page)).toBe(0);
   expect(await positions(page)).toEqual(rest);
 });
+
+test("re-meshing to 40k vertices runs beside the page with its stage shown, and Cancel leaves everything as it was", async ({
+  page,
+}) => {
+  test.setTimeout(60_000);
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page);
+  const count = () => page.evaluate(() => window.akapDemo!.widget.vertexCount);
+  const before = await count();
+  const vertices = page.getByRole("spinbutton", { name: "Vertices" });
+  const busy = page.locator("#app .akap-host >> .busy");
+  // Count the page's animation frames while the busy indicator shows.
+  await page.evaluate(() => {
+    const w = window as unknown as { busyFrames: number };
+    w.busyFrames = 0;
+    const shadow = document.querySelector("#app .akap-host")!.shadowRoot!;
+    const tick = () => {
+      if (!shadow.querySelector(".busy")!.classList.contains("hidden")) w.busyFrames++;
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  });
+  await vertices.fill("40000");
+  await vertices.press("Enter");
+  await expect(busy).toBeVisible();
+  await expect(busy).toContainText("40000 vertices");
+  await expect(busy.getByRole("button", { name: "Cancel" })).toBeVisible();
+  await expect.poll(count, { timeout: 30_000 }).toBeGreaterThan(35_000);
+  await expect(busy).toBeHidden();
+  expect(await page.evaluate(() => (window as unknown as { busyFrames: number }).busyFrames)).toBeGreaterThan(5);
+  // It poses.
+  const { end } = await pinAndDrag(page, -30, 30);
+  const h = await handles(page);
+  const [x, y] = (await mapping(page)).toCss(h[2]!, h[3]!);
+  expect(Math.hypot(x - end[0], y - end[1])).toBeLessThan(1);
+
+  // Cancel: back to the mesh, pose and field as they were.
+  const posed = await positions(page);
+  const shown = await vertices.inputValue();
+  await vertices.fill("45000");
+  await vertices.press("Enter");
+  await busy.getByRole("button", { name: "Cancel" }).click();
+  await expect(busy).toBeHidden();
+  await expect(page.locator("#app .akap-host >> .status")).toContainText("cancelled");
+  expect(await positions(page)).toEqual(posed);
+  await expect(vertices).toHaveValue(shown);
+  expect(await count()).not.toBe(before);
+});

@@ -40,6 +40,7 @@ import { HANDLE_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { locate, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, parseSession, type Session, type SessionEvent } from "./session.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
+import { Cancelled, ShapeMaker, type Prepared, type SetupRequest } from "./setup.js";
 import { BusyIndicator, StatusLine } from "./status.js";
 import { WorkStore, textureBlob, textureCanvas, type SavedWork } from "./persist.js";
 import { WIDGET_CSS } from "./style.js";
@@ -191,6 +192,7 @@ export class Widget {
   readonly #history = new History<Snapshot>();
   readonly #recorder = new Recorder();
   readonly #camera = new Camera();
+  readonly #maker = new ShapeMaker();
   readonly #settings: Required<Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey">>;
   readonly #store: WorkStore | undefined;
   #saveTimer: ReturnType<typeof setTimeout> | undefined;
@@ -457,26 +459,56 @@ export class Widget {
 
   /**
    * Switches to a built-in shape, or re-meshes the current one with about `vertices`
-   * vertices. Undoable; the handles of another shape are dropped.
+   * vertices (meshed in a worker; see {@link remesh}). Undoable; the handles of another
+   * shape are dropped.
    */
-  setShape(name: string | undefined, vertices = this.#settings.vertices): void {
+  async setShape(name: string | undefined, vertices = this.#settings.vertices): Promise<void> {
     const spec = name ?? this.#shape.spec?.name;
     if (!spec) throw new Error("this widget shows a custom outline; give a built-in shape name");
-    const shape = meshOutline(builtinShape(spec), spec, vertices, this.#settings.minAngle);
+    builtinShape(spec); // an unknown name fails here, before any work
+    const prepared = await this.#make({ name: spec, outline: undefined, label: spec, vertices });
     this.#gesture(() => {
       this.#settings.vertices = vertices;
       this.#parts = undefined;
-      this.#install(shape);
+      this.#install(prepared.shape, prepared.orders);
     });
   }
 
   /** Shows a custom outline instead (triangulated to about `vertices` vertices). Undoable. */
-  setOutline(outline: Outline, vertices = this.#settings.vertices): void {
-    const shape = meshOutline(outline, undefined, vertices, this.#settings.minAngle);
+  async setOutline(outline: Outline, vertices = this.#settings.vertices): Promise<void> {
+    const prepared = await this.#make({ name: undefined, outline, label: "custom shape", vertices });
     this.#gesture(() => {
       this.#parts = undefined;
-      this.#install(shape);
+      this.#install(prepared.shape, prepared.orders);
     });
+  }
+
+  /**
+   * Meshes an outline and orders the deformer's systems, in a worker, while the busy
+   * indicator shows the stage and offers Cancel; rejects with `Cancelled` when cancelled
+   * or replaced by a newer request.
+   */
+  async #make(
+    request: Pick<SetupRequest, "name" | "outline" | "label" | "vertices"> & { minAngle?: number },
+  ): Promise<Prepared> {
+    const options = this.#deformerOptions();
+    const full: SetupRequest = { minAngle: this.#settings.minAngle, ...request, options };
+    const label = `${request.label}: ${Math.round(request.vertices)} vertices`;
+    const cancel = () => this.#maker.cancel();
+    this.#busy.update({ label: `${label}…`, progress: 0, cancel });
+    try {
+      const prepared = await this.#maker.make(full, (stage, progress) =>
+        this.#busy.update({ label: `${label}: ${stage.toLowerCase()}…`, progress, cancel }),
+      );
+      this.#busy.update({ label: `${label}: preparing the solver…`, progress: 0.9 });
+      await nextFrame();
+      if (this.#destroyed) throw new Cancelled();
+      // Orders made for another method (switched meanwhile) do not fit its systems.
+      const sameMethod = (options.method ?? "akap") === (this.#deformerOptions().method ?? "akap");
+      return { shape: prepared.shape, orders: sameMethod ? prepared.orders : undefined };
+    } finally {
+      this.#busy.done();
+    }
   }
 
   /**
@@ -499,7 +531,7 @@ export class Widget {
     }
     const loaded = await readShapeFile(file, name);
     if (loaded.kind === "outlines" && loaded.parts.length === 0) throw new Error(`${name}: no shape found`);
-    this.#showFile(loaded, 0);
+    await this.#showFile(loaded, 0);
     this.#files.push(loaded);
     this.#toolbar?.addShape({ value: `file:${this.#files.length - 1}`, label: loaded.name });
   }
@@ -518,23 +550,23 @@ export class Widget {
   }
 
   /** Shows another separate part of the last imported file (0 is the largest). Undoable. */
-  choosePart(index: number): void {
+  async choosePart(index: number): Promise<void> {
     const parts = this.#parts;
     if (!parts || !(index >= 0 && index < parts.loaded.parts.length)) {
       throw new RangeError(`there is no part ${index} to choose`);
     }
-    this.#showFile(parts.loaded, index);
+    await this.#showFile(parts.loaded, index);
   }
 
   /** Makes a loaded file (part `index` of it) the shape, as one undoable step. */
-  #showFile(loaded: Loaded, index: number): void {
-    const shape =
+  async #showFile(loaded: Loaded, index: number): Promise<void> {
+    const prepared =
       loaded.kind === "mesh"
-        ? shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name)
-        : this.#partShape(loaded, index);
+        ? { shape: shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name), orders: undefined }
+        : await this.#partShape(loaded, index);
     this.#gesture(() => {
       this.#parts = loaded.kind === "outlines" ? { loaded, index } : undefined;
-      this.#install(shape);
+      this.#install(prepared.shape, prepared.orders);
     });
     if (loaded.kind === "outlines" && loaded.parts.length > 1) {
       this.#status.info(
@@ -543,15 +575,21 @@ export class Widget {
     }
   }
 
-  #partShape(loaded: Extract<Loaded, { kind: "outlines" }>, index: number): Shape {
-    const { vertices, minAngle } = this.#settings;
-    const shape = meshOutline(asOutline(loaded.parts[index]!), undefined, vertices, minAngle, loaded.name);
+  async #partShape(loaded: Extract<Loaded, { kind: "outlines" }>, index: number): Promise<Prepared> {
+    const { vertices } = this.#settings;
+    const prepared = await this.#make({
+      name: undefined,
+      outline: asOutline(loaded.parts[index]!),
+      label: loaded.name,
+      vertices,
+    });
+    const shape = prepared.shape;
     if (loaded.image) {
       shape.uvs = imageUvs(shape.mesh.positions, loaded.image.width, loaded.image.height);
       shape.texture = loaded.image.source;
     }
     if (loaded.vector) this.#paintVector(shape, loaded.vector);
-    return shape;
+    return prepared;
   }
 
   /** An imported SVG's art: kept for vector export and drawn, in its colours, as the texture. */
@@ -566,31 +604,34 @@ export class Widget {
 
   /**
    * Re-meshes the current shape with about `vertices` vertices and the given smallest
-   * angle (a live preview of the triangulation with the wireframe on). The pose carries
-   * over (every new vertex is placed where the old mesh's pose takes its rest position),
-   * and so do the handles, at the same places; one undoable step. Built-in shapes and
-   * imported outlines can be re-meshed; a mesh loaded from a file cannot.
+   * angle (a live preview of the triangulation with the wireframe on), in a worker: the
+   * page stays responsive and the busy indicator offers Cancel. The pose carries over
+   * (every new vertex is placed where the old mesh's pose takes its rest position), and so
+   * do the handles, at the same places; one undoable step. Built-in shapes and imported
+   * outlines can be re-meshed; a mesh loaded from a file cannot.
    */
-  remesh(vertices = this.#settings.vertices, minAngle = this.#settings.minAngle): void {
+  async remesh(vertices = this.#settings.vertices, minAngle = this.#settings.minAngle): Promise<void> {
+    if (!this.#parts && !this.#shape.spec) throw new Error("this shape came as a mesh; it cannot be re-meshed");
     const previous = { vertices: this.#settings.vertices, minAngle: this.#settings.minAngle };
     Object.assign(this.#settings, { vertices, minAngle });
-    let shape: Shape;
+    let prepared: Prepared;
     try {
-      if (this.#parts) shape = this.#partShape(this.#parts.loaded, this.#parts.index);
-      else if (this.#shape.spec)
-        shape = meshOutline(builtinShape(this.#shape.spec.name), this.#shape.spec.name, vertices, minAngle);
-      else throw new Error("this shape came as a mesh; it cannot be re-meshed");
+      const spec = this.#shape.spec;
+      prepared = this.#parts
+        ? await this.#partShape(this.#parts.loaded, this.#parts.index)
+        : await this.#make({ name: spec!.name, outline: undefined, label: spec!.name, vertices, minAngle });
     } catch (error) {
       Object.assign(this.#settings, previous);
       throw error;
     }
+    const { shape, orders } = prepared;
     const old = { shape: this.#shape, positions: this.#deformer.positions(), atRest: this.#atRest };
     const handles = this.#handles.map((h) => ({
       rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
       target: h.target,
     }));
     this.#gesture(() => {
-      this.#adopt(shape);
+      this.#adopt(shape, orders);
       this.#handles = [];
       if (!old.atRest) {
         const mapper = new PointMapper(old.shape.mesh.positions, old.shape.mesh.triangles, shape.mesh.positions);
@@ -687,7 +728,7 @@ export class Widget {
         if (this.#destroyed) break;
         this.#apply(event);
         if ("step" in event && ++steps % stepsPerFrame === 0) {
-          this.#draw();
+          this.#render();
           await nextFrame();
         }
       }
@@ -733,7 +774,7 @@ export class Widget {
 
   /** The rendered image (the shape and its outline, no handles) as a PNG. */
   exportPng(): Promise<Blob> {
-    this.#draw();
+    this.#render();
     const canvas = this.target.ownerDocument.createElement("canvas");
     canvas.width = this.#glCanvas.width;
     canvas.height = this.#glCanvas.height;
@@ -772,6 +813,7 @@ export class Widget {
     this.#resizeObserver.disconnect();
     this.#renderer.destroy();
     this.#hud.destroy();
+    this.#maker.destroy();
     this.#busy.done();
     clearTimeout(this.#saveTimer);
     this.#deformer?.free();
@@ -886,8 +928,8 @@ export class Widget {
   // ---------------------------------------------------------------- shape, method and deformer
 
   /** Makes `shape` current with a fresh deformer, without handles, at rest. */
-  #install(shape: Shape): void {
-    this.#adopt(shape);
+  #install(shape: Shape, orders?: Uint32Array[]): void {
+    this.#adopt(shape, orders);
     this.#handles = [];
     this.#atRest = true;
     this.#camera.reset(shape.mesh.positions, this.#glCanvas.width, this.#glCanvas.height);
@@ -899,8 +941,8 @@ export class Widget {
    * Makes `shape` current with a fresh deformer of the current method (handles and pose
    * are the caller's to set); fails without changing anything. A recording ends.
    */
-  #adopt(shape: Shape): void {
-    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.#deformerOptions());
+  #adopt(shape: Shape, orders?: Uint32Array[]): void {
+    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.#deformerOptions(), orders);
     this.#deformer?.free();
     this.#deformer = deformer;
     this.#shape = shape;
@@ -1117,7 +1159,7 @@ export class Widget {
       this.#metrics = this.#deformer.metrics();
       if (this.#settings.field) this.#lastField = this.#deformer.field();
     }
-    this.#draw();
+    this.#render();
     this.#keepHudClear(dragging);
     if (substeps > 0) {
       const work = performance.now() - started;
@@ -1254,7 +1296,13 @@ export class Widget {
     this.#draw();
   }
 
+  /** Asks for the picture to be drawn anew in the next animation frame (once, however often asked). */
   #draw(): void {
+    this.#schedule();
+  }
+
+  /** Draws the picture now: the mesh, then the overlay. */
+  #render(): void {
     if (this.#destroyed) return;
     const s = this.#settings;
     this.#renderer.draw(this.#deformer.positionsView(), this.#camera.view, {
@@ -1506,7 +1554,8 @@ export class Widget {
       <A extends unknown[]>(action: (...args: A) => unknown) =>
       (...args: A): void => {
         const failed = (error: unknown): void => {
-          this.#showError(error);
+          if (error instanceof Cancelled) this.#status.info(error.message);
+          else this.#showError(error);
           this.#syncToolbar();
         };
         try {
@@ -1523,8 +1572,8 @@ export class Widget {
       clear: guard(() => this.clearHandles()),
       shape: guard(async (value: string) => {
         const [kind, rest] = [value.slice(0, value.indexOf(":")), value.slice(value.indexOf(":") + 1)];
-        if (kind === "builtin") this.setShape(rest);
-        else if (kind === "file") this.#showFile(this.#files[Number(rest)]!, 0);
+        if (kind === "builtin") await this.setShape(rest);
+        else if (kind === "file") await this.#showFile(this.#files[Number(rest)]!, 0);
         else await this.loadUrl(this.#gallery[Number(rest)]!.url);
       }),
       remesh: guard((vertices: number, minAngle: number) => this.remesh(vertices, minAngle)),
