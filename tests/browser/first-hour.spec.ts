@@ -5,7 +5,7 @@
  * a reload, and imported colours.
  */
 import { expect, test, type Page } from "@playwright/test";
-import { handles, idle, mapping, open, pinAndDrag, positions, usePrepared } from "./helpers.js";
+import { dragMouse, handles, idle, mapping, open, pinAndDrag, positions, usePrepared } from "./helpers.js";
 
 usePrepared();
 
@@ -100,11 +100,7 @@ test("a step that fails says what to do, stays on screen, and the next drags wor
   const { toCss } = await mapping(page);
   const h = await handles(page);
   const [x, y] = toCss(h[2]!, h[3]!);
-  await page.mouse.move(x, y);
-  await page.mouse.down();
-  await page.mouse.move(x - 30, y + 30, { steps: 5 });
-  await page.mouse.up();
-  await idle(page);
+  await dragMouse(page, [x, y], [x - 30, y + 30], 5);
   const status = page.locator(".akap-host >> .status.error");
   await expect(status).toContainText("Try a smaller move, or Undo");
   expect(await handles(page)).toEqual(h);
@@ -115,11 +111,7 @@ test("a step that fails says what to do, stays on screen, and the next drags wor
   await lambda.fill("100");
   await lambda.press("Enter");
   await expect(page.locator(".akap-host >> .status")).toHaveText("");
-  await page.mouse.move(x, y);
-  await page.mouse.down();
-  await page.mouse.move(x - 30, y + 30, { steps: 5 });
-  await page.mouse.up();
-  await idle(page);
+  await dragMouse(page, [x, y], [x - 30, y + 30], 5);
   const after = await handles(page);
   const [ax, ay] = toCss(after[2]!, after[3]!);
   expect(Math.hypot(ax - (x - 30), ay - (y + 30))).toBeLessThan(1);
@@ -236,11 +228,7 @@ test("the HUD checkbox shows a HUD that started hidden, with the figures of the 
   // Fold triangles over: the HUD counts them; after Undo it shows the rest pose's figures.
   const points = await figurePoints(page);
   for (const foot of points.feet) await page.mouse.click(...foot);
-  await page.mouse.move(...points.head);
-  await page.mouse.down();
-  await page.mouse.move(620, 560, { steps: 30 });
-  await page.mouse.up();
-  await idle(page);
+  await dragMouse(page, points.head, [620, 560], 30);
   const flipped = await page.evaluate(() => window.akapDemo!.widget.metrics.flipped);
   expect(flipped).toBeGreaterThan(0);
   await expect(hud).toContainText(`flipped ${flipped}`);
@@ -340,11 +328,7 @@ test("the SVG export of a pose whose parts overlap fills the overlap, as the can
   await open(page);
   const points = await figurePoints(page);
   for (const foot of points.feet) await page.mouse.click(...foot);
-  await page.mouse.move(...points.hand);
-  await page.mouse.down();
-  await page.mouse.move(760, 520, { steps: 30 });
-  await page.mouse.up();
-  await idle(page);
+  await dragMouse(page, points.hand, [760, 520], 30);
   const { text } = await downloaded(page, "SVG");
   const filled = await page.evaluate(async (svg) => {
     const p = window.akapDemo!.widget.positions();

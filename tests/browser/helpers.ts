@@ -233,3 +233,12 @@ export async function pinAndDrag(
   await page.evaluate((which) => window.widgetFor(which).whenIdle(), which);
   return { end: [gx + dx, gy + dy], pin: [px, py] };
 }
+
+/** Drags the mouse from one CSS point to another in `steps` moves, then waits for the widget to settle. */
+export async function dragMouse(page: Page, from: [number, number], to: [number, number], steps = 8): Promise<void> {
+  await page.mouse.move(...from);
+  await page.mouse.down();
+  await page.mouse.move(...to, { steps });
+  await page.mouse.up();
+  await idle(page);
+}

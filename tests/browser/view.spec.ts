@@ -4,7 +4,18 @@
  * and the layout on a phone.
  */
 import { expect, test, type Page } from "@playwright/test";
-import { anchorPoints, handles, idle, mapping, open, pinAndDrag, positions, prepare, usePrepared } from "./helpers.js";
+import {
+  anchorPoints,
+  handles,
+  idle,
+  mapping,
+  open,
+  pinAndDrag,
+  positions,
+  prepare,
+  usePrepared,
+  dragMouse,
+} from "./helpers.js";
 
 usePrepared();
 
@@ -219,11 +230,7 @@ test("the work survives a reload, and Start over begins afresh", async ({ page }
   // The restored pose poses on: the dragged handle follows another drag.
   const { toCss } = await mapping(page);
   const [x, y] = toCss(work.handles[2]!, work.handles[3]!);
-  await page.mouse.move(x, y);
-  await page.mouse.down();
-  await page.mouse.move(x + 20, y - 20, { steps: 4 });
-  await page.mouse.up();
-  await idle(page);
+  await dragMouse(page, [x, y], [x + 20, y - 20], 4);
   const h = await handles(page);
   const [hx, hy] = toCss(h[2]!, h[3]!);
   expect(Math.hypot(hx - (x + 20), hy - (y - 20))).toBeLessThan(1);

@@ -7,19 +7,10 @@
 import type { VectorPath } from "../import.js";
 import type { MeshPoint } from "./picking.js";
 import type { ShapeSpec } from "./session.js";
+import type { ToolbarSettings } from "./toolbar.js";
 
-/** Settings that come back with the work. */
-export interface SavedSettings {
-  vertices: number;
-  minAngle: number;
-  method: string;
-  lambda: number;
-  wireframe: boolean;
-  field: boolean;
-  flipped: boolean;
-  paperMode: boolean;
-  hud: boolean;
-}
+/** Settings that come back with the work: those the toolbar shows. */
+export type SavedSettings = ToolbarSettings;
 
 export type SavedShape =
   | { kind: "builtin"; spec: ShapeSpec }
