@@ -2,7 +2,7 @@
  * Exports of the current pose: the mesh as JSON or Wavefront OBJ (with texture
  * coordinates), the outline as SVG, and a file download helper for pages.
  */
-import { pathData, type VectorPath } from "../import.js";
+import { PointMapper, pathData, type VectorPath } from "../import.js";
 import { boundaryLoops } from "./geometry.js";
 import { bounds } from "./view.js";
 
@@ -103,6 +103,28 @@ function fillAttributes(colour: string): string {
 
 function escapeAttribute(text: string): string {
   return text.replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/"/g, "&quot;");
+}
+
+/**
+ * The SVG of a shape in a pose: an imported SVG's own paths, their points carried through the
+ * mesh (vector art stays vector), or else the posed outline.
+ */
+export function posedSvg(
+  mesh: { positions: Float64Array; triangles: Uint32Array; boundaryEdges: ArrayLike<number> },
+  vector: readonly VectorPath[] | undefined,
+  positions: Float64Array,
+): string {
+  if (!vector) return outlineSvg(positions, mesh.boundaryEdges);
+  return vectorSvg(
+    vector.map((path) => {
+      const mapper = new PointMapper(mesh.positions, mesh.triangles, path.points);
+      try {
+        return { path, points: mapper.map(positions) };
+      } finally {
+        mapper.free();
+      }
+    }),
+  );
 }
 
 /** Offers `data` to the user as a file download. */

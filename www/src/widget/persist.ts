@@ -4,9 +4,11 @@
  * paths), the pose, the handles and the settings, in IndexedDB under a key the page
  * chooses. Saved a moment after each change; read once when the widget starts.
  */
+import { builtinShape, meshFromArrays, triangulate } from "../core.js";
 import type { VectorPath } from "../import.js";
 import type { MeshPoint } from "./picking.js";
 import type { ShapeSpec } from "./session.js";
+import { shapeFromMesh, type Shape } from "./shape.js";
 import type { ToolbarSettings } from "./toolbar.js";
 
 /** Settings that come back with the work: those the toolbar shows. */
@@ -101,4 +103,123 @@ export async function textureCanvas(document: Document, blob: Blob): Promise<HTM
   canvas.getContext("2d")?.drawImage(bitmap, 0, 0);
   bitmap.close();
   return canvas;
+}
+
+/**
+ * The work to save: the settings, the shape (a built-in shape by its spec, anything else as
+ * its mesh with `texture`, an imported image's PNG, and its vector art), pose and handles.
+ */
+export function savedWork(
+  settings: SavedSettings,
+  shape: Shape,
+  pose: { positions: Float64Array; atRest: boolean; handles: SavedWork["handles"] },
+  texture: Blob | undefined,
+): SavedWork {
+  const s = settings;
+  const { mesh } = shape;
+  return {
+    format: "akap-work",
+    version: 1,
+    settings: {
+      vertices: s.vertices,
+      minAngle: s.minAngle,
+      method: s.method,
+      lambda: s.lambda,
+      wireframe: s.wireframe,
+      field: s.field,
+      flipped: s.flipped,
+      paperMode: s.paperMode,
+      hud: s.hud,
+    },
+    shape: shape.spec
+      ? { kind: "builtin", spec: { ...shape.spec } }
+      : {
+          kind: "mesh",
+          name: shape.name,
+          positions: Float64Array.from(mesh.positions),
+          triangles: Uint32Array.from(mesh.triangles),
+          uvs: shape.uvs,
+          ...(texture ? { texture } : {}),
+          ...(shape.vector ? { vector: shape.vector } : {}),
+        },
+    positions: pose.positions,
+    atRest: pose.atRest,
+    handles: pose.handles,
+  };
+}
+
+/** The texture worth saving with a shape: an imported image's (vector art is drawn again). */
+export function savedTexture(shape: Shape): TexImageSource | undefined {
+  return !shape.spec && !shape.vector ? shape.texture : undefined;
+}
+
+/**
+ * The shape of saved work, rebuilt: a built-in shape triangulated as it was, or the saved
+ * mesh (validated again) with its texture; `paint` draws vector art as the texture.
+ */
+export async function savedShape(
+  document: Document,
+  kept: SavedShape,
+  paint: (shape: Shape, vector: VectorPath[]) => void,
+): Promise<Shape> {
+  if (kept.kind === "builtin") {
+    const { spec } = kept;
+    const mesh = triangulate(builtinShape(spec.name), {
+      targetEdgeLength: spec.targetEdgeLength,
+      minAngle: spec.minAngle,
+    });
+    return shapeFromMesh(mesh, { ...spec });
+  }
+  const shape = shapeFromMesh(meshFromArrays(kept.positions, kept.triangles), undefined, kept.uvs, kept.name);
+  if (kept.texture) shape.texture = await textureCanvas(document, kept.texture);
+  if (kept.vector) paint(shape, kept.vector);
+  return shape;
+}
+
+/** What is kept: read when a save is due. */
+export interface WorkSource {
+  settings: SavedSettings;
+  shape: Shape;
+  pose(): { positions: Float64Array; atRest: boolean; handles: SavedWork["handles"] };
+}
+
+/**
+ * Saves the work a moment after the last change (a change only asks; the save comes
+ * `delay` ms after the last ask), encoding an imported image's texture once per shape.
+ */
+export class WorkKeeper {
+  readonly store: WorkStore;
+  readonly #source: () => WorkSource | undefined;
+  readonly #failed: (error: unknown) => void;
+  readonly #textures = new WeakMap<Shape, Promise<Blob | undefined>>();
+  #timer: ReturnType<typeof setTimeout> | undefined;
+
+  constructor(store: WorkStore, source: () => WorkSource | undefined, failed: (error: unknown) => void) {
+    this.store = store;
+    this.#source = source;
+    this.#failed = failed;
+  }
+
+  /** Something changed: save soon. */
+  changed(delay = 400): void {
+    clearTimeout(this.#timer);
+    this.#timer = setTimeout(() => this.#save().catch(this.#failed), delay);
+  }
+
+  /** No more saves (the widget is going away). */
+  stop(): void {
+    clearTimeout(this.#timer);
+  }
+
+  async #save(): Promise<void> {
+    const work = this.#source();
+    if (!work) return;
+    const source = savedTexture(work.shape);
+    let texture: Promise<Blob | undefined> | undefined;
+    if (source) {
+      texture = this.#textures.get(work.shape) ?? textureBlob(source);
+      this.#textures.set(work.shape, texture);
+    }
+    await this.store.save(savedWork(work.settings, work.shape, work.pose(), await texture));
+  }
 }

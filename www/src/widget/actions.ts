@@ -1,0 +1,83 @@
+/**
+ * What the toolbar's controls do: each calls the widget's public API, and an action that
+ * fails says why (a cancelled one says so as information) with every field back to the
+ * settings in force.
+ */
+import type { GalleryItem, Method } from "./options.js";
+import { Cancelled } from "./setup.js";
+import { download } from "./export.js";
+import type { ToolbarActions } from "./toolbar.js";
+import type { Widget } from "./widget.js";
+
+/** What the actions need beyond the widget's public API. */
+export interface ActionHost {
+  readonly gallery: readonly GalleryItem[];
+  /** Shows the `index`-th file opened so far again. */
+  showFile(index: number): Promise<void>;
+  /** Whether the work is kept (then "Start over" is offered). */
+  readonly keepsWork: boolean;
+  failed(error: unknown): void;
+  cancelled(message: string): void;
+  succeeded(): void;
+  showHud(visible: boolean): void;
+  help(): void;
+}
+
+export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions {
+  const guard =
+    <A extends unknown[]>(action: (...args: A) => unknown) =>
+    (...args: A): void => {
+      const failed = (error: unknown): void => {
+        if (error instanceof Cancelled) host.cancelled(error.message);
+        else host.failed(error);
+      };
+      try {
+        const result = action(...args);
+        if (result instanceof Promise) result.catch(failed);
+      } catch (error) {
+        failed(error);
+      }
+    };
+  const doc = widget.target.ownerDocument;
+  return {
+    undo: guard(() => widget.undo()),
+    redo: guard(() => widget.redo()),
+    reset: guard(() => widget.reset()),
+    clear: guard(() => widget.clearHandles()),
+    shape: guard(async (value: string) => {
+      const [kind, rest] = [value.slice(0, value.indexOf(":")), value.slice(value.indexOf(":") + 1)];
+      if (kind === "builtin") await widget.setShape(rest);
+      else if (kind === "file") await host.showFile(Number(rest));
+      else await widget.loadUrl(host.gallery[Number(rest)]!.url);
+    }),
+    remesh: guard((vertices: number, minAngle: number) => widget.remesh(vertices, minAngle)),
+    open: guard((file: File) => widget.loadFile(file)),
+    part: guard((index: number) => widget.choosePart(index)),
+    method: guard((method: string, lambda: number) => {
+      widget.setMethod(method as Method, lambda);
+      host.succeeded();
+    }),
+    display: guard((options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }) =>
+      widget.setDisplay(options),
+    ),
+    hud: (visible: boolean) => host.showHud(visible),
+    record: guard(() => (widget.recording ? widget.stopRecording() : widget.startRecording())),
+    replay: guard(() => (widget.lastSession ? widget.replay(widget.lastSession) : undefined)),
+    saveSession: guard(() => {
+      if (!widget.lastSession) return;
+      download(doc, JSON.stringify(widget.lastSession), "session.akap.json", "application/json");
+    }),
+    loadSession: guard((file: File) => widget.loadSession(file)),
+    export: guard(async (format: "json" | "obj" | "svg" | "png") => {
+      if (format === "png") download(doc, await widget.exportPng(), "pose.png");
+      else if (format === "svg") download(doc, widget.exportSvg(), "pose.svg", "image/svg+xml");
+      else {
+        const type = format === "json" ? "application/json" : "text/plain";
+        download(doc, widget.exportMesh(format), `pose.${format}`, type);
+      }
+    }),
+    fit: () => widget.zoom("fit"),
+    help: () => host.help(),
+    ...(host.keepsWork ? { startOver: guard(() => widget.startOver()) } : {}),
+  };
+}

@@ -1,0 +1,190 @@
+/**
+ * The widget's input: pointer gestures on the shape (handles, and the view's pan and
+ * zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan,
+ * and files dropped on the stage. What each gesture changes is the posing's and the
+ * widget's; this file only routes.
+ */
+import type { Camera } from "./camera.js";
+import { keyCommand, keyFocus } from "./keys.js";
+import { HANDLE_RADIUS } from "./overlay.js";
+import { locate, nearestPoint } from "./picking.js";
+import { PointerInput } from "./pointer.js";
+import type { Posing } from "./posing.js";
+import { fromPixel } from "./view.js";
+
+/** What the input needs of the widget. */
+export interface InputHost {
+  readonly posing: Posing;
+  readonly camera: Camera;
+  /** The focusable root (keys) and the overlay canvas (pointers, drops). */
+  readonly root: HTMLElement;
+  readonly overlay: HTMLCanvasElement;
+  /** Device pixels per CSS pixel. */
+  ratio(): number;
+  /** Client (CSS) pixels to device pixels of the canvas. */
+  devicePixel(clientX: number, clientY: number): [number, number];
+  draw(): void;
+  /** A handle moved: frames are wanted, and the loop must not settle yet. */
+  moved(): void;
+  /** An action succeeded (messages are out of date). */
+  succeeded(): void;
+  gesture(change: () => void): void;
+  removeHandle(index: number): void;
+  undo(): void;
+  redo(): void;
+  zoom(factor: number | "fit"): void;
+  toggleDisplay(what: "wireframe" | "field"): void;
+  /** Opens or closes the help (toggles without an argument); whether it is open. */
+  help(open?: boolean): void;
+  helpOpen(): boolean;
+  dropped(file: File): void;
+}
+
+export class WidgetInput {
+  readonly #host: InputHost;
+  readonly #pointer: PointerInput;
+  #spaceHeld = false;
+
+  constructor(host: InputHost) {
+    this.#host = host;
+    const posing = host.posing;
+    const radius = () => (1.6 * HANDLE_RADIUS * host.ratio()) / host.camera.view.scale;
+    this.#pointer = new PointerInput(host.overlay, {
+      accepting: () => !posing.replaying,
+      focus: () => host.root.focus({ preventScroll: true }),
+      toShape: (clientX, clientY) => fromPixel(host.camera.view, ...host.devicePixel(clientX, clientY)),
+      handleAt: (x, y) => nearestPoint(posing.deformer.handlePositions(), x, y, radius()),
+      beginGesture: () => posing.beginGesture(),
+      addHandleAt: (x, y) => {
+        const tolerance = (4 * host.ratio()) / host.camera.view.scale;
+        const point = locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, tolerance);
+        if (!point) return -1;
+        posing.addHandle(point);
+        posing.markChanged();
+        host.succeeded();
+        return posing.handles.length - 1;
+      },
+      grab: (index, pointerId, x, y, additive) => {
+        const grabbed = posing.grab(index, pointerId, x, y, additive);
+        if (grabbed) host.draw();
+        return grabbed;
+      },
+      drag: (pointerId, x, y) => {
+        posing.drag(pointerId, x, y);
+        host.moved();
+      },
+      release: (pointerId) => {
+        posing.release(pointerId);
+        host.draw();
+      },
+      removeHeld: (pointerId) => {
+        posing.removeHeld(pointerId);
+        host.draw();
+      },
+      removeAt: (x, y) => {
+        const index = nearestPoint(posing.deformer.handlePositions(), x, y, radius());
+        if (index >= 0) host.removeHandle(index);
+      },
+      pressedOff: (additive) => {
+        if (!additive) posing.handles.forEach((h) => (h.selected = false));
+        posing.endDragGesture();
+        host.draw();
+      },
+      panMode: () => this.#spaceHeld,
+      pan: (dx, dy) => {
+        host.camera.pan(dx * host.ratio(), dy * host.ratio());
+        host.draw();
+      },
+      zoom: (clientX, clientY, factor) => {
+        host.camera.zoom(...host.devicePixel(clientX, clientY), factor);
+        host.draw();
+      },
+    });
+    host.root.addEventListener("keydown", (e) => this.#key(e));
+    host.root.addEventListener("keyup", (e) => {
+      if (e.key === " ") this.#setSpace(false);
+    });
+    host.root.addEventListener("blur", () => this.#setSpace(false), true);
+    // Files dropped on the stage load like the Open button's.
+    host.overlay.addEventListener("dragover", (e) => {
+      if (e.dataTransfer?.types.includes("Files")) e.preventDefault();
+    });
+    host.overlay.addEventListener("drop", (e) => {
+      const file = e.dataTransfer?.files[0];
+      if (!file) return;
+      e.preventDefault();
+      host.dropped(file);
+    });
+  }
+
+  destroy(): void {
+    this.#pointer.destroy();
+  }
+
+  #setSpace(held: boolean): void {
+    this.#spaceHeld = held;
+    this.#host.overlay.classList.toggle("panning", held);
+  }
+
+  #key(e: KeyboardEvent): void {
+    const host = this.#host;
+    const focus = keyFocus(e.composedPath()[0] ?? null);
+    if (e.key === " " && focus === "other") {
+      e.preventDefault();
+      this.#setSpace(true);
+      return;
+    }
+    const command = keyCommand(e, focus);
+    if (!command) return;
+    e.preventDefault();
+    const posing = host.posing;
+    switch (command.kind) {
+      case "undo":
+        host.undo();
+        break;
+      case "redo":
+        host.redo();
+        break;
+      case "delete": {
+        const keep = posing.handles.filter((h) => !h.selected);
+        if (keep.length < posing.handles.length) {
+          host.gesture(() => {
+            posing.handles = keep;
+            posing.applyHandles();
+          });
+        }
+        break;
+      }
+      case "nudge": {
+        const selected = posing.handles.filter((h) => h.selected);
+        const unit = host.ratio() / host.camera.view.scale;
+        const [dx, dy] = [command.dx * unit, command.dy * unit];
+        if (selected.length === 0) break;
+        host.gesture(() => {
+          for (const h of selected) {
+            h.target = [h.target[0] + dx, h.target[1] + dy];
+            h.pending = [h.pending[0] + dx, h.pending[1] + dy];
+          }
+        });
+        break;
+      }
+      case "deselect":
+        if (host.helpOpen()) host.help(false);
+        posing.handles.forEach((h) => (h.selected = false));
+        host.draw();
+        break;
+      case "toggle":
+        host.toggleDisplay(command.what);
+        break;
+      case "fit":
+        host.zoom("fit");
+        break;
+      case "zoom":
+        host.zoom(command.factor);
+        break;
+      case "help":
+        host.help();
+        break;
+    }
+  }
+}

@@ -1,0 +1,145 @@
+/**
+ * The widget's options, its methods and their deformer settings, and the events it sends:
+ * what pages (and the custom element) see of the widget's configuration.
+ */
+import type { DeformerOptions, Metrics, Outline, Timings } from "../core.js";
+
+/** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
+export const METHODS = {
+  akap: { label: "AKAP", options: { method: "akap", dirichlet: true, integrator: "spiral" } },
+  "akap-no-dirichlet": {
+    label: "AKAP without Dirichlet step",
+    options: { method: "akap", dirichlet: false, integrator: "spiral" },
+  },
+  "akap-linear": {
+    label: "AKAP with linear steps",
+    options: { method: "akap", dirichlet: true, integrator: "linear" },
+  },
+  "akap-simple": {
+    label: "AKAP, both simplifications",
+    options: { method: "akap", dirichlet: false, integrator: "linear" },
+  },
+  arap: { label: "ARAP (10 iterations per step)", options: { method: "arap", iterations: 10 } },
+} as const satisfies Record<string, { label: string; options: DeformerOptions }>;
+
+export type Method = keyof typeof METHODS;
+
+export interface WidgetOptions {
+  /** A built-in shape (see `builtinShapes()`); default the first one. */
+  shape?: string;
+  /** A shape of your own instead of a built-in one. */
+  outline?: Outline;
+  /** An image URL used as the texture of built-in shapes (mapped onto the bounding box). */
+  texture?: string;
+  /**
+   * A file to start with instead: an SVG, an image (traced, and warped as the texture) or
+   * a mesh (OBJ or our JSON), by URL.
+   */
+  src?: string;
+  /** More shapes for the toolbar's list: files by URL (SVG, image, OBJ, JSON mesh). */
+  gallery?: readonly GalleryItem[];
+  /** About how many mesh vertices (default 1500). */
+  vertices?: number;
+  /** Smallest triangle angle in degrees (default 28). */
+  minAngle?: number;
+  method?: Method;
+  /** Weight of the soft handle constraints (default 100). */
+  lambda?: number;
+  /** Velocities from raw pointer displacement, as in the paper, instead of target tracking. */
+  paperMode?: boolean;
+  /** Show the toolbar (default true). */
+  controls?: boolean;
+  /** Show the heads-up display (default true). */
+  hud?: boolean;
+  wireframe?: boolean;
+  /** Draw the last frame's velocity field as arrows. */
+  field?: boolean;
+  /** Highlight flipped triangles (default true). */
+  flipped?: boolean;
+  /** Longest handle move per substep, as a fraction of the shape's size (default 0.02). */
+  maxStep?: number;
+  /** Most substeps per animation frame (default 8); longer moves continue next frame. */
+  maxSubsteps?: number;
+  /**
+   * Keep the work (shape, pose, handles, settings) across reloads, in the browser's
+   * IndexedDB under this key; it comes back when the widget starts without `shape`, `src`
+   * or `outline`. Off by default; the app uses it. The toolbar then has "Start over".
+   */
+  storageKey?: string;
+}
+
+/** The settings a widget runs with (its options that can change while it runs). */
+export type WidgetSettings = Required<
+  Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey">
+>;
+
+/** A file the toolbar offers beside the built-in shapes. */
+export interface GalleryItem {
+  name: string;
+  url: string;
+}
+
+/** `detail` of the `akap-pose` event, sent after every frame that moved the shape. */
+export interface PoseDetail {
+  metrics: Metrics;
+  handleCount: number;
+  /** Milliseconds of work in the frame (solver steps and drawing); 0 outside the frame loop. */
+  frameMs: number;
+  /** Deformer steps in the frame. */
+  steps: number;
+  /** Solver stages summed over the frame's steps. */
+  timings: Timings;
+}
+
+export const DEFAULTS = {
+  vertices: 1500,
+  minAngle: 28,
+  method: "akap" as Method,
+  lambda: 100,
+  maxStep: 0.02,
+  maxSubsteps: 8,
+};
+
+/** The settings of `options`, defaults filled in; throws for a method or step limits that cannot be. */
+export function widgetSettings(options: WidgetOptions): WidgetSettings {
+  const settings: WidgetSettings = {
+    vertices: options.vertices ?? DEFAULTS.vertices,
+    minAngle: options.minAngle ?? DEFAULTS.minAngle,
+    method: options.method ?? DEFAULTS.method,
+    lambda: options.lambda ?? DEFAULTS.lambda,
+    paperMode: options.paperMode ?? false,
+    controls: options.controls ?? true,
+    hud: options.hud ?? true,
+    wireframe: options.wireframe ?? false,
+    field: options.field ?? false,
+    flipped: options.flipped ?? true,
+    maxStep: options.maxStep ?? DEFAULTS.maxStep,
+    maxSubsteps: options.maxSubsteps ?? DEFAULTS.maxSubsteps,
+  };
+  if (!Object.hasOwn(METHODS, settings.method)) {
+    throw new Error(`unknown method "${settings.method}"; the methods are ${Object.keys(METHODS).join(", ")}`);
+  }
+  if (!(settings.maxStep > 0) || !(settings.maxSubsteps >= 1)) {
+    throw new Error("maxStep must be above 0 and maxSubsteps at least 1");
+  }
+  return settings;
+}
+
+/** Deformer options of a widget method; lambda applies to the AKAP variants only. */
+export function methodOptions(method: Method, lambda: number): DeformerOptions {
+  const options: DeformerOptions = { ...METHODS[method].options };
+  if (options.method === "akap") options.lambda = lambda;
+  return options;
+}
+
+/** The widget method (and lambda) that deformer options describe, e.g. a session's. */
+export function widgetMethod(options: DeformerOptions, lambda: number): { method: Method; lambda: number } {
+  if (options.method === "arap") return { method: "arap", lambda };
+  const dirichlet = options.dirichlet ?? true;
+  const integrator = options.integrator ?? "spiral";
+  const found = (Object.keys(METHODS) as Method[]).find((key) => {
+    const m: DeformerOptions = METHODS[key].options;
+    return m.method === "akap" && m.dirichlet === dirichlet && m.integrator === integrator;
+  });
+  return { method: found ?? "akap", lambda: options.lambda ?? lambda };
+}

@@ -1,0 +1,511 @@
+/**
+ * What the widget poses, apart from the page: the shape and its deformer, the handles
+ * (where each is going, which pointer holds it), the undo history, the recording, and the
+ * steps that move the handles toward their targets. It knows nothing of the DOM; it tells
+ * its host (the widget) what to show through {@link PosingHost}.
+ *
+ * Each frame, {@link Posing.advance} gives every handle the velocity that takes it toward its
+ * target (the pointer, or where a pin was left), split into substeps no longer than
+ * `maxStep` of the shape's size, and steps the deformer; a step that fails is tried again
+ * with smaller velocities.
+ */
+import { Deformer, type DeformerOptions, type Timings } from "../core.js";
+import { PointMapper } from "../import.js";
+import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
+import { History } from "./history.js";
+import { METHODS, methodOptions, widgetMethod, type Method, type WidgetSettings } from "./options.js";
+import { locate, pointPosition, type MeshPoint } from "./picking.js";
+import { Recorder, type Session, type SessionEvent } from "./session.js";
+import type { Shape } from "./shape.js";
+import type { Loaded } from "./sources.js";
+
+export interface Handle {
+  point: MeshPoint;
+  /** Where the handle is going, shape units. */
+  target: [number, number];
+  selected: boolean;
+  /** The pointer dragging it, if any, and the offset from pointer to handle at grab time. */
+  pointerId: number | undefined;
+  grab: [number, number];
+  /** Paper mode: pointer motion not yet turned into steps. */
+  pending: [number, number];
+}
+
+/** The parts of an imported file (largest first) and the one shown. */
+export interface Parts {
+  loaded: Extract<Loaded, { kind: "outlines" }>;
+  index: number;
+}
+
+/** Everything undo restores: the shape and its parts, the method, the pose and the handles. */
+export interface Snapshot {
+  shape: Shape;
+  parts: Parts | undefined;
+  method: Method;
+  lambda: number;
+  positions: Float64Array;
+  atRest: boolean;
+  handles: { point: MeshPoint; target: [number, number] }[];
+}
+
+/** What the posing tells the page. */
+export interface PosingHost {
+  /** A new shape or deformer is in place; `refit` when the view should fit it afresh. */
+  adopted(shape: Shape, deformer: Deformer, refit: boolean): void;
+  /** The method in use changed (lists and HUD show it). */
+  methodChanged(method: Method, lambda: number): void;
+  /** The handle set changed. */
+  handlesChanged(count: number): void;
+  /** The pose changed outside the frame loop (undo, reset, a load). */
+  poseChanged(): void;
+  /** The undo history or the recording changed. */
+  historyChanged(): void;
+  /** Something is to be drawn or moved: a frame is wanted. */
+  schedule(): void;
+}
+
+/** A failed step is tried again with its velocities scaled by these, in turn. */
+const RETRY_SCALES = [0.5, 0.25, 0.125];
+
+export class Posing {
+  readonly settings: WidgetSettings;
+  readonly history = new History<Snapshot>();
+  readonly recorder = new Recorder();
+  shape!: Shape;
+  deformer!: Deformer;
+  handles: Handle[] = [];
+  parts: Parts | undefined;
+  atRest = true;
+  /** While a session replays: nothing is recorded. */
+  replaying = false;
+  readonly #host: PosingHost;
+  #gestureBefore: Snapshot | undefined;
+  #gestureChanged = false;
+
+  constructor(settings: WidgetSettings, host: PosingHost) {
+    this.settings = settings;
+    this.#host = host;
+  }
+
+  // ---------------------------------------------------------------- shape and method
+
+  /** Makes `shape` current with a fresh deformer, without handles, at rest. */
+  install(shape: Shape, orders?: Uint32Array[]): void {
+    this.adopt(shape, orders, true);
+    this.handles = [];
+    this.atRest = true;
+    this.applyHandles();
+    this.#host.poseChanged();
+  }
+
+  /**
+   * Makes `shape` current with a fresh deformer of the current method (handles and pose
+   * are the caller's to set); fails without changing anything. A recording ends.
+   */
+  adopt(shape: Shape, orders: Uint32Array[] | undefined, refit: boolean): void {
+    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.deformerOptions(), orders);
+    this.deformer?.free();
+    this.deformer = deformer;
+    this.shape = shape;
+    this.recorder.stop();
+    this.#host.adopted(shape, deformer, refit);
+  }
+
+  deformerOptions(): DeformerOptions {
+    return methodOptions(this.settings.method, this.settings.lambda);
+  }
+
+  /**
+   * Applies deformer options. The same method only changes settings; another method (AKAP
+   * and ARAP are different solvers) gets a new deformer with the current pose and handles.
+   */
+  useOptions(options: DeformerOptions): void {
+    const { method = "akap", ...settings } = options;
+    if (method === this.deformer.method) {
+      this.deformer.setOptions(settings);
+      return;
+    }
+    const { positions, triangles } = this.shape.mesh;
+    const next = new Deformer(positions, triangles, options);
+    try {
+      next.setPositions(this.deformer.positionsView());
+      const event = this.handlesEvent();
+      next.setHandlePoints(event.handles.triangles, event.handles.barycentric);
+    } catch (error) {
+      next.free();
+      throw error;
+    }
+    this.deformer.free();
+    this.deformer = next;
+  }
+
+  /** Changes the method and/or lambda (recorded). */
+  setMethod(method: Method, lambda: number): void {
+    if (!Object.hasOwn(METHODS, method)) throw new Error(`unknown method "${method}"`);
+    const options = methodOptions(method, lambda);
+    this.useOptions(options); // throws (and changes nothing) for a bad lambda
+    this.record({ options });
+    this.showMethod(method, lambda);
+  }
+
+  /** Deformer options from a session: applied, and shown as the widget's method. */
+  applyOptions(options: DeformerOptions): void {
+    this.useOptions(options);
+    const { method, lambda } = widgetMethod(options, this.settings.lambda);
+    this.showMethod(method, lambda);
+  }
+
+  showMethod(method: Method, lambda: number): void {
+    this.settings.method = method;
+    this.settings.lambda = lambda;
+    this.#host.methodChanged(method, lambda);
+  }
+
+  /**
+   * Makes `shape` (a re-meshing of the current one) current with the pose and handles
+   * carried over: every new vertex goes where the old mesh's pose takes its rest position,
+   * and each handle stays at its place.
+   */
+  carryOver(shape: Shape, orders: Uint32Array[] | undefined): void {
+    const old = { shape: this.shape, positions: this.deformer.positions(), atRest: this.atRest };
+    const handles = this.handles.map((h) => ({
+      rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
+      target: h.target,
+    }));
+    this.adopt(shape, orders, false);
+    this.handles = [];
+    if (!old.atRest) {
+      const mapper = new PointMapper(old.shape.mesh.positions, old.shape.mesh.triangles, shape.mesh.positions);
+      try {
+        this.deformer.setPositions(mapper.map(old.positions));
+      } finally {
+        mapper.free();
+      }
+    }
+    this.atRest = old.atRest;
+    const { positions: rest, triangles } = shape.mesh;
+    for (const { rest: at, target } of handles) {
+      const point =
+        locate(rest, triangles, at[0], at[1], 1e-6 * shape.size) ??
+        locate(rest, triangles, at[0], at[1], 0.05 * shape.size);
+      if (point) this.handles.push({ ...newHandle(point), target: [...target] });
+    }
+    this.applyHandles();
+    this.#host.poseChanged();
+  }
+
+  // ---------------------------------------------------------------- handles
+
+  addHandle(point: MeshPoint): Handle {
+    const [x, y] = pointPosition(this.deformer.positionsView(), this.shape.mesh.triangles, point);
+    const handle: Handle = { ...newHandle(point), target: [x, y] };
+    this.handles.push(handle);
+    this.applyHandles();
+    return handle;
+  }
+
+  /** Sends the handle set to the deformer (and the recording). */
+  applyHandles(): void {
+    const event = this.handlesEvent();
+    this.deformer.setHandlePoints(event.handles.triangles, event.handles.barycentric);
+    this.record(event);
+    this.#host.handlesChanged(this.handles.length);
+    this.#host.schedule();
+  }
+
+  handlesEvent(): { handles: { triangles: number[]; barycentric: number[] } } {
+    return {
+      handles: {
+        triangles: this.handles.map((h) => h.point.triangle),
+        barycentric: this.handles.flatMap((h) => h.point.barycentric),
+      },
+    };
+  }
+
+  pinHandlesWhereTheyAre(): void {
+    const p = this.deformer.handlePositions();
+    this.handles.forEach((h, i) => {
+      h.target = [p[2 * i]!, p[2 * i + 1]!];
+      h.pending = [0, 0];
+    });
+    this.#host.schedule();
+  }
+
+  /** Back to the rest pose; handles stay, at their rest places. */
+  reset(): void {
+    this.deformer.reset();
+    this.record({ reset: true });
+    this.atRest = true;
+    this.pinHandlesWhereTheyAre();
+    this.#host.poseChanged();
+  }
+
+  // ---------------------------------------------------------------- pointers on handles
+
+  /** Starts dragging a handle from a shape point; false if another pointer holds it. */
+  grab(index: number, pointerId: number, x: number, y: number, additive: boolean): boolean {
+    const handle = this.handles[index]!;
+    if (handle.pointerId !== undefined) return false;
+    if (!additive && !handle.selected) this.handles.forEach((h) => (h.selected = false));
+    handle.selected = additive ? !handle.selected : true;
+    const p = this.deformer.handlePositions();
+    handle.pointerId = pointerId;
+    handle.grab = [p[2 * index]! - x, p[2 * index + 1]! - y];
+    handle.target = [p[2 * index]!, p[2 * index + 1]!];
+    return true;
+  }
+
+  /** The pointer moved to a shape point: its handle's new target. */
+  drag(pointerId: number, x: number, y: number): void {
+    const handle = this.handles.find((h) => h.pointerId === pointerId);
+    if (!handle) return;
+    const next: [number, number] = [x + handle.grab[0], y + handle.grab[1]];
+    handle.pending = [handle.pending[0] + next[0] - handle.target[0], handle.pending[1] + next[1] - handle.target[1]];
+    handle.target = next;
+  }
+
+  release(pointerId: number): void {
+    const handle = this.handles.find((h) => h.pointerId === pointerId);
+    if (handle) handle.pointerId = undefined;
+    this.endDragGesture();
+  }
+
+  removeHeld(pointerId: number): void {
+    const at = this.handles.findIndex((h) => h.pointerId === pointerId);
+    if (at < 0) return;
+    this.handles.splice(at, 1);
+    this.applyHandles();
+    this.#gestureChanged = true;
+    this.endDragGesture();
+  }
+
+  get dragging(): boolean {
+    return this.handles.some((h) => h.pointerId !== undefined);
+  }
+
+  // ---------------------------------------------------------------- gestures and history
+
+  snapshot(): Snapshot {
+    return {
+      shape: this.shape,
+      parts: this.parts,
+      method: this.settings.method,
+      lambda: this.settings.lambda,
+      positions: this.deformer.positions(),
+      atRest: this.atRest,
+      handles: this.handles.map((h) => ({ point: h.point, target: [...h.target] })),
+    };
+  }
+
+  restore(snapshot: Snapshot): void {
+    this.releasePointers();
+    if (snapshot.method !== this.settings.method || snapshot.lambda !== this.settings.lambda) {
+      this.settings.method = snapshot.method;
+      this.settings.lambda = snapshot.lambda;
+      if (snapshot.shape === this.shape) this.useOptions(this.deformerOptions());
+      this.showMethod(snapshot.method, snapshot.lambda);
+    }
+    if (snapshot.shape !== this.shape) {
+      this.parts = snapshot.parts;
+      this.adopt(snapshot.shape, undefined, true);
+    }
+    this.deformer.setPositions(snapshot.positions);
+    this.record({ positions: Array.from(snapshot.positions) });
+    this.atRest = snapshot.atRest;
+    this.handles = snapshot.handles.map((h) => ({ ...newHandle(h.point), target: [...h.target] }));
+    this.applyHandles();
+    this.#host.poseChanged();
+  }
+
+  /** Undo (or redo, `forward`); false when there is nothing to go back (or forth) to. */
+  travel(forward: boolean): boolean {
+    const current = this.snapshot();
+    const snapshot = forward ? this.history.redo(current) : this.history.undo(current);
+    if (snapshot) this.restore(snapshot);
+    this.#host.historyChanged();
+    return snapshot !== undefined;
+  }
+
+  /** Runs one complete gesture (an undoable unit) that is not a drag. */
+  gesture(change: () => void): void {
+    // The first shape, while the widget is made, has nothing before it.
+    const before = (this.shape as Shape | undefined) && this.snapshot();
+    change();
+    if (before) this.history.push(before);
+    this.#host.historyChanged();
+    this.#host.schedule();
+  }
+
+  /** A drag or press begins: the state before it is kept for undo (once for overlapping ones). */
+  beginGesture(): void {
+    this.#gestureBefore ??= this.snapshot();
+  }
+
+  /** The gesture under way changed something (it will be undoable). */
+  markChanged(): void {
+    this.#gestureChanged = true;
+  }
+
+  releasePointers(): void {
+    for (const h of this.handles) h.pointerId = undefined;
+    this.endDragGesture();
+  }
+
+  endDragGesture(): void {
+    if (this.#gestureBefore && !this.dragging) {
+      if (this.#gestureChanged) this.history.push(this.#gestureBefore);
+      this.#gestureBefore = undefined;
+      this.#gestureChanged = false;
+      this.#host.historyChanged();
+    }
+  }
+
+  // ---------------------------------------------------------------- steps
+
+  /** Moves the handles toward their targets; returns the number of deformer steps taken. */
+  advance(timings: Timings): number {
+    const n = this.handles.length;
+    if (n === 0) return 0;
+    const { maxStep, maxSubsteps, paperMode } = this.settings;
+    const longest = maxStep * this.shape.size;
+    let current = this.deformer.handlePositions();
+    if (paperMode) {
+      const displacement = new Float64Array(2 * n);
+      this.handles.forEach((h, i) => {
+        displacement[2 * i] = h.pending[0];
+        displacement[2 * i + 1] = h.pending[1];
+        h.pending = [0, 0];
+      });
+      const distance = largestGap(new Float64Array(2 * n), displacement);
+      if (distance === 0) return 0;
+      const count = Math.min(substepCount(distance, longest), maxSubsteps);
+      const velocities = displacementVelocities(displacement, count);
+      for (let s = 0; s < count; s++) this.step(velocities, timings);
+      current = this.deformer.handlePositions();
+      // The handles end where the deformation took them; pins stay pins.
+      this.handles.forEach((h, i) => {
+        if (h.pointerId === undefined) h.target = [current[2 * i]!, current[2 * i + 1]!];
+      });
+      return count;
+    }
+    const targets = new Float64Array(2 * n);
+    this.handles.forEach((h, i) => {
+      targets[2 * i] = h.target[0];
+      targets[2 * i + 1] = h.target[1];
+    });
+    const gap = largestGap(current, targets);
+    if (gap <= 1e-5 * this.shape.size) return 0;
+    const needed = substepCount(gap, longest);
+    const count = Math.min(needed, maxSubsteps);
+    const velocities = new Float64Array(2 * n);
+    for (let s = 0; s < count; s++) {
+      trackingVelocities(current, targets, needed - s, velocities);
+      this.step(velocities, timings);
+      current = this.deformer.handlePositions();
+    }
+    return count;
+  }
+
+  /**
+   * One deformer step; a step that fails (the deformer is then unchanged) is tried again
+   * with smaller velocities before the error is passed on.
+   */
+  step(velocities: Float64Array, timings: Timings): void {
+    let taken = velocities;
+    try {
+      this.deformer.step(velocities);
+    } catch (error) {
+      const smaller = RETRY_SCALES.map((f) => velocities.map((v) => v * f)).find((v) => {
+        try {
+          this.deformer.step(v);
+          return true;
+        } catch {
+          return false;
+        }
+      });
+      if (!smaller) throw error;
+      taken = smaller;
+    }
+    this.atRest = false;
+    if (this.recorder.recording) this.record({ step: Array.from(taken) });
+    const t = this.deformer.timings();
+    timings.assembly += t.assembly;
+    timings.factorisation += t.factorisation;
+    timings.dirichletFactorisation += t.dirichletFactorisation;
+    timings.solve += t.solve;
+    timings.integration += t.integration;
+  }
+
+  /** After a step failed: pins stay where they are; dragged handles keep their targets. */
+  pinUnheld(): void {
+    const p = this.deformer.handlePositions();
+    this.handles.forEach((h, i) => {
+      if (h.pointerId === undefined) h.target = [p[2 * i]!, p[2 * i + 1]!];
+    });
+  }
+
+  // ---------------------------------------------------------------- recording and replay
+
+  /** Starts recording every change of the deformer. */
+  startRecording(): void {
+    const start: SessionEvent[] = this.atRest
+      ? [{ reset: true }]
+      : [{ positions: Array.from(this.deformer.positionsView()) }];
+    if (this.handles.length > 0) start.push(this.handlesEvent());
+    const { mesh, spec } = this.shape;
+    this.recorder.start(
+      {
+        ...(spec ? { shape: { ...spec } } : {}),
+        mesh: {
+          vertexCount: mesh.vertexCount,
+          triangleCount: mesh.triangleCount,
+          ...(spec ? {} : { positions: Array.from(mesh.positions), triangles: Array.from(mesh.triangles) }),
+        },
+        options: this.deformerOptions(),
+      },
+      start,
+    );
+    this.#host.historyChanged();
+  }
+
+  stopRecording(): Session | undefined {
+    const session = this.recorder.stop();
+    this.#host.historyChanged();
+    return session;
+  }
+
+  /** Carries out one recorded event. */
+  apply(event: SessionEvent): void {
+    if ("handles" in event) {
+      const { triangles, barycentric } = event.handles;
+      this.deformer.setHandlePoints(triangles, barycentric);
+      this.handles = triangles.map((triangle, i) =>
+        newHandle({
+          triangle,
+          barycentric: [barycentric[3 * i]!, barycentric[3 * i + 1]!, barycentric[3 * i + 2]!],
+        }),
+      );
+      this.pinHandlesWhereTheyAre();
+    } else if ("step" in event) {
+      this.deformer.step(event.step);
+      this.atRest = false;
+    } else if ("positions" in event) {
+      this.deformer.setPositions(event.positions);
+      this.atRest = false;
+    } else if ("options" in event) {
+      this.applyOptions(event.options);
+    } else {
+      this.deformer.reset();
+      this.atRest = true;
+    }
+  }
+
+  record(event: SessionEvent): void {
+    if (!this.replaying) this.recorder.record(event);
+  }
+}
+
+/** A handle at a mesh point, not held, not selected; its target is the caller's to set. */
+export function newHandle(point: MeshPoint): Handle {
+  return { point, target: [0, 0], selected: false, pointerId: undefined, grab: [0, 0], pending: [0, 0] };
+}

@@ -1,0 +1,185 @@
+/**
+ * The widget's picture and what floats over it: the mesh canvas (WebGL2, or a 2D canvas
+ * where WebGL2 is missing), the overlay canvas (outline, handles, field arrows, flipped
+ * triangles), the view ({@link Camera}), the status line, the busy indicator, the HUD and
+ * the help panel, all in the shadow root's stage element.
+ */
+import { Camera } from "./camera.js";
+import { Canvas2dRenderer } from "./canvas2d.js";
+import { GlRenderer, type MeshRenderer } from "./gl.js";
+import { HelpPanel } from "./help.js";
+import { Hud } from "./hud.js";
+import type { WidgetSettings } from "./options.js";
+import { drawOverlay, type OverlayHandle } from "./overlay.js";
+import type { Posing } from "./posing.js";
+import { BusyIndicator, StatusLine } from "./status.js";
+import { toPixel } from "./view.js";
+
+/** Widths (CSS pixels) below which the widget takes its narrow layout. */
+export const COMPACT_WIDTH = 640;
+
+export class Stage {
+  readonly element: HTMLElement;
+  readonly glCanvas: HTMLCanvasElement;
+  readonly overlay: HTMLCanvasElement;
+  readonly renderer: MeshRenderer;
+  readonly camera = new Camera();
+  readonly status: StatusLine;
+  readonly busy: BusyIndicator;
+  readonly hud: Hud;
+  readonly help: HelpPanel;
+  readonly #overlayContext: CanvasRenderingContext2D;
+  /** Device pixels per CSS pixel. */
+  ratio = 1;
+
+  constructor(document: Document, closeHelp: () => void) {
+    this.element = document.createElement("div");
+    this.element.className = "stage";
+    this.glCanvas = document.createElement("canvas");
+    this.glCanvas.className = "mesh";
+    this.overlay = document.createElement("canvas");
+    this.overlay.className = "overlay";
+    this.overlay.setAttribute("aria-label", "The shape; click to add a handle, drag a handle to move it");
+    this.status = new StatusLine(document);
+    this.busy = new BusyIndicator(document);
+    this.help = new HelpPanel(document, closeHelp);
+    this.hud = new Hud(document);
+    this.element.append(this.glCanvas, this.overlay, this.status.element, this.hud.element, this.busy.element);
+    this.element.append(this.help.element);
+    const overlayContext = this.overlay.getContext("2d");
+    if (!overlayContext) throw new Error("this browser cannot draw on a 2D canvas");
+    this.#overlayContext = overlayContext;
+    let renderer: MeshRenderer;
+    try {
+      renderer = new GlRenderer(this.glCanvas);
+    } catch {
+      renderer = new Canvas2dRenderer(this.glCanvas);
+    }
+    this.renderer = renderer;
+  }
+
+  /**
+   * Sizes the canvases to the element at device resolution and tells the camera (`rest`:
+   * the rest positions it fits until the user moves the view); returns the width in CSS
+   * pixels.
+   */
+  resize(rest: ArrayLike<number>): number {
+    const ratio = this.element.ownerDocument.defaultView?.devicePixelRatio || 1;
+    const rect = this.glCanvas.getBoundingClientRect();
+    const width = Math.max(1, Math.round(rect.width * ratio));
+    const height = Math.max(1, Math.round(rect.height * ratio));
+    for (const canvas of [this.glCanvas, this.overlay]) {
+      if (canvas.width !== width || canvas.height !== height) {
+        canvas.width = width;
+        canvas.height = height;
+      }
+    }
+    this.ratio = ratio;
+    this.camera.resize(rest, width, height);
+    return rect.width;
+  }
+
+  /** Draws the pose now: the mesh, then the overlay. */
+  render(posing: Posing, settings: WidgetSettings, field: Float64Array | undefined): void {
+    this.renderer.draw(posing.deformer.positionsView(), this.camera.view, {
+      wireframe: settings.wireframe,
+      pixelRatio: this.ratio,
+      background: "#f6f1e7",
+      fill: "#c8773a",
+      wire: "rgba(60, 30, 10, 0.55)",
+    });
+    this.drawOverlay(this.#overlayContext, posing, settings, field, true);
+  }
+
+  /** The overlay on `ctx`: outline, flipped triangles, and with `withHandles` the handles and field. */
+  drawOverlay(
+    ctx: CanvasRenderingContext2D,
+    posing: Posing,
+    settings: WidgetSettings,
+    field: Float64Array | undefined,
+    withHandles: boolean,
+  ): void {
+    const { deformer, shape } = posing;
+    const positions = deformer.positionsView();
+    const at = withHandles ? deformer.handlePositions() : new Float64Array(0);
+    const paper = settings.paperMode;
+    const handles: OverlayHandle[] = withHandles
+      ? posing.handles.map((h, i) => ({
+          x: at[2 * i]!,
+          y: at[2 * i + 1]!,
+          targetX: paper ? at[2 * i]! : h.target[0],
+          targetY: paper ? at[2 * i + 1]! : h.target[1],
+          selected: h.selected,
+          dragged: h.pointerId !== undefined,
+        }))
+      : [];
+    const scene = {
+      // Re-read: handlePositions() may have grown the memory and detached the view.
+      positions: positions.length > 0 ? positions : deformer.positionsView(),
+      triangles: shape.mesh.triangles,
+      boundaryEdges: shape.mesh.boundaryEdges,
+      handles,
+      field: withHandles && settings.field ? field : undefined,
+      showFlipped: settings.flipped,
+    };
+    drawOverlay(ctx, scene, this.camera.view, this.ratio);
+  }
+
+  /** The picture as drawn (mesh and outline, no handles) as a PNG. */
+  png(posing: Posing, settings: WidgetSettings): Promise<Blob> {
+    this.render(posing, settings, undefined);
+    const document = this.element.ownerDocument;
+    const canvas = document.createElement("canvas");
+    canvas.width = this.glCanvas.width;
+    canvas.height = this.glCanvas.height;
+    const ctx = canvas.getContext("2d");
+    if (!ctx) return Promise.reject(new Error("this browser cannot draw on a 2D canvas"));
+    ctx.drawImage(this.glCanvas, 0, 0);
+    const outline = document.createElement("canvas");
+    outline.width = canvas.width;
+    outline.height = canvas.height;
+    const outlineContext = outline.getContext("2d");
+    if (outlineContext) {
+      this.drawOverlay(outlineContext, posing, settings, undefined, false);
+      ctx.drawImage(outline, 0, 0);
+    }
+    return new Promise((resolve, reject) =>
+      canvas.toBlob(
+        (blob) => (blob ? resolve(blob) : reject(new Error("the image could not be encoded"))),
+        "image/png",
+      ),
+    );
+  }
+
+  /** Fades the HUD out while a dragged handle is under it (or near), so the handle shows. */
+  keepHudClear(posing: Posing): void {
+    const hud = this.hud.element;
+    if (hud.classList.contains("hidden")) return;
+    let under = false;
+    if (posing.dragging) {
+      const box = hud.getBoundingClientRect();
+      const canvas = this.overlay.getBoundingClientRect();
+      const p = posing.deformer.handlePositions();
+      const margin = 24;
+      under = posing.handles.some((h, i) => {
+        if (h.pointerId === undefined) return false;
+        const [px, py] = toPixel(this.camera.view, p[2 * i]!, p[2 * i + 1]!);
+        const [x, y] = [canvas.left + px / this.ratio, canvas.top + py / this.ratio];
+        return x > box.left - margin && x < box.right + margin && y > box.top - margin && y < box.bottom + margin;
+      });
+    }
+    hud.classList.toggle("clear", under);
+  }
+
+  /** Client (CSS) pixels to device pixels of the canvas. */
+  devicePixel(clientX: number, clientY: number): [number, number] {
+    const rect = this.overlay.getBoundingClientRect();
+    return [(clientX - rect.left) * this.ratio, (clientY - rect.top) * this.ratio];
+  }
+
+  destroy(): void {
+    this.renderer.destroy();
+    this.hud.destroy();
+    this.busy.done();
+  }
+}
