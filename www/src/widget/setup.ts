@@ -9,7 +9,7 @@
  */
 import { builtinShape, type DeformerOptions, type Outline } from "../core.js";
 import { meshOutline, type Shape } from "./shape.js";
-import { BUSY_DELAY_MS } from "./status.js";
+import { BUSY_DELAY_MS, type BusyIndicator } from "./status.js";
 
 /** What to make: an outline (or a built-in shape by name) meshed to about `vertices`. */
 export interface SetupRequest {
@@ -130,4 +130,31 @@ async function here(request: SetupRequest, progress: (stage: string, fraction: n
 export function makeShape(request: SetupRequest): Shape {
   const outline = request.outline ?? builtinShape(request.name!);
   return meshOutline(outline, request.name, request.vertices, request.minAngle, request.label);
+}
+
+/**
+ * Makes a shape with `maker` while `busy` shows the stage, the progress and Cancel.
+ * `methodNow` is the deformer method when the result arrives: orders made for another
+ * method (switched meanwhile) are dropped, since they do not fit its systems.
+ */
+export async function makeShown(
+  maker: ShapeMaker,
+  busy: BusyIndicator,
+  request: SetupRequest,
+  methodNow: () => DeformerOptions["method"],
+): Promise<Prepared> {
+  const label = `${request.label}: ${Math.round(request.vertices)} vertices`;
+  const cancel = () => maker.cancel();
+  busy.update({ label: `${label}…`, progress: 0, cancel });
+  try {
+    const prepared = await maker.make(request, (stage, progress) =>
+      busy.update({ label: `${label}: ${stage.toLowerCase()}…`, progress, cancel }),
+    );
+    busy.update({ label: `${label}: preparing the solver…`, progress: 0.9 });
+    await new Promise((resolve) => requestAnimationFrame(resolve));
+    const same = (request.options.method ?? "akap") === (methodNow() ?? "akap");
+    return { shape: prepared.shape, orders: same ? prepared.orders : undefined };
+  } finally {
+    busy.done();
+  }
 }

@@ -6,6 +6,9 @@
  * nothing of the widget changes until a shape is fully built.
  */
 import type { MeshData, Outline } from "../core.js";
+import type { Shape } from "./shape.js";
+import { vectorTexture } from "./vector-texture.js";
+import { bounds } from "./view.js";
 import {
   importSvg,
   importSvgPaths,
@@ -132,4 +135,31 @@ export function imageUvs(positions: ArrayLike<number>, width: number, height: nu
 
 function megabytes(bytes: number): string {
   return `${(bytes / 1024 / 1024).toFixed(1)} MB`;
+}
+
+/**
+ * Part `index` of a loaded file as a shape: `mesh` meshes its outline (the widget does it
+ * in a worker); an image becomes the texture, warped with the mesh, and SVG art is drawn
+ * in its colours as the texture (and kept for vector export).
+ */
+export async function partShape<P extends { shape: Shape }>(
+  document: Document,
+  loaded: Extract<Loaded, { kind: "outlines" }>,
+  index: number,
+  mesh: (outline: Outline, label: string) => Promise<P>,
+): Promise<P> {
+  const prepared = await mesh(asOutline(loaded.parts[index]!), loaded.name);
+  const shape = prepared.shape;
+  if (loaded.image) {
+    shape.uvs = imageUvs(shape.mesh.positions, loaded.image.width, loaded.image.height);
+    shape.texture = loaded.image.source;
+  }
+  if (loaded.vector) paintVector(document, shape, loaded.vector);
+  return prepared;
+}
+
+/** Imported SVG art on a shape: kept for vector export, and drawn in its colours as the texture. */
+export function paintVector(document: Document, shape: Shape, vector: VectorPath[]): void {
+  shape.vector = vector;
+  shape.texture = vectorTexture(document, vector, bounds(shape.mesh.positions)).canvas;
 }

@@ -19,7 +19,6 @@ import {
   type Outline,
   type Timings,
 } from "../core.js";
-import type { VectorPath } from "../import.js";
 
 import { meshJson, meshObj, posedSvg } from "./export.js";
 
@@ -39,15 +38,14 @@ import { WidgetInput } from "./input.js";
 import { Posing, type Parts } from "./posing.js";
 import { parseSession, type Session } from "./session.js";
 import { toolbarActions } from "./actions.js";
-import { Cancelled, ShapeMaker, type Prepared, type SetupRequest } from "./setup.js";
+import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
-import { FILE_LIMITS, asOutline, fileKind, imageUvs, readShapeFile, type Loaded } from "./sources.js";
+import { FILE_LIMITS, fileKind, paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
 import { COMPACT_WIDTH, Stage } from "./stage.js";
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
 import { buildToolbar, type Toolbar } from "./toolbar.js";
-import { vectorTexture } from "./vector-texture.js";
-import { bounds, type View } from "./view.js";
+import type { View } from "./view.js";
 
 export { METHODS, type GalleryItem, type Method, type PoseDetail, type WidgetOptions } from "./options.js";
 
@@ -554,24 +552,10 @@ export class Widget {
    * or replaced by a newer request.
    */
   async #make(request: Pick<SetupRequest, "name" | "outline" | "label" | "vertices">): Promise<Prepared> {
-    const options = this.#posing.deformerOptions();
-    const full: SetupRequest = { minAngle: this.#settings.minAngle, ...request, options };
-    const label = `${request.label}: ${Math.round(request.vertices)} vertices`;
-    const cancel = () => this.#maker.cancel();
-    this.#stage.busy.update({ label: `${label}…`, progress: 0, cancel });
-    try {
-      const prepared = await this.#maker.make(full, (stage, progress) =>
-        this.#stage.busy.update({ label: `${label}: ${stage.toLowerCase()}…`, progress, cancel }),
-      );
-      this.#stage.busy.update({ label: `${label}: preparing the solver…`, progress: 0.9 });
-      await nextFrame();
-      if (this.#destroyed) throw new Cancelled();
-      // Orders made for another method (switched meanwhile) do not fit its systems.
-      const sameMethod = (options.method ?? "akap") === (this.#posing.deformerOptions().method ?? "akap");
-      return { shape: prepared.shape, orders: sameMethod ? prepared.orders : undefined };
-    } finally {
-      this.#stage.busy.done();
-    }
+    const full = { minAngle: this.#settings.minAngle, ...request, options: this.#posing.deformerOptions() };
+    const prepared = await makeShown(this.#maker, this.#stage.busy, full, () => this.#posing.deformerOptions().method);
+    if (this.#destroyed) throw new Cancelled();
+    return prepared;
   }
 
   /** Makes a loaded file (part `index` of it) the shape, as one undoable step. */
@@ -591,27 +575,11 @@ export class Widget {
     }
   }
 
-  async #partShape(loaded: Parts["loaded"], index: number): Promise<Prepared> {
-    const outline = asOutline(loaded.parts[index]!);
-    const prepared = await this.#make({
-      name: undefined,
-      outline,
-      label: loaded.name,
-      vertices: this.#settings.vertices,
-    });
-    const shape = prepared.shape;
-    if (loaded.image) {
-      shape.uvs = imageUvs(shape.mesh.positions, loaded.image.width, loaded.image.height);
-      shape.texture = loaded.image.source;
-    }
-    if (loaded.vector) this.#paintVector(shape, loaded.vector);
-    return prepared;
-  }
-
-  /** An imported SVG's art: kept for vector export and drawn, in its colours, as the texture. */
-  #paintVector(shape: Shape, vector: VectorPath[]): void {
-    shape.vector = vector;
-    shape.texture = vectorTexture(this.target.ownerDocument, vector, bounds(shape.mesh.positions)).canvas;
+  #partShape(loaded: Parts["loaded"], index: number): Promise<Prepared> {
+    const { vertices } = this.#settings;
+    return partShape(this.target.ownerDocument, loaded, index, (outline, label) =>
+      this.#make({ name: undefined, outline, label, vertices }),
+    );
   }
 
   #partsInfo(): { count: number; index: number } {
@@ -642,7 +610,8 @@ export class Widget {
   /** Puts back saved work (over the shape just installed); throws, changing nothing, if it cannot. */
   async #resume(saved: SavedWork): Promise<void> {
     const { settings } = saved;
-    const shape = await savedShape(this.target.ownerDocument, saved.shape, (s, v) => this.#paintVector(s, v));
+    const document = this.target.ownerDocument;
+    const shape = await savedShape(document, saved.shape, (s, v) => paintVector(document, s, v));
     if (!Object.hasOwn(METHODS, settings.method)) throw new Error(`unknown method ${settings.method}`);
     const posing = this.#posing;
     const before = posing.snapshot();
