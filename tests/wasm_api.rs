@@ -2,12 +2,25 @@
 //! results match the geometry and every bad input becomes a JavaScript Error, not a panic.
 
 use akap::wasm::{default_shape, triangulate_outline, JsMesh};
-use js_sys::{Array, Float64Array, Reflect};
+use js_sys::{Array, Float64Array, Reflect, Uint32Array};
 use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 fn options(json: &str) -> JsValue {
     js_sys::JSON::parse(json).unwrap()
+}
+
+fn f64s(values: &[f64]) -> JsValue {
+    Float64Array::from(values).into()
+}
+
+fn u32s(values: &[u32]) -> JsValue {
+    Uint32Array::from(values).into()
+}
+
+/// A JavaScript value made by running `body` (a function body returning it).
+fn js(body: &str) -> JsValue {
+    js_sys::Function::new_no_args(body).call0(&JsValue::NULL).unwrap()
 }
 
 fn message(result: Result<impl Sized, wasm_bindgen::JsError>) -> String {
@@ -22,7 +35,8 @@ fn square_with_hole_covers_its_area() {
     let outer = [0.0, 0.0, 3.0, 0.0, 3.0, 3.0, 0.0, 3.0];
     let holes = Array::of1(&Float64Array::from(&[1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0, 1.0][..]));
     let mesh =
-        triangulate_outline(&outer, holes.into(), options(r#"{"targetEdgeLength": 0.25, "minAngle": 28}"#)).unwrap();
+        triangulate_outline(f64s(&outer), holes.into(), options(r#"{"targetEdgeLength": 0.25, "minAngle": 28}"#))
+            .unwrap();
     assert!((mesh.area() - 8.0).abs() < 1e-12);
     let positions = mesh.positions();
     let triangles = mesh.triangles();
@@ -42,7 +56,7 @@ fn default_shape_triangulates() {
     let outer: Float64Array = Reflect::get(&shape, &"outer".into()).unwrap().dyn_into().unwrap();
     let holes = Reflect::get(&shape, &"holes".into()).unwrap();
     assert_eq!(Array::from(&holes).length(), 4);
-    let mesh = triangulate_outline(&outer.to_vec(), holes, JsValue::UNDEFINED).unwrap();
+    let mesh = triangulate_outline(outer.into(), holes, JsValue::UNDEFINED).unwrap();
     assert!(mesh.triangle_count() > 100);
 }
 
@@ -50,39 +64,43 @@ fn default_shape_triangulates() {
 fn bad_input_becomes_a_javascript_error() {
     let square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
     let cases: Vec<(Result<JsMesh, wasm_bindgen::JsError>, &str)> = vec![
-        (triangulate_outline(&[0.0, 0.0, 1.0, 0.0], JsValue::UNDEFINED, JsValue::UNDEFINED), "at least 3"),
+        (triangulate_outline(f64s(&[0.0, 0.0, 1.0, 0.0]), JsValue::UNDEFINED, JsValue::UNDEFINED), "at least 3"),
         (
-            triangulate_outline(&[0.0, 0.0, 1.0, f64::NAN, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED),
+            triangulate_outline(f64s(&[0.0, 0.0, 1.0, f64::NAN, 0.0, 1.0]), JsValue::UNDEFINED, JsValue::UNDEFINED),
             "not a finite",
         ),
         (
-            triangulate_outline(&[0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 1.0], JsValue::UNDEFINED, JsValue::UNDEFINED),
+            triangulate_outline(
+                f64s(&[0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 1.0]),
+                JsValue::UNDEFINED,
+                JsValue::UNDEFINED,
+            ),
             "intersects itself",
         ),
         (
-            triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"maxArae": 1}"#)),
+            triangulate_outline(f64s(&square), JsValue::UNDEFINED, options(r#"{"maxArae": 1}"#)),
             "unknown triangulation option",
         ),
-        (triangulate_outline(&square, JsValue::UNDEFINED, options(r#"{"minAngle": 50}"#)), "minAngle"),
-        (triangulate_outline(&square, "nope".into(), JsValue::UNDEFINED), "holes must be an array"),
+        (triangulate_outline(f64s(&square), JsValue::UNDEFINED, options(r#"{"minAngle": 50}"#)), "minAngle"),
+        (triangulate_outline(f64s(&square), "nope".into(), JsValue::UNDEFINED), "outline.holes must be an array"),
         (
             triangulate_outline(
-                &square,
+                f64s(&square),
                 JsValue::UNDEFINED,
                 options(r#"{"targetEdgeLength": 0.0001, "maxVertices": 100}"#),
             ),
             "more than 100 vertices",
         ),
-        (JsMesh::new(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0], &[0, 2, 1]), "counter-clockwise"),
-        (JsMesh::new(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0], &[0, 1, 3]), "refers to vertex 3"),
+        (JsMesh::new(f64s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]), u32s(&[0, 2, 1])), "counter-clockwise"),
+        (JsMesh::new(f64s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]), u32s(&[0, 1, 3])), "refers to vertex 3"),
     ];
     for (result, expected) in cases {
         let text = message(result);
         assert!(text.contains(expected), "{text:?} should mention {expected:?}");
     }
-    let mesh = JsMesh::new(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0], &[0, 1, 2]).unwrap();
-    assert!(message(mesh.neighbors(3)).contains("out of range"));
-    assert_eq!(mesh.neighbors(0).unwrap(), vec![1, 2]);
+    let mesh = JsMesh::new(f64s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]), u32s(&[0, 1, 2])).unwrap();
+    assert!(message(mesh.neighbors(3.into())).contains("out of range"));
+    assert_eq!(mesh.neighbors(0.into()).unwrap(), vec![1, 2]);
 }
 
 #[test]
@@ -100,12 +118,12 @@ fn deformer_methods_and_their_options() {
         triangles.extend([x, x + 1, x + 5, x, x + 5, x + 4]);
     }
     for json in [r#"{"method": "arap", "iterations": 5}"#, r#"{"method": "akap", "lambda": 50}"#, "{}"] {
-        let mut deformer = JsDeformer::new(&positions, &triangles, options(json)).unwrap();
+        let mut deformer = JsDeformer::new(f64s(&positions), u32s(&triangles), options(json)).unwrap();
         let expected = if json.contains("arap") { "arap" } else { "akap" };
         assert_eq!(deformer.method(), expected);
-        deformer.set_handles(&[0, 4, 3, 7]).unwrap();
+        deformer.set_handles(u32s(&[0, 4, 3, 7])).unwrap();
         // A translation of every handle moves the whole strip rigidly.
-        deformer.step(&[0.5, 0.25, 0.5, 0.25, 0.5, 0.25, 0.5, 0.25]).unwrap();
+        deformer.step(f64s(&[0.5, 0.25, 0.5, 0.25, 0.5, 0.25, 0.5, 0.25])).unwrap();
         for (p, q) in positions.chunks(2).zip(deformer.positions().chunks(2)) {
             assert!((q[0] - p[0] - 0.5).abs() < 1e-9 && (q[1] - p[1] - 0.25).abs() < 1e-9, "{json}: {q:?}");
         }
@@ -122,11 +140,58 @@ fn deformer_methods_and_their_options() {
         (r#"{"itterations": 5}"#, "unknown deformer option"),
     ];
     for (json, expected) in cases {
-        let text = message(JsDeformer::new(&positions, &triangles, options(json)));
+        let text = message(JsDeformer::new(f64s(&positions), u32s(&triangles), options(json)));
         assert!(text.contains(expected), "{text:?} should mention {expected:?}");
     }
-    let mut deformer = JsDeformer::new(&positions, &triangles, options(r#"{"method": "arap"}"#)).unwrap();
+    let mut deformer = JsDeformer::new(f64s(&positions), u32s(&triangles), options(r#"{"method": "arap"}"#)).unwrap();
     deformer.set_options(options(r#"{"iterations": 3}"#)).unwrap();
     assert!(message(deformer.set_options(options(r#"{"method": "akap"}"#))).contains("chosen when the deformer"));
     assert_eq!(deformer.method(), "arap");
+}
+
+#[test]
+fn arguments_of_the_wrong_type_are_refused_with_their_name() {
+    use akap::wasm::{builtin_shape, import_svg, mesh_from_json, mesh_from_obj, JsDeformer};
+    // These used to be copied by the generated glue as whatever they were (a number as a
+    // string's bytes, a string as an array's elements) or to trap the instance.
+    let shape = builtin_shape(42.into()).unwrap_err();
+    let text = shape.dyn_ref::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_default();
+    assert!(text.contains("the shape's name must be a string, not the number 42"), "{text}");
+    assert!(
+        message(import_svg(true.into(), JsValue::UNDEFINED)).contains("the SVG text must be a string, not a boolean")
+    );
+    assert!(message(mesh_from_obj(1.into())).contains("the OBJ text must be a string, not the number 1"));
+    assert!(message(mesh_from_json(1.into())).contains("the JSON text must be a string"));
+    let positions = f64s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
+    assert!(message(JsMesh::new("0,0,1,0,0,1".into(), u32s(&[0, 1, 2])))
+        .contains("positions must be a Float64Array, not a string"));
+    assert!(message(JsMesh::new(positions.clone(), js("return [0, 1, 2]")))
+        .contains("triangles must be a Uint32Array, not an array"));
+    let mut deformer = JsDeformer::new(positions, u32s(&[0, 1, 2]), JsValue::UNDEFINED).unwrap();
+    assert!(message(deformer.set_handles(js("return [NaN]"))).contains("vertices must be a Uint32Array"));
+    assert!(message(deformer.step(js("return 'ab'"))).contains("velocities must be a Float64Array, not a string"));
+}
+
+#[test]
+fn exceptions_thrown_while_reading_arguments_become_errors_and_leave_the_instance_whole() {
+    use akap::wasm::JsDeformer;
+    let positions = f64s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+    let triangles = u32s(&[0, 1, 3, 0, 3, 2]);
+    let mut deformer = JsDeformer::new(positions.clone(), triangles.clone(), JsValue::UNDEFINED).unwrap();
+    deformer.set_handles(u32s(&[0, 3])).unwrap();
+    let getter = js("return { get lambda() { throw new Error('getter says no') } }");
+    let keys = js("return new Proxy({}, { ownKeys() { throw new Error('no keys') } })");
+    let array = js("return new Proxy(new Float64Array(4), { get() { throw new Error('no elements') } })");
+    for _ in 0..5000 {
+        assert!(message(deformer.set_options(getter.clone())).contains("getter says no"));
+        assert!(message(deformer.set_options(keys.clone())).contains("no keys"));
+        assert!(message(deformer.step(array.clone())).contains("velocities could not be read"));
+        assert!(message(triangulate_outline(positions.clone(), JsValue::UNDEFINED, keys.clone())).contains("no keys"));
+    }
+    // The object that was called still works, and matches one that never saw bad input.
+    deformer.step(f64s(&[0.0, 0.0, 0.1, 0.05])).unwrap();
+    let mut fresh = JsDeformer::new(positions, triangles, JsValue::UNDEFINED).unwrap();
+    fresh.set_handles(u32s(&[0, 3])).unwrap();
+    fresh.step(f64s(&[0.0, 0.0, 0.1, 0.05])).unwrap();
+    assert_eq!(deformer.positions(), fresh.positions());
 }

@@ -162,14 +162,12 @@ export function deformerOrders(
 }
 
 export class Deformer {
-  readonly #raw: raw.Deformer;
+  #inner: raw.Deformer | undefined;
   #view: Float64Array | undefined;
 
   /**
    * @param positions xy-interleaved vertex positions (length 2n)
    * @param triangles counter-clockwise index triples (length 3m); the mesh must be connected
-   */
-  /**
    * @param options the method and its settings
    * @param orders the fill-reducing orders from {@link deformerOrders} (same mesh and
    *   method), when the bulk of the set-up already ran elsewhere, e.g. in a worker
@@ -183,7 +181,13 @@ export class Deformer {
     assertLoaded();
     const p = toFloat64(positions, "positions");
     const t = toUint32(triangles, "triangles");
-    this.#raw = orders ? raw.Deformer.withOrders(p, t, options, [...orders]) : new raw.Deformer(p, t, options);
+    this.#inner = orders ? raw.Deformer.withOrders(p, t, options, [...orders]) : new raw.Deformer(p, t, options);
+  }
+
+  /** The wasm object, or an Error once {@link free} was called. */
+  get #raw(): raw.Deformer {
+    if (!this.#inner) throw new Error("this Deformer was freed; make a new one");
+    return this.#inner;
   }
 
   /** Changes some options; the others keep their values. The method cannot change. */
@@ -273,9 +277,11 @@ export class Deformer {
     this.#raw.reset();
   }
 
-  /** Releases the WebAssembly memory; the deformer cannot be used afterwards. */
+  /** Releases the WebAssembly memory; the deformer cannot be used afterwards (calls throw). */
   free(): void {
     this.#raw.free();
+    this.#inner = undefined;
+    this.#view = undefined;
   }
 }
 

@@ -229,15 +229,21 @@ export function meshToJson(mesh: MeshToWrite): string {
  * follow the nearest triangle. Call {@link PointMapper.free} when done.
  */
 export class PointMapper {
-  readonly #raw: raw.PointMapper;
+  #inner: raw.PointMapper | undefined;
 
   constructor(restPositions: NumberList, triangles: IndexList, points: NumberList) {
     assertLoaded();
-    this.#raw = new raw.PointMapper(
+    this.#inner = new raw.PointMapper(
       toFloat64(restPositions, "restPositions"),
       toUint32(triangles, "triangles"),
       toFloat64(points, "points"),
     );
+  }
+
+  /** The wasm object, or an Error once {@link free} was called. */
+  get #raw(): raw.PointMapper {
+    if (!this.#inner) throw new Error("this PointMapper was freed; make a new one");
+    return this.#inner;
   }
 
   /** The points in the pose `deformedPositions` (one xy pair per rest vertex). */
@@ -253,6 +259,7 @@ export class PointMapper {
   /** Releases the WebAssembly memory. */
   free(): void {
     this.#raw.free();
+    this.#inner = undefined;
   }
 }
 

@@ -1,0 +1,282 @@
+//! The deformers (AKAP or ARAP behind one class) and their options.
+
+use js_sys::{Array, Function, Object, Reflect, Uint32Array};
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+
+use super::mesh::read_mesh;
+use super::read::{self, entries};
+use super::{limits, max_coordinates, object, pairs, to_js};
+use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions, Orders};
+
+/// A deformer for one mesh: AKAP (`crate::deform::Deformer`) or ARAP
+/// (`crate::deform::ArapDeformer`), chosen by the `method` option.
+#[wasm_bindgen(js_name = Deformer)]
+pub struct JsDeformer {
+    inner: Box<dyn Deform>,
+}
+
+/// The fill-reducing orders a deformer of the method in `options` needs for this mesh (the
+/// bulk of its set-up), as an array of `Uint32Array`s for `Deformer.withOrders`.
+#[wasm_bindgen]
+pub fn deformer_orders(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<Array, JsError> {
+    let options = deformer_options(&options, MethodOptions::default())?;
+    let mesh = read_mesh(&positions, &triangles)?;
+    let list = Array::new();
+    for order in options.orders(&mesh).systems {
+        let order: Vec<u32> = order.into_iter().map(|v| v as u32).collect();
+        list.push(&Uint32Array::from(order.as_slice()));
+    }
+    Ok(list)
+}
+
+/// Most handles a deformer takes: one per vertex of the largest mesh.
+fn max_handles() -> usize {
+    limits().max_vertices
+}
+
+#[wasm_bindgen(js_class = Deformer)]
+impl JsDeformer {
+    /// Validates the mesh (xy-interleaved positions, counter-clockwise index triples) and
+    /// prepares the solver. `options`: `{ method?: "akap" | "arap", lambda?: number,
+    /// dirichlet?: boolean, integrator?: "spiral" | "linear", iterations?: number }`
+    /// (the last for ARAP, the three before it for AKAP).
+    #[wasm_bindgen(constructor)]
+    pub fn new(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<JsDeformer, JsError> {
+        let options = deformer_options(&options, MethodOptions::default())?;
+        let mesh = read_mesh(&positions, &triangles)?;
+        let mut inner = options.build(mesh).map_err(to_js)?;
+        inner.set_clock(performance_now);
+        Ok(Self { inner })
+    }
+
+    /// The constructor with the fill-reducing orders computed beforehand by
+    /// `deformer_orders` (for the same mesh and method), perhaps in a worker: the bulk of the
+    /// set-up is then done. `orders`: an array of `Uint32Array`s.
+    #[wasm_bindgen(js_name = withOrders)]
+    pub fn with_orders(
+        positions: JsValue,
+        triangles: JsValue,
+        options: JsValue,
+        orders: JsValue,
+    ) -> Result<JsDeformer, JsError> {
+        let options = deformer_options(&options, MethodOptions::default())?;
+        let mesh = read_mesh(&positions, &triangles)?;
+        let systems = read::list(&orders, "orders", 4)?
+            .iter()
+            .enumerate()
+            .map(|(i, order)| {
+                let order = read::uint32s(order, &format!("orders[{i}]"), mesh.vertex_count())?;
+                Ok(order.into_iter().map(|v| v as usize).collect())
+            })
+            .collect::<Result<Vec<_>, JsError>>()?;
+        let mut inner = options.build_with_orders(mesh, &Orders { systems }).map_err(to_js)?;
+        inner.set_clock(performance_now);
+        Ok(Self { inner })
+    }
+
+    /// Changes some options; the others keep their values. The method cannot change.
+    #[wasm_bindgen(js_name = setOptions)]
+    pub fn set_options(&mut self, options: JsValue) -> Result<(), JsError> {
+        let options = deformer_options(&options, self.inner.method_options())?;
+        self.inner.set_method_options(options).map_err(to_js)
+    }
+
+    /// `"akap"` or `"arap"`.
+    #[wasm_bindgen(getter)]
+    pub fn method(&self) -> String {
+        self.inner.method_options().method().name().to_owned()
+    }
+
+    /// One handle on each of these vertices (a `Uint32Array`), replacing the handles.
+    #[wasm_bindgen(js_name = setHandles)]
+    pub fn set_handles(&mut self, vertices: JsValue) -> Result<(), JsError> {
+        let vertices = read::uint32s(&vertices, "vertices", max_handles())?;
+        self.inner.set_handle_vertices(&vertices).map_err(to_js)
+    }
+
+    /// Handles at points in triangles: triangle indices (`Uint32Array`) and three
+    /// barycentric coordinates per point (`Float64Array`), replacing the handles.
+    #[wasm_bindgen(js_name = setHandlePoints)]
+    pub fn set_handle_points(&mut self, triangles: JsValue, barycentric: JsValue) -> Result<(), JsError> {
+        let triangles = read::uint32s(&triangles, "triangles", max_handles())?;
+        let barycentric = read::float64s(&barycentric, "barycentric", 3 * max_handles())?;
+        if barycentric.len() != 3 * triangles.len() {
+            return Err(JsError::new(&format!(
+                "barycentric has {} numbers; {} triangles need 3 each ({})",
+                barycentric.len(),
+                triangles.len(),
+                3 * triangles.len()
+            )));
+        }
+        let (weights, _) = barycentric.as_chunks::<3>();
+        self.inner.set_handle_points(&triangles, weights).map_err(to_js)
+    }
+
+    /// One step with two velocity components per handle, in handle order (`Float64Array`).
+    pub fn step(&mut self, velocities: JsValue) -> Result<(), JsError> {
+        let expected = 2 * self.inner.handle_count();
+        let velocities = read::float64s(&velocities, "velocities", expected.max(2))?;
+        if velocities.len() != expected {
+            return Err(JsError::new(&format!(
+                "velocities has {} numbers; {} handles need 2 each ({expected})",
+                velocities.len(),
+                expected / 2
+            )));
+        }
+        self.inner.step(velocities.as_chunks::<2>().0).map_err(to_js)
+    }
+
+    /// A copy of the current positions, x and y interleaved.
+    pub fn positions(&self) -> Vec<f64> {
+        self.inner.positions().iter().flatten().copied().collect()
+    }
+
+    /// Where the current positions live in wasm memory: the byte offset of `2 * vertexCount`
+    /// f64 values, x and y interleaved. JavaScript wraps it in a `Float64Array` over
+    /// `memory.buffer` (no copy). The address changes with every step (the deformer swaps
+    /// two buffers), and a view detaches when the memory grows: ask again each frame.
+    #[wasm_bindgen(js_name = positionsPointer)]
+    pub fn positions_pointer(&self) -> usize {
+        self.inner.positions().as_ptr() as usize
+    }
+
+    /// Puts the mesh into the given pose (`Float64Array`, xy-interleaved, length
+    /// `2 * vertexCount`); handles stay.
+    #[wasm_bindgen(js_name = setPositions)]
+    pub fn set_positions(&mut self, positions: JsValue) -> Result<(), JsError> {
+        let expected = 2 * self.inner.mesh().vertex_count();
+        let positions = read::float64s(&positions, "positions", max_coordinates())?;
+        if positions.len() != expected {
+            return Err(JsError::new(&format!(
+                "positions has {} numbers; the mesh's {} vertices need 2 each ({expected})",
+                positions.len(),
+                expected / 2
+            )));
+        }
+        self.inner.set_positions(&pairs(&positions, "positions")?).map_err(to_js)
+    }
+
+    /// The last velocity field after the Dirichlet step (`U_opt`; ARAP: the last step's
+    /// displacement), interleaved.
+    pub fn field(&self) -> Vec<f64> {
+        self.inner.field().iter().flatten().copied().collect()
+    }
+
+    /// The last velocity field after the soft-constraint step (`U0`; ARAP: the last
+    /// step's displacement), interleaved.
+    #[wasm_bindgen(js_name = softField)]
+    pub fn soft_field(&self) -> Vec<f64> {
+        self.inner.soft_field().iter().flatten().copied().collect()
+    }
+
+    /// Current positions of the handle points, interleaved.
+    #[wasm_bindgen(js_name = handlePositions)]
+    pub fn handle_positions(&self) -> Vec<f64> {
+        self.inner.handle_positions().iter().flatten().copied().collect()
+    }
+
+    /// Number of handles.
+    #[wasm_bindgen(getter, js_name = handleCount)]
+    pub fn handle_count(&self) -> usize {
+        self.inner.handle_count()
+    }
+
+    /// Number of vertices.
+    #[wasm_bindgen(getter, js_name = vertexCount)]
+    pub fn vertex_count(&self) -> usize {
+        self.inner.mesh().vertex_count()
+    }
+
+    /// `{ areaDistortion, angleDistortion, flipped }` of the current pose.
+    pub fn metrics(&self) -> Result<Object, JsValue> {
+        let m = self.inner.metrics();
+        object(&[
+            ("areaDistortion", m.area_distortion.into()),
+            ("angleDistortion", m.angle_distortion.into()),
+            ("flipped", (m.flipped as f64).into()),
+        ])
+    }
+
+    /// `{ assembly, factorisation, dirichletFactorisation, solve, integration }`:
+    /// milliseconds of the last step (`dirichletFactorisation` is the part of
+    /// `factorisation` spent on AKAP's step 2).
+    pub fn timings(&self) -> Result<Object, JsValue> {
+        let t = self.inner.timings();
+        object(&[
+            ("assembly", t.assembly.into()),
+            ("factorisation", t.factorisation.into()),
+            ("dirichletFactorisation", t.dirichlet_factorisation.into()),
+            ("solve", t.solve.into()),
+            ("integration", t.integration.into()),
+        ])
+    }
+
+    /// Back to the rest pose (handles stay).
+    pub fn reset(&mut self) {
+        self.inner.reset();
+    }
+}
+
+/// Reads `{ method?, lambda?, dirichlet?, integrator?, iterations? }` over `base`, refusing
+/// unknown keys and options of the other method. A different `method` starts from that
+/// method's defaults.
+fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, JsError> {
+    const NAMES: [&str; 5] = ["method", "lambda", "dirichlet", "integrator", "iterations"];
+    let given = entries(value, "deformer", &NAMES)?;
+    let mut options = base;
+    if let Some((_, field)) = given.iter().find(|(k, _)| k == "method") {
+        let method = match field.as_string().as_deref() {
+            Some("akap") => Method::Akap,
+            Some("arap") => Method::Arap,
+            _ => return Err(JsError::new("option method must be \"akap\" or \"arap\"")),
+        };
+        if method != base.method() {
+            options = match method {
+                Method::Akap => MethodOptions::Akap(DeformerOptions::default()),
+                Method::Arap => MethodOptions::Arap(ArapOptions::default()),
+            };
+        }
+    }
+    let only = |name: &str, method: &str| JsError::new(&format!("option {name} applies to method \"{method}\" only"));
+    for (key, field) in given.iter().filter(|(k, _)| k != "method") {
+        match (key.as_str(), &mut options) {
+            ("lambda", MethodOptions::Akap(o)) => o.lambda = read::number(field, "option lambda")?,
+            ("dirichlet", MethodOptions::Akap(o)) => {
+                o.dirichlet = field.as_bool().ok_or_else(|| JsError::new("option dirichlet must be true or false"))?;
+            }
+            ("integrator", MethodOptions::Akap(o)) => {
+                o.integrator = match field.as_string().as_deref() {
+                    Some("spiral") => Integrator::Spiral,
+                    Some("linear") => Integrator::Linear,
+                    _ => return Err(JsError::new("option integrator must be \"spiral\" or \"linear\"")),
+                };
+            }
+            ("iterations", MethodOptions::Arap(o)) => {
+                o.iterations = match field.as_f64() {
+                    Some(n) if n.fract() == 0.0 && (1.0..=1e6).contains(&n) => n as usize,
+                    _ => return Err(JsError::new("option iterations must be a whole number from 1 to 1000000")),
+                };
+            }
+            ("lambda" | "dirichlet" | "integrator", _) => return Err(only(key, "akap")),
+            _ => return Err(only(key, "arap")),
+        }
+    }
+    Ok(options)
+}
+
+thread_local! {
+    static PERFORMANCE: Option<(JsValue, Function)> = {
+        let performance = Reflect::get(&js_sys::global(), &JsValue::from_str("performance")).ok();
+        performance.and_then(|p| {
+            let now = Reflect::get(&p, &JsValue::from_str("now")).ok()?.dyn_into::<Function>().ok()?;
+            Some((p, now))
+        })
+    };
+}
+
+/// `performance.now()` in milliseconds, or 0 where there is no `performance`.
+fn performance_now() -> f64 {
+    PERFORMANCE
+        .with(|p| p.as_ref().and_then(|(this, now)| now.call0(this).ok()).and_then(|v| v.as_f64()).unwrap_or(0.0))
+}

@@ -1,0 +1,85 @@
+//! JavaScript bindings (wasm32 only): the one module that touches wasm-bindgen and js-sys.
+//!
+//! Arrays cross as typed arrays: positions as `Float64Array` with x and y interleaved,
+//! triangles as `Uint32Array` index triples. Every argument is read by [`read`], which
+//! checks its type and size (an `Error` naming the argument otherwise) and never lets a
+//! JavaScript exception unwind through Rust frames; every error becomes a JavaScript
+//! `Error` with the message of the Rust error; nothing here panics on bad input. The
+//! TypeScript wrapper in `www/src/` gives these functions their public, documented shape.
+//!
+//! `mesh`: meshes, triangulation, built-in shapes; `deformer`: the deformers and their
+//! options; `import`: shapes from SVG, images and mesh files, and `PointMapper`.
+
+mod deformer;
+mod import;
+mod mesh;
+mod read;
+
+pub use deformer::{deformer_orders, JsDeformer};
+pub use import::{
+    import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json, mesh_to_obj, texture_coordinates,
+    trace_image, JsMeshFile, JsPointMapper,
+};
+pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, JsMesh};
+
+use js_sys::{Array, Float64Array, Object, Reflect};
+use wasm_bindgen::prelude::*;
+
+use crate::import::Limits;
+use crate::outline::Outline;
+
+/// The limits every binding checks its inputs against: the same as the importers'.
+fn limits() -> Limits {
+    Limits::default()
+}
+
+/// Most numbers in a positions array: two per vertex of the largest mesh.
+fn max_coordinates() -> usize {
+    2 * limits().max_vertices
+}
+
+/// Most indices in a triangles array: a planar mesh has fewer than two triangles per vertex.
+fn max_indices() -> usize {
+    6 * limits().max_vertices
+}
+
+fn to_js(error: impl std::fmt::Display) -> JsError {
+    JsError::new(&error.to_string())
+}
+
+fn object(entries: &[(&str, JsValue)]) -> Result<Object, JsValue> {
+    let object = Object::new();
+    for (key, value) in entries {
+        Reflect::set(&object, &JsValue::from_str(key), value)?;
+    }
+    Ok(object)
+}
+
+fn flat(points: &[[f64; 2]]) -> Float64Array {
+    Float64Array::from(points.iter().flatten().copied().collect::<Vec<f64>>().as_slice())
+}
+
+/// Pairs from a flat array of `2 n` numbers (the caller's array is named `what`).
+fn pairs(values: &[f64], what: &str) -> Result<Vec<[f64; 2]>, JsError> {
+    let (pairs, rest) = values.as_chunks::<2>();
+    if !rest.is_empty() {
+        return Err(JsError::new(&format!("{what} has {} numbers; x, y pairs need an even count", values.len())));
+    }
+    Ok(pairs.to_vec())
+}
+
+/// An outline as `{ outer: Float64Array, holes: Float64Array[] }`.
+fn outline_object(outline: &Outline) -> Result<Object, JsValue> {
+    let holes: Array = outline.holes.iter().map(|h| flat(h)).collect();
+    object(&[("outer", flat(&outline.outer).into()), ("holes", holes.into())])
+}
+
+/// Outlines as `[{ outer: Float64Array, holes: Float64Array[] }]`.
+fn outlines_to_js(outlines: &[Outline]) -> Result<Array, JsError> {
+    let list = Array::new();
+    for outline in outlines {
+        let entry = outline_object(outline).map_err(|_| JsError::new("could not build an outline object"))?;
+        list.push(&entry);
+    }
+    Ok(list)
+}

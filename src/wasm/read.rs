@@ -1,0 +1,179 @@
+//! Reading JavaScript arguments so that no JavaScript runs inside a Rust frame unguarded.
+//!
+//! A JavaScript exception that unwinds through wasm frames skips Rust's epilogues: the
+//! shadow stack pointer is not restored and a `&mut self` borrow is never released, so an
+//! instance dies after a few thousand such calls ("memory access out of bounds",
+//! "recursive use of an object"). And wasm-bindgen's own glue for `&[f64]` or `&str`
+//! parameters copies whatever it is given, element by element (a string is read as its
+//! characters; an element's `valueOf` runs mid-copy). So every export takes `JsValue`s and
+//! reads them here: typeof checks and typed-array copies run no user code, and everything
+//! that can run user code (a getter, a Proxy trap, an iterator) goes through an import
+//! marked `catch` (`Reflect.ownKeys`, `Reflect.get`, `Reflect.construct`), which turns a
+//! thrown exception into an `Err`. Sizes are checked against limits before anything is
+//! allocated in wasm memory.
+
+use js_sys::{Array, Float64Array, Function, Reflect, Uint32Array, Uint8Array, Uint8ClampedArray};
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+
+/// An error saying what the caller passed was wrong, naming the argument.
+pub(super) fn type_error(what: &str, expected: &str, value: &JsValue) -> JsError {
+    JsError::new(&format!("{what} must be {expected}, not {}", describe(value)))
+}
+
+/// A short description of a JavaScript value's type, for messages (no user code runs).
+fn describe(value: &JsValue) -> String {
+    if value.is_undefined() {
+        "undefined".into()
+    } else if value.is_null() {
+        "null".into()
+    } else if let Some(n) = value.as_f64() {
+        format!("the number {n}")
+    } else if value.as_bool().is_some() {
+        "a boolean".into()
+    } else if value.is_string() {
+        "a string".into()
+    } else if value.is_bigint() {
+        "a BigInt".into()
+    } else if value.is_symbol() {
+        "a symbol".into()
+    } else if value.is_function() {
+        "a function".into()
+    } else if Array::is_array(value) {
+        "an array".into()
+    } else {
+        "an object".into()
+    }
+}
+
+/// A fresh, genuine typed array made by the engine from `value` (which must already be
+/// one, `instanceof` the constructor): a Proxy or subclass posing as one runs its code
+/// here, inside `Reflect.construct`, where an exception becomes an `Err`.
+fn own_copy(value: &JsValue, constructor: &str, what: &str) -> Result<JsValue, JsError> {
+    let make = Reflect::get(&js_sys::global(), &JsValue::from_str(constructor))
+        .ok()
+        .and_then(|c| c.dyn_into::<Function>().ok())
+        .ok_or_else(|| JsError::new(&format!("this JavaScript engine has no {constructor}")))?;
+    Reflect::construct(&make, &Array::of1(value))
+        .map_err(|e| JsError::new(&format!("{what} could not be read: {}", message(&e))))
+}
+
+/// The length of a genuine typed array, checked against `limit` elements.
+fn checked_length(length: u32, limit: usize, what: &str, unit: &str) -> Result<usize, JsError> {
+    let length = length as usize;
+    if length > limit {
+        return Err(JsError::new(&format!("{what} has {length} {unit}; the limit is {limit}")));
+    }
+    Ok(length)
+}
+
+/// A `Float64Array` argument, copied into Rust; at most `limit` numbers.
+pub(super) fn float64s(value: &JsValue, what: &str, limit: usize) -> Result<Vec<f64>, JsError> {
+    if !value.is_instance_of::<Float64Array>() {
+        return Err(type_error(what, "a Float64Array", value));
+    }
+    let copy: Float64Array = own_copy(value, "Float64Array", what)?.unchecked_into();
+    checked_length(copy.length(), limit, what, "numbers")?;
+    Ok(copy.to_vec())
+}
+
+/// A `Uint32Array` argument, copied into Rust; at most `limit` numbers.
+pub(super) fn uint32s(value: &JsValue, what: &str, limit: usize) -> Result<Vec<u32>, JsError> {
+    if !value.is_instance_of::<Uint32Array>() {
+        return Err(type_error(what, "a Uint32Array", value));
+    }
+    let copy: Uint32Array = own_copy(value, "Uint32Array", what)?.unchecked_into();
+    checked_length(copy.length(), limit, what, "numbers")?;
+    Ok(copy.to_vec())
+}
+
+/// A `Uint8Array` or `Uint8ClampedArray` argument (image pixels), copied; at most `limit` bytes.
+pub(super) fn bytes(value: &JsValue, what: &str, limit: usize) -> Result<Vec<u8>, JsError> {
+    let constructor = if value.is_instance_of::<Uint8ClampedArray>() {
+        "Uint8ClampedArray"
+    } else if value.is_instance_of::<Uint8Array>() {
+        "Uint8Array"
+    } else {
+        return Err(type_error(what, "a Uint8Array or Uint8ClampedArray", value));
+    };
+    let copy = own_copy(value, constructor, what)?;
+    let copy = Uint8Array::new(&copy.unchecked_into::<Uint8ClampedArray>().buffer());
+    checked_length(copy.length(), limit, what, "bytes")?;
+    Ok(copy.to_vec())
+}
+
+/// A string argument of at most `limit` bytes (UTF-8).
+pub(super) fn string(value: &JsValue, what: &str, limit: usize) -> Result<String, JsError> {
+    let Some(text) = value.as_string() else {
+        return Err(type_error(what, "a string", value));
+    };
+    if text.len() > limit {
+        return Err(JsError::new(&format!("{what} is {} bytes; the limit is {limit}", text.len())));
+    }
+    Ok(text)
+}
+
+/// A number argument.
+pub(super) fn number(value: &JsValue, what: &str) -> Result<f64, JsError> {
+    value.as_f64().ok_or_else(|| type_error(what, "a number", value))
+}
+
+/// A whole number argument from 0 to `limit`.
+pub(super) fn count(value: &JsValue, what: &str, limit: usize) -> Result<usize, JsError> {
+    let n = number(value, what)?;
+    if !(n.fract() == 0.0 && n >= 0.0 && n <= limit as f64) {
+        return Err(JsError::new(&format!("{what} is {n}, expected a whole number from 0 to {limit}")));
+    }
+    Ok(n as usize)
+}
+
+/// The elements of an array argument (`undefined` and `null` read as empty), at most `limit`.
+pub(super) fn list(value: &JsValue, what: &str, limit: usize) -> Result<Vec<JsValue>, JsError> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(Vec::new());
+    }
+    if !Array::is_array(value) {
+        return Err(type_error(what, "an array", value));
+    }
+    let get = |key: JsValue| {
+        Reflect::get(value, &key).map_err(|e| JsError::new(&format!("{what} could not be read: {}", message(&e))))
+    };
+    let length = count(&get(JsValue::from_str("length"))?, &format!("{what}.length"), limit)?;
+    (0..length).map(|i| get(JsValue::from(i as u32))).collect()
+}
+
+/// The own string-keyed properties of an options object (`undefined` and `null` read as
+/// none), refusing names not in `names`; properties whose value is `undefined` are left out.
+pub(super) fn entries(value: &JsValue, what: &str, names: &[&str]) -> Result<Vec<(String, JsValue)>, JsError> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(Vec::new());
+    }
+    if !value.is_object() || value.is_function() || Array::is_array(value) {
+        return Err(type_error(&format!("{what} options"), "an object", value));
+    }
+    let unreadable = |e: JsValue| JsError::new(&format!("{what} options could not be read: {}", message(&e)));
+    let keys = Reflect::own_keys(value).map_err(unreadable)?;
+    let mut found = Vec::new();
+    for key in keys.iter() {
+        let Some(name) = key.as_string() else { continue };
+        if !names.contains(&name.as_str()) {
+            return Err(JsError::new(&format!("unknown {what} option `{name}`; the options are {}", names.join(", "))));
+        }
+        let field = Reflect::get(value, &key).map_err(unreadable)?;
+        if !field.is_undefined() {
+            found.push((name, field));
+        }
+    }
+    Ok(found)
+}
+
+/// The message of a thrown JavaScript value, read without running more of its code.
+fn message(thrown: &JsValue) -> String {
+    if let Some(text) = thrown.as_string() {
+        return text;
+    }
+    Reflect::get(thrown, &JsValue::from_str("message"))
+        .ok()
+        .and_then(|m| m.as_string())
+        .unwrap_or_else(|| "an exception was thrown".into())
+}
