@@ -97,7 +97,9 @@ describe("Deformer", () => {
     const shifted = mesh.positions.map((x, i) => x + (i % 2 === 0 ? 0.5 : -0.25));
     deformer.setPositions(shifted);
     expect(Array.from(deformer.positionsView())).toEqual(Array.from(shifted));
-    expect(() => deformer.setPositions(shifted.subarray(2))).toThrow(/positions has \d+ numbers; the mesh.s \d+ vertices need 2 each/);
+    expect(() => deformer.setPositions(shifted.subarray(2))).toThrow(
+      /positions has \d+ numbers; the mesh.s \d+ vertices need 2 each/,
+    );
     const bad = shifted.slice();
     bad[7] = Number.NaN;
     expect(() => deformer.setPositions(bad)).toThrow(/vertex 3 is not a finite number/);

@@ -66,7 +66,11 @@ const trapping = fc.constantFrom(
     3,
   ],
   () => Object.create(null),
-  () => [, , 1], // sparse
+  () => {
+    const sparse: unknown[] = new Array(3);
+    sparse[2] = 1;
+    return sparse;
+  },
 );
 
 const numbers = fc.oneof(

@@ -73,7 +73,9 @@ describe("importSvg", () => {
       /unknown SVG import option `tolerence`/,
     );
     expect(() => importSvg(svg('<rect width="1" height="1"/>'), { tolerance: -1 })).toThrow(/option tolerance/);
-    expect(() => importSvg(svg('<rect width="1" height="1"/>'), { maxBytes: 10 })).toThrow(/the SVG text is \d+ bytes; the limit is 10/);
+    expect(() => importSvg(svg('<rect width="1" height="1"/>'), { maxBytes: 10 })).toThrow(
+      /the SVG text is \d+ bytes; the limit is 10/,
+    );
   });
 });
 
