@@ -44,7 +44,7 @@ use std::sync::Arc;
 
 use sprs::CsMat;
 
-use super::deformer::{default_clock, vertex_graph, Clock, DeformError, Timings};
+use super::deformer::{default_clock, out_of_memory, vertex_graph, Clock, DeformError, Timings};
 use super::handles::{self, HandlePoint};
 use super::method::Orders;
 use super::metrics::{metrics, Metrics};
@@ -253,7 +253,7 @@ impl ArapDeformer {
             laplacian,
             triangle_slots,
             matrix,
-            numeric: Numeric::new(Arc::new(best)),
+            numeric: Numeric::try_new(Arc::new(best)).map_err(out_of_memory)?,
             factored: false,
             penalty,
             handles: Vec::new(),

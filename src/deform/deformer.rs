@@ -153,6 +153,11 @@ pub enum DeformError {
         /// The number of vertices it must order (or the number of orders expected).
         expected: usize,
     },
+    /// Memory ran short while preparing the solver (a factor's storage).
+    OutOfMemory {
+        /// Bytes that could not be allocated.
+        bytes: usize,
+    },
     /// Options of another method were given; the method is chosen when the deformer is made.
     WrongMethod {
         /// The deformer's method.
@@ -187,6 +192,12 @@ impl fmt::Display for DeformError {
             Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
             Self::NonFiniteResult => write!(f, "the step produced positions that are not finite; use smaller steps"),
             Self::NonFinitePosition { vertex } => write!(f, "the position of vertex {vertex} is not a finite number"),
+            Self::OutOfMemory { bytes } => write!(
+                f,
+                "out of memory: preparing the solver needs {:.0} MB more; free deformers no longer used \
+                 (free()) or use a coarser mesh",
+                (*bytes as f64 / 1e6).ceil()
+            ),
             Self::OrdersMismatch { system, expected } => write!(
                 f,
                 "the orders given do not fit this mesh and method: order {system} must be a permutation of 0..{expected}"
@@ -259,7 +270,12 @@ impl System {
     /// `from_killing = Some(map)`, `matrix` is a submatrix of the Killing matrix `k` whose
     /// entry `p` is K's entry `map[p]`, and refactorisations read K's data; otherwise `matrix`
     /// is `k` and they read the system's own copy, `values`.
-    fn new(matrix: &CsMat<f64>, k: &CsMat<f64>, from_killing: Option<&[usize]>, vertex_order: &[usize]) -> Self {
+    fn new(
+        matrix: &CsMat<f64>,
+        k: &CsMat<f64>,
+        from_killing: Option<&[usize]>,
+        vertex_order: &[usize],
+    ) -> Result<Self, DeformError> {
         let order = expand_blocks(vertex_order, 2);
         let symbolic = Symbolic::analyse(matrix.view(), &Ordering::Given(order))
             .expect("a vertex order expanded to blocks is a valid ordering of a square CSC matrix");
@@ -269,7 +285,7 @@ impl System {
             }
             None => (symbolic, k.data().to_vec()),
         };
-        Self { values, numeric: Numeric::new(Arc::new(symbolic)) }
+        Ok(Self { values, numeric: Numeric::try_new(Arc::new(symbolic)).map_err(out_of_memory)? })
     }
 }
 
@@ -357,11 +373,13 @@ impl Deformer {
         orders.check(&[n, interior_count])?;
         let killing = KillingMatrix::new(&mesh);
         let k = killing.matrix();
-        let soft = System::new(k, k, None, &orders.systems[0]);
-        let dirichlet = (interior_count > 0).then(|| {
+        let soft = System::new(k, k, None, &orders.systems[0])?;
+        let dirichlet = if interior_count > 0 {
             let (matrix, from_killing) = interior_system(k, &interior_index, interior_count);
-            System::new(&matrix, k, Some(&from_killing), &orders.systems[1])
-        });
+            Some(System::new(&matrix, k, Some(&from_killing), &orders.systems[1])?)
+        } else {
+            None
+        };
 
         Ok(Self {
             positions: mesh.positions().to_vec(),
@@ -701,6 +719,14 @@ pub(crate) fn vertex_graph(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> (Vec<us
 /// Renumbers global vertex indices in an adjacency list through `index`.
 fn renumber(ptr: &[usize], adj: &[usize], index: &[usize]) -> (Vec<usize>, Vec<usize>) {
     (ptr.to_vec(), adj.iter().map(|&w| index[w]).collect())
+}
+
+/// A factorisation's storage error as the deformer's (only out-of-memory can happen there).
+pub(crate) fn out_of_memory(error: FactorError) -> DeformError {
+    match error {
+        FactorError::OutOfMemory { bytes } => DeformError::OutOfMemory { bytes },
+        other => DeformError::Factor(other),
+    }
 }
 
 /// Each vertex's index among the interior vertices (`NONE` on the boundary), and their number.

@@ -81,6 +81,11 @@ pub enum FactorError {
         /// Length of the source.
         source_len: usize,
     },
+    /// The factor's storage could not be allocated.
+    OutOfMemory {
+        /// Bytes asked for.
+        bytes: usize,
+    },
     /// A right-hand side has the wrong length.
     DimensionMismatch {
         /// Expected length.
@@ -105,6 +110,9 @@ impl fmt::Display for FactorError {
             Self::NotFactored => write!(f, "no valid factorisation: the last one failed or none was computed"),
             Self::ValueMap { entries, source_len } => {
                 write!(f, "a value map must give a slot below {source_len} for each of the pattern's {entries} entries")
+            }
+            Self::OutOfMemory { bytes } => {
+                write!(f, "out of memory: the factor needs {:.0} MB more", (*bytes as f64 / 1e6).ceil())
             }
             Self::DimensionMismatch { expected, found } => {
                 write!(f, "right-hand side has length {found}, expected {expected}")

@@ -41,13 +41,26 @@ pub struct Numeric {
 impl Numeric {
     /// Allocates every buffer for factorisations on `symbolic`'s pattern.
     pub fn new(symbolic: Arc<Symbolic>) -> Self {
+        Self::try_new(symbolic).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// [`Self::new`], with the two large buffers (the factor's values and the update
+    /// block) allocated fallibly: [`FactorError::OutOfMemory`] instead of an abort when
+    /// memory is short (in wasm, where memory is limited and an abort kills the instance).
+    pub fn try_new(symbolic: Arc<Symbolic>) -> Result<Self, FactorError> {
         let n = symbolic.n;
         let ns = symbolic.supernode_count();
         let max_height = (0..ns).map(|s| symbolic.row_start[s + 1] - symbolic.row_start[s]).max().unwrap_or(0);
-        Self {
-            values: vec![0.0; symbolic.stored_values()],
+        let zeros = |len: usize| -> Result<Vec<f64>, FactorError> {
+            let mut buffer = Vec::new();
+            buffer.try_reserve_exact(len).map_err(|_| FactorError::OutOfMemory { bytes: 8 * len })?;
+            buffer.resize(len, 0.0);
+            Ok(buffer)
+        };
+        Ok(Self {
+            values: zeros(symbolic.stored_values())?,
             valid: false,
-            update: vec![0.0; symbolic.max_update],
+            update: zeros(symbolic.max_update)?,
             relative: vec![0; n],
             positions: vec![0; max_height],
             next_row: vec![0; ns],
@@ -56,7 +69,7 @@ impl Numeric {
             solve_work: vec![0.0; n],
             solve_rows: vec![0.0; max_height],
             symbolic,
-        }
+        })
     }
 
     /// Analysis and buffers in one: `new` followed by `refactor`.

@@ -244,3 +244,60 @@ describe("exceptions inside calls", () => {
     expect(canary()).toEqual(before);
   }, 120_000);
 });
+
+describe("an instance that traps", () => {
+  it("is marked failed: that call and every later one throw an Error that says so", async () => {
+    const { guardBindings } = await import("../../www/src/internal/wasm.js");
+    let trapNext = false;
+    class Thing {
+      free(): void {}
+      poke(): number {
+        if (trapNext) throw new WebAssembly.RuntimeError("unreachable");
+        return 7;
+      }
+    }
+    const fake = {
+      Thing,
+      make: () => new Thing(),
+      twice: (x: number) => 2 * x,
+      refuse: (): never => {
+        throw new TypeError("bad input");
+      },
+    };
+    const { bindings, failure } = guardBindings(fake);
+    const thing = bindings.make();
+    expect(thing.poke()).toBe(7);
+    expect(bindings.twice(4)).toBe(8);
+    // Errors thrown on purpose (bad input) pass through and leave the instance usable.
+    expect(() => bindings.refuse()).toThrow(TypeError);
+    expect(failure()).toBeUndefined();
+    trapNext = true;
+    expect(() => thing.poke()).toThrow(/instance stopped \(unreachable\) and cannot be used again/);
+    expect(failure()).toBeInstanceOf(Error);
+    trapNext = false;
+    expect(() => bindings.twice(1)).toThrow(/cannot be used again/);
+    expect(() => new bindings.Thing()).toThrow(/cannot be used again/);
+    expect(() => thing.poke()).toThrow(/cannot be used again/);
+  });
+});
+
+describe.runIf(process.env.HOSTILE_OOM)(
+  "memory exhausted by deformers never freed (HOSTILE_OOM=1, about a minute)",
+  () => {
+    it("gives an Error saying so, and after freeing them the instance works", () => {
+      const mesh = api.triangulate(api.defaultShape(), { targetEdgeLength: 0.008 });
+      const kept: api.Deformer[] = [];
+      let error: unknown;
+      try {
+        for (let i = 0; i < 1000; i++) kept.push(new api.Deformer(mesh.positions, mesh.triangles));
+      } catch (e) {
+        error = e;
+      }
+      expect(error).toBeInstanceOf(Error);
+      expect(error).not.toBeInstanceOf(WebAssembly.RuntimeError);
+      expect(String((error as Error).message)).toMatch(/out of memory/);
+      for (const d of kept) d.free();
+      expect(canary()).toEqual(canary());
+    }, 600_000);
+  },
+);

@@ -13,7 +13,7 @@
  */
 import { toFloat64, toUint32 } from "./internal/arrays.js";
 import { readMesh } from "./internal/mesh.js";
-import { assertLoaded, load, raw, wasmMemory, type WasmSource } from "./internal/wasm.js";
+import { assertLoaded, load, raw, wasmMemory, type WasmSource, type rawTypes } from "./internal/wasm.js";
 
 export type { WasmSource };
 
@@ -63,7 +63,7 @@ export function init(source?: WasmSource): Promise<void> {
   return load(source);
 }
 
-function copyOut(mesh: raw.Mesh): MeshData {
+function copyOut(mesh: rawTypes.Mesh): MeshData {
   try {
     return readMesh(mesh);
   } finally {
@@ -162,7 +162,7 @@ export function deformerOrders(
 }
 
 export class Deformer {
-  #inner: raw.Deformer | undefined;
+  #inner: rawTypes.Deformer | undefined;
   #view: Float64Array | undefined;
 
   /**
@@ -185,7 +185,7 @@ export class Deformer {
   }
 
   /** The wasm object, or an Error once {@link free} was called. */
-  get #raw(): raw.Deformer {
+  get #raw(): rawTypes.Deformer {
     if (!this.#inner) throw new Error("this Deformer was freed; make a new one");
     return this.#inner;
   }

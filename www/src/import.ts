@@ -14,7 +14,7 @@
  * @module
  */
 import { type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
-import { assertLoaded, raw } from "./internal/wasm.js";
+import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
 import type { MeshData } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
 
@@ -167,7 +167,7 @@ export interface MeshFileData extends MeshData {
   uvs?: Float64Array;
 }
 
-function readMeshFile(file: raw.MeshFile): MeshFileData {
+function readMeshFile(file: rawTypes.MeshFile): MeshFileData {
   try {
     const mesh = file.mesh();
     try {
@@ -229,7 +229,7 @@ export function meshToJson(mesh: MeshToWrite): string {
  * follow the nearest triangle. Call {@link PointMapper.free} when done.
  */
 export class PointMapper {
-  #inner: raw.PointMapper | undefined;
+  #inner: rawTypes.PointMapper | undefined;
 
   constructor(restPositions: NumberList, triangles: IndexList, points: NumberList) {
     assertLoaded();
@@ -241,7 +241,7 @@ export class PointMapper {
   }
 
   /** The wasm object, or an Error once {@link free} was called. */
-  get #raw(): raw.PointMapper {
+  get #raw(): rawTypes.PointMapper {
     if (!this.#inner) throw new Error("this PointMapper was freed; make a new one");
     return this.#inner;
   }

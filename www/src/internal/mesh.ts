@@ -1,9 +1,9 @@
 /** Copying meshes out of wasm. Internal. */
 import type { MeshData } from "../core.js";
-import type { raw } from "./wasm.js";
+import type { rawTypes } from "./wasm.js";
 
 /** Copies a wasm mesh out as plain typed arrays (the caller frees it). Internal. */
-export function readMesh(mesh: raw.Mesh): MeshData {
+export function readMesh(mesh: rawTypes.Mesh): MeshData {
   return {
     positions: mesh.positions(),
     triangles: mesh.triangles(),

@@ -1,10 +1,71 @@
 /**
- * Loads the WebAssembly module once, in a page or in Node. Internal: the public API in
- * `../index.ts` re-exports what users need.
+ * Loads the WebAssembly module once, in a page or in Node, and hands out its bindings
+ * (`raw`) with every call guarded: the bindings refuse bad input with `Error`s, but should
+ * the instance ever trap (a `WebAssembly.RuntimeError`: memory exhausted by an allocation
+ * that is not fallible, say), its state is no longer trustworthy, so from then on every
+ * call throws an `Error` that says so instead of computing with a broken instance.
+ * Internal: the public API in `../index.ts` re-exports what users need.
  */
-import initWasm, * as raw from "../../pkg/akap.js";
+import initWasm, * as glue from "../../pkg/akap.js";
 
-export { raw };
+export type * as rawTypes from "../../pkg/akap.js";
+
+/**
+ * `module`'s bindings with every call guarded: functions called and classes constructed
+ * (and their static methods) through `guarded`, and the objects they return with their
+ * methods and getters guarded too. After a trap (a `WebAssembly.RuntimeError`) every call
+ * throws `failure()`, an `Error` saying the instance stopped.
+ */
+export function guardBindings<M extends object>(module: M): { bindings: M; failure(): Error | undefined } {
+  let failure: Error | undefined;
+  const guarded = <T>(call: () => T): T => {
+    if (failure) throw new Error(failure.message, { cause: failure });
+    let result: T;
+    try {
+      result = call();
+    } catch (error) {
+      if (error instanceof WebAssembly.RuntimeError) {
+        failure = new Error(
+          `the akap WebAssembly instance stopped (${error.message}) and cannot be used again; ` +
+            "reload the page, or restart the process",
+          { cause: error },
+        );
+        throw failure;
+      }
+      throw error;
+    }
+    return wrap(result);
+  };
+  // Objects of the bindings (they have `free`) come back with their members guarded.
+  const wrap = <T>(value: T): T => {
+    const object = value as { free?: unknown } | null;
+    if (typeof object !== "object" || object === null || typeof object.free !== "function") return value;
+    return new Proxy(object, {
+      get(target, key) {
+        const member = guarded(() => Reflect.get(target, key, target) as unknown);
+        return typeof member === "function"
+          ? (...args: unknown[]) => guarded(() => (member as (...a: unknown[]) => unknown).apply(target, args))
+          : member;
+      },
+    }) as T;
+  };
+  const guard = (binding: unknown): unknown => {
+    if (typeof binding !== "function") return binding;
+    return new Proxy(binding as (...args: unknown[]) => unknown, {
+      apply: (target, self, args) => guarded(() => Reflect.apply(target, self, args)),
+      construct: (target, args) => guarded(() => Reflect.construct(target, args) as object),
+      get: (target, key) => guard(Reflect.get(target, key, target)),
+    });
+  };
+  // A plain object, not a Proxy of the module: a module namespace's properties are fixed.
+  const bindings = Object.fromEntries(Object.entries(module).map(([key, value]) => [key, guard(value)])) as M;
+  return { bindings, failure: () => failure };
+}
+
+const guardedGlue = guardBindings(glue);
+
+/** The bindings, every call guarded (see the module's note). */
+export const raw = guardedGlue.bindings;
 
 let ready: Promise<void> | undefined;
 let loaded = false;
@@ -47,5 +108,7 @@ export function wasmMemory(): WebAssembly.Memory {
 
 /** Throws a clear error when the module is used before `load` finished. */
 export function assertLoaded(): void {
+  const failure = guardedGlue.failure();
+  if (failure) throw new Error(failure.message, { cause: failure });
   if (!loaded) throw new Error("akap is not initialised: await init() first");
 }
