@@ -47,9 +47,17 @@ fn describe(value: &JsValue) -> String {
 }
 
 /// A fresh, genuine typed array made by the engine from `value` (which must already be
-/// one, `instanceof` the constructor): a Proxy or subclass posing as one runs its code
-/// here, inside `Reflect.construct`, where an exception becomes an `Err`.
-fn own_copy(value: &JsValue, constructor: &str, what: &str) -> Result<JsValue, JsError> {
+/// one, `instanceof` the constructor) of at most `limit` elements (checked first, so that
+/// nothing huge is copied): a Proxy or subclass posing as one runs its code here, inside
+/// `Reflect.get` and `Reflect.construct`, where an exception becomes an `Err`.
+fn own_copy(value: &JsValue, constructor: &str, what: &str, limit: usize) -> Result<JsValue, JsError> {
+    let length = Reflect::get(value, &JsValue::from_str("length"))
+        .map_err(|e| JsError::new(&format!("{what} could not be read: {}", message(&e))))?
+        .as_f64()
+        .unwrap_or(0.0);
+    if length > limit as f64 {
+        return Err(JsError::new(&format!("{what} has {length} elements; the limit is {limit}")));
+    }
     let make = Reflect::get(&js_sys::global(), &JsValue::from_str(constructor))
         .ok()
         .and_then(|c| c.dyn_into::<Function>().ok())
@@ -72,7 +80,7 @@ pub(super) fn float64s(value: &JsValue, what: &str, limit: usize) -> Result<Vec<
     if !value.is_instance_of::<Float64Array>() {
         return Err(type_error(what, "a Float64Array", value));
     }
-    let copy: Float64Array = own_copy(value, "Float64Array", what)?.unchecked_into();
+    let copy: Float64Array = own_copy(value, "Float64Array", what, limit)?.unchecked_into();
     checked_length(copy.length(), limit, what, "numbers")?;
     Ok(copy.to_vec())
 }
@@ -82,7 +90,7 @@ pub(super) fn uint32s(value: &JsValue, what: &str, limit: usize) -> Result<Vec<u
     if !value.is_instance_of::<Uint32Array>() {
         return Err(type_error(what, "a Uint32Array", value));
     }
-    let copy: Uint32Array = own_copy(value, "Uint32Array", what)?.unchecked_into();
+    let copy: Uint32Array = own_copy(value, "Uint32Array", what, limit)?.unchecked_into();
     checked_length(copy.length(), limit, what, "numbers")?;
     Ok(copy.to_vec())
 }
@@ -96,7 +104,7 @@ pub(super) fn bytes(value: &JsValue, what: &str, limit: usize) -> Result<Vec<u8>
     } else {
         return Err(type_error(what, "a Uint8Array or Uint8ClampedArray", value));
     };
-    let copy = own_copy(value, constructor, what)?;
+    let copy = own_copy(value, constructor, what, limit)?;
     let copy = Uint8Array::new(&copy.unchecked_into::<Uint8ClampedArray>().buffer());
     checked_length(copy.length(), limit, what, "bytes")?;
     Ok(copy.to_vec())
