@@ -4,7 +4,7 @@ use akap::geometry::triangle_area;
 #[cfg(not(target_arch = "wasm32"))]
 use akap::geometry::Point;
 use akap::shapes::{ellipse, gingerbread};
-use akap::{triangulate, Outline, OutlineError, TriangulationError, TriangulationOptions};
+use akap::{triangulate, Outline, OutlineError, Ring, TriangulationError, TriangulationOptions};
 #[cfg(not(target_arch = "wasm32"))]
 use proptest::prelude::*;
 // On wasm32 the same tests run under wasm-bindgen-test in Node.
@@ -121,9 +121,68 @@ fn vertex_limit_and_bad_options_are_reported() {
 }
 
 #[test]
-fn coordinates_out_of_exact_range_are_reported() {
-    let huge = Outline::new(vec![[0.0, 0.0], [1e70, 0.0], [0.0, 1e70]]);
-    assert_eq!(triangulate(&huge, &TriangulationOptions::default()), Err(TriangulationError::CoordinateOutOfRange));
+fn coordinates_beyond_the_limits_are_reported_in_the_callers_terms() {
+    // 1e70 was beyond spade's exact range; scaled into it, it is an ordinary triangle.
+    let big = Outline::new(vec![[0.0, 0.0], [1e70, 0.0], [0.0, 1e70]]);
+    let mesh = triangulate(&big, &TriangulationOptions::default()).unwrap();
+    assert_eq!(mesh.area(), 0.5e140);
+    let huge = Outline::new(vec![[0.0, 0.0], [2e300, 0.0], [0.0, 1e300]]);
+    let error = triangulate(&huge, &TriangulationOptions::default()).unwrap_err();
+    assert_eq!(
+        error,
+        TriangulationError::Outline(OutlineError::CoordinateOutOfRange { ring: Ring(0), point: 1, value: 2e300 })
+    );
+    assert!(error.to_string().contains("2e300") && error.to_string().contains("1e300"), "{error}");
+    let tiny = Outline::new(vec![[0.0, 0.0], [5e-301, 0.0], [0.0, 5e-301]]);
+    let error = triangulate(&tiny, &TriangulationOptions::default()).unwrap_err();
+    assert_eq!(error, TriangulationError::Outline(OutlineError::TooSmall { extent: 5e-301 }));
+    assert!(error.to_string().contains("1e-300"), "{error}");
+}
+
+/// An outline with a notch whose tip comes within `gap` of the opposite side, and one with a
+/// spike `2 gap` wide at its base and 9 long.
+fn near_touch_and_spike(gap: f64) -> [Outline; 2] {
+    [
+        Outline::new(vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [1.0, gap], [0.0, 2.0]]),
+        Outline::new(vec![
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 1.0],
+            [0.5 + gap, 1.0],
+            [0.5, 10.0],
+            [0.5 - gap, 1.0],
+            [0.0, 1.0],
+        ]),
+    ]
+}
+
+#[test]
+fn near_touches_and_thin_spikes_mesh_exactly() {
+    // Valid outlines (simple, with area) that were refused as "an invalid mesh (a bug)"
+    // from a gap of 1e-7 down: the mesh check called triangles degenerate by their area
+    // relative to the whole shape, and refinement makes small, well-shaped ones there.
+    for gap in [1e-3, 1e-7, 1e-9, 1e-12, 1e-15] {
+        for outline in near_touch_and_spike(gap) {
+            for options in [
+                TriangulationOptions::default(),
+                TriangulationOptions::default().with_min_angle_degrees(0.0),
+                TriangulationOptions::default().with_target_edge_length(0.1),
+            ] {
+                let mesh = triangulate(&outline, &options).unwrap_or_else(|e| panic!("gap {gap}: {e}"));
+                assert_positive_triangles(&mesh);
+                assert_area_matches(&mesh, &outline);
+                assert_eq!(mesh.connected_components(), 1);
+                // Below 1e-9 the gap is within the edge check's tolerance; the outline's
+                // points are still mesh vertices, exactly.
+                if gap >= 1e-9 {
+                    assert_outline_edges_survive(&mesh, &outline);
+                }
+                for p in outline.rings().flatten() {
+                    assert!(mesh.positions().contains(p), "{p:?} is not a vertex");
+                }
+            }
+        }
+    }
 }
 
 #[cfg(not(target_arch = "wasm32"))]
