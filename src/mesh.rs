@@ -14,6 +14,7 @@
 
 use std::fmt;
 
+use crate::error::Number;
 use crate::geometry::{
     bounding_box, certain_orient, normalising_exponent, scale_by_power_of_two, triangle_area, Point, MAX_COORDINATE,
     MIN_EXTENT,
@@ -139,7 +140,8 @@ impl fmt::Display for MeshError {
             }
             Self::CoordinateOutOfRange { vertex, value } => write!(
                 f,
-                "vertex {vertex} has the coordinate {value:e}, beyond the limit of ±{MAX_COORDINATE:e}; scale the mesh down"
+                "vertex {vertex} has the coordinate {}, beyond the limit of ±{MAX_COORDINATE:e}; scale the mesh down",
+                Number(*value)
             ),
             Self::TooSmall { extent } => write!(
                 f,
@@ -150,7 +152,10 @@ impl fmt::Display for MeshError {
             }
             Self::RepeatedVertex { triangle } => write!(f, "triangle {triangle} uses the same vertex twice"),
             Self::Degenerate { triangle } => {
-                write!(f, "triangle {triangle} is degenerate: its corners are collinear to double precision (zero area)")
+                write!(
+                    f,
+                    "triangle {triangle} is degenerate: its corners are collinear to double precision (zero area)"
+                )
             }
             Self::Clockwise { triangle } => {
                 write!(f, "triangle {triangle} is clockwise; triangles must be counter-clockwise")

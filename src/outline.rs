@@ -12,6 +12,7 @@
 
 use std::fmt;
 
+use crate::error::Number;
 use crate::geometry::{
     bounding_box, normalising_exponent, point_in_polygon, polygon_area, scale_by_power_of_two, segments_intersect,
     Point, MAX_COORDINATE, MIN_EXTENT,
@@ -132,8 +133,9 @@ impl fmt::Display for OutlineError {
             }
             Self::CoordinateOutOfRange { ring, point, value } => write!(
                 f,
-                "point {point} of {ring} has the coordinate {value:e}, beyond the limit of ±{MAX_COORDINATE:e}; \
-                 scale the outline down"
+                "point {point} of {ring} has the coordinate {}, beyond the limit of ±{MAX_COORDINATE:e}; \
+                 scale the outline down",
+                Number(*value)
             ),
             Self::TooSmall { extent } => write!(
                 f,

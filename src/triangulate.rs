@@ -23,6 +23,7 @@ use spade::{
     mitigate_underflow, AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
+use crate::error::Number;
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::{Mesh, MeshError, MAX_MESH_ELEMENTS};
 use crate::outline::{Outline, OutlineError, Ring};
@@ -168,7 +169,7 @@ impl fmt::Display for TriangulationError {
         match self {
             Self::Outline(e) => e.fmt(f),
             Self::InvalidOption { name, value, expected } => {
-                write!(f, "option {name} is {value}, expected {expected}")
+                write!(f, "option {name} is {}, expected {expected}", Number(*value))
             }
             Self::ConstraintConflict { ring, segment } => {
                 write!(f, "segment {segment} of {ring} touches or crosses another segment of the outline")

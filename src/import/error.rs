@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use crate::error::Number;
 use crate::mesh::MeshError;
 
 /// An element of an SVG document, for error messages: its name, its `id` if it has one, and
@@ -182,7 +183,7 @@ impl fmt::Display for ImportError {
             Self::TextureCoordinates { message } => write!(f, "texture coordinates: {message}"),
             Self::Mesh(e) => e.fmt(f),
             Self::InvalidOption { name, value, expected } => {
-                write!(f, "option {name} is {value}, expected {expected}")
+                write!(f, "option {name} is {}, expected {expected}", Number(*value))
             }
         }
     }
