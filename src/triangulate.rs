@@ -25,7 +25,7 @@ use spade::{
 
 use crate::error::Number;
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
-use crate::mesh::{Mesh, MeshError, MAX_MESH_ELEMENTS};
+use crate::mesh::{Mesh, MeshError, DEFAULT_MAX_VERTICES, MAX_MESH_ELEMENTS};
 use crate::outline::{Outline, OutlineError, Ring};
 
 /// The largest minimum angle accepted, in degrees. Delaunay refinement is only guaranteed
@@ -42,13 +42,14 @@ pub struct TriangulationOptions {
     pub target_edge_length: Option<f64>,
     /// Smallest angle in degrees that refinement enforces (0 disables angle refinement).
     pub min_angle_degrees: f64,
-    /// Largest number of vertices of the result, outline points included.
+    /// Largest number of vertices of the result, outline points included (default
+    /// [`DEFAULT_MAX_VERTICES`], 100,000).
     pub max_vertices: usize,
 }
 
 impl Default for TriangulationOptions {
     fn default() -> Self {
-        Self { max_area: None, target_edge_length: None, min_angle_degrees: 25.0, max_vertices: 100_000 }
+        Self { max_area: None, target_edge_length: None, min_angle_degrees: 25.0, max_vertices: DEFAULT_MAX_VERTICES }
     }
 }
 

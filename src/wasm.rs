@@ -684,14 +684,14 @@ fn mesh_and_uvs(positions: &[f64], triangles: &[u32], uvs: &Option<Vec<f64>>) ->
 #[wasm_bindgen]
 pub fn mesh_to_obj(positions: &[f64], triangles: &[u32], uvs: Option<Vec<f64>>) -> Result<String, JsError> {
     let (mesh, uvs) = mesh_and_uvs(positions, triangles, &uvs)?;
-    mesh_file::write_obj(&mesh, uvs.as_deref()).map_err(import_error)
+    mesh_file::write_obj(&mesh, uvs.as_deref(), &Limits::default()).map_err(import_error)
 }
 
 /// Writes a mesh (validated first) in our JSON format.
 #[wasm_bindgen]
 pub fn mesh_to_json(positions: &[f64], triangles: &[u32], uvs: Option<Vec<f64>>) -> Result<String, JsError> {
     let (mesh, uvs) = mesh_and_uvs(positions, triangles, &uvs)?;
-    mesh_file::write_json(&mesh, uvs.as_deref()).map_err(import_error)
+    mesh_file::write_json(&mesh, uvs.as_deref(), &Limits::default()).map_err(import_error)
 }
 
 /// Texture coordinates (u, v interleaved) of positions in a traced image's pixel frame.
@@ -704,7 +704,7 @@ pub fn texture_coordinates(positions: &[f64], width: f64, height: f64) -> Result
         return Err(JsError::new(&format!("positions has odd length {}", positions.len())));
     }
     let points: Vec<[f64; 2]> = positions.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
-    Ok(warp::texture_coordinates(&points, width, height).into_iter().flatten().collect())
+    Ok(warp::texture_coordinates(&points, width, height).map_err(import_error)?.into_iter().flatten().collect())
 }
 
 /// Points located once in a rest mesh, then carried along to deformed positions.
@@ -726,16 +726,19 @@ impl JsPointMapper {
             return Err(JsError::new(&format!("point {} has a coordinate that is not a finite number", i / 2)));
         }
         let points: Vec<[f64; 2]> = points.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
-        Ok(Self { inner: PointMapper::new(&mesh, &points) })
+        Ok(Self { inner: PointMapper::new(&mesh, &points).map_err(import_error)? })
     }
 
     /// The points carried along to `deformed` (xy-interleaved, one per rest vertex).
     pub fn map(&self, deformed: &[f64]) -> Result<Vec<f64>, JsError> {
         let (pairs, rest) = deformed.as_chunks::<2>();
-        let mapped = if rest.is_empty() { self.inner.map(pairs) } else { None };
-        mapped.map(|m| m.into_iter().flatten().collect()).ok_or_else(|| {
-            JsError::new(&format!("deformed positions have length {}, expected 2 per rest vertex", deformed.len()))
-        })
+        if !rest.is_empty() {
+            return Err(JsError::new(&format!(
+                "deformed positions have length {}, expected 2 per rest vertex",
+                deformed.len()
+            )));
+        }
+        Ok(self.inner.map(pairs).map_err(import_error)?.into_iter().flatten().collect())
     }
 
     /// Number of points.
