@@ -130,3 +130,47 @@ fn deformer_methods_and_their_options() {
     assert!(message(deformer.set_options(options(r#"{"method": "akap"}"#))).contains("chosen when the deformer"));
     assert_eq!(deformer.method(), "arap");
 }
+
+#[test]
+fn careless_callers_get_errors_in_their_own_numbers_and_never_nan() {
+    use akap::wasm::{mesh_to_obj, texture_coordinates, JsDeformer, JsPointMapper};
+    // A bow-tie: two triangles sharing only vertex 0.
+    let bow_tie = JsMesh::new(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, -1.0, 0.0, 0.0, -1.0], &[0, 1, 2, 0, 3, 4]);
+    assert!(message(bow_tie).starts_with("vertex 0 joins 2 fans of triangles"));
+    let square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+    let triangles = [0, 1, 2, 0, 2, 3];
+    for lambda in ["1e308", "1e-300"] {
+        let text = message(JsDeformer::new(&square, &triangles, options(&format!(r#"{{"lambda": {lambda}}}"#))));
+        assert_eq!(text, format!("option lambda is {lambda}, expected a number from 1e-6 to 1e10"));
+    }
+    let mut deformer = JsDeformer::new(&square, &triangles, JsValue::UNDEFINED).unwrap();
+    // 6 numbers where 4 vertices need 8.
+    assert_eq!(
+        message(deformer.set_positions(&square[..6])),
+        "positions has 6 numbers, expected 8 (2 for each of the 4 vertices)"
+    );
+    deformer.set_positions(&[0.5; 8]).unwrap();
+    let metrics = deformer.metrics().unwrap();
+    let angle = Reflect::get(&metrics, &"angleDistortion".into()).unwrap().as_f64().unwrap();
+    assert_eq!(angle, f64::INFINITY);
+    let mapper = JsPointMapper::new(&square, &triangles, &[0.5, 0.5]).unwrap();
+    let mut deformed = square;
+    deformed[5] = f64::NAN;
+    assert_eq!(message(mapper.map(&deformed)), "deformed position 2 has a value that is not a finite number");
+    assert_eq!(
+        message(texture_coordinates(&[1e300, 0.0], 1e-10, 1.0)),
+        "the texture coordinate of position 0 comes out beyond the range of double precision (not a finite number)"
+    );
+    // 2 x 50,001 vertices: two over the mesh files' limit; refused rather than written.
+    let (mut positions, mut strip) = (Vec::new(), Vec::new());
+    for i in 0..50_001u32 {
+        positions.extend([f64::from(i), 0.0, f64::from(i), 1.0]);
+    }
+    for i in 0..50_000u32 {
+        strip.extend([2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1]);
+    }
+    assert_eq!(
+        message(mesh_to_obj(&positions, &strip, None)),
+        "the mesh to write has 100002 vertices, more than the limit of 100000 vertices"
+    );
+}
