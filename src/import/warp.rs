@@ -33,6 +33,11 @@ impl PointMapper {
         Ok(Self { vertex_count: rest.vertex_count(), locations })
     }
 
+    /// Number of vertices of the rest mesh: [`Self::map`] takes one position per vertex.
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+
     /// Number of points.
     pub fn len(&self) -> usize {
         self.locations.len()
@@ -232,7 +237,9 @@ mod tests {
             let expected = motion(p);
             assert!(distance(*q, expected) < 1e-12, "{p:?} -> {q:?}, expected {expected:?}");
         }
-        let error = PointMapper::new(&rest, &points).unwrap().map(&deformed[..3]).unwrap_err();
+        let mapper = PointMapper::new(&rest, &points).unwrap();
+        assert_eq!(mapper.vertex_count(), 4);
+        let error = mapper.map(&deformed[..3]).unwrap_err();
         assert_eq!(
             error.to_string(),
             "deformed positions have 6 numbers, expected 8 (2 for each of the 4 rest vertices)"
