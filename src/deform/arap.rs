@@ -61,8 +61,9 @@ const PENALTY: f64 = 1e6;
 /// A weight this close to 1 puts a handle on a vertex (a hard constraint).
 const AT_VERTEX: f64 = 1e-12;
 
-/// The most iterations [`ArapOptions::iterations`] may ask for per step: at 1000 vertices an
-/// iteration takes about a tenth of a millisecond, so a million is already minutes a step.
+/// The most iterations [`ArapOptions::iterations`] may ask for per step, the range the
+/// JavaScript option has always had: a step must end, and convergence to a tolerance
+/// (`until_converged`) takes far fewer.
 pub const MAX_ITERATIONS: usize = 1_000_000;
 
 /// ARAP settings, with builders.

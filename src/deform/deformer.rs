@@ -69,7 +69,7 @@ pub const LAMBDA_RANGE: RangeInclusive<f64> = 1e-6..=1e10;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DeformerOptions {
     /// Weight of the soft handle constraints of step 1, in [`LAMBDA_RANGE`] (1e-6 to 1e10;
-    /// the default, 100, holds handles to about 1% of their motion).
+    /// default 100).
     pub lambda: f64,
     /// Whether step 2 (the Dirichlet re-solve) runs.
     pub dirichlet: bool,

@@ -6,7 +6,7 @@
 //! result that overflows double precision (a point far outside the mesh extrapolated through
 //! a huge deformed triangle, a position divided by a tiny image size), each by index.
 
-use crate::geometry::{distance, orient, Point};
+use crate::geometry::{distance, normalising_exponent, orient, scale_by_power_of_two, Point};
 use crate::import::ImportError;
 use crate::mesh::Mesh;
 
@@ -28,8 +28,14 @@ impl PointMapper {
         if let Some(index) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
             return Err(ImportError::NonFinite { what: "point", index });
         }
-        let grid = Grid::new(rest);
-        let locations = points.iter().map(|&p| grid.locate(rest, p)).collect();
+        // Located on the mesh and points scaled by the power of two that brings the mesh's
+        // largest coordinate into [1, 2) (exact; barycentric weights do not change), so
+        // products of its coordinates neither overflow nor underflow.
+        let k = normalising_exponent(rest.positions().iter().copied());
+        let scale = |p: &Point| p.map(|x| scale_by_power_of_two(x, k));
+        let positions: Vec<Point> = rest.positions().iter().map(scale).collect();
+        let grid = Grid::new(&positions, rest.triangles());
+        let locations = points.iter().map(|p| grid.locate(&positions, rest.triangles(), scale(p))).collect();
         Ok(Self { vertex_count: rest.vertex_count(), locations })
     }
 
@@ -127,18 +133,16 @@ struct Grid {
 }
 
 impl Grid {
-    fn new(mesh: &Mesh) -> Self {
-        let p = mesh.positions();
+    fn new(p: &[Point], triangles: &[[u32; 3]]) -> Self {
         let (lo, hi) = crate::geometry::bounding_box(p.iter().copied()).unwrap_or(([0.0; 2], [1.0; 2]));
         let (w, h) = ((hi[0] - lo[0]).max(f64::MIN_POSITIVE), (hi[1] - lo[1]).max(f64::MIN_POSITIVE));
         // About one triangle per cell.
-        let cell = (w * h / mesh.triangle_count() as f64).sqrt().max(w.max(h) / 4096.0);
+        let cell = (w * h / triangles.len() as f64).sqrt().max(w.max(h) / 4096.0);
         let columns = ((w / cell).ceil() as usize).clamp(1, 4096);
         let rows = ((h / cell).ceil() as usize).clamp(1, 4096);
         let mut grid =
             Self { origin: lo, cell, columns, rows, start: vec![0; columns * rows + 1], triangles: Vec::new() };
-        let ranges: Vec<(usize, usize, usize, usize)> = mesh
-            .triangles()
+        let ranges: Vec<(usize, usize, usize, usize)> = triangles
             .iter()
             .map(|t| {
                 let corners = t.map(|i| p[i as usize]);
@@ -181,25 +185,24 @@ impl Grid {
         (c, r)
     }
 
-    fn locate(&self, mesh: &Mesh, p: Point) -> ([u32; 3], [f64; 3]) {
-        let positions = mesh.positions();
+    fn locate(&self, positions: &[Point], triangles: &[[u32; 3]], p: Point) -> ([u32; 3], [f64; 3]) {
         let (c, r) = self.cell_of(p);
         let k = r * self.columns + c;
         let in_cell = &self.triangles[self.start[k]..self.start[k + 1]];
         let best = in_cell
             .iter()
             .map(|&t| t as usize)
-            .find(|&t| triangle_distance(mesh.triangles()[t].map(|i| positions[i as usize]), p) == 0.0)
+            .find(|&t| triangle_distance(triangles[t].map(|i| positions[i as usize]), p) == 0.0)
             .unwrap_or_else(|| {
                 // Outside the mesh (or on a crack between cells): the nearest triangle.
-                (0..mesh.triangle_count())
+                (0..triangles.len())
                     .min_by(|&s, &t| {
-                        let d = |t: usize| triangle_distance(mesh.triangles()[t].map(|i| positions[i as usize]), p);
+                        let d = |t: usize| triangle_distance(triangles[t].map(|i| positions[i as usize]), p);
                         d(s).total_cmp(&d(t))
                     })
                     .expect("a mesh has triangles")
             });
-        let tri = mesh.triangles()[best];
+        let tri = triangles[best];
         let [a, b, c] = tri.map(|i| positions[i as usize]);
         let whole = orient(a, b, c);
         (tri, [orient(b, c, p) / whole, orient(c, a, p) / whole, orient(a, b, p) / whole])
@@ -244,6 +247,23 @@ mod tests {
             error.to_string(),
             "deformed positions have 6 numbers, expected 8 (2 for each of the 4 rest vertices)"
         );
+    }
+
+    #[test]
+    fn points_are_located_the_same_at_any_scale() {
+        let rest = |s: f64| {
+            Mesh::new(vec![[0.0, 0.0], [2.0 * s, 0.0], [2.0 * s, s], [0.0, s]], vec![[0, 1, 2], [0, 2, 3]]).unwrap()
+        };
+        let points = [[0.5, 0.25], [1.0, 1.0], [3.0, 0.5], [-1.0, -1.0]];
+        let unit = PointMapper::new(&rest(1.0), &points).unwrap();
+        for s in [1e-300, 1e200, 4e299] {
+            let scaled: Vec<Point> = points.iter().map(|p| [p[0] * s, p[1] * s]).collect();
+            let mapper = PointMapper::new(&rest(s), &scaled).unwrap();
+            for (a, b) in mapper.locations.iter().zip(&unit.locations) {
+                assert_eq!(a.0, b.0, "at {s}");
+                assert!(a.1.iter().zip(b.1).all(|(x, y)| (x - y).abs() < 1e-12), "at {s}: {a:?} vs {b:?}");
+            }
+        }
     }
 
     #[test]
