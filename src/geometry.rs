@@ -47,6 +47,21 @@ pub fn scale_by_power_of_two(x: f64, k: i32) -> f64 {
     x
 }
 
+/// `2^k` as a double, for `k` from -1022 to 1023 (a normal number): multiplying by it is the
+/// exact [`scale_by_power_of_two`] in one multiplication, for hot loops.
+pub fn power_of_two(k: i32) -> f64 {
+    assert!((-1022..=1023).contains(&k), "2^{k} is not a normal double");
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// Whether a magnitude is within `[2^-250, 2^250]` (about 5.5e-76 to 1.8e75), where squares
+/// and products of a few such values, and their reciprocals, stay far inside the normal
+/// range: computations on them need no scaling to avoid overflow or underflow.
+#[inline]
+pub fn in_comfortable_range(magnitude: f64) -> bool {
+    (f64::from_bits((1023 - 250) << 52)..=f64::from_bits((1023 + 250) << 52)).contains(&magnitude)
+}
+
 /// The power of two `2^k` that brings the largest coordinate magnitude of `points` into
 /// `[1, 2)`, as `k` (0 when every coordinate is 0 or there are no points). Multiplying by it
 /// is exact for coordinates within [`MAX_COORDINATE`] of shapes at least [`MIN_EXTENT`]
@@ -208,6 +223,17 @@ mod tests {
         assert_eq!(scale_by_power_of_two(scale_by_power_of_two(0.1, -1070), 1070), 0.125);
         assert_eq!(normalising_exponent([[0.0, -3.0], [2.5, 1.0]]), -1);
         assert_eq!(normalising_exponent([[0.0, 0.0]]), 0);
+    }
+
+    #[test]
+    fn powers_of_two_and_the_comfortable_range() {
+        assert_eq!(power_of_two(0), 1.0);
+        assert_eq!(power_of_two(-3), 0.125);
+        assert_eq!(power_of_two(1023), 2f64.powi(1023));
+        assert_eq!(power_of_two(-1022), f64::MIN_POSITIVE);
+        assert!(in_comfortable_range(1.0) && in_comfortable_range(1e75) && in_comfortable_range(1e-75));
+        assert!(!in_comfortable_range(1e76) && !in_comfortable_range(1e-76) && !in_comfortable_range(0.0));
+        assert!(!in_comfortable_range(f64::NAN) && !in_comfortable_range(f64::INFINITY));
     }
 
     #[test]

@@ -49,7 +49,7 @@ use super::error::{check_pose, check_velocities, in_range, DeformError};
 use super::handles::{self, HandlePoint};
 use super::method::Orders;
 use super::metrics::{metrics, Metrics};
-use crate::geometry::{bounding_box, normalising_exponent, scale_by_power_of_two, Point};
+use crate::geometry::{bounding_box, normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
 
@@ -136,7 +136,9 @@ pub struct ArapDeformer {
     size: f64,
     /// The local and global steps work on positions scaled by `2^unit`, the power of two
     /// that brings the rest mesh's largest coordinate into [1, 2) (exact): the products of
-    /// edges in `S` and the right-hand sides stay far from overflow and underflow.
+    /// edges in `S` and the right-hand sides stay far from overflow and underflow. Within
+    /// the coordinate limits `unit` is between -996 and 998, so `2^unit` and `2^-unit` are
+    /// normal doubles, multiplied by directly.
     unit: i32,
     /// Per triangle, the cotangent of the rest angle at corner k, which weights the edge
     /// opposite it, from `v[k + 1]` to `v[k + 2]`.
@@ -224,7 +226,8 @@ impl ArapDeformer {
         // Cotangents and rest edges from the mesh scaled by `2^unit` (exact): free of
         // overflow and underflow at any scale, and the rest edges in the units the local and
         // global steps work in.
-        let unit = normalising_exponent(x.iter().copied());
+        // (Clamped: a validated mesh never needs it, and 2^unit and 2^-unit are then normal.)
+        let unit = normalising_exponent(x.iter().copied()).clamp(-1022, 1022);
         for t in mesh.triangles() {
             let p = t.map(|v| x[v as usize].map(|c| scale_by_power_of_two(c, unit)));
             let mut c = [0.0; 3];
@@ -472,7 +475,8 @@ impl ArapDeformer {
             self.numeric.solve_in_place(&mut self.rhs_y)?;
             let t2 = clock();
             let mut moved: f64 = 0.0;
-            let back = |x: f64| scale_by_power_of_two(x, -self.unit);
+            let back = power_of_two(-self.unit);
+            let back = |x: f64| x * back;
             for (v, p) in self.next_positions.iter_mut().enumerate() {
                 let q =
                     if self.pin_count[v] > 0 { self.pin_target[v] } else { [back(self.rhs_x[v]), back(self.rhs_y[v])] };
@@ -506,11 +510,11 @@ impl ArapDeformer {
     /// The local step at `next_positions` into `next_rotations`.
     fn local_step(&mut self) {
         let u = &self.next_positions;
-        let unit = self.unit;
+        let unit = power_of_two(self.unit);
         for (((t, c), e), r) in
             self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&mut self.next_rotations)
         {
-            let p = t.map(|v| u[v as usize].map(|x| scale_by_power_of_two(x, unit)));
+            let p = t.map(|v| u[v as usize].map(|x| x * unit));
             if let Some(rotation) = best_rotation(p, c, e) {
                 *r = rotation;
             }
@@ -520,7 +524,8 @@ impl ArapDeformer {
     /// The global step's right-hand sides for the rotations in `next_rotations`, in the
     /// units of positions scaled by `2^unit`.
     fn assemble_rhs(&mut self) {
-        let into = |p: Point| p.map(|x| scale_by_power_of_two(x, self.unit));
+        let unit = power_of_two(self.unit);
+        let into = |p: Point| p.map(|x| x * unit);
         self.rhs_x.fill(0.0);
         self.rhs_y.fill(0.0);
         for (((t, c), e), r) in
@@ -562,7 +567,8 @@ impl ArapDeformer {
     /// targets (the quantity each iteration lowers).
     pub fn energy(&self) -> f64 {
         // Computed on positions scaled by 2^unit, like the rest edges, and scaled back.
-        let into = |p: Point| p.map(|x| scale_by_power_of_two(x, self.unit));
+        let unit = power_of_two(self.unit);
+        let into = |p: Point| p.map(|x| x * unit);
         let u = &self.positions;
         let mut energy = 0.0;
         for ((t, c), e) in self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges) {

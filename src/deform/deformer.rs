@@ -29,7 +29,7 @@ use super::killing::KillingMatrix;
 use super::method::Orders;
 use super::metrics::{metrics, Metrics};
 use super::spiral::{linear_step, spiral_step};
-use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
+use crate::geometry::{in_comfortable_range, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{
     amf_order, cheaper_order, expand_blocks, nested_dissection_order, Numeric, Ordering, Symbolic, DISSECTION_MIN_NODES,
@@ -418,14 +418,19 @@ impl Deformer {
 
     /// Steps 1 and 2 into `next_soft` and `next_field`.
     ///
-    /// The systems are linear in the velocities, so they are solved for the velocities
-    /// scaled by the power of two `2^e` that brings the largest component into [1, 2), and
-    /// the fields scaled back: exact, and free of overflow (`lambda u` at large velocities)
-    /// and underflow (tiny ones) at any scale.
+    /// The systems are linear in the velocities, so velocities outside the comfortable range
+    /// (about 1e-75 to 1e75) are scaled by the power of two `2^e` that brings the largest
+    /// component into [1, 2), and the fields scaled back: exact, and free of overflow
+    /// (`lambda u` at large velocities) and underflow (tiny ones) at any scale.
     fn solve_fields(&mut self, velocities: &[[f64; 2]], timings: &mut Timings) -> Result<(), DeformError> {
         let clock = self.clock;
         let lambda = self.options.lambda;
-        let e = normalising_exponent(velocities.iter().copied());
+        let largest = velocities.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let e = if largest == 0.0 || in_comfortable_range(largest) {
+            0
+        } else {
+            normalising_exponent(velocities.iter().copied())
+        };
         let t0 = clock();
         self.killing.assemble(&self.positions);
         let k = self.killing.matrix().data();

@@ -14,7 +14,7 @@
 
 use sprs::CsMat;
 
-use crate::geometry::{binary_exponent, scale_by_power_of_two, Point};
+use crate::geometry::{binary_exponent, in_comfortable_range, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
 /// The Killing-energy matrix of a mesh: fixed pattern, values for given positions.
@@ -148,9 +148,10 @@ pub const SLIVER_LIMIT: f64 = 1e-6;
 /// left out: the energy takes them in products of two.
 ///
 /// The matrix's entries are products `h_i g_j`, which do not change when the triangle is
-/// scaled (`h` scales with it, `g` inversely), so both are computed for the triangle scaled
-/// by the power of two that brings its longest edge component into [1, 2): exact, and free of
-/// overflow and underflow in the squares and areas whatever the mesh's scale.
+/// scaled (`h` scales with it, `g` inversely). Edges outside the comfortable range (about
+/// 1e-75 to 1e75) are first scaled by the power of two that brings their largest component
+/// into [1, 2): exact, so the entries are the same, and free of overflow and underflow in
+/// the squares and areas whatever the mesh's scale. (Within it, scaling would change no bit.)
 fn scaled_gradients(p: [Point; 3]) -> Option<([Point; 3], [Point; 3])> {
     let h = [0, 1, 2].map(|i| {
         let (b, c) = (p[(i + 1) % 3], p[(i + 2) % 3]);
@@ -160,8 +161,12 @@ fn scaled_gradients(p: [Point; 3]) -> Option<([Point; 3], [Point; 3])> {
     if largest == 0.0 || !largest.is_finite() {
         return None;
     }
-    let k = -binary_exponent(largest);
-    let h = h.map(|v| v.map(|x| scale_by_power_of_two(x, k)));
+    let h = if in_comfortable_range(largest) {
+        h
+    } else {
+        let k = -binary_exponent(largest);
+        h.map(|v| v.map(|x| scale_by_power_of_two(x, k)))
+    };
     let length = |v: Point| v[0] * v[0] + v[1] * v[1];
     let longest = length(h[0]).max(length(h[1])).max(length(h[2]));
     let twice_area = (h[1][0] * h[2][1] - h[1][1] * h[2][0]).abs().max(2.0 * SLIVER_LIMIT * longest);

@@ -12,7 +12,9 @@
 //! collapsed triangle are `+inf`, never NaN, and the triangle counts as flipped (its
 //! determinant is 0). Poses with triangles turned over but not collapsed stay finite.
 
-use crate::geometry::{binary_exponent, normalising_exponent, scale_by_power_of_two, Point};
+use crate::geometry::{
+    binary_exponent, in_comfortable_range, normalising_exponent, power_of_two, scale_by_power_of_two, Point,
+};
 
 /// Distortion measures of a pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,14 +43,19 @@ pub fn singular_values(a: f64, b: f64, c: f64, d: f64) -> (f64, f64, f64) {
 
 /// The map taking rest triangle `r` to current triangle `p`: `F = [p1 - p0, p2 - p0] [r1 - r0, r2 - r0]^-1`.
 ///
-/// Both triangles' edges are first scaled by the power of two that brings the rest edges'
-/// largest component into [1, 2) (which leaves `F` unchanged, exactly), so neither the
-/// inverse nor the products overflow or underflow at any scale.
+/// Outside the comfortable range (rest edges beyond about 1e-75 to 1e75) both triangles'
+/// edges are first scaled by the power of two that brings the rest edges' largest component
+/// into [1, 2) (which leaves `F` unchanged, exactly), so neither the inverse nor the
+/// products overflow or underflow at any scale.
 pub fn deformation_gradient(r: [Point; 3], p: [Point; 3]) -> [[f64; 2]; 2] {
     let (e1, e2) = ([r[1][0] - r[0][0], r[1][1] - r[0][1]], [r[2][0] - r[0][0], r[2][1] - r[0][1]]);
     let (f1, f2) = ([p[1][0] - p[0][0], p[1][1] - p[0][1]], [p[2][0] - p[0][0], p[2][1] - p[0][1]]);
     let largest = e1.iter().chain(&e2).fold(0.0f64, |m, x| m.max(x.abs()));
-    let k = if largest > 0.0 && largest.is_finite() { -binary_exponent(largest) } else { 0 };
+    let k = if largest > 0.0 && largest.is_finite() && !in_comfortable_range(largest) {
+        -binary_exponent(largest)
+    } else {
+        0
+    };
     let scale = |v: [f64; 2]| v.map(|x| scale_by_power_of_two(x, k));
     let (e1, e2, f1, f2) = (scale(e1), scale(e2), scale(f1), scale(f2));
     let det = e1[0] * e2[1] - e2[0] * e1[1];
@@ -78,7 +85,9 @@ pub fn metrics(rest: &[Point], current: &[Point], triangles: &[[u32; 3]]) -> Met
     let corners = |pts: &[Point], t: &[u32; 3]| [pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]];
     // Rest areas are weights (only their ratios matter), taken on the rest mesh scaled by a
     // power of two into [1, 2): at 1e200 they would overflow, at 1e-200 underflow.
-    let unit = normalising_exponent(rest.iter().copied());
+    // Within the coordinate limits the exponent is between -996 and 998; clamped, any rest
+    // positions give a normal factor (only the ratios of the weights matter).
+    let unit = power_of_two(normalising_exponent(rest.iter().copied()).clamp(-1022, 1022));
     let mut total_area = 0.0;
     let (mut area, mut angle, mut flipped) = (0.0, 0.0, 0);
     for t in triangles {
@@ -97,9 +106,9 @@ pub fn metrics(rest: &[Point], current: &[Point], triangles: &[[u32; 3]]) -> Met
     Metrics { area_distortion: area / total_area, angle_distortion: angle / total_area, flipped }
 }
 
-/// The area of a triangle scaled by `2^k`.
-fn scaled_area(r: [Point; 3], k: i32) -> f64 {
-    let r = r.map(|p| p.map(|x| scale_by_power_of_two(x, k)));
+/// The area of a triangle scaled by `factor`.
+fn scaled_area(r: [Point; 3], factor: f64) -> f64 {
+    let r = r.map(|p| p.map(|x| x * factor));
     0.5 * ((r[1][0] - r[0][0]) * (r[2][1] - r[0][1]) - (r[1][1] - r[0][1]) * (r[2][0] - r[0][0]))
 }
 
