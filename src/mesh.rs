@@ -1,22 +1,34 @@
 //! The triangle mesh that the triangulator produces and every solver consumes.
 //!
-//! A [`Mesh`] is validated once, when it is built: finite positions, indices in range,
+//! A [`Mesh`] is validated once, when it is built: finite positions within
+//! [`MAX_COORDINATE`] and a shape at least [`MIN_EXTENT`] across, indices in range,
 //! counter-clockwise non-degenerate triangles, every edge shared by at most two triangles
-//! with opposite orientations, and no unused vertex. It then knows its boundary (edges of
-//! exactly one triangle, holes included) and its vertex adjacency, stored compactly (CSR),
-//! which is what the deformers need to assemble their sparse systems.
+//! with opposite orientations, every vertex's triangles one fan joined by edges (no
+//! bow-tie), and no unused vertex. It then knows its boundary (edges of exactly one
+//! triangle, holes included) and its vertex adjacency, stored compactly (CSR), which is
+//! what the deformers need to assemble their sparse systems.
+//!
+//! Validation is scale-invariant: orientations are computed on the positions scaled by a
+//! power of two (exact), and a triangle is degenerate when double precision cannot tell its
+//! orientation ([`certain_orient`]), whatever its size.
 
 use std::fmt;
 
-use crate::geometry::{bounding_box, triangle_area, Point};
+use crate::error::Number;
+use crate::geometry::{
+    bounding_box, certain_orient, normalising_exponent, scale_by_power_of_two, triangle_area, Point, MAX_COORDINATE,
+    MIN_EXTENT,
+};
+
+/// The default vertex limit of everything interactive: triangulation
+/// ([`crate::TriangulationOptions::max_vertices`]) and mesh files
+/// ([`crate::import::Limits::max_vertices`]). At 100,000 vertices a deformer's set-up takes
+/// about a second and a frame tens of milliseconds in a browser.
+pub const DEFAULT_MAX_VERTICES: usize = 100_000;
 
 /// The largest vertex or triangle count a mesh may have (indices are `u32`, and a mesh this
 /// large is far beyond what interactive deformation can use).
 pub const MAX_MESH_ELEMENTS: usize = 1 << 24;
-
-/// A triangle whose area is at most this fraction of the squared bounding-box diagonal is
-/// rejected as degenerate.
-const DEGENERATE_RELATIVE_AREA: f64 = 1e-14;
 
 /// Why a set of positions and triangles is not a valid mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,6 +58,18 @@ pub enum MeshError {
         /// The vertex.
         vertex: usize,
     },
+    /// A vertex has a coordinate larger in magnitude than [`MAX_COORDINATE`].
+    CoordinateOutOfRange {
+        /// The vertex.
+        vertex: usize,
+        /// The coordinate.
+        value: f64,
+    },
+    /// The mesh is less than [`MIN_EXTENT`] across (both sides of its bounding box).
+    TooSmall {
+        /// The larger side of its bounding box.
+        extent: f64,
+    },
     /// A triangle refers to a vertex that does not exist.
     IndexOutOfRange {
         /// The triangle.
@@ -60,7 +84,11 @@ pub enum MeshError {
         /// The triangle.
         triangle: usize,
     },
-    /// A triangle has (numerically) zero area.
+    /// A triangle has zero area to double precision: its orientation, computed on the
+    /// positions scaled by a power of two so that the largest coordinate is between 1 and 2,
+    /// lies within its rounding error of zero (see [`certain_orient`]). Only triangles whose
+    /// smallest angle is below about 1e-15 radians, or whose area is below about 1e-300 of
+    /// the square of the largest coordinate, are degenerate; size alone never is.
     Degenerate {
         /// The triangle.
         triangle: usize,
@@ -83,6 +111,21 @@ pub enum MeshError {
         /// The vertex.
         vertex: usize,
     },
+    /// The triangles around a vertex form several fans that share no edge there: the mesh
+    /// is pinched at the vertex (two parts meeting only there, a bow-tie, or a hole touching
+    /// the boundary at a point).
+    ///
+    /// Such meshes are refused rather than supported: on parts joined by a point the Killing
+    /// field's rigid motions are independent on each side (each part can turn about the
+    /// vertex at no energy), so AKAP's systems are singular unless every part has handles,
+    /// and the boundary is no longer a set of simple loops. Split the vertex into one copy
+    /// per fan (the parts then deform separately), or join the parts along an edge.
+    NonManifoldVertex {
+        /// The vertex.
+        vertex: u32,
+        /// How many fans meet there (at least 2).
+        fans: usize,
+    },
 }
 
 impl fmt::Display for MeshError {
@@ -101,11 +144,25 @@ impl fmt::Display for MeshError {
             Self::NonFinitePosition { vertex } => {
                 write!(f, "vertex {vertex} has a coordinate that is not a finite number")
             }
+            Self::CoordinateOutOfRange { vertex, value } => write!(
+                f,
+                "vertex {vertex} has the coordinate {}, beyond the limit of ±{MAX_COORDINATE:e}; scale the mesh down",
+                Number(*value)
+            ),
+            Self::TooSmall { extent } => write!(
+                f,
+                "the mesh is only {extent:e} across, less than the smallest size of {MIN_EXTENT:e}; scale it up"
+            ),
             Self::IndexOutOfRange { triangle, index, vertex_count } => {
                 write!(f, "triangle {triangle} refers to vertex {index}, but there are only {vertex_count} vertices")
             }
             Self::RepeatedVertex { triangle } => write!(f, "triangle {triangle} uses the same vertex twice"),
-            Self::Degenerate { triangle } => write!(f, "triangle {triangle} is degenerate (zero area)"),
+            Self::Degenerate { triangle } => {
+                write!(
+                    f,
+                    "triangle {triangle} is degenerate: its corners are collinear to double precision (zero area)"
+                )
+            }
             Self::Clockwise { triangle } => {
                 write!(f, "triangle {triangle} is clockwise; triangles must be counter-clockwise")
             }
@@ -114,6 +171,11 @@ impl fmt::Display for MeshError {
                 "edge {a}-{b} is shared by more than two triangles or by two triangles with the same orientation"
             ),
             Self::UnusedVertex { vertex } => write!(f, "vertex {vertex} belongs to no triangle"),
+            Self::NonManifoldVertex { vertex, fans } => write!(
+                f,
+                "vertex {vertex} joins {fans} fans of triangles that share no edge there (the mesh is pinched, \
+                 like a bow-tie); split the vertex into one per fan, or join the parts along an edge"
+            ),
         }
     }
 }
@@ -148,12 +210,23 @@ impl Mesh {
         if triangles.is_empty() {
             return Err(MeshError::Empty);
         }
-        if let Some(vertex) = positions.iter().position(|p| !p[0].is_finite() || !p[1].is_finite()) {
-            return Err(MeshError::NonFinitePosition { vertex });
+        for (vertex, p) in positions.iter().enumerate() {
+            if !(p[0].is_finite() && p[1].is_finite()) {
+                return Err(MeshError::NonFinitePosition { vertex });
+            }
+            if let Some(&value) = p.iter().find(|x| x.abs() > MAX_COORDINATE) {
+                return Err(MeshError::CoordinateOutOfRange { vertex, value });
+            }
         }
         let (lo, hi) = bounding_box(positions.iter().copied()).ok_or(MeshError::Empty)?;
-        let diagonal2 = (hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2);
-        let min_area = DEGENERATE_RELATIVE_AREA * diagonal2;
+        let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        if extent < MIN_EXTENT {
+            return Err(MeshError::TooSmall { extent });
+        }
+        // Orientations on positions scaled by a power of two (exact): free of overflow and
+        // underflow, and the same at every scale.
+        let k = normalising_exponent(positions.iter().copied());
+        let scaled = |v: u32| positions[v as usize].map(|x| scale_by_power_of_two(x, k));
 
         let mut used = vec![false; n];
         for (t, tri) in triangles.iter().enumerate() {
@@ -167,19 +240,18 @@ impl Mesh {
             if a == b || b == c || a == c {
                 return Err(MeshError::RepeatedVertex { triangle: t });
             }
-            let area = triangle_area(positions[a as usize], positions[b as usize], positions[c as usize]);
-            if area.abs() <= min_area {
-                return Err(MeshError::Degenerate { triangle: t });
-            }
-            if area < 0.0 {
-                return Err(MeshError::Clockwise { triangle: t });
+            match certain_orient(scaled(a), scaled(b), scaled(c)) {
+                None => return Err(MeshError::Degenerate { triangle: t }),
+                Some(det) if det < 0.0 => return Err(MeshError::Clockwise { triangle: t }),
+                Some(_) => {}
             }
         }
         if let Some(vertex) = used.iter().position(|&u| !u) {
             return Err(MeshError::UnusedVertex { vertex });
         }
 
-        let boundary_edges = find_boundary_edges(&triangles)?;
+        let (boundary_edges, glue) = find_boundary_edges(&triangles)?;
+        check_fans(&triangles, &glue)?;
         let mut is_boundary = vec![false; n];
         for &[a, b] in &boundary_edges {
             is_boundary[a as usize] = true;
@@ -261,7 +333,10 @@ impl Mesh {
         triangle_area(self.positions[t[0] as usize], self.positions[t[1] as usize], self.positions[t[2] as usize])
     }
 
-    /// Number of edge-connected components of the vertex graph.
+    /// Number of connected pieces: components of the vertex graph (vertices joined by
+    /// edges). Since every vertex's triangles form one fan joined by edges (bow-ties are
+    /// refused, [`MeshError::NonManifoldVertex`]), these are also the pieces whose triangles
+    /// are joined through shared edges: two pieces never touch, not even at a vertex.
     pub fn connected_components(&self) -> usize {
         let n = self.vertex_count();
         let mut seen = vec![false; n];
@@ -288,32 +363,81 @@ impl Mesh {
 }
 
 /// Finds the edges of exactly one triangle; rejects edges of more than two triangles and
-/// pairs of triangles that traverse an edge in the same direction.
-fn find_boundary_edges(triangles: &[[u32; 3]]) -> Result<Vec<[u32; 2]>, MeshError> {
-    // Every directed half-edge keyed by its undirected edge; sorting groups the copies.
-    let mut half_edges: Vec<(u32, u32, bool)> = Vec::with_capacity(3 * triangles.len());
-    for &[a, b, c] in triangles {
-        for (p, q) in [(a, b), (b, c), (c, a)] {
-            half_edges.push((p.min(q), p.max(q), p < q));
+/// pairs of triangles that traverse an edge in the same direction. Also returns, for each
+/// edge of two triangles, the pairs of triangle corners (`3 t + i`) it joins: the corners at
+/// its two ends.
+#[allow(clippy::type_complexity)]
+fn find_boundary_edges(triangles: &[[u32; 3]]) -> Result<(Vec<[u32; 2]>, Vec<[u32; 2]>), MeshError> {
+    // Every directed half-edge keyed by its undirected edge; sorting groups the copies. With
+    // each, the corners at its lower and its higher end.
+    let mut half_edges: Vec<(u32, u32, bool, [u32; 2])> = Vec::with_capacity(3 * triangles.len());
+    for (t, &[a, b, c]) in triangles.iter().enumerate() {
+        let corner = |i: u32| 3 * t as u32 + i;
+        for (p, q, cp, cq) in [(a, b, 0, 1), (b, c, 1, 2), (c, a, 2, 0)] {
+            let ends = if p < q { [corner(cp), corner(cq)] } else { [corner(cq), corner(cp)] };
+            half_edges.push((p.min(q), p.max(q), p < q, ends));
         }
     }
-    half_edges.sort_unstable();
+    half_edges.sort_unstable_by_key(|h| (h.0, h.1, h.2));
     let mut boundary = Vec::new();
+    let mut glue = Vec::new();
     let mut i = 0;
     while i < half_edges.len() {
-        let (lo, hi, forward) = half_edges[i];
+        let (lo, hi, forward, _) = half_edges[i];
         let mut j = i + 1;
         while j < half_edges.len() && half_edges[j].0 == lo && half_edges[j].1 == hi {
             j += 1;
         }
         match j - i {
             1 => boundary.push(if forward { [lo, hi] } else { [hi, lo] }),
-            2 if half_edges[i].2 != half_edges[i + 1].2 => {}
+            2 if half_edges[i].2 != half_edges[i + 1].2 => {
+                let (s, t) = (half_edges[i].3, half_edges[i + 1].3);
+                glue.push([s[0], t[0]]);
+                glue.push([s[1], t[1]]);
+            }
             _ => return Err(MeshError::NonManifoldEdge { a: lo, b: hi }),
         }
         i = j;
     }
-    Ok(boundary)
+    Ok((boundary, glue))
+}
+
+/// Checks that the triangles around each vertex form one fan: their corners at the vertex,
+/// joined whenever two of them share an edge at it (`glue`), are all connected.
+fn check_fans(triangles: &[[u32; 3]], glue: &[[u32; 2]]) -> Result<(), MeshError> {
+    // Union-find over corners, with path halving.
+    let mut parent: Vec<u32> = (0..3 * triangles.len() as u32).collect();
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            let grandparent = parent[parent[x as usize] as usize];
+            parent[x as usize] = grandparent;
+            x = grandparent;
+        }
+        x
+    }
+    for &[a, b] in glue {
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra != rb {
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+    // Each vertex's corners by vertex, with their fan (root); more than one root is a pinch.
+    let mut corners: Vec<(u32, u32)> = Vec::with_capacity(3 * triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        for (i, &v) in tri.iter().enumerate() {
+            corners.push((v, root(&mut parent, 3 * t as u32 + i as u32)));
+        }
+    }
+    corners.sort_unstable();
+    corners.dedup();
+    let pinched = corners.windows(2).find(|w| w[0].0 == w[1].0).map(|w| w[0].0);
+    match pinched {
+        Some(vertex) => {
+            let fans = corners.iter().filter(|c| c.0 == vertex).count();
+            Err(MeshError::NonManifoldVertex { vertex, fans })
+        }
+        None => Ok(()),
+    }
 }
 
 /// Sorted vertex adjacency in compressed form (offsets, neighbours).
@@ -387,6 +511,62 @@ mod tests {
         }
         assert_eq!(Mesh::from_flat(&[0.0; 3], &[]), Err(MeshError::PositionsLength { len: 3 }));
         assert_eq!(Mesh::from_flat(&[0.0; 4], &[0, 1]), Err(MeshError::TrianglesLength { len: 2 }));
+    }
+
+    #[test]
+    fn a_vertex_where_fans_meet_without_an_edge_is_refused() {
+        // Bow-tie: two triangles meeting only at vertex 0.
+        let p = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]];
+        assert_eq!(
+            Mesh::new(p.clone(), vec![[0, 1, 2], [0, 3, 4]]),
+            Err(MeshError::NonManifoldVertex { vertex: 0, fans: 2 })
+        );
+        // Two fans at vertex 0: one triangle, and three joined by the edges 0-4 and 0-5.
+        let p6 = vec![[0.0, 0.0], [2.0, 0.0], [1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [0.5, -2.0], [1.0, -1.0]];
+        let tris = vec![[0, 1, 2], [0, 3, 4], [0, 4, 5], [0, 5, 6]];
+        assert_eq!(Mesh::new(p6, tris), Err(MeshError::NonManifoldVertex { vertex: 0, fans: 2 }));
+        // A square ring whose diamond-shaped hole touches the outer boundary at M = (0, -2):
+        // edge-connected all round, but pinched at M.
+        let (a, b, c, d) = ([-2.0, -2.0], [2.0, -2.0], [2.0, 2.0], [-2.0, 2.0]);
+        let (m, h1, h2, h3) = ([0.0, -2.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]);
+        let ring = vec![a, b, c, d, m, h1, h2, h3];
+        let (a, b, c, d, m, h1, h2, h3) = (0, 1, 2, 3, 4, 5, 6, 7);
+        let tris = vec![[m, b, h1], [b, c, h1], [h1, c, h2], [c, d, h2], [h2, d, h3], [d, a, h3], [h3, a, m]];
+        assert_eq!(Mesh::new(ring, tris), Err(MeshError::NonManifoldVertex { vertex: 4, fans: 2 }));
+        // A closed fan around an interior vertex and an open fan on the boundary are one fan each.
+        let centre = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]];
+        let mesh = Mesh::new(centre, vec![[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 1]]).unwrap();
+        assert!(!mesh.is_boundary_vertex(0));
+        assert_eq!(mesh.connected_components(), 1);
+        let open = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]];
+        assert!(Mesh::new(open, vec![[0, 1, 2], [0, 2, 3]]).is_ok());
+    }
+
+    #[test]
+    fn degenerate_means_collinear_to_double_precision_at_any_scale() {
+        // The angle at the first corner of (0, 0), (1, 0), (1, h) is about h radians.
+        let thin = |h: f64, s: f64| Mesh::new(vec![[0.0, 0.0], [s, 0.0], [s, s * h]], vec![[0, 1, 2]]);
+        for s in [1.0, 1e-290, 1e-9, 3.7e12, 1e290] {
+            assert!(thin(1e-12, s).is_ok(), "an angle of 1e-12 at scale {s}");
+            assert!(thin(1.0, s).is_ok(), "a right triangle at scale {s}");
+        }
+        // A small triangle far from the origin is as good as near it.
+        let far = vec![[1e6, 1e6], [1e6 + 1e-6, 1e6], [1e6, 1e6 + 1e-6]];
+        assert!(Mesh::new(far, vec![[0, 1, 2]]).is_ok());
+        // (0, 0), (1, 1), (3, 3 + 4.4e-16): the exact orientation is 4.4e-16, an angle of 7e-17
+        // radians, within the rounding of the products (about 4.5e-16 * 6): no certain sign.
+        let collinear = vec![[0.0, 0.0], [1.0, 1.0], [3.0, 3.0 + 4.4e-16]];
+        assert_eq!(Mesh::new(collinear, vec![[0, 1, 2]]), Err(MeshError::Degenerate { triangle: 0 }));
+    }
+
+    #[test]
+    fn coordinates_beyond_the_limits_are_refused_by_name() {
+        let tri = |s: f64, x: f64| Mesh::new(vec![[x, 0.0], [x + s, 0.0], [x, s]], vec![[0, 1, 2]]);
+        assert_eq!(tri(1.0, 2e300), Err(MeshError::CoordinateOutOfRange { vertex: 0, value: 2e300 }));
+        assert!(tri(1e300, -1e300).is_ok());
+        assert!(matches!(tri(1e-301, 0.0), Err(MeshError::TooSmall { .. })));
+        assert!(tri(1e-300, 0.0).is_ok());
+        assert!(tri(f64::INFINITY, 0.0).is_err());
     }
 
     #[test]

@@ -2,16 +2,21 @@
 //!
 //! An [`Outline`] is what the user draws or imports; [`crate::triangulate()`] turns it into a
 //! [`crate::Mesh`]. Validation happens here, before any triangulation: at least three
-//! distinct points per ring, finite coordinates, non-zero area, no ring crossing or touching
-//! itself or another ring, every hole inside the outer boundary and outside the other holes.
+//! distinct points per ring, finite coordinates within [`MAX_COORDINATE`], a shape at least
+//! [`MIN_EXTENT`] across, non-zero area, no ring crossing or touching itself or another
+//! ring, every hole inside the outer boundary and outside the other holes.
+//!
+//! The checks are scale-invariant: they run on the points scaled by a power of two (exact),
+//! and "touching" and "zero area" mean "to double precision" (within the rounding of the
+//! computation, [`crate::geometry::certain_orient`]), never "small".
 
 use std::fmt;
 
-use crate::geometry::{bounding_box, point_in_polygon, polygon_area, segments_intersect, Point};
-
-/// Relative area below which a ring counts as having zero area (fraction of its squared
-/// bounding-box diagonal).
-const ZERO_AREA_RELATIVE: f64 = 1e-12;
+use crate::error::Number;
+use crate::geometry::{
+    bounding_box, normalising_exponent, point_in_polygon, polygon_area, scale_by_power_of_two, segments_intersect,
+    Point, MAX_COORDINATE, MIN_EXTENT,
+};
 
 /// A polygon with optional holes. Rings are closed implicitly (the last point connects to
 /// the first) and may run in either direction.
@@ -55,7 +60,29 @@ pub enum OutlineError {
         /// The point's index in the ring as given.
         point: usize,
     },
-    /// A ring encloses (numerically) no area.
+    /// A flat `x y x y ...` ring has an odd number of values.
+    OddLength {
+        /// The ring.
+        ring: Ring,
+        /// How many numbers it has.
+        len: usize,
+    },
+    /// A point has a coordinate larger in magnitude than [`MAX_COORDINATE`].
+    CoordinateOutOfRange {
+        /// The ring.
+        ring: Ring,
+        /// The point's index in the ring as given.
+        point: usize,
+        /// The coordinate.
+        value: f64,
+    },
+    /// The outline is less than [`MIN_EXTENT`] across (both sides of its bounding box).
+    TooSmall {
+        /// The larger side of its bounding box.
+        extent: f64,
+    },
+    /// A ring encloses no area to double precision: the shoelace sum is within its rounding
+    /// error of zero.
     ZeroArea {
         /// The ring.
         ring: Ring,
@@ -101,7 +128,20 @@ impl fmt::Display for OutlineError {
             Self::NonFinite { ring, point } => {
                 write!(f, "point {point} of {ring} has a coordinate that is not a finite number")
             }
-            Self::ZeroArea { ring } => write!(f, "{ring} encloses no area"),
+            Self::OddLength { ring, len } => {
+                write!(f, "{ring} has {len} numbers; it needs x, y pairs, an even number")
+            }
+            Self::CoordinateOutOfRange { ring, point, value } => write!(
+                f,
+                "point {point} of {ring} has the coordinate {}, beyond the limit of ±{MAX_COORDINATE:e}; \
+                 scale the outline down",
+                Number(*value)
+            ),
+            Self::TooSmall { extent } => write!(
+                f,
+                "the outline is only {extent:e} across, less than the smallest size of {MIN_EXTENT:e}; scale it up"
+            ),
+            Self::ZeroArea { ring } => write!(f, "{ring} encloses no area (to double precision)"),
             Self::SelfIntersection { ring_a, segment_a, ring_b, segment_b } => write!(
                 f,
                 "the outline intersects itself: segment {segment_a} of {ring_a} meets segment {segment_b} of {ring_b}"
@@ -129,12 +169,11 @@ impl Outline {
         self
     }
 
-    /// Builds an outline from flat `x y x y ...` arrays (the JavaScript layout). An odd
-    /// trailing coordinate is reported as a non-finite point.
+    /// Builds an outline from flat `x y x y ...` arrays (the JavaScript layout).
     pub fn from_flat(outer: &[f64], holes: &[Vec<f64>]) -> Result<Self, OutlineError> {
         let ring = |k: usize, flat: &[f64]| -> Result<Vec<Point>, OutlineError> {
             if !flat.len().is_multiple_of(2) {
-                return Err(OutlineError::NonFinite { ring: Ring(k), point: flat.len() / 2 });
+                return Err(OutlineError::OddLength { ring: Ring(k), len: flat.len() });
             }
             Ok(flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect())
         };
@@ -159,8 +198,13 @@ impl Outline {
     pub fn validated(&self, max_points: usize) -> Result<Vec<Vec<Point>>, OutlineError> {
         let mut rings = Vec::with_capacity(1 + self.holes.len());
         for (k, ring) in self.rings().enumerate() {
-            if let Some(point) = ring.iter().position(|p| !p[0].is_finite() || !p[1].is_finite()) {
-                return Err(OutlineError::NonFinite { ring: Ring(k), point });
+            for (point, p) in ring.iter().enumerate() {
+                if !(p[0].is_finite() && p[1].is_finite()) {
+                    return Err(OutlineError::NonFinite { ring: Ring(k), point });
+                }
+                if let Some(&value) = p.iter().find(|x| x.abs() > MAX_COORDINATE) {
+                    return Err(OutlineError::CoordinateOutOfRange { ring: Ring(k), point, value });
+                }
             }
             let mut clean: Vec<Point> = Vec::with_capacity(ring.len());
             for &p in ring {
@@ -180,26 +224,51 @@ impl Outline {
         if count > max_points {
             return Err(OutlineError::TooManyPoints { count, limit: max_points });
         }
+        let (lo, hi) = bounding_box(rings.iter().flatten().copied()).expect("rings have points");
+        let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        if extent < MIN_EXTENT {
+            return Err(OutlineError::TooSmall { extent });
+        }
+        // The checks run on the rings scaled by a power of two: exact, and the same at every scale.
+        let k = normalising_exponent(rings.iter().flatten().copied());
+        let scaled: Vec<Vec<Point>> =
+            rings.iter().map(|r| r.iter().map(|p| p.map(|x| scale_by_power_of_two(x, k))).collect()).collect();
         // Crossings first: a figure-eight has zero signed area, but its problem is the crossing.
-        check_no_intersections(&rings)?;
-        for (k, ring) in rings.iter().enumerate() {
-            let (lo, hi) = bounding_box(ring.iter().copied()).expect("ring has points");
-            let diagonal2 = (hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2);
-            if polygon_area(ring).abs() <= ZERO_AREA_RELATIVE * diagonal2 {
+        check_no_intersections(&scaled)?;
+        for (k, ring) in scaled.iter().enumerate() {
+            if !area_is_certain(ring) {
                 return Err(OutlineError::ZeroArea { ring: Ring(k) });
             }
         }
         // Rings do not meet, so one point decides containment for a whole ring.
-        for k in 1..rings.len() {
-            if !point_in_polygon(rings[k][0], &rings[0]) {
+        for k in 1..scaled.len() {
+            if !point_in_polygon(scaled[k][0], &scaled[0]) {
                 return Err(OutlineError::HoleOutside { hole: Ring(k) });
             }
-            if let Some(c) = (1..rings.len()).find(|&c| c != k && point_in_polygon(rings[k][0], &rings[c])) {
+            if let Some(c) = (1..scaled.len()).find(|&c| c != k && point_in_polygon(scaled[k][0], &scaled[c])) {
                 return Err(OutlineError::NestedHole { hole: Ring(k), container: Ring(c) });
             }
         }
         Ok(rings)
     }
+}
+
+/// Whether a ring's signed area is certainly not zero in double precision: twice the area is
+/// the sum of `orient(p0, p_i, p_(i+1))`, each term's two products carry at most three
+/// roundings of relative size `u = 2^-53` and the sum of `n` terms `n` more, so the computed
+/// sum is within `(n + 4) u` times the sum of the products' magnitudes (plus `O(u^2)`) of the
+/// exact one. Points scaled by a power of two first (no underflow).
+fn area_is_certain(ring: &[Point]) -> bool {
+    let p0 = ring[0];
+    let (mut twice, mut magnitude) = (0.0, 0.0);
+    for w in ring[1..].windows(2) {
+        let t1 = (w[0][0] - p0[0]) * (w[1][1] - p0[1]);
+        let t2 = (w[0][1] - p0[1]) * (w[1][0] - p0[0]);
+        twice += t1 - t2;
+        magnitude += t1.abs() + t2.abs();
+    }
+    let u = f64::EPSILON / 2.0;
+    magnitude > 0.0 && twice.abs() > 1.01 * (ring.len() as f64 + 4.0) * u * magnitude
 }
 
 /// One segment of a ring, for the sweep.
@@ -226,12 +295,18 @@ pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), Outline
 /// The pairs of segments, as `(ring, segment)` with the smaller first, that meet other than
 /// consecutive segments of one ring at their shared point: all of them, or only the first
 /// found. Sweeps segments sorted by their left end, so only segments whose x ranges
-/// overlap are compared; gives up (`None`) after `budget` such comparisons.
+/// overlap are compared; gives up (`None`) after `budget` such comparisons. Segments that
+/// touch to within rounding count as meeting ([`segments_intersect`]).
 pub(crate) fn meeting_segments(
     rings: &[Vec<Point>],
     first_only: bool,
     budget: usize,
 ) -> Option<Vec<[(usize, usize); 2]>> {
+    // On points scaled by a power of two (exact), so that only rounding is uncertain.
+    let k = normalising_exponent(rings.iter().flatten().copied());
+    let scaled: Vec<Vec<Point>> =
+        rings.iter().map(|r| r.iter().map(|p| p.map(|x| scale_by_power_of_two(x, k))).collect()).collect();
+    let rings = &scaled;
     let mut segments: Vec<Segment> = Vec::new();
     for (ring, points) in rings.iter().enumerate() {
         for index in 0..points.len() {
@@ -313,7 +388,21 @@ mod tests {
                 Outline::new(vec![[0.0, 0.0], [f64::INFINITY, 0.0], [0.0, 1.0]]),
                 OutlineError::NonFinite { ring: Ring(0), point: 1 },
             ),
-            (Outline::new(vec![[0.0, 0.0], [1.0, 0.0], [0.5, 1e-13]]), OutlineError::ZeroArea { ring: Ring(0) }),
+            // Collinear to double precision: the last segment passes through (1, 1), folding
+            // back onto the first.
+            (
+                Outline::new(vec![[0.0, 0.0], [1.0, 1.0], [3.0, 3.0 + 4.4e-16]]),
+                OutlineError::SelfIntersection { ring_a: Ring(0), segment_a: 0, ring_b: Ring(0), segment_b: 2 },
+            ),
+            (
+                Outline::new(vec![[0.0, 0.0], [1.0, 0.0], [f64::NAN, 1.0]]),
+                OutlineError::NonFinite { ring: Ring(0), point: 2 },
+            ),
+            (
+                Outline::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, -1.5e300]]),
+                OutlineError::CoordinateOutOfRange { ring: Ring(0), point: 2, value: -1.5e300 },
+            ),
+            (Outline::new(vec![[0.0, 0.0], [1e-301, 0.0], [0.0, 2e-301]]), OutlineError::TooSmall { extent: 2e-301 }),
             (
                 Outline::new(bowtie),
                 OutlineError::SelfIntersection { ring_a: Ring(0), segment_a: 0, ring_b: Ring(0), segment_b: 2 },
@@ -333,6 +422,24 @@ mod tests {
         assert_eq!(
             Outline::new(square(0.0, 0.0, 1.0)).validated(3),
             Err(OutlineError::TooManyPoints { count: 4, limit: 3 })
+        );
+    }
+
+    #[test]
+    fn thin_and_tiny_or_huge_rings_are_valid_when_double_precision_tells_their_area() {
+        // Area 5e-14 (exact: a product with zero has no rounding), angles of 2e-13 radians.
+        let thin = Outline::new(vec![[0.0, 0.0], [1.0, 0.0], [0.5, 1e-13]]);
+        assert!(thin.validated(10).is_ok());
+        for s in [1e-300, 1e-150, 1e150, 1e300] {
+            let square = Outline::new(square(-0.5 * s, -0.5 * s, s)).with_hole(square(-0.1 * s, -0.1 * s, 0.2 * s));
+            assert!(square.validated(10).is_ok(), "at scale {s}");
+        }
+        // The shoelace sum 4.4e-16 of products of magnitude 6 is within its rounding error.
+        assert!(!area_is_certain(&[[0.0, 0.0], [1.0, 1.0], [3.0, 3.0 + 4.4e-16]]));
+        assert!(area_is_certain(&[[0.0, 0.0], [1.0, 0.0], [0.5, 1e-13]]));
+        assert_eq!(
+            Outline::from_flat(&[0.0, 0.0, 1.0, 0.0, 1.0], &[]),
+            Err(OutlineError::OddLength { ring: Ring(0), len: 5 })
         );
     }
 

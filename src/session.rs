@@ -344,6 +344,8 @@ fn run(session: &Session, deformer: &mut dyn Deform, targets: Option<&[Vec<Point
                         what: "barycentric",
                         expected: 3 * triangles.len(),
                         found: barycentric.len(),
+                        per: 3,
+                        items: "handles",
                     }));
                 }
                 deformer.set_handle_points(triangles, weights).map_err(refused)?;
@@ -356,6 +358,8 @@ fn run(session: &Session, deformer: &mut dyn Deform, targets: Option<&[Vec<Point
                         what: "velocities",
                         expected: 2 * before.len(),
                         found: flat.len(),
+                        per: 2,
+                        items: "handles",
                     }));
                 }
                 let goal: Vec<Point> = match targets {

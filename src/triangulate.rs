@@ -7,14 +7,25 @@
 //! convex corner, so a triangle whose shortest edge joins the two sides of a corner can stay
 //! below the angle even when the corner is wider than 60 degrees). Constraint edges may be
 //! split, never moved, so the boundary of the mesh traces the outline exactly.
+//!
+//! Scale: spade's exact predicates take coordinates of magnitude 2^-142 to 2^201 (or 0), so
+//! the outline is triangulated scaled by the power of two that puts its largest coordinate
+//! between 2^100 and 2^101 (exact), and the mesh scaled back (the outline's own points are
+//! copied, not computed). Any outline the outline checks accept (coordinates up to
+//! [`crate::geometry::MAX_COORDINATE`], at least [`crate::geometry::MIN_EXTENT`] across)
+//! then meshes the same at every scale: scaling it by a power of two scales the mesh by the
+//! same power, triangle for triangle. A coordinate below 2^-242 (1.4e-73) times the largest
+//! one is taken as 0 inside spade, a move far below the rounding of the largest one.
 
 use std::fmt;
 
 use spade::{
-    AngleLimit, ConstrainedDelaunayTriangulation, InsertionError, Point2, RefinementParameters, Triangulation,
+    mitigate_underflow, AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
-use crate::mesh::{Mesh, MeshError, MAX_MESH_ELEMENTS};
+use crate::error::Number;
+use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
+use crate::mesh::{Mesh, MeshError, DEFAULT_MAX_VERTICES, MAX_MESH_ELEMENTS};
 use crate::outline::{Outline, OutlineError, Ring};
 
 /// The largest minimum angle accepted, in degrees. Delaunay refinement is only guaranteed
@@ -31,13 +42,14 @@ pub struct TriangulationOptions {
     pub target_edge_length: Option<f64>,
     /// Smallest angle in degrees that refinement enforces (0 disables angle refinement).
     pub min_angle_degrees: f64,
-    /// Largest number of vertices of the result, outline points included.
+    /// Largest number of vertices of the result, outline points included (default
+    /// [`DEFAULT_MAX_VERTICES`], 100,000).
     pub max_vertices: usize,
 }
 
 impl Default for TriangulationOptions {
     fn default() -> Self {
-        Self { max_area: None, target_edge_length: None, min_angle_degrees: 25.0, max_vertices: 100_000 }
+        Self { max_area: None, target_edge_length: None, min_angle_degrees: 25.0, max_vertices: DEFAULT_MAX_VERTICES }
     }
 }
 
@@ -69,11 +81,23 @@ impl TriangulationOptions {
     /// The area bound that refinement enforces, combining `max_area` and
     /// `target_edge_length`.
     pub fn effective_max_area(&self) -> Option<f64> {
-        let from_edge = self.target_edge_length.map(|h| 3f64.sqrt() / 4.0 * h * h);
-        match (self.max_area, from_edge) {
+        self.max_area_scaled(0)
+    }
+
+    /// [`Self::effective_max_area`] for the outline scaled by `2^k` (lengths times `2^k`,
+    /// areas times `4^k`), computed without overflow or underflow on the way; `None` for no
+    /// bound, or a bound too large to be a double.
+    fn max_area_scaled(&self, k: i32) -> Option<f64> {
+        let from_edge = self.target_edge_length.map(|h| {
+            let h = scale_by_power_of_two(h, k);
+            3f64.sqrt() / 4.0 * h * h
+        });
+        let from_area = self.max_area.map(|a| scale_by_power_of_two(a, 2 * k));
+        let bound = match (from_area, from_edge) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
-        }
+        };
+        bound.filter(|a| a.is_finite())
     }
 
     fn validate(&self) -> Result<(), TriangulationError> {
@@ -127,8 +151,6 @@ pub enum TriangulationError {
         /// The segment's index in the ring (after repeated points are dropped).
         segment: usize,
     },
-    /// A coordinate is too large or too close to zero for exact geometric predicates.
-    CoordinateOutOfRange,
     /// Meeting the area and angle bounds needs more vertices than the limit.
     TooManyVertices {
         /// The vertex limit.
@@ -136,6 +158,11 @@ pub enum TriangulationError {
     },
     /// The triangulation produced an invalid mesh (a bug: please report it).
     Mesh(MeshError),
+    /// spade refused a point of the validated, scaled outline (a bug: please report it).
+    Internal {
+        /// spade's error.
+        message: String,
+    },
 }
 
 impl fmt::Display for TriangulationError {
@@ -143,21 +170,20 @@ impl fmt::Display for TriangulationError {
         match self {
             Self::Outline(e) => e.fmt(f),
             Self::InvalidOption { name, value, expected } => {
-                write!(f, "option {name} is {value}, expected {expected}")
+                write!(f, "option {name} is {}, expected {expected}", Number(*value))
             }
             Self::ConstraintConflict { ring, segment } => {
                 write!(f, "segment {segment} of {ring} touches or crosses another segment of the outline")
             }
-            Self::CoordinateOutOfRange => write!(
-                f,
-                "a coordinate is too large (above 1e60) or too close to zero (below 1e-42 but not 0) to triangulate"
-            ),
             Self::TooManyVertices { limit } => write!(
                 f,
                 "the requested triangle size and angle need more than {limit} vertices; \
                  raise maxVertices, or ask for larger triangles or a smaller minimum angle"
             ),
-            Self::Mesh(e) => write!(f, "triangulation produced an invalid mesh (a bug): {e}"),
+            Self::Mesh(e) => write!(f, "triangulation produced an invalid mesh (a bug, please report it): {e}"),
+            Self::Internal { message } => {
+                write!(f, "triangulation failed unexpectedly (a bug, please report it): {message}")
+            }
         }
     }
 }
@@ -178,13 +204,6 @@ impl From<OutlineError> for TriangulationError {
     }
 }
 
-impl From<InsertionError> for TriangulationError {
-    fn from(_: InsertionError) -> Self {
-        // NaN is ruled out by outline validation, leaving the range errors.
-        Self::CoordinateOutOfRange
-    }
-}
-
 /// Triangulates an outline (with its holes) into a validated mesh.
 ///
 /// ```
@@ -196,18 +215,28 @@ impl From<InsertionError> for TriangulationError {
 pub fn triangulate(outline: &Outline, options: &TriangulationOptions) -> Result<Mesh, TriangulationError> {
     options.validate()?;
     let rings = outline.validated(options.max_vertices)?;
+    // Into spade's range, exactly: the largest coordinate between 2^100 and 2^101.
+    let k = normalising_exponent(rings.iter().flatten().copied()) + 100;
+    let into =
+        |p: Point| mitigate_underflow(Point2::new(scale_by_power_of_two(p[0], k), scale_by_power_of_two(p[1], k)));
 
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = ConstrainedDelaunayTriangulation::new();
-    for (k, ring) in rings.iter().enumerate() {
+    // The outline's own points, by spade's vertex index: copied into the mesh as given.
+    let mut given: Vec<Point> = Vec::new();
+    for (r, ring) in rings.iter().enumerate() {
         let mut handles = Vec::with_capacity(ring.len());
-        for p in ring {
-            handles.push(cdt.insert(Point2::new(p[0], p[1]))?);
+        for &p in ring {
+            let handle = cdt.insert(into(p)).map_err(|e| TriangulationError::Internal { message: e.to_string() })?;
+            if handle.index() == given.len() {
+                given.push(p);
+            }
+            handles.push(handle);
         }
         for i in 0..handles.len() {
             let (a, b) = (handles[i], handles[(i + 1) % handles.len()]);
             // Outline validation rules out crossings; spade's exact predicates are the last word.
             if a == b || !cdt.can_add_constraint(a, b) {
-                return Err(TriangulationError::ConstraintConflict { ring: Ring(k), segment: i });
+                return Err(TriangulationError::ConstraintConflict { ring: Ring(r), segment: i });
             }
             cdt.add_constraint(a, b);
         }
@@ -217,7 +246,7 @@ pub fn triangulate(outline: &Outline, options: &TriangulationOptions) -> Result<
         .exclude_outer_faces(true)
         .with_angle_limit(AngleLimit::from_deg(options.min_angle_degrees))
         .with_max_additional_vertices(options.max_vertices.saturating_sub(cdt.num_vertices()));
-    if let Some(area) = options.effective_max_area() {
+    if let Some(area) = options.max_area_scaled(k) {
         params = params.with_max_allowed_area(area);
     }
     let result = cdt.refine(params);
@@ -229,7 +258,8 @@ pub fn triangulate(outline: &Outline, options: &TriangulationOptions) -> Result<
     for face in &result.excluded_faces {
         outside[face.index()] = true;
     }
-    // Keep the vertices of inside faces only, numbered in order of first use.
+    // Keep the vertices of inside faces only, numbered in order of first use; the outline's
+    // points as given, the others scaled back.
     let mut new_index = vec![u32::MAX; cdt.num_vertices()];
     let mut positions = Vec::with_capacity(cdt.num_vertices());
     let mut triangles = Vec::with_capacity(cdt.num_inner_faces());
@@ -239,7 +269,8 @@ pub fn triangulate(outline: &Outline, options: &TriangulationOptions) -> Result<
             if *slot == u32::MAX {
                 *slot = positions.len() as u32;
                 let p = v.position();
-                positions.push([p.x, p.y]);
+                let back = [scale_by_power_of_two(p.x, -k), scale_by_power_of_two(p.y, -k)];
+                positions.push(given.get(v.fix().index()).copied().unwrap_or(back));
             }
             *slot
         });

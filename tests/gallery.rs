@@ -75,6 +75,6 @@ fn textured_png_traces_and_triangulates() {
     assert_eq!(outlines.len(), 1);
     assert_eq!(outlines[0].holes.len(), 2, "two eyes");
     check(PNG.0, &outlines, 8.0);
-    let uvs = texture_coordinates(&outlines[0].outer, w as f64, h as f64);
+    let uvs = texture_coordinates(&outlines[0].outer, w as f64, h as f64).unwrap();
     assert!(uvs.iter().all(|t| (0.0..=1.0).contains(&t[0]) && (0.0..=1.0).contains(&t[1])));
 }

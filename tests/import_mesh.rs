@@ -24,7 +24,7 @@ fn limits() -> Limits {
 fn json_round_trip_is_exact() {
     let (mesh, uvs) = figure();
     for with_uvs in [false, true] {
-        let text = write_json(&mesh, with_uvs.then_some(uvs.as_slice())).unwrap();
+        let text = write_json(&mesh, with_uvs.then_some(uvs.as_slice()), &limits()).unwrap();
         let back = read_json(&text, &limits()).unwrap();
         assert_eq!(back.mesh, mesh);
         assert_eq!(back.uvs.as_deref(), with_uvs.then_some(uvs.as_slice()));
@@ -36,7 +36,7 @@ fn json_round_trip_is_exact() {
 fn obj_round_trip_is_exact() {
     let (mesh, uvs) = figure();
     for with_uvs in [false, true] {
-        let text = write_obj(&mesh, with_uvs.then_some(uvs.as_slice())).unwrap();
+        let text = write_obj(&mesh, with_uvs.then_some(uvs.as_slice()), &limits()).unwrap();
         assert!(text.starts_with("# akap mesh:"));
         let back = read_obj(&text, &limits()).unwrap();
         assert_eq!(back.mesh, mesh);
@@ -118,7 +118,10 @@ fn malformed_json_says_where() {
             "{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 1, 2], \"uvs\": [0, 0, 1]}",
             "uvs must hold u, v pairs",
         ),
-        ("{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 1, 2], \"uvs\": [0, 0]}", "1 pairs for 3 vertices"),
+        (
+            "{\"positions\": [0, 0, 1, 0, 0, 1], \"triangles\": [0, 1, 2], \"uvs\": [0, 0]}",
+            "2 numbers for 3 vertices; 6 are needed",
+        ),
     ];
     for (text, expected) in cases {
         let message = read_json(text, &limits()).unwrap_err().to_string();
@@ -146,6 +149,98 @@ fn size_limits_apply() {
     assert!(matches!(read_json(json, &few), Err(ImportError::TooLarge { .. })));
     // Writers check texture coordinates too.
     let (mesh, _) = figure();
-    assert!(write_obj(&mesh, Some(&[[0.0, 0.0]])).is_err());
-    assert!(write_json(&mesh, Some(&vec![[f64::NAN, 0.0]; mesh.vertex_count()])).is_err());
+    let error = write_obj(&mesh, Some(&[[0.0, 0.0]]), &limits()).unwrap_err();
+    let n = mesh.vertex_count();
+    assert_eq!(
+        error.to_string(),
+        format!("texture coordinates: 2 numbers for {n} vertices; {} are needed, a u and a v per vertex", 2 * n)
+    );
+    assert!(write_json(&mesh, Some(&vec![[f64::NAN, 0.0]; n]), &limits()).is_err());
+    // A limit of 0 is refused, not read as "unlimited".
+    let zero = Limits { max_points: 0, ..Limits::default() };
+    assert_eq!(
+        read_obj(text, &zero).unwrap_err().to_string(),
+        "option maxPoints is 0, expected a whole number, at least 1"
+    );
+}
+
+/// The grid mesh of `columns` x `rows` unit squares, each split into two triangles, with
+/// coordinates that print long (thirds, shifted by 1e-7 / 3).
+fn grid(columns: u32, rows: u32) -> Mesh {
+    let mut positions = Vec::new();
+    for j in 0..=rows {
+        for i in 0..=columns {
+            positions.push([(i as f64 + 1e-7) / 3.0, -(j as f64 + 1e-7) / 3.0]);
+        }
+    }
+    let at = |i: u32, j: u32| j * (columns + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..rows {
+        for i in 0..columns {
+            let (a, b, c, d) = (at(i, j + 1), at(i + 1, j + 1), at(i + 1, j), at(i, j));
+            triangles.extend([[a, b, c], [a, c, d]]);
+        }
+    }
+    Mesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn what_the_writers_write_the_readers_read_and_what_they_refuse_the_readers_would() {
+    // One set of limits for both: a file either writes and reads back, or is refused by
+    // the writer with the reader's own error.
+    let mesh = grid(30, 20); // 651 vertices, 1200 triangles
+    let uvs: Vec<Point> = mesh.positions().iter().map(|p| [p[0] / 7.0, p[1] / 11.0]).collect();
+    let obj = write_obj(&mesh, Some(&uvs), &limits()).unwrap();
+    let json = write_json(&mesh, Some(&uvs), &limits()).unwrap();
+    for (name, limits) in [
+        ("vertices", Limits { max_vertices: 650, ..limits() }),
+        ("triangles", Limits { max_vertices: 599, ..limits() }),
+        ("OBJ bytes", Limits { max_bytes: obj.len() - 1, ..limits() }),
+        ("JSON bytes", Limits { max_bytes: json.len() - 1, ..limits() }),
+        ("enough", Limits { max_vertices: 651, max_bytes: obj.len().max(json.len()), ..limits() }),
+    ] {
+        for (written, read) in [
+            (write_obj(&mesh, Some(&uvs), &limits), read_obj(&obj, &limits).map(|f| f.mesh)),
+            (write_json(&mesh, Some(&uvs), &limits), read_json(&json, &limits).map(|f| f.mesh)),
+        ] {
+            match (written, read) {
+                (Ok(text), Ok(back)) => {
+                    assert_eq!(back, mesh, "{name}");
+                    assert!(text == obj || text == json);
+                }
+                (
+                    Err(ImportError::TooLarge { limit: a, unit: u, .. }),
+                    Err(ImportError::TooLarge { limit: b, unit: v, .. }),
+                ) => {
+                    assert_eq!((a, u), (b, v), "{name}")
+                }
+                (written, read) => panic!("{name}: written {:?}, read {:?}", written.map(|t| t.len()), read.err()),
+            }
+        }
+    }
+    assert_eq!(
+        write_obj(&mesh, None, &Limits { max_vertices: 650, ..limits() }).unwrap_err().to_string(),
+        "the mesh to write has 651 vertices, more than the limit of 650 vertices"
+    );
+}
+
+#[test]
+fn the_largest_mesh_within_the_default_limits_writes_within_them() {
+    // 100,000 vertices at most (Limits::max_vertices); the longest numbers the writers
+    // print, and the longest indices: the file stays under 32 MiB.
+    let mesh = grid(399, 249); // 400 x 250 = 100,000 vertices, 198,502 triangles
+    assert_eq!(mesh.vertex_count(), limits().max_vertices);
+    // Rotated by 180 degrees (orientation kept) into [-2.5e-6, -1.2e-6]: 25 characters a
+    // number (`-0.0000012345678901234567`), the longest the writers print.
+    let k = 1.234_567_890_123_456_7e-6;
+    let long = |p: &Point| [-(1.0 + p[0] / 200.0) * k, -(2.0 + p[1] / 200.0) * k];
+    let positions: Vec<Point> = mesh.positions().iter().map(long).collect();
+    let mesh = Mesh::new(positions, mesh.triangles().to_vec()).unwrap();
+    let uvs: Vec<Point> = mesh.positions().iter().map(|p| [p[0] * 3.0, p[1] * 7.0]).collect();
+    let obj = write_obj(&mesh, Some(&uvs), &limits()).unwrap();
+    assert_eq!(obj.split_whitespace().map(str::len).max(), Some(25));
+    assert!(obj.len() < limits().max_bytes, "{} bytes", obj.len());
+    assert_eq!(read_obj(&obj, &limits()).unwrap().mesh, mesh);
+    let json = write_json(&mesh, Some(&uvs), &limits()).unwrap();
+    assert!(json.len() < obj.len());
 }

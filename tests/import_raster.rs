@@ -199,7 +199,7 @@ fn texture_coordinates_map_the_image_onto_the_mesh() {
     let rgba = coverage_image(w, h, 2, disc([20.0, 16.0], 12.0));
     let outlines = trace_image(&rgba, w, h, &TraceOptions::default()).unwrap();
     let mesh = triangulate(&outlines[0], &TriangulationOptions::default().with_target_edge_length(4.0)).unwrap();
-    let uvs = texture_coordinates(mesh.positions(), w as f64, h as f64);
+    let uvs = texture_coordinates(mesh.positions(), w as f64, h as f64).unwrap();
     for (uv, p) in uvs.iter().zip(mesh.positions()) {
         assert!((0.0..=1.0).contains(&uv[0]) && (0.0..=1.0).contains(&uv[1]));
         // The pixel under (u, v) is inside the image and near the disc.
@@ -227,5 +227,27 @@ fn bad_images_are_errors() {
         assert!(matches!(trace_image(&rgba, 3, 2, &bad), Err(ImportError::InvalidOption { .. })), "{bad:?}");
     }
     let message = trace_image(&rgba, 3, 3, &t).unwrap_err().to_string();
-    assert_eq!(message, "a 3 x 3 image needs 36 bytes of RGBA pixels, but 24 were given");
+    assert_eq!(message, "a 3 x 3 image needs 36 bytes of RGBA pixels (4 per pixel), but 24 were given");
+    // No pixels at all: said so, not "needs 0 bytes, but 0 were given".
+    let message = trace_image(&[], 0, 0, &t).unwrap_err().to_string();
+    assert_eq!(message, "the image is 0 x 0 pixels: it has no pixels (0 bytes were given)");
+    let message = trace_image(&[], 5, 0, &t).unwrap_err().to_string();
+    assert_eq!(message, "the image is 5 x 0 pixels: it has no pixels (0 bytes were given)");
+    // Sizes whose byte count overflows a 32-bit usize are stated exactly.
+    let wide = ImportError::ImageSize { width: 4_294_967_295, height: 2, len: 8 };
+    assert_eq!(
+        wide.to_string(),
+        "a 4294967295 x 2 image needs 34359738360 bytes of RGBA pixels (4 per pixel), but 8 were given"
+    );
+    // An image tracing to more contour points than 20 times maxPoints says so in the
+    // caller's numbers.
+    let few = TraceOptions { limits: Limits { max_points: 3, ..Limits::default() }, ..t };
+    let (w, h) = (64, 32);
+    let noisy: Vec<u8> = (0..w * h).flat_map(|i| [0, 0, 0, if (i * 7919) % 13 < 6 { 255 } else { 0 }]).collect();
+    let message = trace_image(&noisy, w, h, &few).unwrap_err().to_string();
+    assert_eq!(
+        message,
+        "the image traces to contours of more than 60 points before simplification, 20 times the limit of 3 \
+         outline points (maxPoints); raise maxPoints, or trace a smaller or simpler image"
+    );
 }

@@ -297,7 +297,23 @@ fn hostile_documents_hit_limits_not_the_stack() {
     let few = SvgOptions { limits: Limits { max_points: 50, ..Limits::default() }, ..SvgOptions::default() };
     let circle = svg(r#"<circle r="1000"/>"#, "");
     let too_fine = SvgOptions { tolerance: Some(1e-9), ..few };
-    assert!(import_svg(&circle, &too_fine).unwrap_err().to_string().contains("more than the limit of 50 points"));
+    let message = import_svg(&circle, &too_fine).unwrap_err().to_string();
+    assert!(message.starts_with("the outline flattened to the tolerance would need "), "{message}");
+    assert!(message.ends_with(" points, more than the limit of 50 (maxPoints)"), "{message}");
+    // Points counted over the whole document, reported against the caller's limit (not
+    // what was left of it for the last element: "more than 0 points").
+    let polygon = |n: usize| {
+        let points: Vec<String> = (0..n).map(|i| format!("{i},{}", i % 2)).collect();
+        format!(r#"<polygon points="{}"/>"#, points.join(" "))
+    };
+    for body in [
+        polygon(30) + &polygon(30),
+        polygon(30)
+            + r#"<path d="M0 0 L1 1 L2 0 L3 1 L4 0 L5 1 L6 0 L7 1 L8 0 L9 1 L10 0 L11 1 L12 0 L13 1 L14 0 L15 1 L16 0 L17 1 L18 0 L19 1 L20 0 L21 1 L22 0 Z"/>"#,
+    ] {
+        let message = import_svg(&svg(&body, ""), &few).unwrap_err().to_string();
+        assert_eq!(message, "the SVG's shapes have more than 50 points (the maxPoints limit)");
+    }
     // Thousands of segments stacked in one column: the crossing check gives up after its
     // budget instead of taking quadratic time.
     let zigzag: Vec<String> = (0..3000).map(|i| format!("{},{}", i % 2, i)).collect();
@@ -338,7 +354,7 @@ fn vector_paths_follow_the_deformed_mesh() {
     let mesh = triangulate(&shape.outlines[0], &TriangulationOptions::default().with_target_edge_length(8.0)).unwrap();
     let motion = |p: Point| [0.8 * p[0] - 0.6 * p[1] + 5.0, 0.6 * p[0] + 0.8 * p[1] - 2.0];
     let deformed: Vec<Point> = mesh.positions().iter().map(|&p| motion(p)).collect();
-    let mapped = PointMapper::new(&mesh, &path.points).map(&deformed).unwrap();
+    let mapped = PointMapper::new(&mesh, &path.points).unwrap().map(&deformed).unwrap();
     for (q, &p) in mapped.iter().zip(&path.points) {
         assert!(distance(*q, motion(p)) < 1e-9, "{p:?}");
     }

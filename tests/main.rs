@@ -8,6 +8,7 @@ mod import_mesh;
 mod import_raster;
 mod import_svg;
 mod killing;
+mod limits;
 mod session;
 mod sparse;
 mod triangulation;

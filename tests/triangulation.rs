@@ -2,9 +2,9 @@
 
 use akap::geometry::triangle_area;
 #[cfg(not(target_arch = "wasm32"))]
-use akap::geometry::Point;
+use akap::geometry::{normalising_exponent, scale_by_power_of_two, Point};
 use akap::shapes::{ellipse, gingerbread};
-use akap::{triangulate, Outline, OutlineError, TriangulationError, TriangulationOptions};
+use akap::{triangulate, Mesh, Outline, OutlineError, Ring, TriangulationError, TriangulationOptions};
 #[cfg(not(target_arch = "wasm32"))]
 use proptest::prelude::*;
 // On wasm32 the same tests run under wasm-bindgen-test in Node.
@@ -32,7 +32,12 @@ fn star() -> Outline {
 }
 
 fn check_all(outline: &Outline, options: &TriangulationOptions) {
-    let mesh = triangulate(outline, options).unwrap();
+    check_mesh(&triangulate(outline, options).unwrap(), outline, options);
+}
+
+/// What a triangulation of `outline` with `options` must satisfy.
+fn check_mesh(mesh: &Mesh, outline: &Outline, options: &TriangulationOptions) {
+    let mesh = mesh.clone();
     assert_positive_triangles(&mesh);
     assert_area_matches(&mesh, outline);
     assert_outline_edges_survive(&mesh, outline);
@@ -121,9 +126,68 @@ fn vertex_limit_and_bad_options_are_reported() {
 }
 
 #[test]
-fn coordinates_out_of_exact_range_are_reported() {
-    let huge = Outline::new(vec![[0.0, 0.0], [1e70, 0.0], [0.0, 1e70]]);
-    assert_eq!(triangulate(&huge, &TriangulationOptions::default()), Err(TriangulationError::CoordinateOutOfRange));
+fn coordinates_beyond_the_limits_are_reported_in_the_callers_terms() {
+    // 1e70 was beyond spade's exact range; scaled into it, it is an ordinary triangle.
+    let big = Outline::new(vec![[0.0, 0.0], [1e70, 0.0], [0.0, 1e70]]);
+    let mesh = triangulate(&big, &TriangulationOptions::default()).unwrap();
+    assert_eq!(mesh.area(), 0.5e140);
+    let huge = Outline::new(vec![[0.0, 0.0], [2e300, 0.0], [0.0, 1e300]]);
+    let error = triangulate(&huge, &TriangulationOptions::default()).unwrap_err();
+    assert_eq!(
+        error,
+        TriangulationError::Outline(OutlineError::CoordinateOutOfRange { ring: Ring(0), point: 1, value: 2e300 })
+    );
+    assert!(error.to_string().contains("2e300") && error.to_string().contains("1e300"), "{error}");
+    let tiny = Outline::new(vec![[0.0, 0.0], [5e-301, 0.0], [0.0, 5e-301]]);
+    let error = triangulate(&tiny, &TriangulationOptions::default()).unwrap_err();
+    assert_eq!(error, TriangulationError::Outline(OutlineError::TooSmall { extent: 5e-301 }));
+    assert!(error.to_string().contains("1e-300"), "{error}");
+}
+
+/// An outline with a notch whose tip comes within `gap` of the opposite side, and one with a
+/// spike `2 gap` wide at its base and 9 long.
+fn near_touch_and_spike(gap: f64) -> [Outline; 2] {
+    [
+        Outline::new(vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [1.0, gap], [0.0, 2.0]]),
+        Outline::new(vec![
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 1.0],
+            [0.5 + gap, 1.0],
+            [0.5, 10.0],
+            [0.5 - gap, 1.0],
+            [0.0, 1.0],
+        ]),
+    ]
+}
+
+#[test]
+fn near_touches_and_thin_spikes_mesh_exactly() {
+    // Valid outlines (simple, with area) that were refused as "an invalid mesh (a bug)"
+    // from a gap of 1e-7 down: the mesh check called triangles degenerate by their area
+    // relative to the whole shape, and refinement makes small, well-shaped ones there.
+    for gap in [1e-3, 1e-7, 1e-9, 1e-12, 1e-15] {
+        for outline in near_touch_and_spike(gap) {
+            for options in [
+                TriangulationOptions::default(),
+                TriangulationOptions::default().with_min_angle_degrees(0.0),
+                TriangulationOptions::default().with_target_edge_length(0.1),
+            ] {
+                let mesh = triangulate(&outline, &options).unwrap_or_else(|e| panic!("gap {gap}: {e}"));
+                assert_positive_triangles(&mesh);
+                assert_area_matches(&mesh, &outline);
+                assert_eq!(mesh.connected_components(), 1);
+                // Below 1e-9 the gap is within the edge check's tolerance; the outline's
+                // points are still mesh vertices, exactly.
+                if gap >= 1e-9 {
+                    assert_outline_edges_survive(&mesh, &outline);
+                }
+                for p in outline.rings().flatten() {
+                    assert!(mesh.positions().contains(p), "{p:?} is not a vertex");
+                }
+            }
+        }
+    }
 }
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -148,4 +212,59 @@ proptest! {
         prop_assume!(outline.validated(1000).is_ok());
         check_all(&outline, &TriangulationOptions::default().with_target_edge_length(edge).with_min_angle_degrees(angle));
     }
+
+    /// Scaling by 2^j is exact, so the outline is the same one at another scale: the mesh
+    /// must be the same, triangle for triangle, with positions scaled by 2^j (exactly, but
+    /// where they fall below the normal range, 2.2e-308, within one step of 4.9e-324). j
+    /// spans the whole valid range for these outlines (radii 0.3 to 1): 2^990 is 1e298,
+    /// 2^-990 is 1e-298.
+    #[test]
+    fn power_of_two_scalings_give_the_same_mesh_scaled(
+        points in star_shaped(), edge in 0.05..0.5f64, angle in 0.0..30.0f64, j in -990i32..=990,
+    ) {
+        let outline = Outline::new(points);
+        prop_assume!(outline.validated(1000).is_ok());
+        let options = TriangulationOptions::default().with_target_edge_length(edge).with_min_angle_degrees(angle);
+        let unit = triangulate(&outline, &options).unwrap();
+        let scaled_outline = scaled(&outline, |x| scale_by_power_of_two(x, j));
+        let scaled_options = options.with_target_edge_length(scale_by_power_of_two(edge, j));
+        let mesh = triangulate(&scaled_outline, &scaled_options).unwrap();
+        prop_assert_eq!(mesh.triangles(), unit.triangles());
+        for (p, q) in mesh.positions().iter().zip(unit.positions()) {
+            for (x, y) in p.iter().zip(q) {
+                prop_assert!((x - scale_by_power_of_two(*y, j)).abs() <= f64::from_bits(1), "{p:?} vs {q:?} at 2^{j}");
+            }
+        }
+    }
+
+    /// Scaling by 10^k rounds every coordinate, so the scaled outline is a slightly different
+    /// polygon, and ties in the triangulation (refinement puts its Steiner points on
+    /// power-of-two shells and midpoints, and splits every encroached segment even with no
+    /// angle or area bound) may then go the other way: the gingerbread figure has 786
+    /// vertices at scale 1, 788 at 1e-20. So the same topology is promised for exact
+    /// scalings (above); at 10^k, k from -300 to 299 (these outlines are 0.6 to 2 across,
+    /// so from 1e-300 to 2e299, the whole valid range), the mesh meets every invariant,
+    /// checked on it scaled by a power of two into [1, 2) (exact).
+    #[test]
+    fn decimal_scalings_mesh_correctly(
+        points in star_shaped(), edge in 0.05..0.5f64, angle in 0.0..30.0f64, k in -300i32..=299,
+    ) {
+        let outline = Outline::new(points);
+        prop_assume!(outline.validated(1000).is_ok());
+        let factor: f64 = format!("1e{k}").parse().unwrap();
+        let outline = scaled(&outline, |x| x * factor);
+        let options = TriangulationOptions::default().with_target_edge_length(edge * factor).with_min_angle_degrees(angle);
+        let mesh = triangulate(&outline, &options).unwrap();
+        let e = normalising_exponent(outline.rings().flatten().copied());
+        let normal = |p: &[f64; 2]| p.map(|x| scale_by_power_of_two(x, e));
+        let mesh = Mesh::new(mesh.positions().iter().map(normal).collect(), mesh.triangles().to_vec()).unwrap();
+        let outline = scaled(&outline, |x| scale_by_power_of_two(x, e));
+        check_mesh(&mesh, &outline, &options.with_target_edge_length(scale_by_power_of_two(edge * factor, e)));
+    }
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+fn scaled(outline: &Outline, f: impl Fn(f64) -> f64) -> Outline {
+    let ring = |r: &Vec<Point>| r.iter().map(|p| p.map(&f)).collect();
+    Outline { outer: ring(&outline.outer), holes: outline.holes.iter().map(ring).collect() }
 }

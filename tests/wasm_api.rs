@@ -195,3 +195,49 @@ fn exceptions_thrown_while_reading_arguments_become_errors_and_leave_the_instanc
     fresh.step(f64s(&[0.0, 0.0, 0.1, 0.05])).unwrap();
     assert_eq!(deformer.positions(), fresh.positions());
 }
+
+#[test]
+fn careless_callers_get_errors_in_their_own_numbers_and_never_nan() {
+    use akap::wasm::{mesh_to_obj, texture_coordinates, JsDeformer, JsPointMapper};
+    // A bow-tie: two triangles sharing only vertex 0.
+    let bow_tie = JsMesh::new(f64s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, -1.0, 0.0, 0.0, -1.0]), u32s(&[0, 1, 2, 0, 3, 4]));
+    assert!(message(bow_tie).starts_with("vertex 0 joins 2 fans of triangles"));
+    let square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+    let triangles = [0, 1, 2, 0, 2, 3];
+    for lambda in ["1e308", "1e-300"] {
+        let text =
+            message(JsDeformer::new(f64s(&square), u32s(&triangles), options(&format!(r#"{{"lambda": {lambda}}}"#))));
+        assert_eq!(text, format!("option lambda is {lambda}, expected a number from 1e-6 to 1e10"));
+    }
+    let mut deformer = JsDeformer::new(f64s(&square), u32s(&triangles), JsValue::UNDEFINED).unwrap();
+    // 6 numbers where 4 vertices need 8.
+    assert_eq!(
+        message(deformer.set_positions(f64s(&square[..6]))),
+        "positions has 6 numbers, expected 8 (2 for each of the 4 vertices)"
+    );
+    deformer.set_positions(f64s(&[0.5; 8])).unwrap();
+    let metrics = deformer.metrics().unwrap();
+    let angle = Reflect::get(&metrics, &"angleDistortion".into()).unwrap().as_f64().unwrap();
+    assert_eq!(angle, f64::INFINITY);
+    let mapper = JsPointMapper::new(f64s(&square), u32s(&triangles), f64s(&[0.5, 0.5])).unwrap();
+    let mut deformed = square;
+    deformed[5] = f64::NAN;
+    assert_eq!(message(mapper.map(f64s(&deformed))), "deformed position 2 has a value that is not a finite number");
+    assert_eq!(
+        message(texture_coordinates(f64s(&[1e300, 0.0]), 1e-10.into(), 1.0.into())),
+        "the texture coordinate of position 0 comes out beyond the range of double precision (not a finite number)"
+    );
+    // 2 x 50,001 vertices: two over the limit; the binding refuses the positions before
+    // building the mesh (the writers' own check is tested natively).
+    let (mut positions, mut strip) = (Vec::new(), Vec::new());
+    for i in 0..50_001u32 {
+        positions.extend([f64::from(i), 0.0, f64::from(i), 1.0]);
+    }
+    for i in 0..50_000u32 {
+        strip.extend([2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1]);
+    }
+    assert_eq!(
+        message(mesh_to_obj(f64s(&positions), u32s(&strip), JsValue::UNDEFINED)),
+        "the mesh has 100002 vertices (200004 numbers), more than the limit of 100000 vertices"
+    );
+}

@@ -44,11 +44,12 @@ use std::sync::Arc;
 
 use sprs::CsMat;
 
-use super::deformer::{default_clock, out_of_memory, vertex_graph, Clock, DeformError, Timings};
+use super::deformer::{default_clock, vertex_graph, Clock, Timings};
+use super::error::{check_pose, check_velocities, in_range, out_of_memory, DeformError};
 use super::handles::{self, HandlePoint};
 use super::method::Orders;
 use super::metrics::{metrics, Metrics};
-use crate::geometry::{bounding_box, Point};
+use crate::geometry::{bounding_box, normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
 
@@ -60,13 +61,19 @@ const PENALTY: f64 = 1e6;
 /// A weight this close to 1 puts a handle on a vertex (a hard constraint).
 const AT_VERTEX: f64 = 1e-12;
 
+/// The most iterations [`ArapOptions::iterations`] may ask for per step, the range the
+/// JavaScript option has always had: a step must end, and convergence to a tolerance
+/// (`until_converged`) takes far fewer.
+pub const MAX_ITERATIONS: usize = 1_000_000;
+
 /// ARAP settings, with builders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ArapOptions {
-    /// Local/global iterations per step (at most; at least 1).
+    /// Local/global iterations per step (at most), from 1 to [`MAX_ITERATIONS`].
     pub iterations: usize,
     /// A step stops early once an iteration moves no vertex further than `tolerance`
-    /// times the rest shape's bounding-box diagonal (0: always run `iterations`).
+    /// times the rest shape's bounding-box diagonal (0: always run `iterations`), from 0
+    /// to 1 (a move as large as the shape is no convergence).
     pub tolerance: f64,
 }
 
@@ -127,10 +134,16 @@ pub struct ArapDeformer {
     clock: Clock,
     /// The rest shape's bounding-box diagonal.
     size: f64,
+    /// The local and global steps work on positions scaled by `2^unit`, the power of two
+    /// that brings the rest mesh's largest coordinate into [1, 2) (exact): the products of
+    /// edges in `S` and the right-hand sides stay far from overflow and underflow. Within
+    /// the coordinate limits `unit` is between -996 and 998, so `2^unit` and `2^-unit` are
+    /// normal doubles, multiplied by directly.
+    unit: i32,
     /// Per triangle, the cotangent of the rest angle at corner k, which weights the edge
     /// opposite it, from `v[k + 1]` to `v[k + 2]`.
     cot: Vec<[f64; 3]>,
-    /// Per triangle, the rest edge vectors `x[v[k + 1]] - x[v[k + 2]]`.
+    /// Per triangle, the rest edge vectors `x[v[k + 1]] - x[v[k + 2]]`, scaled by `2^unit`.
     rest_edges: Vec<[Point; 3]>,
     /// The cotangent Laplacian on the pattern of `matrix` (full symmetric CSC storage).
     laplacian: Vec<f64>,
@@ -210,8 +223,13 @@ impl ArapDeformer {
         let mut rest_edges = Vec::with_capacity(m);
         let mut triangle_slots = Vec::with_capacity(m);
         let mut laplacian = vec![0.0; indices.len()];
+        // Cotangents and rest edges from the mesh scaled by `2^unit` (exact): free of
+        // overflow and underflow at any scale, and the rest edges in the units the local and
+        // global steps work in.
+        // (Clamped: a validated mesh never needs it, and 2^unit and 2^-unit are then normal.)
+        let unit = normalising_exponent(x.iter().copied()).clamp(-1022, 1022);
         for t in mesh.triangles() {
-            let p = t.map(|v| x[v as usize]);
+            let p = t.map(|v| x[v as usize].map(|c| scale_by_power_of_two(c, unit)));
             let mut c = [0.0; 3];
             let mut e = [[0.0; 2]; 3];
             for k in 0..3 {
@@ -247,6 +265,7 @@ impl ArapDeformer {
         Ok(Self {
             options,
             clock: default_clock,
+            unit,
             size: (hi[0] - lo[0]).hypot(hi[1] - lo[1]),
             cot,
             rest_edges,
@@ -396,16 +415,7 @@ impl ArapDeformer {
     /// handle order), then the configured local/global iterations run from the current
     /// pose. With no handles nothing moves.
     pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        if velocities.len() != self.handles.len() {
-            return Err(DeformError::Length {
-                what: "velocities",
-                expected: 2 * self.handles.len(),
-                found: 2 * velocities.len(),
-            });
-        }
-        if let Some(handle) = velocities.iter().position(|v| !v[0].is_finite() || !v[1].is_finite()) {
-            return Err(DeformError::NonFiniteVelocity { handle });
-        }
+        check_velocities(velocities, self.handles.len())?;
         for (k, (h, v)) in self.handles.iter().zip(velocities).enumerate() {
             let p = self.point_of(h, &self.positions);
             self.next_targets[k] = [p[0] + v[0], p[1] + v[1]];
@@ -420,12 +430,7 @@ impl ArapDeformer {
     /// once an iteration moves no vertex further than `tolerance` times the shape's
     /// size), without changing the targets.
     pub fn iterate(&mut self, max_iterations: usize, tolerance: f64) -> Result<IterationReport, DeformError> {
-        if max_iterations == 0 {
-            return Err(DeformError::InvalidOption { name: "iterations", value: 0.0 });
-        }
-        if !(tolerance.is_finite() && tolerance >= 0.0) {
-            return Err(DeformError::InvalidOption { name: "tolerance", value: tolerance });
-        }
+        check_options(&ArapOptions { iterations: max_iterations, tolerance })?;
         self.next_targets.copy_from_slice(&self.targets);
         self.run(max_iterations, tolerance)?;
         Ok(self.report)
@@ -470,9 +475,12 @@ impl ArapDeformer {
             self.numeric.solve_in_place(&mut self.rhs_y)?;
             let t2 = clock();
             let mut moved: f64 = 0.0;
+            let back = power_of_two(-self.unit);
+            let back = |x: f64| x * back;
             for (v, p) in self.next_positions.iter_mut().enumerate() {
-                let q = if self.pin_count[v] > 0 { self.pin_target[v] } else { [self.rhs_x[v], self.rhs_y[v]] };
-                if !(q[0].is_finite() && q[1].is_finite()) {
+                let q =
+                    if self.pin_count[v] > 0 { self.pin_target[v] } else { [back(self.rhs_x[v]), back(self.rhs_y[v])] };
+                if !in_range(&[q]) {
                     return Err(DeformError::NonFiniteResult);
                 }
                 moved = moved.max((q[0] - p[0]).hypot(q[1] - p[1]));
@@ -502,17 +510,22 @@ impl ArapDeformer {
     /// The local step at `next_positions` into `next_rotations`.
     fn local_step(&mut self) {
         let u = &self.next_positions;
+        let unit = power_of_two(self.unit);
         for (((t, c), e), r) in
             self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&mut self.next_rotations)
         {
-            if let Some(rotation) = best_rotation(t.map(|v| u[v as usize]), c, e) {
+            let p = t.map(|v| u[v as usize].map(|x| x * unit));
+            if let Some(rotation) = best_rotation(p, c, e) {
                 *r = rotation;
             }
         }
     }
 
-    /// The global step's right-hand sides for the rotations in `next_rotations`.
+    /// The global step's right-hand sides for the rotations in `next_rotations`, in the
+    /// units of positions scaled by `2^unit`.
     fn assemble_rhs(&mut self) {
+        let unit = power_of_two(self.unit);
+        let into = |p: Point| p.map(|x| x * unit);
         self.rhs_x.fill(0.0);
         self.rhs_y.fill(0.0);
         for (((t, c), e), r) in
@@ -529,6 +542,7 @@ impl ArapDeformer {
         }
         for (h, target) in self.handles.iter().zip(&self.next_targets) {
             if h.pinned == NONE {
+                let target = into(*target);
                 for (v, w) in h.vertices.iter().zip(h.weights) {
                     self.rhs_x[*v as usize] += self.penalty * w * target[0];
                     self.rhs_y[*v as usize] += self.penalty * w * target[1];
@@ -536,13 +550,15 @@ impl ArapDeformer {
             }
         }
         for &(value, row, col) in &self.coupling {
-            self.rhs_x[row] -= value * self.pin_target[col][0];
-            self.rhs_y[row] -= value * self.pin_target[col][1];
+            let pin = into(self.pin_target[col]);
+            self.rhs_x[row] -= value * pin[0];
+            self.rhs_y[row] -= value * pin[1];
         }
         for (v, &count) in self.pin_count.iter().enumerate() {
             if count > 0 {
-                self.rhs_x[v] = self.pin_target[v][0];
-                self.rhs_y[v] = self.pin_target[v][1];
+                let pin = into(self.pin_target[v]);
+                self.rhs_x[v] = pin[0];
+                self.rhs_y[v] = pin[1];
             }
         }
     }
@@ -550,10 +566,13 @@ impl ArapDeformer {
     /// The energy `E` of the current pose with the best rotations and the current
     /// targets (the quantity each iteration lowers).
     pub fn energy(&self) -> f64 {
+        // Computed on positions scaled by 2^unit, like the rest edges, and scaled back.
+        let unit = power_of_two(self.unit);
+        let into = |p: Point| p.map(|x| x * unit);
         let u = &self.positions;
         let mut energy = 0.0;
         for ((t, c), e) in self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges) {
-            let p = t.map(|v| u[v as usize]);
+            let p = t.map(|v| into(u[v as usize]));
             let r = best_rotation(p, c, e).unwrap_or([1.0, 0.0]);
             for k in 0..3 {
                 let d = sub(p[(k + 1) % 3], p[(k + 2) % 3]);
@@ -563,11 +582,11 @@ impl ArapDeformer {
         }
         for (h, target) in self.handles.iter().zip(&self.targets) {
             if h.pinned == NONE {
-                let p = self.point_of(h, u);
+                let (p, target) = (into(self.point_of(h, u)), into(*target));
                 energy += 0.5 * self.penalty * ((p[0] - target[0]).powi(2) + (p[1] - target[1]).powi(2));
             }
         }
-        energy
+        scale_by_power_of_two(energy, -2 * self.unit)
     }
 
     /// Back to the rest pose with identity rotations; handles stay, their targets become
@@ -584,16 +603,7 @@ impl ArapDeformer {
     /// become their positions in that pose. Fails, changing nothing, for a wrong length or a
     /// non-finite coordinate.
     pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        if positions.len() != self.positions.len() {
-            return Err(DeformError::Length {
-                what: "positions",
-                expected: self.positions.len(),
-                found: positions.len(),
-            });
-        }
-        if let Some(vertex) = positions.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-            return Err(DeformError::NonFinitePosition { vertex });
-        }
+        check_pose(positions, self.positions.len())?;
         self.positions.copy_from_slice(positions);
         self.field.fill([0.0, 0.0]);
         let targets = self.handle_positions();
@@ -664,11 +674,19 @@ fn sub(a: Point, b: Point) -> Point {
 }
 
 fn check_options(options: &ArapOptions) -> Result<(), DeformError> {
-    if options.iterations == 0 {
-        return Err(DeformError::InvalidOption { name: "iterations", value: 0.0 });
+    if !(1..=MAX_ITERATIONS).contains(&options.iterations) {
+        return Err(DeformError::InvalidOption {
+            name: "iterations",
+            value: options.iterations as f64,
+            expected: "a whole number from 1 to 1000000",
+        });
     }
-    if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
-        return Err(DeformError::InvalidOption { name: "tolerance", value: options.tolerance });
+    if !(0.0..=1.0).contains(&options.tolerance) {
+        return Err(DeformError::InvalidOption {
+            name: "tolerance",
+            value: options.tolerance,
+            expected: "a number from 0 to 1 (a fraction of the shape's size)",
+        });
     }
     Ok(())
 }

@@ -17,21 +17,22 @@
 //! A step that fails (a pivot that is not positive, a non-finite result) leaves the
 //! deformer as it was.
 
-use std::fmt;
+use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use sprs::CsMat;
 
+pub use super::error::DeformError;
+use super::error::{check_pose, check_velocities, in_range, out_of_memory};
 use super::handles;
 use super::killing::KillingMatrix;
 use super::method::Orders;
 use super::metrics::{metrics, Metrics};
 use super::spiral::{linear_step, spiral_step};
-use crate::geometry::Point;
+use crate::geometry::{in_comfortable_range, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{
-    amf_order, cheaper_order, expand_blocks, nested_dissection_order, FactorError, Numeric, Ordering, Symbolic,
-    DISSECTION_MIN_NODES,
+    amf_order, cheaper_order, expand_blocks, nested_dissection_order, Numeric, Ordering, Symbolic, DISSECTION_MIN_NODES,
 };
 
 const NONE: usize = usize::MAX;
@@ -46,10 +47,29 @@ pub enum Integrator {
     Linear,
 }
 
+/// The values [`DeformerOptions::lambda`] may take: 1e-6 to 1e10.
+///
+/// lambda weighs the handle penalties against the Killing energy, whose matrix entries are
+/// dimensionless: a few units per vertex (about 1 to 10; up to 1e6 on slivers, see
+/// [`super::killing::SLIVER_LIMIT`]) whatever the mesh's size, scale or resolution, since
+/// the energy of a triangle is its area times squared gradients. So the range is absolute.
+/// Both ends are where rounding starts to show, measured on the gingerbread figure (786 to
+/// 32,447 vertices, two handles, one step compared with the steps at ten times and a tenth
+/// the lambda):
+/// - below, the penalty drowns in the rounding of K (1e-16 of its entries, summed over the
+///   vertices): the rigid motions, which cost no energy, are pinned by lambda alone. At 1e-8
+///   the field carries noise of 2e-5 (786 vertices) to 5e-4 (32k) of its size, at 1e-6 of
+///   1e-6 to 5e-6, and near 1e-14 the factorisation fails;
+/// - above, step 2's right-hand side, `lambda (u - W U0)`, is a difference of nearly equal
+///   velocities times lambda: relative noise of about 2e-18 lambda (2e-8 at 1e10, 6e-7 at
+///   1e12, 1e-2 at 1e16), and at 1e308 the penalties overflow.
+pub const LAMBDA_RANGE: RangeInclusive<f64> = 1e-6..=1e10;
+
 /// Deformer settings, with builders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DeformerOptions {
-    /// Weight of the soft handle constraints of step 1.
+    /// Weight of the soft handle constraints of step 1, in [`LAMBDA_RANGE`] (1e-6 to 1e10;
+    /// default 100).
     pub lambda: f64,
     /// Whether step 2 (the Dirichlet re-solve) runs.
     pub dirichlet: bool,
@@ -78,144 +98,6 @@ impl DeformerOptions {
     pub fn with_integrator(mut self, integrator: Integrator) -> Self {
         self.integrator = integrator;
         self
-    }
-}
-
-/// Why the deformer refused an input or a step. The deformer is unchanged after any error.
-#[derive(Debug, Clone, PartialEq)]
-#[non_exhaustive]
-pub enum DeformError {
-    /// The mesh is split into several pieces; deform each piece on its own.
-    Disconnected {
-        /// The number of pieces.
-        components: usize,
-    },
-    /// An option is out of range.
-    InvalidOption {
-        /// The option's name as the JavaScript API spells it.
-        name: &'static str,
-        /// The value given.
-        value: f64,
-    },
-    /// A handle names a vertex that does not exist.
-    VertexOutOfRange {
-        /// Which handle.
-        handle: usize,
-        /// The vertex given.
-        vertex: u32,
-        /// The number of vertices.
-        vertex_count: usize,
-    },
-    /// A handle names a triangle that does not exist.
-    TriangleOutOfRange {
-        /// Which handle.
-        handle: usize,
-        /// The triangle given.
-        triangle: u32,
-        /// The number of triangles.
-        triangle_count: usize,
-    },
-    /// A handle's barycentric coordinates are not finite, negative, or do not sum to 1.
-    InvalidBarycentric {
-        /// Which handle.
-        handle: usize,
-        /// The coordinates given.
-        coordinates: [f64; 3],
-    },
-    /// The number of values does not match.
-    Length {
-        /// What was given.
-        what: &'static str,
-        /// Expected length.
-        expected: usize,
-        /// Given length.
-        found: usize,
-    },
-    /// A velocity is NaN or infinite.
-    NonFiniteVelocity {
-        /// Which handle.
-        handle: usize,
-    },
-    /// A factorisation failed: the mesh has collapsed or flipped triangles.
-    Factor(FactorError),
-    /// The step produced a non-finite position (a velocity too large for the mesh).
-    NonFiniteResult,
-    /// A position given to `set_positions` is NaN or infinite.
-    NonFinitePosition {
-        /// Which vertex.
-        vertex: usize,
-    },
-    /// Orders computed beforehand do not fit the mesh: too few or too many, or one is not a
-    /// permutation of its system's vertices.
-    OrdersMismatch {
-        /// Which order (or, when their number is wrong, how many were given).
-        system: usize,
-        /// The number of vertices it must order (or the number of orders expected).
-        expected: usize,
-    },
-    /// Memory ran short while preparing the solver (a factor's storage).
-    OutOfMemory {
-        /// Bytes that could not be allocated.
-        bytes: usize,
-    },
-    /// Options of another method were given; the method is chosen when the deformer is made.
-    WrongMethod {
-        /// The deformer's method.
-        current: super::method::Method,
-        /// The method of the options given.
-        given: super::method::Method,
-    },
-}
-
-impl fmt::Display for DeformError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::Disconnected { components } => {
-                write!(f, "the mesh has {components} separate pieces; the deformer needs one connected piece")
-            }
-            Self::InvalidOption { name, value } => {
-                write!(f, "option {name} is {value}, expected a finite number above 0")
-            }
-            Self::VertexOutOfRange { handle, vertex, vertex_count } => {
-                write!(f, "handle {handle} is at vertex {vertex}, but the mesh has only {vertex_count} vertices")
-            }
-            Self::TriangleOutOfRange { handle, triangle, triangle_count } => {
-                write!(f, "handle {handle} is in triangle {triangle}, but the mesh has only {triangle_count} triangles")
-            }
-            Self::InvalidBarycentric { handle, coordinates } => write!(
-                f,
-                "handle {handle} has barycentric coordinates {coordinates:?}; they must be finite, \
-                 at least 0 and sum to 1"
-            ),
-            Self::Length { what, expected, found } => write!(f, "{what} has length {found}, expected {expected}"),
-            Self::NonFiniteVelocity { handle } => write!(f, "the velocity of handle {handle} is not a finite number"),
-            Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
-            Self::NonFiniteResult => write!(f, "the step produced positions that are not finite; use smaller steps"),
-            Self::NonFinitePosition { vertex } => write!(f, "the position of vertex {vertex} is not a finite number"),
-            Self::OutOfMemory { bytes } => write!(
-                f,
-                "out of memory: preparing the solver needs {:.0} MB more; free deformers no longer used \
-                 (free()) or use a coarser mesh",
-                (*bytes as f64 / 1e6).ceil()
-            ),
-            Self::OrdersMismatch { system, expected } => write!(
-                f,
-                "the orders given do not fit this mesh and method: order {system} must be a permutation of 0..{expected}"
-            ),
-            Self::WrongMethod { current, given } => write!(
-                f,
-                "the deformer uses method {current}, options for {given} were given; \
-                 the method is chosen when the deformer is created"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for DeformError {}
-
-impl From<FactorError> for DeformError {
-    fn from(e: FactorError) -> Self {
-        Self::Factor(e)
     }
 }
 
@@ -496,16 +378,7 @@ impl Deformer {
 
     /// One deformation step with a velocity per handle (in handle order).
     pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        if velocities.len() != self.handles.len() {
-            return Err(DeformError::Length {
-                what: "velocities",
-                expected: 2 * self.handles.len(),
-                found: 2 * velocities.len(),
-            });
-        }
-        if let Some(handle) = velocities.iter().position(|v| !v[0].is_finite() || !v[1].is_finite()) {
-            return Err(DeformError::NonFiniteVelocity { handle });
-        }
+        check_velocities(velocities, self.handles.len())?;
         let clock = self.clock;
         let mut timings = Timings::default();
         if self.distinct_points < 2 {
@@ -539,7 +412,7 @@ impl Deformer {
             }
             Integrator::Linear => linear_step(&self.positions, field, &mut self.next_positions),
         }
-        if self.next_positions.iter().any(|p| !p[0].is_finite() || !p[1].is_finite()) {
+        if !in_range(&self.next_positions) {
             return Err(DeformError::NonFiniteResult);
         }
         timings.integration = clock() - t_move;
@@ -551,9 +424,20 @@ impl Deformer {
     }
 
     /// Steps 1 and 2 into `next_soft` and `next_field`.
+    ///
+    /// The systems are linear in the velocities, so velocities outside the comfortable range
+    /// (about 1e-75 to 1e75) are scaled by the power of two `2^e` that brings the largest
+    /// component into [1, 2), and the fields scaled back: exact, and free of overflow
+    /// (`lambda u` at large velocities) and underflow (tiny ones) at any scale.
     fn solve_fields(&mut self, velocities: &[[f64; 2]], timings: &mut Timings) -> Result<(), DeformError> {
         let clock = self.clock;
         let lambda = self.options.lambda;
+        let largest = velocities.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let e = if largest == 0.0 || in_comfortable_range(largest) {
+            0
+        } else {
+            normalising_exponent(velocities.iter().copied())
+        };
         let t0 = clock();
         self.killing.assemble(&self.positions);
         let k = self.killing.matrix().data();
@@ -562,6 +446,7 @@ impl Deformer {
         let rhs = &mut self.next_soft;
         rhs.fill(0.0);
         for ((h, slots), u) in self.handles.iter().zip(&self.penalty_slots).zip(velocities) {
+            let u = u.map(|x| scale_by_power_of_two(x, e));
             for i in 0..3 {
                 for j in 0..3 {
                     let c = lambda * h.weights[i] * h.weights[j];
@@ -588,10 +473,10 @@ impl Deformer {
         timings.solve = t3 - t2;
 
         self.next_field.copy_from_slice(&self.next_soft);
-        if !dirichlet {
+        let Some(system) = self.dirichlet.as_mut().filter(|_| dirichlet) else {
+            scale_fields(e, &mut self.next_soft, &mut self.next_field);
             return Ok(());
-        }
-        let Some(system) = &mut self.dirichlet else { return Ok(()) };
+        };
         // Step 2 as a correction of U0: K_II U_I = -K_IB U0_B is K_II (U0_I - U_I) = r_I with
         // r = K U0, and step 1's optimality, (K + lambda P) U0 = lambda W^T u, makes
         // r = lambda W^T (u - W U0): nonzero on handle vertices only, so the forward solve
@@ -601,6 +486,7 @@ impl Deformer {
         rhs.fill(0.0);
         let u0: &[[f64; 2]] = as_pairs(&self.next_soft);
         for (h, u) in self.handles.iter().zip(velocities) {
+            let u = u.map(|x| scale_by_power_of_two(x, e));
             let mut at = [0.0, 0.0];
             for (&v, &w) in h.vertices.iter().zip(&h.weights) {
                 at[0] += w * u0[v as usize][0];
@@ -625,6 +511,7 @@ impl Deformer {
                 self.next_field[2 * v + 1] -= rhs[2 * i + 1];
             }
         }
+        scale_fields(e, &mut self.next_soft, &mut self.next_field);
         let t7 = clock();
         timings.assembly += t5 - t4;
         timings.factorisation += t6 - t5;
@@ -641,18 +528,10 @@ impl Deformer {
     }
 
     /// Puts the mesh into a given pose (for undo, or to resume a saved pose); handles stay.
-    /// Fails, changing nothing, for a wrong length or a non-finite coordinate.
+    /// Fails, changing nothing, for a wrong length or a coordinate that is not finite or
+    /// beyond ±[`crate::geometry::MAX_COORDINATE`].
     pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        if positions.len() != self.positions.len() {
-            return Err(DeformError::Length {
-                what: "positions",
-                expected: self.positions.len(),
-                found: positions.len(),
-            });
-        }
-        if let Some(vertex) = positions.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-            return Err(DeformError::NonFinitePosition { vertex });
-        }
+        check_pose(positions, self.positions.len())?;
         self.positions.copy_from_slice(positions);
         self.soft_field.fill(0.0);
         self.field.fill(0.0);
@@ -692,10 +571,23 @@ impl Deformer {
 }
 
 fn check_options(options: &DeformerOptions) -> Result<(), DeformError> {
-    if !(options.lambda.is_finite() && options.lambda > 0.0) {
-        return Err(DeformError::InvalidOption { name: "lambda", value: options.lambda });
+    if !LAMBDA_RANGE.contains(&options.lambda) {
+        return Err(DeformError::InvalidOption {
+            name: "lambda",
+            value: options.lambda,
+            expected: "a number from 1e-6 to 1e10",
+        });
     }
     Ok(())
+}
+
+/// Scales both fields back from velocities scaled by `2^k`.
+fn scale_fields(k: i32, soft: &mut [f64], field: &mut [f64]) {
+    if k != 0 {
+        for x in soft.iter_mut().chain(field.iter_mut()) {
+            *x = scale_by_power_of_two(*x, -k);
+        }
+    }
 }
 
 /// Views an interleaved `[x0, y0, x1, y1, ...]` buffer as pairs.
@@ -719,14 +611,6 @@ pub(crate) fn vertex_graph(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> (Vec<us
 /// Renumbers global vertex indices in an adjacency list through `index`.
 fn renumber(ptr: &[usize], adj: &[usize], index: &[usize]) -> (Vec<usize>, Vec<usize>) {
     (ptr.to_vec(), adj.iter().map(|&w| index[w]).collect())
-}
-
-/// A factorisation's storage error as the deformer's (only out-of-memory can happen there).
-pub(crate) fn out_of_memory(error: FactorError) -> DeformError {
-    match error {
-        FactorError::OutOfMemory { bytes } => DeformError::OutOfMemory { bytes },
-        other => DeformError::Factor(other),
-    }
 }
 
 /// Each vertex's index among the interior vertices (`NONE` on the boundary), and their number.

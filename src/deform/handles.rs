@@ -47,6 +47,8 @@ pub(crate) fn in_triangles(
             what: "barycentric",
             expected: 3 * triangles.len(),
             found: 3 * barycentric.len(),
+            per: 3,
+            items: "handles",
         });
     }
     let m = mesh.triangle_count();

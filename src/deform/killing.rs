@@ -14,7 +14,7 @@
 
 use sprs::CsMat;
 
-use crate::geometry::Point;
+use crate::geometry::{binary_exponent, in_comfortable_range, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
 /// The Killing-energy matrix of a mesh: fixed pattern, values for given positions.
@@ -146,16 +146,29 @@ pub const SLIVER_LIMIT: f64 = 1e-6;
 /// and bounded below by [`SLIVER_LIMIT`] times the longest edge squared. `None` for a
 /// triangle collapsed to a point. The gradients' common sign (that of the orientation) is
 /// left out: the energy takes them in products of two.
+///
+/// The matrix's entries are products `h_i g_j`, which do not change when the triangle is
+/// scaled (`h` scales with it, `g` inversely). Edges outside the comfortable range (about
+/// 1e-75 to 1e75) are first scaled by the power of two that brings their largest component
+/// into [1, 2): exact, so the entries are the same, and free of overflow and underflow in
+/// the squares and areas whatever the mesh's scale. (Within it, scaling would change no bit.)
 fn scaled_gradients(p: [Point; 3]) -> Option<([Point; 3], [Point; 3])> {
     let h = [0, 1, 2].map(|i| {
         let (b, c) = (p[(i + 1) % 3], p[(i + 2) % 3]);
         [b[1] - c[1], c[0] - b[0]]
     });
-    let length = |v: Point| v[0] * v[0] + v[1] * v[1];
-    let longest = length(h[0]).max(length(h[1])).max(length(h[2]));
-    if longest == 0.0 {
+    let largest = h.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    if largest == 0.0 || !largest.is_finite() {
         return None;
     }
+    let h = if in_comfortable_range(largest) {
+        h
+    } else {
+        let k = -binary_exponent(largest);
+        h.map(|v| v.map(|x| scale_by_power_of_two(x, k)))
+    };
+    let length = |v: Point| v[0] * v[0] + v[1] * v[1];
+    let longest = length(h[0]).max(length(h[1])).max(length(h[2]));
     let twice_area = (h[1][0] * h[2][1] - h[1][1] * h[2][0]).abs().max(2.0 * SLIVER_LIMIT * longest);
     let inverse = 1.0 / twice_area;
     Some((h, h.map(|v| [v[0] * inverse, v[1] * inverse])))

@@ -6,7 +6,8 @@
 use std::fmt;
 
 use super::arap::{ArapDeformer, ArapOptions};
-use super::deformer::{Clock, DeformError, Deformer, DeformerOptions, Timings};
+use super::deformer::{Clock, Deformer, DeformerOptions, Timings};
+use super::error::DeformError;
 use super::metrics::Metrics;
 use crate::geometry::Point;
 use crate::mesh::Mesh;

@@ -5,33 +5,59 @@
 //! `E_area = sum rho (sigma1 sigma2 + 1 / (sigma1 sigma2))`,
 //! `E_angle = sum rho (sigma1 / sigma2 + sigma2 / sigma1)`. Both are 2 for a rigid motion
 //! and larger otherwise. A triangle whose map has a non-positive determinant is flipped.
+//!
+//! A triangle collapsed onto a line or a point (`sigma2 = 0`) has infinite distortion: both
+//! terms grow without bound as `sigma2` goes to 0 (for `sigma1 > 0`; with `sigma1 = 0` too
+//! the ratio has no limit, but the area term does), so both measures of a pose with a
+//! collapsed triangle are `+inf`, never NaN, and the triangle counts as flipped (its
+//! determinant is 0). Poses with triangles turned over but not collapsed stay finite.
 
-use crate::geometry::Point;
+use crate::geometry::{
+    binary_exponent, in_comfortable_range, normalising_exponent, power_of_two, scale_by_power_of_two, Point,
+};
 
 /// Distortion measures of a pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Metrics {
-    /// Area distortion, 2 for a rigid motion.
+    /// Area distortion, 2 for a rigid motion, `+inf` when a triangle has collapsed.
     pub area_distortion: f64,
-    /// Angle distortion, 2 for a rigid motion (or any similarity).
+    /// Angle distortion, 2 for a rigid motion (or any similarity), `+inf` when a triangle
+    /// has collapsed.
     pub angle_distortion: f64,
-    /// Triangles turned upside down (or collapsed).
+    /// Triangles turned upside down or collapsed (determinant at most 0).
     pub flipped: usize,
 }
 
 /// Singular values `(sigma1, sigma2)`, `sigma1 >= sigma2 >= 0`, and determinant of the
 /// 2 x 2 matrix `[[a, b], [c, d]]`.
 pub fn singular_values(a: f64, b: f64, c: f64, d: f64) -> (f64, f64, f64) {
-    // sigma1,2 = (sqrt((a + d)^2 + (c - b)^2) +- sqrt((a - d)^2 + (c + b)^2)) / 2.
+    // sigma1,2 = (sqrt((a + d)^2 + (c - b)^2) +- sqrt((a - d)^2 + (c + b)^2)) / 2, and
+    // sigma1 sigma2 = |det|: the smaller one from that, free of the difference's cancellation.
     let p = (a + d).hypot(c - b);
     let q = (a - d).hypot(c + b);
-    (0.5 * (p + q), 0.5 * (p - q).abs(), a * d - b * c)
+    let det = a * d - b * c;
+    let sigma1 = 0.5 * (p + q);
+    let sigma2 = if sigma1 > 0.0 { (det.abs() / sigma1).min(sigma1) } else { 0.0 };
+    (sigma1, sigma2, det)
 }
 
 /// The map taking rest triangle `r` to current triangle `p`: `F = [p1 - p0, p2 - p0] [r1 - r0, r2 - r0]^-1`.
+///
+/// Outside the comfortable range (rest edges beyond about 1e-75 to 1e75) both triangles'
+/// edges are first scaled by the power of two that brings the rest edges' largest component
+/// into [1, 2) (which leaves `F` unchanged, exactly), so neither the inverse nor the
+/// products overflow or underflow at any scale.
 pub fn deformation_gradient(r: [Point; 3], p: [Point; 3]) -> [[f64; 2]; 2] {
     let (e1, e2) = ([r[1][0] - r[0][0], r[1][1] - r[0][1]], [r[2][0] - r[0][0], r[2][1] - r[0][1]]);
     let (f1, f2) = ([p[1][0] - p[0][0], p[1][1] - p[0][1]], [p[2][0] - p[0][0], p[2][1] - p[0][1]]);
+    let largest = e1.iter().chain(&e2).fold(0.0f64, |m, x| m.max(x.abs()));
+    let k = if largest > 0.0 && largest.is_finite() && !in_comfortable_range(largest) {
+        -binary_exponent(largest)
+    } else {
+        0
+    };
+    let scale = |v: [f64; 2]| v.map(|x| scale_by_power_of_two(x, k));
+    let (e1, e2, f1, f2) = (scale(e1), scale(e2), scale(f1), scale(f2));
     let det = e1[0] * e2[1] - e2[0] * e1[1];
     // Inverse of [e1 e2] (columns) is [[e2y, -e2x], [-e1y, e1x]] / det.
     let inv = [[e2[1] / det, -e2[0] / det], [-e1[1] / det, e1[0] / det]];
@@ -44,25 +70,46 @@ pub fn deformation_gradient(r: [Point; 3], p: [Point; 3]) -> [[f64; 2]; 2] {
     f
 }
 
+/// `(E_area, E_angle)` of one triangle's map from its singular values: `+inf` for both when
+/// it has collapsed (`sigma2 = 0`).
+pub fn triangle_distortion(sigma1: f64, sigma2: f64) -> (f64, f64) {
+    if sigma2 == 0.0 {
+        return (f64::INFINITY, f64::INFINITY);
+    }
+    let product = sigma1 * sigma2;
+    (product + 1.0 / product, sigma1 / sigma2 + sigma2 / sigma1)
+}
+
 /// Distortion of `current` against `rest` over the given triangles.
 pub fn metrics(rest: &[Point], current: &[Point], triangles: &[[u32; 3]]) -> Metrics {
     let corners = |pts: &[Point], t: &[u32; 3]| [pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]];
+    // Rest areas are weights (only their ratios matter), taken on the rest mesh scaled by a
+    // power of two into [1, 2): at 1e200 they would overflow, at 1e-200 underflow.
+    // Within the coordinate limits the exponent is between -996 and 998; clamped, any rest
+    // positions give a normal factor (only the ratios of the weights matter).
+    let unit = power_of_two(normalising_exponent(rest.iter().copied()).clamp(-1022, 1022));
     let mut total_area = 0.0;
     let (mut area, mut angle, mut flipped) = (0.0, 0.0, 0);
     for t in triangles {
         let r = corners(rest, t);
-        let rest_area = 0.5 * ((r[1][0] - r[0][0]) * (r[2][1] - r[0][1]) - (r[1][1] - r[0][1]) * (r[2][0] - r[0][0]));
+        let rest_area = scaled_area(r, unit);
         let f = deformation_gradient(r, corners(current, t));
         let (s1, s2, det) = singular_values(f[0][0], f[0][1], f[1][0], f[1][1]);
         if det <= 0.0 {
             flipped += 1;
         }
         total_area += rest_area;
-        let product = s1 * s2;
-        area += rest_area * (product + 1.0 / product);
-        angle += rest_area * (s1 / s2 + s2 / s1);
+        let (e_area, e_angle) = triangle_distortion(s1, s2);
+        area += rest_area * e_area;
+        angle += rest_area * e_angle;
     }
     Metrics { area_distortion: area / total_area, angle_distortion: angle / total_area, flipped }
+}
+
+/// The area of a triangle scaled by `factor`.
+fn scaled_area(r: [Point; 3], factor: f64) -> f64 {
+    let r = r.map(|p| p.map(|x| x * factor));
+    0.5 * ((r[1][0] - r[0][0]) * (r[2][1] - r[0][1]) - (r[1][1] - r[0][1]) * (r[2][0] - r[0][0]))
 }
 
 #[cfg(test)]
@@ -96,5 +143,44 @@ mod tests {
         assert!((m.area_distortion - 2.5).abs() < 1e-12 && (m.angle_distortion - 2.5).abs() < 1e-12);
         let mirrored: Vec<Point> = rest.iter().map(|p| [-p[0], p[1]]).collect();
         assert_eq!(metrics(&rest, &mirrored, &tris).flipped, 2);
+    }
+
+    #[test]
+    fn collapsed_triangles_have_infinite_distortion_and_count_as_flipped() {
+        let rest = [[0.0, 0.0], [1.0, 0.0], [0.2, 0.9], [1.1, 1.0]];
+        let tris = [[0, 1, 2], [1, 3, 2]];
+        // Onto the x axis: sigma = (something, 0) for both triangles.
+        let line: Vec<Point> = rest.iter().map(|p| [p[0], 0.0]).collect();
+        let m = metrics(&rest, &line, &tris);
+        assert_eq!((m.area_distortion, m.angle_distortion, m.flipped), (f64::INFINITY, f64::INFINITY, 2));
+        // Of two separate triangles one onto a point (sigma = (0, 0)), the other stretched
+        // but whole: still infinite, never NaN.
+        let rest = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [5.0, 0.0], [6.0, 0.0], [5.0, 1.0]];
+        let point = [[0.5, 0.5], [0.5, 0.5], [0.5, 0.5], [5.0, 0.0], [7.0, 0.0], [5.0, 1.0]];
+        let m = metrics(&rest, &point, &[[0, 1, 2], [3, 4, 5]]);
+        assert_eq!((m.area_distortion, m.angle_distortion, m.flipped), (f64::INFINITY, f64::INFINITY, 1));
+        assert_eq!(triangle_distortion(0.0, 0.0), (f64::INFINITY, f64::INFINITY));
+        // Shrunk by 1e-3 without collapsing: sigma1 = sigma2 = 1e-3, so E_area = 1e-6 + 1e6
+        // and E_angle = 2, finite.
+        let small: Vec<Point> = rest.iter().map(|p| [1e-3 * p[0], 1e-3 * p[1]]).collect();
+        let m = metrics(&rest, &small, &tris);
+        assert!((m.area_distortion - (1e-6 + 1e6)).abs() < 1e-6 && (m.angle_distortion - 2.0).abs() < 1e-9, "{m:?}");
+    }
+
+    #[test]
+    fn thin_maps_keep_their_small_singular_value_and_scale_does_not_matter() {
+        // diag(1, 1e-20): sigma2 = 1e-20, which (p - q) / 2 loses to cancellation.
+        assert_eq!(singular_values(1.0, 0.0, 0.0, 1e-20), (1.0, 1e-20, 1e-20));
+        assert_eq!(triangle_distortion(1.0, 1e-20), (1e-20 + 1e20, 1e20 + 1e-20));
+        let rest = [[0.0, 0.0], [1.0, 0.0], [0.2, 0.9], [1.1, 1.0]];
+        let tris = [[0, 1, 2], [1, 3, 2]];
+        let stretched: Vec<Point> = rest.iter().map(|p| [2.0 * p[0], p[1]]).collect();
+        let unit = metrics(&rest, &stretched, &tris);
+        for s in [1e-300, 1e200, 1e300] {
+            let scale = |pts: &[Point]| pts.iter().map(|p| [s * p[0], s * p[1]]).collect::<Vec<Point>>();
+            let m = metrics(&scale(&rest), &scale(&stretched), &tris);
+            assert!((m.area_distortion - unit.area_distortion).abs() < 1e-12, "{m:?} at {s}");
+            assert!((m.angle_distortion - unit.angle_distortion).abs() < 1e-12, "{m:?} at {s}");
+        }
     }
 }

@@ -10,6 +10,7 @@
 
 pub mod arap;
 pub mod deformer;
+mod error;
 mod handles;
 pub mod killing;
 pub mod method;
@@ -17,6 +18,7 @@ pub mod metrics;
 pub mod spiral;
 
 pub use arap::{ArapDeformer, ArapOptions, IterationReport};
-pub use deformer::{Clock, DeformError, Deformer, DeformerOptions, Integrator, Timings};
+pub use deformer::{Clock, Deformer, DeformerOptions, Integrator, Timings, LAMBDA_RANGE};
+pub use error::DeformError;
 pub use method::{Deform, Method, MethodOptions, Orders};
 pub use metrics::Metrics;

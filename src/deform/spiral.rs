@@ -8,7 +8,7 @@
 //! that factor over its edge neighbours. For a Killing field `U = a i (p - c) + d` every `s`
 //! equals `a i`, so the step is exactly the rotation by `a` about the field's centre.
 
-use crate::geometry::Point;
+use crate::geometry::{binary_exponent, scale_by_power_of_two, Point};
 
 /// Below this `|s|` the series is used (up to 13 terms: the first one left out is below 1e-17).
 const SERIES_RADIUS: f64 = 0.25;
@@ -65,8 +65,20 @@ fn mul(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
 }
 
+/// `a / b` for complex numbers, `b` not 0. Where `|b|^2` or the numerator's products leave
+/// the normal range (edges and velocities beyond about 1e150 or below 1e-150), both are
+/// first scaled by the power of two that brings `b`'s larger part into [1, 2): exact, so the
+/// quotient is the same at every scale.
 #[inline]
 fn div(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let d = b[0] * b[0] + b[1] * b[1];
+    let q = [(a[0] * b[0] + a[1] * b[1]) / d, (a[1] * b[0] - a[0] * b[1]) / d];
+    let m = b[0].abs().max(b[1].abs());
+    if (d.is_normal() && q[0].is_finite() && q[1].is_finite()) || m == 0.0 || !m.is_finite() {
+        return q;
+    }
+    let k = -binary_exponent(m);
+    let (a, b) = (a.map(|x| scale_by_power_of_two(x, k)), b.map(|x| scale_by_power_of_two(x, k)));
     let d = b[0] * b[0] + b[1] * b[1];
     [(a[0] * b[0] + a[1] * b[1]) / d, (a[1] * b[0] - a[0] * b[1]) / d]
 }

@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use crate::error::Number;
 use crate::mesh::MeshError;
 
 /// An element of an SVG document, for error messages: its name, its `id` if it has one, and
@@ -123,6 +124,48 @@ pub enum ImportError {
     },
     /// The mesh in the file is invalid (the same rules and errors as [`crate::Mesh::new`]).
     Mesh(MeshError),
+    /// More points than the limit ([`crate::import::Limits::max_points`]).
+    TooManyPoints {
+        /// What has them, e.g. "the SVG's shapes".
+        what: &'static str,
+        /// How many would be needed, when known (an estimate for flattened curves).
+        needed: Option<f64>,
+        /// The limit.
+        limit: usize,
+    },
+    /// Tracing an image gives contours of more points, before simplification, than 20 times
+    /// the limit on outline points.
+    TooManyContourPoints {
+        /// The limit on outline points ([`crate::import::Limits::max_points`]).
+        limit: usize,
+    },
+    /// The number of values does not match, counted in numbers.
+    Length {
+        /// What was given, e.g. "deformed positions".
+        what: &'static str,
+        /// How many numbers are expected.
+        expected: usize,
+        /// How many numbers were given.
+        found: usize,
+        /// Numbers per item (2 for points).
+        per: usize,
+        /// The items, plural, e.g. "rest vertices".
+        items: &'static str,
+    },
+    /// A value given is NaN or infinite.
+    NonFinite {
+        /// What it is, e.g. "point".
+        what: &'static str,
+        /// Its index.
+        index: usize,
+    },
+    /// A value computed from finite input overflows double precision (or is NaN).
+    NonFiniteResult {
+        /// What it is, e.g. "mapped point".
+        what: &'static str,
+        /// Its index.
+        index: usize,
+    },
     /// An option is out of range.
     InvalidOption {
         /// The option's name as the JavaScript API spells it.
@@ -170,10 +213,14 @@ impl fmt::Display for ImportError {
                 "the outline has more than {pairs} pairs of segments close together to check for crossings; \
                  simplify the shape"
             ),
+            Self::ImageSize { width, height, len } if *width == 0 || *height == 0 => {
+                write!(f, "the image is {width} x {height} pixels: it has no pixels ({len} bytes were given)")
+            }
             Self::ImageSize { width, height, len } => write!(
                 f,
-                "a {width} x {height} image needs {} bytes of RGBA pixels, but {len} were given",
-                width.saturating_mul(*height).saturating_mul(4)
+                "a {width} x {height} image needs {} bytes of RGBA pixels (4 per pixel), but {len} were given",
+                // In u128: 4 w h cannot overflow it, as it can a 32-bit usize.
+                4 * *width as u128 * *height as u128
             ),
             Self::EmptyImage => write!(f, "no pixel of the image belongs to the shape (check the threshold)"),
             Self::Syntax { format, message, line, column } => {
@@ -181,8 +228,31 @@ impl fmt::Display for ImportError {
             }
             Self::TextureCoordinates { message } => write!(f, "texture coordinates: {message}"),
             Self::Mesh(e) => e.fmt(f),
+            Self::TooManyPoints { what, needed: Some(needed), limit } => write!(
+                f,
+                "{what} would need {} points, more than the limit of {limit} (maxPoints)",
+                Number(needed.ceil())
+            ),
+            Self::TooManyPoints { what, needed: None, limit } => {
+                write!(f, "{what} have more than {limit} points (the maxPoints limit)")
+            }
+            Self::TooManyContourPoints { limit } => write!(
+                f,
+                "the image traces to contours of more than {} points before simplification, 20 times the \
+                 limit of {limit} outline points (maxPoints); raise maxPoints, or trace a smaller or simpler image",
+                limit.saturating_mul(20)
+            ),
+            Self::Length { what, expected, found, per, items } => write!(
+                f,
+                "{what} have {found} numbers, expected {expected} ({per} for each of the {} {items})",
+                expected / per.max(&1)
+            ),
+            Self::NonFinite { what, index } => write!(f, "{what} {index} has a value that is not a finite number"),
+            Self::NonFiniteResult { what, index } => {
+                write!(f, "{what} {index} comes out beyond the range of double precision (not a finite number)")
+            }
             Self::InvalidOption { name, value, expected } => {
-                write!(f, "option {name} is {value}, expected {expected}")
+                write!(f, "option {name} is {}, expected {expected}", Number(*value))
             }
         }
     }

@@ -2,12 +2,15 @@
 //! "uvs": [u0, v0, ...] }`, `uvs` optional) and Wavefront OBJ (`v`, `vt`, `f` with polygons
 //! fanned into triangles, negative indices, comments). Both are read into a validated
 //! [`Mesh`] (the same rules and errors as [`Mesh::new`]) and written back so that a round
-//! trip gives the same numbers.
+//! trip gives the same numbers. Readers and writers share one set of [`Limits`]: the
+//! writers refuse a mesh whose file the readers would refuse, so whatever is written within
+//! some limits reads back within them.
 
 use std::fmt::Write;
 
 use serde::{Deserialize, Serialize};
 
+use crate::error::Number;
 use crate::geometry::Point;
 use crate::import::{ImportError, Limits};
 use crate::mesh::Mesh;
@@ -34,16 +37,36 @@ fn check_size(text: &str, limits: &Limits, what: &'static str) -> Result<(), Imp
     Limits::check(text.len(), limits.max_bytes, what, "bytes")
 }
 
-fn check_counts(vertices: usize, triangles: usize, limits: &Limits) -> Result<(), ImportError> {
-    Limits::check(vertices, limits.max_vertices, "the mesh", "vertices")?;
-    Limits::check(triangles, limits.max_vertices.saturating_mul(2), "the mesh", "triangles")
+fn check_counts(vertices: usize, triangles: usize, limits: &Limits, what: &'static str) -> Result<(), ImportError> {
+    Limits::check(vertices, limits.max_vertices, what, "vertices")?;
+    Limits::check(triangles, limits.max_vertices.saturating_mul(2), what, "triangles")
+}
+
+/// What the writers check before writing: valid limits, texture coordinates that fit, and
+/// counts the readers accept.
+fn check_writable(mesh: &Mesh, uvs: Option<&[Point]>, limits: &Limits) -> Result<(), ImportError> {
+    limits.validate()?;
+    if let Some(uvs) = uvs {
+        check_uvs(uvs, mesh.vertex_count())?;
+    }
+    check_counts(mesh.vertex_count(), mesh.triangle_count(), limits, "the mesh to write")
+}
+
+/// What the writers check after writing: the file's size against the readers' limit.
+fn check_written(text: String, limits: &Limits, what: &'static str) -> Result<String, ImportError> {
+    Limits::check(text.len(), limits.max_bytes, what, "bytes")?;
+    Ok(text)
 }
 
 /// Checks texture coordinates against the mesh: one finite pair per vertex.
 fn check_uvs(uvs: &[Point], vertices: usize) -> Result<(), ImportError> {
     if uvs.len() != vertices {
         return Err(ImportError::TextureCoordinates {
-            message: format!("{} pairs for {vertices} vertices; one pair per vertex is needed", uvs.len()),
+            message: format!(
+                "{} numbers for {vertices} vertices; {} are needed, a u and a v per vertex",
+                2 * uvs.len(),
+                2 * vertices
+            ),
         });
     }
     if let Some(v) = uvs.iter().position(|t| !(t[0].is_finite() && t[1].is_finite())) {
@@ -61,6 +84,7 @@ fn check_uvs(uvs: &[Point], vertices: usize) -> Result<(), ImportError> {
 /// # Ok::<(), akap::import::ImportError>(())
 /// ```
 pub fn read_json(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
+    limits.validate()?;
     check_size(text, limits, "the JSON text")?;
     let parsed: JsonMesh = serde_json::from_str(text).map_err(|e| {
         let (line, column) = (e.line(), e.column());
@@ -73,7 +97,7 @@ pub fn read_json(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
             column,
         }
     })?;
-    check_counts(parsed.positions.len() / 2, parsed.triangles.len() / 3, limits)?;
+    check_counts(parsed.positions.len() / 2, parsed.triangles.len() / 3, limits, "the mesh")?;
     let mesh = Mesh::from_flat(&parsed.positions, &parsed.triangles)?;
     let uvs = match parsed.uvs {
         None => None,
@@ -91,18 +115,27 @@ pub fn read_json(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
     Ok(MeshFile { mesh, uvs })
 }
 
-/// Writes our JSON mesh format (numbers in their shortest exact form).
-pub fn write_json(mesh: &Mesh, uvs: Option<&[Point]>) -> Result<String, ImportError> {
-    if let Some(uvs) = uvs {
-        check_uvs(uvs, mesh.vertex_count())?;
-    }
+/// Writes our JSON mesh format (numbers in their shortest exact form). Refuses, like
+/// [`read_json`] with the same `limits`, a mesh with more vertices or triangles than they
+/// allow or a text longer than `max_bytes`.
+///
+/// ```
+/// use akap::import::{mesh_file::{read_json, write_json}, Limits};
+/// let mesh = akap::Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1e-300]], vec![[0, 1, 2]])?;
+/// let text = write_json(&mesh, None, &Limits::default())?;
+/// assert_eq!(text, r#"{"positions":[0.0,0.0,1.0,0.0,0.0,1e-300],"triangles":[0,1,2]}"#);
+/// assert_eq!(read_json(&text, &Limits::default())?.mesh, mesh);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_json(mesh: &Mesh, uvs: Option<&[Point]>, limits: &Limits) -> Result<String, ImportError> {
+    check_writable(mesh, uvs, limits)?;
     let json = JsonMesh {
         positions: mesh.positions().iter().flatten().copied().collect(),
         triangles: mesh.triangles().iter().flatten().copied().collect(),
         uvs: uvs.map(|u| u.iter().flatten().copied().collect()),
     };
     // Arrays of finite numbers and indices always serialise.
-    Ok(serde_json::to_string(&json).expect("a mesh serialises to JSON"))
+    check_written(serde_json::to_string(&json).expect("a mesh serialises to JSON"), limits, "the JSON text")
 }
 
 /// OBJ statements that carry nothing for a flat triangle mesh; they are skipped.
@@ -150,6 +183,7 @@ const OBJ_IGNORED: [&str; 35] = [
 /// first corner. Texture coordinates become per-vertex, so a vertex used with two
 /// different ones is an error.
 pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
+    limits.validate()?;
     check_size(text, limits, "the OBJ text")?;
     let mut positions: Vec<Point> = Vec::new();
     let mut texcoords: Vec<Point> = Vec::new();
@@ -303,18 +337,30 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
 }
 
 /// Writes a Wavefront OBJ: `v x y 0` per vertex, `vt u v` per vertex when `uvs` are given
-/// (then faces are `f a/a b/b c/c`), and one `f` per triangle.
-pub fn write_obj(mesh: &Mesh, uvs: Option<&[Point]>) -> Result<String, ImportError> {
-    if let Some(uvs) = uvs {
-        check_uvs(uvs, mesh.vertex_count())?;
-    }
+/// (then faces are `f a/a b/b c/c`), and one `f` per triangle. Numbers are in their shortest
+/// exact form, in exponent form outside 1e-6 to 1e21 (`1e-300`, not 300 zeros). Refuses,
+/// like [`read_obj`] with the same `limits`, a mesh with more vertices or triangles than
+/// they allow or a text longer than `max_bytes`.
+///
+/// ```
+/// use akap::import::{mesh_file::{read_obj, write_obj}, ImportError, Limits};
+/// let mesh = akap::Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1e-300]], vec![[0, 1, 2]])?;
+/// let text = write_obj(&mesh, None, &Limits::default())?;
+/// assert_eq!(text, "# akap mesh: 3 vertices, 1 triangles\nv 0 0 0\nv 1 0 0\nv 0 1e-300 0\nf 1 2 3\n");
+/// assert_eq!(read_obj(&text, &Limits::default())?.mesh, mesh);
+/// let small = Limits { max_bytes: 40, ..Limits::default() };
+/// assert!(matches!(write_obj(&mesh, None, &small), Err(ImportError::TooLarge { .. })));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_obj(mesh: &Mesh, uvs: Option<&[Point]>, limits: &Limits) -> Result<String, ImportError> {
+    check_writable(mesh, uvs, limits)?;
     let mut out = String::new();
     let _ = writeln!(out, "# akap mesh: {} vertices, {} triangles", mesh.vertex_count(), mesh.triangle_count());
     for p in mesh.positions() {
-        let _ = writeln!(out, "v {} {} 0", p[0], p[1]);
+        let _ = writeln!(out, "v {} {} 0", Number(p[0]), Number(p[1]));
     }
     for t in uvs.unwrap_or(&[]) {
-        let _ = writeln!(out, "vt {} {}", t[0], t[1]);
+        let _ = writeln!(out, "vt {} {}", Number(t[0]), Number(t[1]));
     }
     for t in mesh.triangles() {
         let [a, b, c] = t.map(|i| i + 1);
@@ -324,5 +370,5 @@ pub fn write_obj(mesh: &Mesh, uvs: Option<&[Point]>) -> Result<String, ImportErr
             let _ = writeln!(out, "f {a} {b} {c}");
         }
     }
-    Ok(out)
+    check_written(out, limits, "the OBJ text")
 }

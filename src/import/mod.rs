@@ -26,16 +26,29 @@ pub mod warp;
 
 pub use error::{ElementRef, ImportError};
 
-/// Size limits for untrusted input. The defaults suit interactive use in a browser.
+/// Size limits for untrusted input, one set for the readers and the writers: a mesh file
+/// the writers produce within these limits is one the readers accept. The defaults suit
+/// interactive use in a browser, and the README states them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
-    /// Largest text input (SVG, OBJ, JSON), in bytes.
+    /// Largest text input (SVG, OBJ, JSON), in bytes (default 32 MiB, 33,554,432 bytes).
     pub max_bytes: usize,
-    /// Largest image, in pixels.
+    /// Largest image, in pixels (default 4096 x 4096).
     pub max_pixels: usize,
-    /// Most outline points an SVG or image may produce (after flattening or tracing).
+    /// Most outline points an SVG or image may produce (after flattening or tracing;
+    /// default 100,000).
     pub max_points: usize,
-    /// Most vertices (and triangles) a mesh file may have.
+    /// Most vertices a mesh file may have, and texture coordinates; twice as many
+    /// triangles (a planar mesh has fewer than 2 per vertex). Default
+    /// [`crate::mesh::DEFAULT_MAX_VERTICES`], 100,000, the triangulator's default limit too.
+    ///
+    /// With the defaults every mesh within these counts fits in `max_bytes` as a file: the
+    /// writers put at most 25 characters in a number (`-0.0000012345678901234567`, or
+    /// `-1.2345678901234567e-300` in exponent form), so an OBJ vertex takes at most 56
+    /// bytes (`v x y 0`) and its texture coordinate 55 (`vt u v`), a triangle 44 (`f a/a
+    /// b/b c/c`, indices of up to 6 digits): at most 11.1 MB for 100,000 vertices and 8.8
+    /// MB for 200,000 triangles, 19.9 MB in all (JSON needs less). The writers check
+    /// anyway, against whatever limits they are given.
     pub max_vertices: usize,
     /// Most XML nodes (elements, attributes' text nodes and so on) of an SVG.
     pub max_elements: usize,
@@ -47,9 +60,8 @@ pub struct Limits {
     /// the root `viewBox`'s units, after every transform), which also bounds the drawing's
     /// extent. The default, 1e30, is far beyond any real drawing and keeps everything
     /// downstream working in double precision: products of coordinates (areas, orientation
-    /// tests, squared distances, summed over every point) stay far from overflowing, the
-    /// triangulator's exact predicates accept up to 2^201 (about 3.2e60), and positions
-    /// still fit in single precision (3.4e38) for drawing.
+    /// tests, squared distances, summed over every point) stay far from overflowing, and
+    /// positions still fit in single precision (3.4e38) for drawing.
     pub max_coordinate: f64,
 }
 
@@ -59,7 +71,7 @@ impl Default for Limits {
             max_bytes: 32 << 20,
             max_pixels: 4096 * 4096,
             max_points: 100_000,
-            max_vertices: 1_000_000,
+            max_vertices: crate::mesh::DEFAULT_MAX_VERTICES,
             max_elements: 200_000,
             max_segment_pairs: 50_000_000,
             max_coordinate: 1e30,
@@ -71,6 +83,35 @@ impl Limits {
     fn check(value: usize, limit: usize, what: &'static str, unit: &'static str) -> Result<(), ImportError> {
         if value > limit {
             return Err(ImportError::TooLarge { what, size: value, limit, unit });
+        }
+        Ok(())
+    }
+
+    /// Refuses limits that no input could meet (a limit of 0, which is no more "unlimited"
+    /// than any other number), or a coordinate limit that is not a finite number above 0,
+    /// each by the name of its JavaScript option (`maxBytes`, `maxPixels`, `maxPoints`; the
+    /// others are Rust's only).
+    pub fn validate(&self) -> Result<(), ImportError> {
+        let counts = [
+            ("maxBytes", self.max_bytes),
+            ("maxPixels", self.max_pixels),
+            ("maxPoints", self.max_points),
+            ("maxVertices", self.max_vertices),
+            ("maxElements", self.max_elements),
+            ("maxSegmentPairs", self.max_segment_pairs),
+        ];
+        for (name, value) in counts {
+            if value == 0 {
+                return Err(ImportError::InvalidOption { name, value: 0.0, expected: "a whole number, at least 1" });
+            }
+        }
+        let c = self.max_coordinate;
+        if !(c.is_finite() && c > 0.0) {
+            return Err(ImportError::InvalidOption {
+                name: "maxCoordinate",
+                value: c,
+                expected: "a finite number above 0",
+            });
         }
         Ok(())
     }

@@ -83,7 +83,8 @@ impl TraceOptions {
         let t = self.tolerance;
         check("tolerance", t, t.is_finite() && t >= 0.0, "a finite number, 0 or more")?;
         let m = self.min_area;
-        check("minArea", m, m.is_finite() && m >= 0.0, "a finite number, 0 or more")
+        check("minArea", m, m.is_finite() && m >= 0.0, "a finite number, 0 or more")?;
+        self.limits.validate()
     }
 }
 
@@ -215,7 +216,7 @@ pub(crate) fn contour_outlines(
     limits: &Limits,
 ) -> Result<Vec<Outline>, ImportError> {
     let max_points = limits.max_points;
-    let segments = march(field, max_points.saturating_mul(20))?;
+    let segments = march(field, max_points.saturating_mul(CONTOUR_POINTS_PER_POINT))?;
     if segments.is_empty() {
         return Err(ImportError::EmptyImage);
     }
@@ -257,6 +258,10 @@ fn corner_colour(rgba: &[u8], width: usize, height: usize) -> [f64; 3] {
     };
     colours.into_iter().min_by(|a, b| spread(a).total_cmp(&spread(b))).expect("four corners")
 }
+
+/// How many contour points (before simplification) tracing allows per outline point of
+/// [`Limits::max_points`].
+pub(crate) const CONTOUR_POINTS_PER_POINT: usize = 20;
 
 /// Marching squares: directed segments between edge crossings, the shape on their left
 /// (y up). Fails when there are more than `max_segments`.
@@ -318,12 +323,7 @@ fn march(field: &Field, max_segments: usize) -> Result<Vec<(u64, u64)>, ImportEr
                 segments.push(if left == inside { (edges[e1].0, edges[e2].0) } else { (edges[e2].0, edges[e1].0) });
             }
             if segments.len() > max_segments {
-                return Err(ImportError::TooLarge {
-                    what: "the traced contours",
-                    size: segments.len(),
-                    limit: max_segments,
-                    unit: "points",
-                });
+                return Err(ImportError::TooManyContourPoints { limit: max_segments / CONTOUR_POINTS_PER_POINT });
             }
         }
         upper = lower;

@@ -108,8 +108,9 @@ impl VectorPath {
     /// The subpaths as closed polylines, curves replaced by chords that stay within
     /// `tolerance` of them. Subpaths are closed implicitly (filling closes them), and the
     /// closing point is not repeated. Fails with the number of points that would be needed
-    /// when that exceeds `max_points` (counting `already` points made before).
-    pub fn flatten(&self, tolerance: f64, already: usize, max_points: usize) -> Result<Vec<Vec<Point>>, usize> {
+    /// (at least; NaN when a curve's size is not finite) when that exceeds `max_points`
+    /// (counting `already` points made before), as a float: it may be far beyond `usize`.
+    pub fn flatten(&self, tolerance: f64, already: usize, max_points: usize) -> Result<Vec<Vec<Point>>, f64> {
         let mut rings: Vec<Vec<Point>> = Vec::new();
         let mut ring: Vec<Point> = Vec::new();
         let mut total = already;
@@ -135,7 +136,7 @@ impl VectorPath {
             // NaN (from infinite control points) fails this too.
             let budget = max_points.saturating_sub(total) as f64;
             if pieces.is_nan() || pieces > budget {
-                return Err(total.saturating_add(pieces as usize));
+                return Err(total as f64 + pieces);
             }
             let n = pieces as usize;
             match verb {

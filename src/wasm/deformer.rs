@@ -115,16 +115,8 @@ impl JsDeformer {
 
     /// One step with two velocity components per handle, in handle order (`Float64Array`).
     pub fn step(&mut self, velocities: JsValue) -> Result<(), JsError> {
-        let expected = 2 * self.inner.handle_count();
-        let velocities = read::float64s(&velocities, "velocities", expected.max(2))?;
-        if velocities.len() != expected {
-            return Err(JsError::new(&format!(
-                "velocities has {} numbers; {} handles need 2 each ({expected})",
-                velocities.len(),
-                expected / 2
-            )));
-        }
-        self.inner.step(velocities.as_chunks::<2>().0).map_err(to_js)
+        let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
+        self.inner.step(&pairs(&velocities, "velocities")?).map_err(to_js)
     }
 
     /// A copy of the current positions, x and y interleaved.
@@ -145,15 +137,7 @@ impl JsDeformer {
     /// `2 * vertexCount`); handles stay.
     #[wasm_bindgen(js_name = setPositions)]
     pub fn set_positions(&mut self, positions: JsValue) -> Result<(), JsError> {
-        let expected = 2 * self.inner.mesh().vertex_count();
         let positions = read::float64s(&positions, "positions", max_coordinates())?;
-        if positions.len() != expected {
-            return Err(JsError::new(&format!(
-                "positions has {} numbers; the mesh's {} vertices need 2 each ({expected})",
-                positions.len(),
-                expected / 2
-            )));
-        }
         self.inner.set_positions(&pairs(&positions, "positions")?).map_err(to_js)
     }
 

@@ -170,14 +170,14 @@ fn mesh_and_uvs(positions: &JsValue, triangles: &JsValue, uvs: &JsValue) -> Resu
 #[wasm_bindgen]
 pub fn mesh_to_obj(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, JsError> {
     let (mesh, uvs) = mesh_and_uvs(&positions, &triangles, &uvs)?;
-    mesh_file::write_obj(&mesh, uvs.as_deref()).map_err(to_js)
+    mesh_file::write_obj(&mesh, uvs.as_deref(), &limits()).map_err(to_js)
 }
 
 /// Writes a mesh (validated first) in our JSON format.
 #[wasm_bindgen]
 pub fn mesh_to_json(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, JsError> {
     let (mesh, uvs) = mesh_and_uvs(&positions, &triangles, &uvs)?;
-    mesh_file::write_json(&mesh, uvs.as_deref()).map_err(to_js)
+    mesh_file::write_json(&mesh, uvs.as_deref(), &limits()).map_err(to_js)
 }
 
 /// Texture coordinates (u, v interleaved) of positions (`Float64Array`) in a traced
@@ -186,12 +186,9 @@ pub fn mesh_to_json(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Res
 pub fn texture_coordinates(positions: JsValue, width: JsValue, height: JsValue) -> Result<Vec<f64>, JsError> {
     let width = read::number(&width, "width")?;
     let height = read::number(&height, "height")?;
-    if !(width > 0.0 && height > 0.0 && width.is_finite() && height.is_finite()) {
-        return Err(JsError::new(&format!("image size {width} x {height} must be finite and above 0")));
-    }
     let positions = read::float64s(&positions, "positions", max_coordinates())?;
     let points = pairs(&positions, "positions")?;
-    Ok(warp::texture_coordinates(&points, width, height).into_iter().flatten().collect())
+    Ok(warp::texture_coordinates(&points, width, height).map_err(to_js)?.into_iter().flatten().collect())
 }
 
 /// Points located once in a rest mesh, then carried along to deformed positions.
@@ -207,10 +204,7 @@ impl JsPointMapper {
     pub fn new(positions: JsValue, triangles: JsValue, points: JsValue) -> Result<JsPointMapper, JsError> {
         let mesh = read_mesh(&positions, &triangles)?;
         let points = read::float64s(&points, "points", max_coordinates())?;
-        if let Some(i) = points.iter().position(|v| !v.is_finite()) {
-            return Err(JsError::new(&format!("point {} has a coordinate that is not a finite number", i / 2)));
-        }
-        Ok(Self { inner: PointMapper::new(&mesh, &pairs(&points, "points")?) })
+        Ok(Self { inner: PointMapper::new(&mesh, &pairs(&points, "points")?).map_err(to_js)? })
     }
 
     /// The points carried along to `deformed` (`Float64Array`, xy-interleaved, one pair per
@@ -218,9 +212,7 @@ impl JsPointMapper {
     pub fn map(&self, deformed: JsValue) -> Result<Vec<f64>, JsError> {
         let deformed = read::float64s(&deformed, "deformed positions", max_coordinates())?;
         let pairs = pairs(&deformed, "deformed positions")?;
-        self.inner.map(&pairs).map(|m| m.into_iter().flatten().collect()).ok_or_else(|| {
-            JsError::new(&format!("deformed positions has {} numbers, expected 2 per rest vertex", deformed.len()))
-        })
+        Ok(self.inner.map(&pairs).map_err(to_js)?.into_iter().flatten().collect())
     }
 
     /// Number of points.

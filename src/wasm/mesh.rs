@@ -19,6 +19,14 @@ pub struct JsMesh {
 /// Reads a mesh argument pair: `positions` (`Float64Array`, xy-interleaved) and
 /// `triangles` (`Uint32Array`), validated.
 pub(super) fn read_mesh(positions: &JsValue, triangles: &JsValue) -> Result<Mesh, JsError> {
+    let claimed = read::length(positions, "positions")?;
+    let limit = limits().max_vertices;
+    if claimed > max_coordinates() as f64 {
+        return Err(JsError::new(&format!(
+            "the mesh has {} vertices ({claimed} numbers), more than the limit of {limit} vertices",
+            claimed / 2.0
+        )));
+    }
     let positions = read::float64s(positions, "positions", max_coordinates())?;
     let triangles = read::uint32s(triangles, "triangles", max_indices())?;
     Mesh::from_flat(&positions, &triangles).map_err(to_js)

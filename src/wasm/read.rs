@@ -50,13 +50,10 @@ fn describe(value: &JsValue) -> String {
 /// one, `instanceof` the constructor) of at most `limit` elements (checked first, so that
 /// nothing huge is copied): a Proxy or subclass posing as one runs its code here, inside
 /// `Reflect.get` and `Reflect.construct`, where an exception becomes an `Err`.
-fn own_copy(value: &JsValue, constructor: &str, what: &str, limit: usize) -> Result<JsValue, JsError> {
-    let length = Reflect::get(value, &JsValue::from_str("length"))
-        .map_err(|e| JsError::new(&format!("{what} could not be read: {}", message(&e))))?
-        .as_f64()
-        .unwrap_or(0.0);
+fn own_copy(value: &JsValue, constructor: &str, what: &str, limit: usize, unit: &str) -> Result<JsValue, JsError> {
+    let length = length(value, what)?;
     if length > limit as f64 {
-        return Err(JsError::new(&format!("{what} has {length} elements; the limit is {limit}")));
+        return Err(JsError::new(&format!("{what} has {length} {unit}; the limit is {limit}")));
     }
     let make = Reflect::get(&js_sys::global(), &JsValue::from_str(constructor))
         .ok()
@@ -64,6 +61,14 @@ fn own_copy(value: &JsValue, constructor: &str, what: &str, limit: usize) -> Res
         .ok_or_else(|| JsError::new(&format!("this JavaScript engine has no {constructor}")))?;
     Reflect::construct(&make, &Array::of1(value))
         .map_err(|e| JsError::new(&format!("{what} could not be read: {}", message(&e))))
+}
+
+/// The `length` an array-like argument claims (0 when it has none), read without copying.
+pub(super) fn length(value: &JsValue, what: &str) -> Result<f64, JsError> {
+    Ok(Reflect::get(value, &JsValue::from_str("length"))
+        .map_err(|e| JsError::new(&format!("{what} could not be read: {}", message(&e))))?
+        .as_f64()
+        .unwrap_or(0.0))
 }
 
 /// The length of a genuine typed array, checked against `limit` elements.
@@ -80,7 +85,7 @@ pub(super) fn float64s(value: &JsValue, what: &str, limit: usize) -> Result<Vec<
     if !value.is_instance_of::<Float64Array>() {
         return Err(type_error(what, "a Float64Array", value));
     }
-    let copy: Float64Array = own_copy(value, "Float64Array", what, limit)?.unchecked_into();
+    let copy: Float64Array = own_copy(value, "Float64Array", what, limit, "numbers")?.unchecked_into();
     checked_length(copy.length(), limit, what, "numbers")?;
     Ok(copy.to_vec())
 }
@@ -90,7 +95,7 @@ pub(super) fn uint32s(value: &JsValue, what: &str, limit: usize) -> Result<Vec<u
     if !value.is_instance_of::<Uint32Array>() {
         return Err(type_error(what, "a Uint32Array", value));
     }
-    let copy: Uint32Array = own_copy(value, "Uint32Array", what, limit)?.unchecked_into();
+    let copy: Uint32Array = own_copy(value, "Uint32Array", what, limit, "numbers")?.unchecked_into();
     checked_length(copy.length(), limit, what, "numbers")?;
     Ok(copy.to_vec())
 }
@@ -104,7 +109,7 @@ pub(super) fn bytes(value: &JsValue, what: &str, limit: usize) -> Result<Vec<u8>
     } else {
         return Err(type_error(what, "a Uint8Array or Uint8ClampedArray", value));
     };
-    let copy = own_copy(value, constructor, what, limit)?;
+    let copy = own_copy(value, constructor, what, limit, "bytes")?;
     let copy = Uint8Array::new(&copy.unchecked_into::<Uint8ClampedArray>().buffer());
     checked_length(copy.length(), limit, what, "bytes")?;
     Ok(copy.to_vec())

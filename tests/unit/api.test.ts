@@ -70,4 +70,23 @@ describe("meshFromArrays", () => {
     expect(() => meshFromArrays([0, 0, 1, 0, 0, 1], [0, 1, 5])).toThrow(/refers to vertex 5/);
     expect(() => meshFromArrays([0, 0, 1, 0, 0, 1], [0, 1, -1])).toThrow(RangeError);
   });
+
+  it("refuses a bow-tie by its vertex, and triangulates near-touches and tiny or huge shapes", () => {
+    expect(() => meshFromArrays([0, 0, 1, 0, 0, 1, -1, 0, 0, -1], [0, 1, 2, 0, 3, 4])).toThrow(
+      /vertex 0 joins 2 fans of triangles that share no edge there/,
+    );
+    // A notch whose tip comes within 1e-9 of the opposite side.
+    const notch = triangulate({ outer: [0, 0, 2, 0, 2, 2, 1, 1e-9, 0, 2] }, { targetEdgeLength: 0.1 });
+    expect(notch.area).toBeCloseTo(2 + 1e-9, 12);
+    for (const scale of [1e-300, 1e200]) {
+      const mesh = triangulate(
+        { outer: [0, 0, 4, 0, 4, 3, 0, 3].map((x) => x * scale) },
+        { targetEdgeLength: 0.5 * scale },
+      );
+      expect(mesh.vertexCount).toBeGreaterThan(40);
+    }
+    expect(() => triangulate({ outer: [0, 0, 2e300, 0, 0, 1] })).toThrow(
+      "point 1 of the outer boundary has the coordinate 2e300, beyond the limit of ±1e300; scale the outline down",
+    );
+  });
 });

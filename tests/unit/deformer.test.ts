@@ -57,7 +57,7 @@ describe("Deformer", () => {
     deformer.step([0, 0, 0.1, 0]);
     const before = deformer.positions();
     expect(() => deformer.setHandles([0, 9])).toThrow(/only 4 vertices/);
-    expect(() => deformer.step([0, 0])).toThrow(/velocities has 2 numbers; 2 handles need 2 each \(4\)/);
+    expect(() => deformer.step([0, 0])).toThrow("velocities has 2 numbers, expected 4 (2 for each of the 2 handles)");
     expect(() => deformer.step([0, 0, NaN, 0])).toThrow(/not a finite number/);
     expect(() => deformer.setHandlePoints([0], [0.5, 0.2, 0.2])).toThrow(/barycentric/);
     expect(() => deformer.setOptions({ integrator: "euler" as never })).toThrow(/integrator/);
@@ -97,14 +97,75 @@ describe("Deformer", () => {
     const shifted = mesh.positions.map((x, i) => x + (i % 2 === 0 ? 0.5 : -0.25));
     deformer.setPositions(shifted);
     expect(Array.from(deformer.positionsView())).toEqual(Array.from(shifted));
+    const n = mesh.vertexCount;
+    // Counted in the numbers passed, not in pairs.
     expect(() => deformer.setPositions(shifted.subarray(2))).toThrow(
-      /positions has \d+ numbers; the mesh.s \d+ vertices need 2 each/,
+      `positions has ${2 * n - 2} numbers, expected ${2 * n} (2 for each of the ${n} vertices)`,
+    );
+    const far = shifted.slice();
+    far[4] = 2e300;
+    expect(() => deformer.setPositions(far)).toThrow(
+      "the position of vertex 2 has the coordinate 2e300, beyond the limit of ±1e300",
     );
     const bad = shifted.slice();
     bad[7] = Number.NaN;
     expect(() => deformer.setPositions(bad)).toThrow(/vertex 3 is not a finite number/);
     expect(Array.from(deformer.positions())).toEqual(Array.from(shifted));
     deformer.free();
+  });
+
+  it("refuses lambda outside 1e-6..1e10 with the range, and stays usable", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.1 });
+    for (const lambda of [1e308, 1e-300, 0, -1, 2e10]) {
+      expect(() => new Deformer(mesh.positions, mesh.triangles, { lambda })).toThrow(
+        /expected a number from 1e-6 to 1e10/,
+      );
+    }
+    expect(() => new Deformer(mesh.positions, mesh.triangles, { lambda: 1e308 })).toThrow(
+      "option lambda is 1e308, expected a number from 1e-6 to 1e10",
+    );
+    const deformer = new Deformer(mesh.positions, mesh.triangles, { lambda: 1e10 });
+    expect(() => deformer.setOptions({ lambda: 1e-7 })).toThrow(/option lambda is 1e-7/);
+    deformer.setHandles([0, 30]);
+    deformer.step([0, 0, 0.01, 0.01]);
+    deformer.setOptions({ lambda: 1e-6 });
+    deformer.step([0, 0, 0.01, 0.01]);
+    expect(deformer.positions().every(Number.isFinite)).toBe(true);
+    deformer.free();
+  });
+
+  it("reports a collapsed pose as infinitely distorted, not NaN", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.1 });
+    for (const options of [{}, { method: "arap" as const }]) {
+      const deformer = new Deformer(mesh.positions, mesh.triangles, options);
+      // Every vertex at one point: every triangle collapsed (both singular values 0).
+      deformer.setPositions(new Float64Array(2 * mesh.vertexCount).fill(0.5));
+      expect(deformer.metrics()).toEqual({
+        areaDistortion: Infinity,
+        angleDistortion: Infinity,
+        flipped: mesh.triangleCount,
+      });
+      deformer.free();
+    }
+  });
+
+  it("deforms a shape at 1e200 and at 1e-300 as at 1", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.1 });
+    const pose = (scale: number) => {
+      const deformer = new Deformer(
+        mesh.positions.map((x) => x * scale),
+        mesh.triangles,
+      );
+      deformer.setHandles([0, 30]);
+      for (let k = 0; k < 3; k++) deformer.step([0, 0, 0.02 * scale, -0.01 * scale]);
+      const p = deformer.positions().map((x) => x / scale);
+      deformer.free();
+      return p;
+    };
+    const unit = pose(1);
+    for (const scale of [1e200, 1e-300]) {
+      pose(scale).forEach((x, i) => expect(x).toBeCloseTo(unit[i]!, 9));
+    }
   });
 
   it("runs ARAP with the same interface", () => {

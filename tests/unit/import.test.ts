@@ -93,7 +93,13 @@ describe("vector export", () => {
     path!.points.forEach((v, i) => expect(mapped[i]).toBeCloseTo(v + (i % 2 === 0 ? 5 : -2), 9));
     const mapper = new PointMapper(mesh.positions, mesh.triangles, path!.points);
     expect(mapper.length).toBe(path!.points.length / 2);
-    expect(() => mapper.map([0, 0])).toThrow(/expected 2 per rest vertex/);
+    const n = mesh.vertexCount;
+    expect(() => mapper.map([0, 0])).toThrow(
+      `deformed positions have 2 numbers, expected ${2 * n} (2 for each of the ${n} rest vertices)`,
+    );
+    const broken = moved.slice();
+    broken[3] = NaN;
+    expect(() => mapper.map(broken)).toThrow("deformed position 1 has a value that is not a finite number");
     mapper.free();
     expect(pathData(path!)).toBe("M 10 90 C 30 100 70 100 90 90 L 90 10 L 10 10 Z");
     expect(pathData(path!, path!.points, { flipY: true })).toBe(
@@ -185,11 +191,19 @@ describe("traceImage", () => {
     const uvs = textureCoordinates(mesh.positions, 100, 80);
     expect(uvs.length).toBe(mesh.positions.length);
     expect(uvs.every((t) => t >= 0 && t <= 1)).toBe(true);
+    expect(() => textureCoordinates([1, 2, NaN, 0], 100, 80)).toThrow(
+      "position 1 has a value that is not a finite number",
+    );
+    expect(() => textureCoordinates([1e300, 0], 1e-10, 80)).toThrow(
+      /texture coordinate of position 0 comes out beyond/,
+    );
   });
 
   it("rejects bad sizes and options", () => {
     const rgba = new Uint8Array(4 * 6);
-    expect(() => traceImage(rgba, 3, 3)).toThrow(/needs 36 bytes of RGBA pixels, but 24 were given/);
+    expect(() => traceImage(rgba, 3, 3)).toThrow(
+      "a 3 x 3 image needs 36 bytes of RGBA pixels (4 per pixel), but 24 were given",
+    );
     expect(() => traceImage(rgba, 3, 2)).toThrow(/no pixel of the image belongs to the shape/);
     expect(() => traceImage(rgba, 3, 2, { mode: "grey" } as never)).toThrow(/option mode/);
     expect(() => traceImage(rgba, 3, 2, { alphaThreshold: 0 })).toThrow(/alphaThreshold/);
@@ -216,6 +230,25 @@ describe("mesh files", () => {
     expect(fromJson.boundaryVertices.length).toBe(3);
   });
 
+  it("writes only what it reads back: 100,000 vertices at most, the readers' limit", () => {
+    // A strip of 2 x 50,001 vertices: 100,002, two over the limit.
+    const strip = (columns: number) => {
+      const p: number[] = [];
+      const t: number[] = [];
+      for (let i = 0; i < columns; i++) p.push(i, 0, i, 1);
+      for (let i = 0; i + 1 < columns; i++) t.push(2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1);
+      return { positions: p, triangles: t };
+    };
+    for (const write of [meshToObj, meshToJson]) {
+      expect(() => write(strip(50_001))).toThrow(
+        "the mesh has 100002 vertices (200004 numbers), more than the limit of 100000 vertices",
+      );
+    }
+    const largest = strip(50_000);
+    expect(meshFromObj(meshToObj(largest)).vertexCount).toBe(100_000);
+    expect(meshFromJson(meshToJson(largest)).vertexCount).toBe(100_000);
+  });
+
   it("reads OBJ polygons and reports errors with their line", () => {
     const mesh = meshFromObj("# square\nv 0 0\nv 1 0\nv 1 1\nv 0 1\nf 1 2 3 4\n");
     expect(mesh.triangleCount).toBe(2);
@@ -223,6 +256,8 @@ describe("mesh files", () => {
     expect(() => meshFromObj("v 0 0\nv 1 0\nv 0 1\nf 1 3 2\n")).toThrow(/counter-clockwise/);
     expect(() => meshFromJson('{"positions": [], "triangles": [], "extra": 1}')).toThrow(/unknown field `extra`/);
     expect(() => meshToObj({ positions, triangles: [0, 2, 1] })).toThrow(/clockwise/);
-    expect(() => meshToJson({ positions, triangles, uvs: [0, 1] })).toThrow(/one pair per vertex/);
+    expect(() => meshToJson({ positions, triangles, uvs: [0, 1] })).toThrow(
+      "texture coordinates: 2 numbers for 4 vertices; 8 are needed, a u and a v per vertex",
+    );
   });
 });

@@ -81,16 +81,38 @@ describe("Posing", () => {
 
   it("a step that fails changes nothing and is passed on; once the cause is gone, steps work", () => {
     const { posing } = posed();
-    posing.setMethod("akap", 1e308); // every step overflows
+    // The paper's mode steps by the pointer's raw displacement (in at most maxSubsteps
+    // substeps): a jump of 1e301, beyond the coordinate limit (1e300), makes every step
+    // fail, down to the eighth of a substep the last retry takes.
+    posing.settings.paperMode = true;
     const before = posing.deformer.positions();
     const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
     posing.grab(1, 3, x, y, false);
-    posing.drag(3, x + 0.2, y);
-    expect(() => posing.advance(noTimings())).toThrow();
+    posing.drag(3, x + 1e301, y);
+    expect(() => posing.advance(noTimings())).toThrow(/not finite or beyond ±1e300; use smaller steps/);
     expect(posing.deformer.positions()).toEqual(before);
-    posing.setMethod("akap", 100);
+    posing.release(3);
+    posing.grab(1, 3, x, y, false);
+    posing.drag(3, x + 0.2, y);
     expect(posing.advance(noTimings())).toBeGreaterThan(0);
     expect(posing.deformer.positions()).not.toEqual(before);
+  });
+
+  it("a lambda out of range is refused with the range and changes nothing", () => {
+    const { posing, calls } = posed();
+    calls.length = 0;
+    expect(() => posing.setMethod("akap", 1e308)).toThrow(
+      "option lambda is 1e308, expected a number from 1e-6 to 1e10",
+    );
+    expect(() => posing.setMethod("akap", 1e-300)).toThrow(
+      "option lambda is 1e-300, expected a number from 1e-6 to 1e10",
+    );
+    expect(posing.settings.lambda).toBe(100);
+    expect(calls).toEqual([]);
+    const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
+    posing.grab(1, 3, x, y, false);
+    posing.drag(3, x + 0.2, y);
+    expect(posing.advance(noTimings())).toBeGreaterThan(0);
   });
 
   it("re-meshing carries the pose and the handles over, at their places, as one undoable step", () => {

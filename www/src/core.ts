@@ -108,7 +108,7 @@ export interface DeformerOptions {
    * moves every handle's target by its velocity and iterates from the current pose.
    */
   method?: "akap" | "arap";
-  /** AKAP: weight of the soft handle constraints (default 100). */
+  /** AKAP: weight of the soft handle constraints, from 1e-6 to 1e10 (default 100). */
   lambda?: number;
   /** AKAP: whether the Dirichlet re-solve runs (default true). */
   dirichlet?: boolean;
@@ -118,11 +118,14 @@ export interface DeformerOptions {
   iterations?: number;
 }
 
-/** Distortion of the current pose against the rest pose (2 for a rigid motion). */
+/**
+ * Distortion of the current pose against the rest pose (2 for a rigid motion; `Infinity`,
+ * never `NaN`, when a triangle has collapsed onto a line or a point).
+ */
 export interface Metrics {
   areaDistortion: number;
   angleDistortion: number;
-  /** Triangles turned upside down. */
+  /** Triangles turned upside down or collapsed. */
   flipped: number;
 }
 

@@ -81,7 +81,7 @@ impl SvgOptions {
                 expected: "a finite number, 0 or more",
             });
         }
-        Ok(())
+        self.limits.validate()
     }
 }
 
@@ -163,8 +163,12 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
     let mut rings = Vec::new();
     let mut count = 0;
     for (shape, p) in paths.iter().enumerate() {
-        let flat = p.path.flatten(tolerance.max(f64::MIN_POSITIVE), count, limits.max_points).map_err(|size| {
-            ImportError::TooLarge { what: "the flattened outline", size, limit: limits.max_points, unit: "points" }
+        let flat = p.path.flatten(tolerance.max(f64::MIN_POSITIVE), count, limits.max_points).map_err(|needed| {
+            ImportError::TooManyPoints {
+                what: "the outline flattened to the tolerance",
+                needed: needed.is_finite().then_some(needed),
+                limit: limits.max_points,
+            }
         })?;
         count += flat.iter().map(Vec::len).sum::<usize>();
         rings.extend(flat.into_iter().map(|points| SourceRing { points, shape }));
@@ -277,6 +281,15 @@ impl<'a, 'input> Walk<'a, 'input> {
     }
 
     fn syntax_error(&self, node: Node, attribute: &str, e: SyntaxError) -> ImportError {
+        if e.too_many {
+            // Parsed with what is left of the document's budget: the caller's limit is the
+            // news, not the remainder (which may be 0).
+            return ImportError::TooManyPoints {
+                what: "the SVG's shapes",
+                needed: None,
+                limit: self.limits.max_points,
+            };
+        }
         self.attribute_error(node, attribute, format!("{} (at character {})", e.message, e.offset))
     }
 

@@ -15,11 +15,18 @@ pub struct SyntaxError {
     pub offset: usize,
     /// What was expected or found.
     pub message: String,
+    /// Whether the value is well-formed so far but makes more points (or numbers) than the
+    /// limit it was parsed with: a size limit met, not a syntax error.
+    pub too_many: bool,
 }
 
 impl SyntaxError {
-    fn new(offset: usize, message: impl Into<String>) -> Self {
-        Self { offset, message: message.into() }
+    pub(crate) fn new(offset: usize, message: impl Into<String>) -> Self {
+        Self { offset, message: message.into(), too_many: false }
+    }
+
+    fn too_many(offset: usize, message: String) -> Self {
+        Self { offset, message, too_many: true }
     }
 }
 
@@ -152,7 +159,7 @@ pub(crate) fn parse_number_list(text: &str, max: usize) -> Result<Vec<f64>, Synt
     s.skip_whitespace();
     while !s.at_end() {
         if numbers.len() >= max {
-            return Err(s.error(format!("more than {max} numbers")));
+            return Err(SyntaxError::too_many(s.offset(), format!("more than {max} numbers")));
         }
         numbers.push(s.number()?);
         s.skip_separator();
@@ -181,7 +188,7 @@ pub fn parse_path_data(data: &str, max_points: usize) -> Result<VectorPath, Synt
     s.skip_whitespace();
     while !s.at_end() {
         if path.points.len() > max_points {
-            return Err(s.error(format!("the path has more than {max_points} points")));
+            return Err(SyntaxError::too_many(s.offset(), format!("the path has more than {max_points} points")));
         }
         let command_offset = s.offset();
         let letter = match s.peek() {
@@ -289,7 +296,7 @@ pub fn parse_path_data(data: &str, max_points: usize) -> Result<VectorPath, Synt
         last_quad = next_quad;
     }
     if path.points.len() > max_points {
-        return Err(s.error(format!("the path has more than {max_points} points")));
+        return Err(SyntaxError::too_many(s.offset(), format!("the path has more than {max_points} points")));
     }
     Ok(path)
 }
@@ -388,6 +395,8 @@ mod tests {
         assert_eq!(e("M1 1 A1 1 0 2 0 3 3").message, "expected an arc flag (0 or 1), found `2`");
         assert_eq!(e("M1 1e999").message, "number out of range");
         assert_eq!(e("M0 0 z 1 1").offset, 7);
-        assert!(e(&"M0 0 ".repeat(200)).message.contains("more than 100 points"));
+        let many = e(&"M0 0 ".repeat(200));
+        assert!(many.too_many && many.message.contains("more than 100 points"), "{many:?}");
+        assert!(!e("M1 1 L2").too_many);
     }
 }

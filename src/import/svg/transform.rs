@@ -82,9 +82,9 @@ pub fn parse_transform(text: &str) -> Result<Affine, SyntaxError> {
             s.skip_separator();
         }
         s.bump();
-        let bad = || SyntaxError {
-            offset: name_start,
-            message: format!("{name}() does not take {} number{}", args.len(), if args.len() == 1 { "" } else { "s" }),
+        let bad = || {
+            let plural = if args.len() == 1 { "" } else { "s" };
+            SyntaxError::new(name_start, format!("{name}() does not take {} number{plural}", args.len()))
         };
         let step = match (name.as_str(), args.as_slice()) {
             ("matrix", &[a, b, c, d, e, f]) => Affine([a, b, c, d, e, f]),
@@ -100,7 +100,7 @@ pub fn parse_transform(text: &str) -> Result<Affine, SyntaxError> {
             ("skewY", &[a]) => Affine([1.0, a.to_radians().tan(), 0.0, 1.0, 0.0, 0.0]),
             ("matrix" | "translate" | "scale" | "rotate" | "skewX" | "skewY", _) => return Err(bad()),
             _ => {
-                return Err(SyntaxError { offset: name_start, message: format!("unknown transform `{name}`") });
+                return Err(SyntaxError::new(name_start, format!("unknown transform `{name}`")));
             }
         };
         total = total.then_apply_to(step);

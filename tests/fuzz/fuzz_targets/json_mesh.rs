@@ -10,7 +10,8 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
     let limits = Limits { max_vertices: 10_000, ..Limits::default() };
     let Ok(file) = read_json(text, &limits) else { return };
-    let written = write_json(&file.mesh, file.uvs.as_deref()).expect("a read mesh writes");
+    let written =
+        write_json(&file.mesh, file.uvs.as_deref(), &limits).expect("a read mesh writes within the same limits");
     let again = read_json(&written, &limits).expect("a written mesh reads");
     assert_eq!(again, file);
 });

@@ -1,0 +1,229 @@
+//! `DeformError`: why a deformer refused an input or a step. Lengths are counted in numbers
+//! (two per point or velocity, three per barycentric triple), as the flat arrays of the
+//! JavaScript API hold them.
+
+use std::fmt;
+
+use super::method::Method;
+use crate::error::Number;
+use crate::geometry::MAX_COORDINATE;
+use crate::sparse::FactorError;
+
+/// Why the deformer refused an input or a step. The deformer is unchanged after any error.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum DeformError {
+    /// The mesh is split into several pieces; deform each piece on its own.
+    Disconnected {
+        /// The number of pieces.
+        components: usize,
+    },
+    /// An option is out of range.
+    InvalidOption {
+        /// The option's name as the JavaScript API spells it.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What would be accepted.
+        expected: &'static str,
+    },
+    /// A handle names a vertex that does not exist.
+    VertexOutOfRange {
+        /// Which handle.
+        handle: usize,
+        /// The vertex given.
+        vertex: u32,
+        /// The number of vertices.
+        vertex_count: usize,
+    },
+    /// A handle names a triangle that does not exist.
+    TriangleOutOfRange {
+        /// Which handle.
+        handle: usize,
+        /// The triangle given.
+        triangle: u32,
+        /// The number of triangles.
+        triangle_count: usize,
+    },
+    /// A handle's barycentric coordinates are not finite, negative, or do not sum to 1.
+    InvalidBarycentric {
+        /// Which handle.
+        handle: usize,
+        /// The coordinates given.
+        coordinates: [f64; 3],
+    },
+    /// The number of values does not match, counted in numbers.
+    Length {
+        /// What was given, e.g. "velocities".
+        what: &'static str,
+        /// How many numbers are expected.
+        expected: usize,
+        /// How many numbers were given.
+        found: usize,
+        /// Numbers per item (2 for points and velocities, 3 for barycentric coordinates).
+        per: usize,
+        /// The items, plural, e.g. "handles" or "vertices".
+        items: &'static str,
+    },
+    /// A velocity is NaN or infinite.
+    NonFiniteVelocity {
+        /// Which handle.
+        handle: usize,
+    },
+    /// A factorisation failed: the mesh has collapsed or flipped triangles.
+    Factor(FactorError),
+    /// The step would put a vertex at a position that is not finite or beyond
+    /// ±[`MAX_COORDINATE`] (a velocity too large for the mesh).
+    NonFiniteResult,
+    /// A position given to `set_positions` is NaN or infinite.
+    NonFinitePosition {
+        /// Which vertex.
+        vertex: usize,
+    },
+    /// A position given to `set_positions` has a coordinate beyond ±[`MAX_COORDINATE`].
+    PositionOutOfRange {
+        /// Which vertex.
+        vertex: usize,
+        /// The coordinate.
+        value: f64,
+    },
+    /// Orders computed beforehand do not fit the mesh: too few or too many, or one is not a
+    /// permutation of its system's vertices.
+    OrdersMismatch {
+        /// Which order (or, when their number is wrong, how many were given).
+        system: usize,
+        /// The number of vertices it must order (or the number of orders expected).
+        expected: usize,
+    },
+    /// Memory ran short while preparing the solver (a factor's storage).
+    OutOfMemory {
+        /// Bytes that could not be allocated.
+        bytes: usize,
+    },
+    /// Options of another method were given; the method is chosen when the deformer is made.
+    WrongMethod {
+        /// The deformer's method.
+        current: Method,
+        /// The method of the options given.
+        given: Method,
+    },
+}
+
+impl fmt::Display for DeformError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Disconnected { components } => {
+                write!(f, "the mesh has {components} separate pieces; the deformer needs one connected piece")
+            }
+            Self::InvalidOption { name, value, expected } => {
+                write!(f, "option {name} is {}, expected {expected}", Number(*value))
+            }
+            Self::VertexOutOfRange { handle, vertex, vertex_count } => {
+                write!(f, "handle {handle} is at vertex {vertex}, but the mesh has only {vertex_count} vertices")
+            }
+            Self::TriangleOutOfRange { handle, triangle, triangle_count } => {
+                write!(f, "handle {handle} is in triangle {triangle}, but the mesh has only {triangle_count} triangles")
+            }
+            Self::InvalidBarycentric { handle, coordinates } => write!(
+                f,
+                "handle {handle} has barycentric coordinates {coordinates:?}; they must be finite, \
+                 at least 0 and sum to 1"
+            ),
+            Self::Length { what, expected, found, per, items } => write!(
+                f,
+                "{what} has {found} numbers, expected {expected} ({per} for each of the {} {items})",
+                expected / per.max(&1)
+            ),
+            Self::NonFiniteVelocity { handle } => write!(f, "the velocity of handle {handle} is not a finite number"),
+            Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
+            Self::NonFiniteResult => write!(
+                f,
+                "the step would move vertices to positions that are not finite or beyond ±{MAX_COORDINATE:e}; \
+                 use smaller steps"
+            ),
+            Self::NonFinitePosition { vertex } => write!(f, "the position of vertex {vertex} is not a finite number"),
+            Self::PositionOutOfRange { vertex, value } => write!(
+                f,
+                "the position of vertex {vertex} has the coordinate {}, beyond the limit of ±{MAX_COORDINATE:e}",
+                Number(*value)
+            ),
+            Self::OrdersMismatch { system, expected } => write!(
+                f,
+                "the orders given do not fit this mesh and method: order {system} must be a permutation of 0..{expected}"
+            ),
+            Self::OutOfMemory { bytes } => write!(
+                f,
+                "out of memory: preparing the solver needs {:.0} MB more; free deformers no longer used \
+                 (free()) or use a coarser mesh",
+                (*bytes as f64 / 1e6).ceil()
+            ),
+            Self::WrongMethod { current, given } => write!(
+                f,
+                "the deformer uses method {current}, options for {given} were given; \
+                 the method is chosen when the deformer is created"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for DeformError {}
+
+impl From<FactorError> for DeformError {
+    fn from(e: FactorError) -> Self {
+        Self::Factor(e)
+    }
+}
+
+/// Checks a pose given to `set_positions`: one position per vertex, each finite and within
+/// ±[`MAX_COORDINATE`].
+pub(crate) fn check_pose(positions: &[[f64; 2]], vertex_count: usize) -> Result<(), DeformError> {
+    if positions.len() != vertex_count {
+        return Err(DeformError::Length {
+            what: "positions",
+            expected: 2 * vertex_count,
+            found: 2 * positions.len(),
+            per: 2,
+            items: "vertices",
+        });
+    }
+    for (vertex, p) in positions.iter().enumerate() {
+        if !(p[0].is_finite() && p[1].is_finite()) {
+            return Err(DeformError::NonFinitePosition { vertex });
+        }
+        if let Some(&value) = p.iter().find(|x| x.abs() > MAX_COORDINATE) {
+            return Err(DeformError::PositionOutOfRange { vertex, value });
+        }
+    }
+    Ok(())
+}
+
+/// Checks velocities: one per handle, each finite.
+pub(crate) fn check_velocities(velocities: &[[f64; 2]], handle_count: usize) -> Result<(), DeformError> {
+    if velocities.len() != handle_count {
+        return Err(DeformError::Length {
+            what: "velocities",
+            expected: 2 * handle_count,
+            found: 2 * velocities.len(),
+            per: 2,
+            items: "handles",
+        });
+    }
+    if let Some(handle) = velocities.iter().position(|v| !v[0].is_finite() || !v[1].is_finite()) {
+        return Err(DeformError::NonFiniteVelocity { handle });
+    }
+    Ok(())
+}
+
+/// Whether every position of a step's result is finite and within ±[`MAX_COORDINATE`].
+pub(crate) fn in_range(positions: &[[f64; 2]]) -> bool {
+    positions.iter().flatten().all(|x| x.abs() <= MAX_COORDINATE)
+}
+
+/// A factorisation's storage error as the deformer's (out of memory is the one expected
+/// when a deformer is made).
+pub(crate) fn out_of_memory(error: FactorError) -> DeformError {
+    match error {
+        FactorError::OutOfMemory { bytes } => DeformError::OutOfMemory { bytes },
+        other => DeformError::Factor(other),
+    }
+}
