@@ -65,6 +65,9 @@ fn own_copy(value: &JsValue, constructor: &str, what: &str, limit: usize, unit: 
 
 /// The `length` an array-like argument claims (0 when it has none), read without copying.
 pub(super) fn length(value: &JsValue, what: &str) -> Result<f64, JsError> {
+    if !value.is_object() {
+        return Ok(0.0);
+    }
     Ok(Reflect::get(value, &JsValue::from_str("length"))
         .map_err(|e| JsError::new(&format!("{what} could not be read: {}", message(&e))))?
         .as_f64()
