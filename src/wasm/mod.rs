@@ -83,3 +83,17 @@ fn outlines_to_js(outlines: &[Outline]) -> Result<Array, JsError> {
     }
     Ok(list)
 }
+
+/// The limits on inputs, `{ bytes, pixels, points, vertices }`: the largest text file in
+/// bytes, image in pixels, outline in points and mesh in vertices. One definition
+/// (`akap::import::Limits`), which the TypeScript layer reads instead of repeating it.
+#[wasm_bindgen(js_name = limits)]
+pub fn js_limits() -> Result<Object, JsValue> {
+    let l = limits();
+    object(&[
+        ("bytes", (l.max_bytes as f64).into()),
+        ("pixels", (l.max_pixels as f64).into()),
+        ("points", (l.max_points as f64).into()),
+        ("vertices", (l.max_vertices as f64).into()),
+    ])
+}

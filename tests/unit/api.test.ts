@@ -1,6 +1,6 @@
 /** The public API in Node, through the real wasm package (built by scripts/build.sh). */
 import { beforeAll, describe, expect, it } from "vitest";
-import { defaultShape, init, meshFromArrays, triangulate } from "../../www/src/index.js";
+import { defaultShape, importSvg, init, limits, meshFromArrays, triangulate } from "../../www/src/index.js";
 
 beforeAll(async () => {
   await init();
@@ -87,6 +87,23 @@ describe("meshFromArrays", () => {
     }
     expect(() => triangulate({ outer: [0, 0, 2e300, 0, 0, 1] })).toThrow(
       "point 1 of the outer boundary has the coordinate 2e300, beyond the limit of ±1e300; scale the outline down",
+    );
+  });
+});
+
+describe("limits", () => {
+  it("are the README's, and the ones every function enforces", () => {
+    // README: "32 MB per file, 4096 x 4096 pixels, 100000 vertices" (and 100000 outline points).
+    const l = limits();
+    expect(l).toEqual({ bytes: 32 * 1024 * 1024, pixels: 4096 * 4096, points: 100_000, vertices: 100_000 });
+    expect(() => triangulate(defaultShape(), { maxVertices: l.vertices + 1 })).toThrow(
+      `option maxVertices is ${l.vertices + 1}, expected a whole number from 0 to ${l.vertices}`,
+    );
+    const svg = `<svg xmlns="http://www.w3.org/2000/svg">${" ".repeat(l.bytes)}</svg>`;
+    expect(() => importSvg(svg)).toThrow(`; the limit is ${l.bytes}`);
+    const positions = new Float64Array(2 * l.vertices + 2);
+    expect(() => meshFromArrays(positions, [0, 1, 2])).toThrow(
+      `the mesh has ${l.vertices + 1} vertices (${2 * l.vertices + 2} numbers), more than the limit of ${l.vertices} vertices`,
     );
   });
 });

@@ -15,7 +15,7 @@ import {
   type Widget,
   type WidgetOptions,
 } from "../src/index.js";
-import { MAX_VERTICES } from "../src/widget/shape.js";
+import { maxVertices } from "../src/widget/shape.js";
 import galleryIndex from "../gallery/index.json";
 
 /** The gallery files, as URLs the bundler serves. */
@@ -52,10 +52,10 @@ function optionsFromUrl(params: URLSearchParams): { options: WidgetOptions; prob
   const vertices = params.get("vertices");
   if (vertices !== null) {
     const count = Number(vertices);
-    if (vertices.trim() !== "" && Number.isFinite(count) && count >= 50 && count <= MAX_VERTICES) {
+    if (vertices.trim() !== "" && Number.isFinite(count) && count >= 50 && count <= maxVertices()) {
       options.vertices = count;
     } else {
-      problems.push(`?vertices=${vertices} is not a number from 50 to ${MAX_VERTICES}`);
+      problems.push(`?vertices=${vertices} is not a number from 50 to ${maxVertices()}`);
     }
   }
   const method = params.get("method");

@@ -288,6 +288,24 @@ export class Deformer {
   }
 }
 
+/** The limits on what the functions take (the same in Rust, the bindings and the widget). */
+export interface Limits {
+  /** Largest text file (SVG, OBJ, JSON), in bytes. */
+  bytes: number;
+  /** Largest image, in pixels (width times height). */
+  pixels: number;
+  /** Most points of an outline (imported or given to `triangulate`). */
+  points: number;
+  /** Most vertices of a mesh. */
+  vertices: number;
+}
+
+/** The limits on inputs; bigger inputs are refused with an `Error` saying so. */
+export function limits(): Limits {
+  assertLoaded();
+  return raw.limits() as Limits;
+}
+
 /** The built-in default shape, a waving gingerbread figure about 1.4 units tall (y up). */
 export function defaultShape(): { outer: Float64Array; holes: Float64Array[] } {
   assertLoaded();

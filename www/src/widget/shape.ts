@@ -3,7 +3,7 @@
  * and how it was made (a built-in shape's name and triangulation, so sessions can rebuild
  * it exactly).
  */
-import { builtinShape, meshFromArrays, triangulate, type MeshData, type Outline } from "../core.js";
+import { builtinShape, limits, meshFromArrays, triangulate, type MeshData, type Outline } from "../core.js";
 import type { VectorPath } from "../import.js";
 import type { Session, ShapeSpec } from "./session.js";
 import { boxUvs, uniqueEdges } from "./geometry.js";
@@ -26,8 +26,10 @@ export interface Shape {
   vector?: VectorPath[];
 }
 
-/** Most vertices a widget mesh may have. */
-export const MAX_VERTICES = 100_000;
+/** Most vertices a widget mesh may have: the library's mesh limit (see `limits()`). */
+export function maxVertices(): number {
+  return limits().vertices;
+}
 
 /**
  * Triangulates an outline to about `vertices` vertices: an equilateral mesh of edge h has
@@ -41,10 +43,11 @@ export function meshOutline(
   minAngle: number,
   label = name ?? "custom shape",
 ): Shape {
-  if (!(Number.isFinite(vertices) && vertices >= 50 && vertices <= MAX_VERTICES)) {
-    throw new RangeError(`the vertex count ${vertices} is outside 50..${MAX_VERTICES}`);
+  const most = maxVertices();
+  if (!(Number.isFinite(vertices) && vertices >= 50 && vertices <= most)) {
+    throw new RangeError(`the vertex count ${vertices} is outside 50..${most}`);
   }
-  const limit = Math.min(4 * vertices + 1000, MAX_VERTICES);
+  const limit = Math.min(4 * vertices + 1000, most);
   let edge = Math.sqrt((2 * outlineArea(outline)) / (Math.sqrt(3) * vertices));
   let mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: limit });
   if (Math.abs(mesh.vertexCount - vertices) > 0.1 * vertices) {
@@ -96,7 +99,7 @@ export function sessionShape(session: Session, current: Shape): Shape {
     const mesh = triangulate(builtinShape(spec.name), {
       targetEdgeLength: spec.targetEdgeLength,
       minAngle: spec.minAngle,
-      maxVertices: Math.min(4 * session.mesh.vertexCount + 1000, MAX_VERTICES),
+      maxVertices: Math.min(4 * session.mesh.vertexCount + 1000, maxVertices()),
     });
     return shapeFromMesh(mesh, { ...spec });
   }

@@ -5,7 +5,7 @@
  * a huge file is refused before any work; every failure is an `Error` saying why, and
  * nothing of the widget changes until a shape is fully built.
  */
-import type { MeshData, Outline } from "../core.js";
+import { limits, type MeshData, type Outline } from "../core.js";
 import type { Shape } from "./shape.js";
 import { vectorTexture } from "./vector-texture.js";
 import { bounds } from "./view.js";
@@ -19,13 +19,11 @@ import {
   type VectorPath,
 } from "../import.js";
 
-/** Limits on what a user file may be. */
-export const FILE_LIMITS = {
-  /** Bytes of any file. */
-  bytes: 32 * 1024 * 1024,
-  /** Pixels of an image (width times height). */
-  pixels: 4096 * 4096,
-};
+/** Limits on what a user file may be: the library's own (see `limits()`). */
+export function fileLimits(): { bytes: number; pixels: number } {
+  const { bytes, pixels } = limits();
+  return { bytes, pixels };
+}
 
 /** What a file gives: outlines to mesh (largest first), or a ready mesh. */
 export type Loaded =
@@ -70,8 +68,8 @@ async function read(file: Blob, name: string): Promise<Loaded> {
   if (!kind) {
     throw new Error(`${name}: not a file we can read (SVG, PNG, JPEG, WebP, GIF, OBJ or JSON mesh)`);
   }
-  if (file.size > FILE_LIMITS.bytes) {
-    throw new Error(`${name} is ${megabytes(file.size)}; the limit is ${megabytes(FILE_LIMITS.bytes)}`);
+  if (file.size > fileLimits().bytes) {
+    throw new Error(`${name} is ${megabytes(file.size)}; the limit is ${megabytes(fileLimits().bytes)}`);
   }
   switch (kind) {
     case "svg": {
@@ -100,9 +98,9 @@ async function readImage(file: Blob, name: string): Promise<Loaded> {
     throw new Error(`${name}: the browser could not decode this image`);
   }
   const { width, height } = bitmap;
-  if (width * height > FILE_LIMITS.pixels) {
+  if (width * height > fileLimits().pixels) {
     bitmap.close();
-    throw new Error(`${name} is ${width} x ${height} pixels; the limit is ${FILE_LIMITS.pixels} pixels`);
+    throw new Error(`${name} is ${width} x ${height} pixels; the limit is ${fileLimits().pixels} pixels`);
   }
   const canvas = document.createElement("canvas");
   canvas.width = width;

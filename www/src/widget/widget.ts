@@ -40,7 +40,7 @@ import { parseSession, type Session } from "./session.js";
 import { toolbarActions } from "./actions.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
-import { FILE_LIMITS, fileKind, paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
+import { fileKind, fileLimits, paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
 import { COMPACT_WIDTH, Stage } from "./stage.js";
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
@@ -338,7 +338,7 @@ export class Widget {
    * step.
    */
   async loadFile(file: Blob, name = (file as File).name ?? "file"): Promise<void> {
-    if (fileKind(name, file.type) === "json" && file.size <= FILE_LIMITS.bytes) {
+    if (fileKind(name, file.type) === "json" && file.size <= fileLimits().bytes) {
       const text = await file.text();
       if (/"format"\s*:\s*"akap-session"/.test(text)) return this.loadSession(file);
     }
