@@ -1,7 +1,11 @@
 //! Small planar geometry helpers shared by the outline checks, the mesh and the tests.
 //!
 //! Points are `[x, y]` arrays of `f64`. Orientation follows the usual convention: positive
-//! signed area means counter-clockwise.
+//! signed area means counter-clockwise. [`orientation`] decides the sign exactly (a
+//! floating-point filter, then exact expansion arithmetic when the filter cannot tell, as
+//! in Shewchuk's adaptive predicates), and so does [`segments_intersect`].
+
+use std::cmp::Ordering;
 
 /// A point (or vector) in the plane, `[x, y]`.
 pub type Point = [f64; 2];
@@ -10,6 +14,74 @@ pub type Point = [f64; 2];
 #[inline]
 pub fn orient(a: Point, b: Point, c: Point) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// Relative error bound of [`orient`] (Shewchuk's `ccwerrboundA`, `(3 + 16 eps) eps` with
+/// `eps = 2^-53`): the computed sign is right when the result exceeds this times the sum of
+/// the two products' magnitudes.
+const ORIENT_ERROR_BOUND: f64 = (3.0 + 16.0 * f64::EPSILON / 2.0) * f64::EPSILON / 2.0;
+
+/// The exact sign of `orient(a, b, c)`: `Greater` when `a b c` turn counter-clockwise,
+/// `Less` when clockwise, `Equal` when the three points are collinear. Exact for finite
+/// coordinates whose products neither overflow nor underflow (magnitudes between about
+/// 1e-140 and 1e150, or 0).
+pub fn orientation(a: Point, b: Point, c: Point) -> Ordering {
+    let left = (b[0] - a[0]) * (c[1] - a[1]);
+    let right = (b[1] - a[1]) * (c[0] - a[0]);
+    // Differences and products of rounded differences keep their signs, so when the two
+    // products have different signs (or one is zero) the sign of their difference is right.
+    if (left > 0.0 && right <= 0.0) || (left < 0.0 && right >= 0.0) || left == 0.0 {
+        return (left - right).partial_cmp(&0.0).unwrap_or(Ordering::Equal);
+    }
+    let det = left - right;
+    let bound = ORIENT_ERROR_BOUND * (left.abs() + right.abs());
+    if det > bound {
+        Ordering::Greater
+    } else if -det > bound {
+        Ordering::Less
+    } else {
+        exact_orientation(a, b, c)
+    }
+}
+
+/// The sign of `orient(a, b, c)` by exact arithmetic: the determinant expanded into six
+/// products of coordinates (`bx cy - bx ay - ax cy - by cx + by ax + ay cx`; the `ax ay`
+/// terms cancel), each split exactly into a rounded product and its error (a fused
+/// multiply-add), summed into a non-overlapping expansion whose largest component has the
+/// sign of the sum.
+fn exact_orientation(a: Point, b: Point, c: Point) -> Ordering {
+    let products = [(b[0], c[1]), (-b[0], a[1]), (-a[0], c[1]), (-b[1], c[0]), (b[1], a[0]), (a[1], c[0])];
+    let mut expansion = [0.0; 12];
+    let mut len = 0;
+    for (x, y) in products {
+        let product = x * y;
+        let error = x.mul_add(y, -product);
+        for term in [error, product] {
+            // Grow-Expansion: add one term, keeping the components non-overlapping and in
+            // increasing magnitude.
+            let mut q = term;
+            for component in &mut expansion[..len] {
+                let (sum, rest) = two_sum(q, *component);
+                *component = rest;
+                q = sum;
+            }
+            expansion[len] = q;
+            len += 1;
+        }
+    }
+    expansion
+        .iter()
+        .rev()
+        .find(|c| **c != 0.0)
+        .map_or(Ordering::Equal, |c| c.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
+}
+
+/// `a + b` as the rounded sum and its exact error (Knuth's two-sum).
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let sum = a + b;
+    let b_virtual = sum - a;
+    let a_virtual = sum - b_virtual;
+    (sum, (a - a_virtual) + (b - b_virtual))
 }
 
 /// Signed area of triangle `a b c` (positive when counter-clockwise).
@@ -64,19 +136,21 @@ fn within(a: Point, b: Point, p: Point) -> bool {
 }
 
 /// Whether the closed segments `a b` and `c d` share at least one point (crossing, touching
-/// or overlapping).
+/// or overlapping), decided exactly (see [`orientation`]).
 pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let d1 = orient(c, d, a);
-    let d2 = orient(c, d, b);
-    let d3 = orient(a, b, c);
-    let d4 = orient(a, b, d);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+    use Ordering::{Equal, Greater, Less};
+    let d1 = orientation(c, d, a);
+    let d2 = orientation(c, d, b);
+    let d3 = orientation(a, b, c);
+    let d4 = orientation(a, b, d);
+    let opposite = |x: Ordering, y: Ordering| matches!((x, y), (Less, Greater) | (Greater, Less));
+    if opposite(d1, d2) && opposite(d3, d4) {
         return true;
     }
-    (d1 == 0.0 && within(c, d, a))
-        || (d2 == 0.0 && within(c, d, b))
-        || (d3 == 0.0 && within(a, b, c))
-        || (d4 == 0.0 && within(a, b, d))
+    (d1 == Equal && within(c, d, a))
+        || (d2 == Equal && within(c, d, b))
+        || (d3 == Equal && within(a, b, c))
+        || (d4 == Equal && within(a, b, d))
 }
 
 /// Whether `p` lies strictly inside the closed polygon `ring` (even-odd rule; points on the
@@ -120,6 +194,33 @@ mod tests {
         assert!(!segments_intersect(a, b, [2.5, 0.0], [3.0, 0.0]), "collinear apart");
         assert!(!segments_intersect(a, b, [0.0, 1.0], [2.0, 1.0]), "parallel");
         assert!(!segments_intersect(a, b, [3.0, -1.0], [3.0, 1.0]), "would cross if extended");
+    }
+
+    #[test]
+    fn orientation_is_exact_where_rounding_is_not() {
+        // Shewchuk's example: (0.5 + i u, 0.5 + j u), (12, 12), (24, 24) with u = 2^-53,
+        // nearly collinear. Scaled by 2^53 every coordinate is an integer below 2^58, so
+        // i128 gives the exact sign.
+        let u = f64::EPSILON / 2.0;
+        let mut wrong_by_rounding = 0;
+        for i in 0..64i64 {
+            for j in 0..64i64 {
+                let (a, b, c) = ([0.5 + i as f64 * u, 0.5 + j as f64 * u], [12.0, 12.0], [24.0, 24.0]);
+                let half = 1i128 << 52;
+                let (ax, ay) = (half + i128::from(i), half + i128::from(j));
+                let (bx, cx) = (12i128 << 53, 24i128 << 53);
+                let exact = ((bx - ax) * (cx - ay)).cmp(&((bx - ay) * (cx - ax)));
+                assert_eq!(orientation(a, b, c), exact, "i = {i}, j = {j}");
+                if orient(a, b, c).partial_cmp(&0.0) != Some(exact) {
+                    wrong_by_rounding += 1;
+                }
+            }
+        }
+        // The cases are hard: plain floating point gets many of them wrong.
+        assert!(wrong_by_rounding > 100, "{wrong_by_rounding}");
+        // And a segment test that rounding would get wrong: nearly touching.
+        let (a, b) = ([0.5 + 3.0 * u, 0.5], [24.0, 24.0]);
+        assert_eq!(segments_intersect(a, b, [12.0, 12.0], [12.0, 11.0]), orientation(a, b, [12.0, 12.0]).is_ge());
     }
 
     #[test]

@@ -4,10 +4,13 @@
 //! [`crate::Mesh`]. Validation happens here, before any triangulation: at least three
 //! distinct points per ring, finite coordinates, non-zero area, no ring crossing or touching
 //! itself or another ring, every hole inside the outer boundary and outside the other holes.
+//! Crossings and containment come from one sweep (`crate::sweep`), O(n log n) in the number
+//! of points.
 
 use std::fmt;
 
-use crate::geometry::{bounding_box, point_in_polygon, polygon_area, segments_intersect, Point};
+use crate::geometry::{bounding_box, polygon_area, Point};
+use crate::sweep::{sweep, Find, Sweep};
 
 /// Relative area below which a ring counts as having zero area (fraction of its squared
 /// bounding-box diagonal).
@@ -181,7 +184,8 @@ impl Outline {
             return Err(OutlineError::TooManyPoints { count, limit: max_points });
         }
         // Crossings first: a figure-eight has zero signed area, but its problem is the crossing.
-        check_no_intersections(&rings)?;
+        let found = sweep(&rings, Find::First, usize::MAX).expect("an unlimited sweep finishes");
+        first_meeting(&found)?;
         for (k, ring) in rings.iter().enumerate() {
             let (lo, hi) = bounding_box(ring.iter().copied()).expect("ring has points");
             let diagonal2 = (hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2);
@@ -189,12 +193,18 @@ impl Outline {
                 return Err(OutlineError::ZeroArea { ring: Ring(k) });
             }
         }
-        // Rings do not meet, so one point decides containment for a whole ring.
+        // Rings do not meet, so the sweep's containment tree is exact: a hole must have the
+        // outer boundary as an ancestor (else it lies outside) and as its parent (else it
+        // lies inside another hole).
+        let mut top = vec![0; rings.len()];
+        for &r in &found.order {
+            top[r] = found.parents[r].map_or(r, |p| top[p]);
+        }
         for k in 1..rings.len() {
-            if !point_in_polygon(rings[k][0], &rings[0]) {
+            if top[k] != 0 {
                 return Err(OutlineError::HoleOutside { hole: Ring(k) });
             }
-            if let Some(c) = (1..rings.len()).find(|&c| c != k && point_in_polygon(rings[k][0], &rings[c])) {
+            if let Some(c) = found.parents[k].filter(|&c| c != 0) {
                 return Err(OutlineError::NestedHole { hole: Ring(k), container: Ring(c) });
             }
         }
@@ -202,20 +212,16 @@ impl Outline {
     }
 }
 
-/// One segment of a ring, for the sweep.
-struct Segment {
-    ring: usize,
-    index: usize,
-    a: Point,
-    b: Point,
-    min_x: f64,
-    max_x: f64,
-}
-
 /// Rejects any two segments that meet, other than consecutive segments of one ring at
 /// their shared point.
+#[cfg(test)]
 pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), OutlineError> {
-    match meeting_segments(rings, true, usize::MAX).unwrap_or_default().first() {
+    let found = sweep(rings, Find::First, usize::MAX).expect("an unlimited sweep finishes");
+    first_meeting(&found)
+}
+
+fn first_meeting(found: &Sweep) -> Result<(), OutlineError> {
+    match found.meetings.first() {
         Some(&[(ring_a, segment_a), (ring_b, segment_b)]) => {
             Err(OutlineError::SelfIntersection { ring_a: Ring(ring_a), segment_a, ring_b: Ring(ring_b), segment_b })
         }
@@ -223,71 +229,10 @@ pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), Outline
     }
 }
 
-/// The pairs of segments, as `(ring, segment)` with the smaller first, that meet other than
-/// consecutive segments of one ring at their shared point: all of them, or only the first
-/// found. Sweeps segments sorted by their left end, so only segments whose x ranges
-/// overlap are compared; gives up (`None`) after `budget` such comparisons.
-pub(crate) fn meeting_segments(
-    rings: &[Vec<Point>],
-    first_only: bool,
-    budget: usize,
-) -> Option<Vec<[(usize, usize); 2]>> {
-    let mut segments: Vec<Segment> = Vec::new();
-    for (ring, points) in rings.iter().enumerate() {
-        for index in 0..points.len() {
-            let (a, b) = (points[index], points[(index + 1) % points.len()]);
-            segments.push(Segment { ring, index, a, b, min_x: a[0].min(b[0]), max_x: a[0].max(b[0]) });
-        }
-    }
-    segments.sort_by(|s, t| s.min_x.total_cmp(&t.min_x));
-    let mut pairs = Vec::new();
-    let mut comparisons = 0usize;
-    for (i, s) in segments.iter().enumerate() {
-        for t in &segments[i + 1..] {
-            if t.min_x > s.max_x {
-                break;
-            }
-            comparisons += 1;
-            if comparisons > budget {
-                return None;
-            }
-            if meet(s, t, rings) {
-                let (first, second) = if (s.ring, s.index) < (t.ring, t.index) { (s, t) } else { (t, s) };
-                pairs.push([(first.ring, first.index), (second.ring, second.index)]);
-                if first_only {
-                    return Some(pairs);
-                }
-            }
-        }
-    }
-    Some(pairs)
-}
-
-/// Whether two distinct segments meet anywhere they should not.
-fn meet(s: &Segment, t: &Segment, rings: &[Vec<Point>]) -> bool {
-    if s.ring == t.ring {
-        let len = rings[s.ring].len();
-        let (next_of_s, next_of_t) = ((s.index + 1) % len, (t.index + 1) % len);
-        // Consecutive segments share one end; they meet elsewhere only if they fold back
-        // onto each other, i.e. the far end of one lies on the other.
-        if next_of_s == t.index {
-            return on_segment(t.b, s.a, s.b) || on_segment(s.a, t.a, t.b);
-        }
-        if next_of_t == s.index {
-            return on_segment(s.b, t.a, t.b) || on_segment(t.a, s.a, s.b);
-        }
-    }
-    segments_intersect(s.a, s.b, t.a, t.b)
-}
-
-/// Whether `p` lies on the closed segment `a b`.
-fn on_segment(p: Point, a: Point, b: Point) -> bool {
-    segments_intersect(p, p, a, b)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::segments_intersect;
 
     fn square(x: f64, y: f64, s: f64) -> Vec<Point> {
         vec![[x, y], [x + s, y], [x + s, y + s], [x, y + s]]

@@ -88,10 +88,11 @@ pub enum ImportError {
         /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
         skipped: Vec<String>,
     },
-    /// Checking the outline for crossings would take too long: too many segments lie close
-    /// together (only adversarial inputs do this).
+    /// Checking the outline for crossings would take more comparisons of segments than
+    /// [`crate::import::Limits::max_segment_pairs`] allows (only far more points than the
+    /// point limit, or a small budget, come near it).
     TooComplex {
-        /// The number of nearby segment pairs after which the check gave up.
+        /// The number of comparisons after which the check gave up.
         pairs: usize,
     },
     /// The pixel buffer does not match the image size.
@@ -167,7 +168,7 @@ impl fmt::Display for ImportError {
             }
             Self::TooComplex { pairs } => write!(
                 f,
-                "the outline has more than {pairs} pairs of segments close together to check for crossings; \
+                "checking the outline for crossings needs more than {pairs} comparisons of segments; \
                  simplify the shape"
             ),
             Self::ImageSize { width, height, len } => write!(

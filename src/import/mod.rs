@@ -39,9 +39,11 @@ pub struct Limits {
     pub max_vertices: usize,
     /// Most XML nodes (elements, attributes' text nodes and so on) of an SVG.
     pub max_elements: usize,
-    /// Most comparisons of nearby segments when checking that outlines neither cross nor
-    /// touch (a sweep; only adversarial inputs, thousands of segments stacked in one
-    /// place, come near the default).
+    /// Most comparisons of segments when checking that outlines neither cross nor touch
+    /// (a sweep making O(n log n) of them for n segments: about 20 per segment at the
+    /// point limit; simplifying a traced image repeats it, on fewer points, until nothing
+    /// crosses). The default, 50 million, is a backstop far above what the point limit
+    /// needs.
     pub max_segment_pairs: usize,
     /// Largest magnitude of a coordinate of an SVG's shapes once placed in the drawing (in
     /// the root `viewBox`'s units, after every transform), which also bounds the drawing's
