@@ -83,6 +83,18 @@ pub enum ImportError {
         /// The limit on the magnitude of coordinates.
         limit: f64,
     },
+    /// An SVG's elements have too many attributes for the XML parser's duplicate check
+    /// (see [`crate::import::Limits::max_attribute_pairs`]); refused before parsing.
+    TooManyAttributes {
+        /// Line of the start tag that goes beyond the limit, from 1.
+        line: u32,
+        /// Its column, from 1.
+        column: u32,
+        /// Its number of attributes.
+        attributes: usize,
+        /// The limit on pairs of attributes compared.
+        limit: usize,
+    },
     /// The SVG has no filled shape that could become an outline.
     NoShapes {
         /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
@@ -162,6 +174,12 @@ impl fmt::Display for ImportError {
                      limit for the geometry to work in double precision; scale the drawing down"
                 )
             }
+            Self::TooManyAttributes { line, column, attributes, limit } => write!(
+                f,
+                "too many attributes: the element at line {line}, column {column} has {attributes}, which takes \
+                 the pairs of attributes the XML parser compares for duplicates (n(n-1)/2 per element of n) \
+                 beyond the limit of {limit}; an SVG element needs a few dozen attributes at most"
+            ),
             Self::NoShapes { skipped } if skipped.is_empty() => write!(f, "the SVG has no filled shape"),
             Self::NoShapes { skipped } => {
                 write!(f, "the SVG has no filled shape (unsupported elements skipped: {})", skipped.join(", "))

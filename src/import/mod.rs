@@ -39,6 +39,13 @@ pub struct Limits {
     pub max_vertices: usize,
     /// Most XML nodes (elements, attributes' text nodes and so on) of an SVG.
     pub max_elements: usize,
+    /// Most comparisons the XML parser may make to find duplicate attributes in an SVG:
+    /// it compares every pair of an element's attributes, n(n-1)/2 for n of them, summed
+    /// over the elements (an element an entity defines counts once per node the document
+    /// may hold). The default, 10 million (about 15 ms of the parser's time natively),
+    /// allows one element of 4,000 attributes, or 100,000 elements of 14 each; real
+    /// elements have a few dozen at most.
+    pub max_attribute_pairs: usize,
     /// Most comparisons of segments when checking that outlines neither cross nor touch
     /// (a sweep making O(n log n) of them for n segments: about 20 per segment at the
     /// point limit; simplifying a traced image repeats it, on fewer points, until nothing
@@ -63,6 +70,7 @@ impl Default for Limits {
             max_points: 100_000,
             max_vertices: 1_000_000,
             max_elements: 200_000,
+            max_attribute_pairs: 10_000_000,
             max_segment_pairs: 50_000_000,
             max_coordinate: 1e30,
         }
