@@ -9,6 +9,7 @@ use js_sys::{Array, Float64Array, Object, Reflect, Uint32Array};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
+use crate::deform::arap::MAX_ITERATIONS;
 use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions, Orders};
 use crate::mesh::Mesh;
 use crate::outline::Outline;
@@ -445,8 +446,13 @@ fn parse_deformer_options(value: JsValue, base: MethodOptions) -> Result<MethodO
             }
             ("iterations", MethodOptions::Arap(o)) => {
                 o.iterations = match field.as_f64() {
-                    Some(n) if n.fract() == 0.0 && (1.0..=1e6).contains(&n) => n as usize,
-                    _ => return Err(JsError::new("option iterations must be a whole number from 1 to 1000000")),
+                    Some(n) if n.fract() == 0.0 && (1.0..=MAX_ITERATIONS as f64).contains(&n) => n as usize,
+                    _ => {
+                        return Err(JsError::new(&format!(
+                            "option iterations must be a whole number from 1 to {MAX_ITERATIONS} (iterations per \
+                             step: a step's work grows with them, and {MAX_ITERATIONS} is far more than a frame needs)"
+                        )))
+                    }
                 };
             }
             ("lambda" | "dirichlet" | "integrator", _) => return Err(only(key, "akap")),

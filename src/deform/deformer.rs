@@ -96,6 +96,8 @@ pub enum DeformError {
         name: &'static str,
         /// The value given.
         value: f64,
+        /// What would be accepted.
+        expected: &'static str,
     },
     /// A handle names a vertex that does not exist.
     VertexOutOfRange {
@@ -168,9 +170,7 @@ impl fmt::Display for DeformError {
             Self::Disconnected { components } => {
                 write!(f, "the mesh has {components} separate pieces; the deformer needs one connected piece")
             }
-            Self::InvalidOption { name, value } => {
-                write!(f, "option {name} is {value}, expected a finite number above 0")
-            }
+            Self::InvalidOption { name, value, expected } => write!(f, "option {name} is {value}, expected {expected}"),
             Self::VertexOutOfRange { handle, vertex, vertex_count } => {
                 write!(f, "handle {handle} is at vertex {vertex}, but the mesh has only {vertex_count} vertices")
             }
@@ -674,7 +674,11 @@ impl Deformer {
 
 fn check_options(options: &DeformerOptions) -> Result<(), DeformError> {
     if !(options.lambda.is_finite() && options.lambda > 0.0) {
-        return Err(DeformError::InvalidOption { name: "lambda", value: options.lambda });
+        return Err(DeformError::InvalidOption {
+            name: "lambda",
+            value: options.lambda,
+            expected: "a finite number above 0",
+        });
     }
     Ok(())
 }
