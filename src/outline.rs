@@ -200,8 +200,8 @@ impl Outline {
         for &r in &found.order {
             top[r] = found.parents[r].map_or(r, |p| top[p]);
         }
-        for k in 1..rings.len() {
-            if top[k] != 0 {
+        for (k, &root) in top.iter().enumerate().skip(1) {
+            if root != 0 {
                 return Err(OutlineError::HoleOutside { hole: Ring(k) });
             }
             if let Some(c) = found.parents[k].filter(|&c| c != 0) {

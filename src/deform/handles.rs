@@ -85,9 +85,10 @@ pub(crate) fn distinct_points(points: &[[f64; 2]], tolerance: f64) -> usize {
     // Points by cell, then by index.
     let mut order: Vec<([i64; 2], usize)> = points.iter().enumerate().map(|(i, p)| (cell(p), i)).collect();
     order.sort_unstable();
-    let within = |i: usize, j: usize| {
+    // Exactly the rule's comparison, so that NaN distances count as near too.
+    let far = |i: usize, j: usize| {
         let (p, q) = (points[i], points[j]);
-        !((q[0] - p[0]).hypot(q[1] - p[1]) > tolerance)
+        (q[0] - p[0]).hypot(q[1] - p[1]) > tolerance
     };
     let mut count = 0;
     let mut start = 0;
@@ -101,7 +102,7 @@ pub(crate) fn distinct_points(points: &[[f64; 2]], tolerance: f64) -> usize {
                     return false;
                 }
                 let from = order.partition_point(|(k, _)| *k < other);
-                order[from..].iter().take_while(|(k, j)| *k == other && *j < first).any(|&(_, j)| within(first, j))
+                order[from..].iter().take_while(|(k, j)| *k == other && *j < first).any(|&(_, j)| !far(first, j))
             })
         });
         if !near_earlier {
