@@ -139,8 +139,8 @@ fn thousands_of_small_polygons_and_deep_nesting() {
 
 #[test]
 fn long_paths_import_whole() {
-    // A circle of 40,000 points: the outline is the path itself (y flipped).
-    let n = 40_000;
+    // A circle of 30,000 points: the outline is the path itself (y flipped).
+    let n = 30_000;
     let circle: Vec<Point> = (0..n)
         .map(|k| {
             let t = std::f64::consts::TAU * k as f64 / n as f64;
@@ -155,10 +155,10 @@ fn long_paths_import_whole() {
     for (p, q) in circle.iter().zip(outer) {
         assert!((q[0] - (p[0] + 1.0)).abs() < 1e-15 && (q[1] - (1.0 - p[1])).abs() < 1e-15, "{p:?} -> {q:?}");
     }
-    // A comb of 40,000 points, every long edge overlapping every other in x.
-    let teeth = 10_000;
+    // A comb of 30,000 points, every long edge overlapping every other in x.
+    let teeth = 7_500;
     let body = format!(r#"<path d="{}"/>"#, path_data(&comb(teeth, 1000.0)));
-    let shape = import_svg(&svg("-1 0 1001 20000", &body), &SvgOptions::default()).unwrap();
+    let shape = import_svg(&svg("-1 0 1001 15000", &body), &SvgOptions::default()).unwrap();
     assert_eq!(shape.outlines.len(), 1);
     assert_eq!(shape.outlines[0].outer.len(), 4 * teeth);
     assert_eq!(shape.outlines[0].area(), teeth as f64 * 1000.0 + 2.0 * teeth as f64 - 1.0);
@@ -166,8 +166,8 @@ fn long_paths_import_whole() {
 
 #[test]
 fn large_outlines_are_checked_fast_and_refused_in_the_callers_terms() {
-    // A comb of 20,000 points with a hole in each tooth: valid.
-    let teeth = 5_000;
+    // A comb of 12,000 points with a hole in each tooth: valid.
+    let teeth = 3_000;
     let hole = |i: usize| {
         let (x, y) = (10.0 + (i % 900) as f64, 2.0 * i as f64 + 0.5);
         vec![[x, y - 0.25], [x + 10.0, y], [x, y + 0.25]]
@@ -186,13 +186,13 @@ fn large_outlines_are_checked_fast_and_refused_in_the_callers_terms() {
     nested.holes[10] = vec![[22.0, 22.45], [24.0, 22.5], [22.0, 22.55]];
     let expected = OutlineError::NestedHole { hole: Ring(11), container: Ring(12) };
     assert_eq!(nested.validated(usize::MAX), Err(expected));
-    // 20,000 outline points against a limit of 20,000 vertices: no room to refine.
+    // 12,000 outline points against a limit of 12,000 vertices: no room to refine.
     let outline = Outline::new(comb(teeth, 1000.0));
     let options = TriangulationOptions::default().with_max_vertices(4 * teeth);
     let error = triangulate(&outline, &options).unwrap_err();
     assert_eq!(error, TriangulationError::TooManyVertices { limit: 4 * teeth, outline_points: 4 * teeth });
     let message = error.to_string();
-    assert!(message.contains("the outline has 20000 points, too many to mesh within the vertex limit of 20000"));
+    assert!(message.contains("the outline has 12000 points, too many to mesh within the vertex limit of 12000"));
 }
 
 #[test]
@@ -200,9 +200,9 @@ fn tens_of_thousands_of_handles() {
     let mesh = grid(20, 20);
     let size = 20.0 * 2f64.sqrt();
     let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
-    // 40,000 handles within 1e-12 of the shape's size of vertex 0: one point, so the shape
+    // 20,000 handles within 1e-12 of the shape's size of vertex 0: one point, so the shape
     // follows it rigidly, by the mean velocity.
-    let count = 40_000;
+    let count = 20_000;
     let mut rng = Rng::new(16);
     let triangles = vec![0u32; count];
     let offset = 0.4e-12 * size;
@@ -219,8 +219,8 @@ fn tens_of_thousands_of_handles() {
     for (p, q) in mesh.positions().iter().zip(deformer.positions()) {
         assert!((q[0] - p[0] - mean[0]).abs() < 1e-12 && (q[1] - p[1] - mean[1]).abs() < 1e-12);
     }
-    // 40,000 distinct handles that do not move: nothing moves.
-    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    // 20,000 distinct handles that do not move: nothing moves.
+    let before = deformer.positions().to_vec();
     let triangles: Vec<u32> = (0..count).map(|k| (k % mesh.triangle_count()) as u32).collect();
     let barycentric: Vec<[f64; 3]> = (0..count)
         .map(|_| {
@@ -231,7 +231,7 @@ fn tens_of_thousands_of_handles() {
         .collect();
     deformer.set_handle_points(&triangles, &barycentric).unwrap();
     deformer.step(&vec![[0.0, 0.0]; count]).unwrap();
-    for (p, q) in mesh.positions().iter().zip(deformer.positions()) {
+    for (p, q) in before.iter().zip(deformer.positions()) {
         assert!((q[0] - p[0]).abs() < 1e-9 && (q[1] - p[1]).abs() < 1e-9, "{p:?} -> {q:?}");
     }
 }

@@ -246,7 +246,7 @@ mod tests {
 
     #[test]
     fn nearest_triangle_matches_comparing_every_triangle() {
-        let meshes = [grid(10, (0, 0)), grid(12, (4, 8))];
+        let meshes = [grid(8, (0, 0)), grid(9, (3, 6))];
         let mut state = 11u64;
         let mut next = |n: u64| {
             state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
@@ -257,17 +257,18 @@ mod tests {
             let positions = mesh.positions();
             let brute_force = |p: Point| {
                 let d = |t: usize| triangle_distance(mesh.triangles()[t].map(|i| positions[i as usize]), p);
-                (0..mesh.triangle_count()).min_by(|&s, &t| d(s).total_cmp(&d(t))).unwrap()
+                // The first of the nearest, as `min_by` keeps the first of equals.
+                (0..mesh.triangle_count()).map(|t| (d(t), t)).min_by(|a, b| a.0.total_cmp(&b.0)).unwrap().1
             };
             // Half-unit points inside, on edges and vertices, in the hole and outside (ties
             // everywhere), and arbitrary points.
             let mut points: Vec<Point> =
-                (0..2500).map(|_| [next(60) as f64 / 2.0 - 10.0, next(60) as f64 / 2.0 - 10.0]).collect();
+                (0..400).map(|_| [next(60) as f64 / 2.0 - 10.0, next(60) as f64 / 2.0 - 10.0]).collect();
             points.extend(
                 (0..4000).map(|_| [next(1 << 20) as f64 / 26214.4 - 10.0, next(1 << 20) as f64 / 26214.4 - 10.0]),
             );
             points.extend(positions.iter().copied());
-            points.extend([[6.0, 6.0], [1e9, -1e9], [-0.5, -0.5]]);
+            points.extend([[4.5, 4.5], [1e9, -1e9], [-0.5, -0.5]]);
             for p in points {
                 assert_eq!(tree.nearest(mesh, p), brute_force(p), "at {p:?}");
             }

@@ -61,7 +61,7 @@ fn random_rings(rng: &mut Rng, grid: u64) -> Vec<Vec<Point>> {
 fn finds_a_meeting_exactly_when_there_is_one() {
     let mut rng = Rng(1);
     let (mut with, mut without) = (0, 0);
-    for _ in 0..6000 {
+    for _ in 0..3000 {
         let grid = [4, 8, 30][rng.below(3) as usize];
         let rings = random_rings(&mut rng, grid);
         let expected = brute_force(&rings);
@@ -85,14 +85,14 @@ fn finds_a_meeting_exactly_when_there_is_one() {
             with += 1;
         }
     }
-    assert!(with > 1000 && without > 300, "{with} with meetings, {without} without");
+    assert!(with > 500 && without > 150, "{with} with meetings, {without} without");
 }
 
 #[test]
 fn containment_matches_point_in_polygon() {
     let mut rng = Rng(2);
     let mut checked = 0;
-    for _ in 0..20_000 {
+    for _ in 0..8000 {
         // Several small rings and one large one, so that nesting happens.
         let mut rings = random_rings(&mut rng, 40);
         let (x, y, s) = (rng.below(10) as f64, rng.below(10) as f64, 20.0 + rng.below(20) as f64);
@@ -121,7 +121,7 @@ fn containment_matches_point_in_polygon() {
         }
         assert!(seen.iter().all(|&s| s));
     }
-    assert!(checked > 1000, "{checked} valid sets");
+    assert!(checked > 400, "{checked} valid sets");
 }
 
 /// `teeth` teeth of length 1000 from a spine: every long segment overlaps every other in x.

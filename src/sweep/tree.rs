@@ -216,7 +216,7 @@ mod tests {
         let mut list: Vec<u32> = Vec::new();
         let mut present = vec![false; n as usize];
         let by_key = |a: &u32, b: &u32| (keys[*a as usize], *a).cmp(&(keys[*b as usize], *b));
-        for step in 0..20_000u64 {
+        for step in 0..6_000u64 {
             let id = (mix(step) % u64::from(n)) as u32;
             if present[id as usize] {
                 tree.remove(id);
