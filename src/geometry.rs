@@ -23,9 +23,23 @@ const ORIENT_ERROR_BOUND: f64 = (3.0 + 16.0 * f64::EPSILON / 2.0) * f64::EPSILON
 
 /// The exact sign of `orient(a, b, c)`: `Greater` when `a b c` turn counter-clockwise,
 /// `Less` when clockwise, `Equal` when the three points are collinear. Exact for finite
-/// coordinates whose products neither overflow nor underflow (magnitudes between about
-/// 1e-140 and 1e150, or 0).
+/// coordinates: when the largest is beyond 1e150 or below 1e-140, where products would
+/// overflow or underflow, the three points are first scaled by a power of two (exact,
+/// unless the triple also holds coordinates some 1e290 times smaller, which underflow).
 pub fn orientation(a: Point, b: Point, c: Point) -> Ordering {
+    let largest = [a, b, c].iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    if largest > 1e150 || (largest > 0.0 && largest < 1e-140) {
+        let scale = 2f64.powi(-(largest.log2().floor() as i32));
+        let scaled = |p: Point| [p[0] * scale, p[1] * scale];
+        if largest.is_finite() {
+            return filtered_orientation(scaled(a), scaled(b), scaled(c));
+        }
+    }
+    filtered_orientation(a, b, c)
+}
+
+/// [`orientation`] for coordinates whose products stay in range.
+fn filtered_orientation(a: Point, b: Point, c: Point) -> Ordering {
     let left = (b[0] - a[0]) * (c[1] - a[1]);
     let right = (b[1] - a[1]) * (c[0] - a[0]);
     // Differences and products of rounded differences keep their signs, so when the two
@@ -218,6 +232,17 @@ mod tests {
         }
         // The cases are hard: plain floating point gets many of them wrong.
         assert!(wrong_by_rounding > 100, "{wrong_by_rounding}");
+        // Scaled by powers of two far beyond where products overflow or underflow, the
+        // signs are the same.
+        for (i, j) in [(3.0, 0.0), (0.0, 3.0), (5.0, 5.0), (7.0, 2.0)] {
+            let (a, b, c) = ([0.5 + i * u, 0.5 + j * u], [12.0, 12.0], [24.0, 24.0]);
+            let expected = orientation(a, b, c);
+            for k in [-1000, -600, 600, 1000] {
+                let s = 2f64.powi(k);
+                let scaled = |p: Point| [p[0] * s, p[1] * s];
+                assert_eq!(orientation(scaled(a), scaled(b), scaled(c)), expected, "2^{k}");
+            }
+        }
         // And a segment test that rounding would get wrong: nearly touching.
         let (a, b) = ([0.5 + 3.0 * u, 0.5], [24.0, 24.0]);
         assert_eq!(segments_intersect(a, b, [12.0, 12.0], [12.0, 11.0]), orientation(a, b, [12.0, 12.0]).is_ge());
