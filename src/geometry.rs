@@ -1,7 +1,17 @@
 //! Small planar geometry helpers shared by the outline checks, the mesh and the tests.
 //!
 //! Points are `[x, y]` arrays of `f64`. Orientation follows the usual convention: positive
-//! signed area means counter-clockwise.
+//! signed area means counter-clockwise. Two predicates, for two jobs:
+//!
+//! - [`orientation`] decides the sign exactly (a floating-point filter, then exact expansion
+//!   arithmetic when the filter cannot tell, as in Shewchuk's adaptive predicates): it orders
+//!   the segments of the outline checks' sweep (`crate::sweep`), which must be consistent;
+//! - [`certain_orient`] gives the sign only when double precision can tell it: it decides
+//!   "touching", "degenerate" and "zero area", which mean "to double precision" throughout
+//!   the crate (outline checks, [`segments_intersect`], `Mesh::new`), so that whatever the
+//!   outline checks accept, spade and the mesh checks accept too.
+
+use std::cmp::Ordering;
 
 /// A point (or vector) in the plane, `[x, y]`.
 pub type Point = [f64; 2];
@@ -98,6 +108,89 @@ pub fn orient(a: Point, b: Point, c: Point) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }
 
+/// Relative error bound of [`orient`] (Shewchuk's `ccwerrboundA`, `(3 + 16 eps) eps` with
+/// `eps = 2^-53`): the computed sign is right when the result exceeds this times the sum of
+/// the two products' magnitudes.
+const ORIENT_ERROR_BOUND: f64 = (3.0 + 16.0 * f64::EPSILON / 2.0) * f64::EPSILON / 2.0;
+
+/// The exact sign of `orient(a, b, c)`: `Greater` when `a b c` turn counter-clockwise,
+/// `Less` when clockwise, `Equal` when the three points are collinear. Exact for finite
+/// coordinates: when the largest is beyond 1e150 or below 1e-140, where products would
+/// overflow or underflow, the three points are first scaled by a power of two (exact,
+/// unless the triple also holds coordinates some 1e290 times smaller, which underflow).
+///
+/// This orders the outline checks' sweep; whether two segments *meet* is decided to double
+/// precision by [`segments_intersect`], which uses [`certain_orient`] for touching.
+pub fn orientation(a: Point, b: Point, c: Point) -> Ordering {
+    let largest = [a, b, c].iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    if largest.is_finite() && (largest > 1e150 || (largest > 0.0 && largest < 1e-140)) {
+        let k = -binary_exponent(largest);
+        let scaled = |p: Point| p.map(|x| scale_by_power_of_two(x, k));
+        return filtered_orientation(scaled(a), scaled(b), scaled(c));
+    }
+    filtered_orientation(a, b, c)
+}
+
+/// [`orientation`] for coordinates whose products stay in range.
+fn filtered_orientation(a: Point, b: Point, c: Point) -> Ordering {
+    let left = (b[0] - a[0]) * (c[1] - a[1]);
+    let right = (b[1] - a[1]) * (c[0] - a[0]);
+    // Differences and products of rounded differences keep their signs, so when the two
+    // products have different signs (or one is zero) the sign of their difference is right.
+    if (left > 0.0 && right <= 0.0) || (left < 0.0 && right >= 0.0) || left == 0.0 {
+        return (left - right).partial_cmp(&0.0).unwrap_or(Ordering::Equal);
+    }
+    let det = left - right;
+    let bound = ORIENT_ERROR_BOUND * (left.abs() + right.abs());
+    if det > bound {
+        Ordering::Greater
+    } else if -det > bound {
+        Ordering::Less
+    } else {
+        exact_orientation(a, b, c)
+    }
+}
+
+/// The sign of `orient(a, b, c)` by exact arithmetic: the determinant expanded into six
+/// products of coordinates (`bx cy - bx ay - ax cy - by cx + by ax + ay cx`; the `ax ay`
+/// terms cancel), each split exactly into a rounded product and its error (a fused
+/// multiply-add), summed into a non-overlapping expansion whose largest component has the
+/// sign of the sum.
+fn exact_orientation(a: Point, b: Point, c: Point) -> Ordering {
+    let products = [(b[0], c[1]), (-b[0], a[1]), (-a[0], c[1]), (-b[1], c[0]), (b[1], a[0]), (a[1], c[0])];
+    let mut expansion = [0.0; 12];
+    let mut len = 0;
+    for (x, y) in products {
+        let product = x * y;
+        let error = x.mul_add(y, -product);
+        for term in [error, product] {
+            // Grow-Expansion: add one term, keeping the components non-overlapping and in
+            // increasing magnitude.
+            let mut q = term;
+            for component in &mut expansion[..len] {
+                let (sum, rest) = two_sum(q, *component);
+                *component = rest;
+                q = sum;
+            }
+            expansion[len] = q;
+            len += 1;
+        }
+    }
+    expansion
+        .iter()
+        .rev()
+        .find(|c| **c != 0.0)
+        .map_or(Ordering::Equal, |c| c.partial_cmp(&0.0).unwrap_or(Ordering::Equal))
+}
+
+/// `a + b` as the rounded sum and its exact error (Knuth's two-sum).
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let sum = a + b;
+    let b_virtual = sum - a;
+    let a_virtual = sum - b_virtual;
+    (sum, (a - a_virtual) + (b - b_virtual))
+}
+
 /// Signed area of triangle `a b c` (positive when counter-clockwise).
 #[inline]
 pub fn triangle_area(a: Point, b: Point, c: Point) -> f64 {
@@ -150,22 +243,27 @@ fn within(a: Point, b: Point, p: Point) -> bool {
 }
 
 /// Whether the closed segments `a b` and `c d` share at least one point (crossing, touching
-/// or overlapping) to double precision: an end whose side of the other segment is within
-/// rounding ([`certain_orient`]) counts as on its line. Pass coordinates scaled by
-/// [`normalising_exponent`], so that rounding is all that is uncertain.
+/// or overlapping) to double precision, the one notion of meeting of the outline checks:
+///
+/// - they cross when each segment's ends lie strictly on opposite sides of the other's line,
+///   decided exactly ([`orientation`]);
+/// - they touch when an end of one lies on the other's line to double precision (its side is
+///   within the rounding of the computation, [`certain_orient`]; always so when it lies on
+///   the line exactly) and within that segment's bounding box.
+///
+/// So every pair that shares a point exactly meets (what spade's exact predicates would
+/// refuse as crossing constraints), and so does every pair whose near-touch a mesh could not
+/// tell from a touch (`Mesh::new` calls a triangle degenerate when [`certain_orient`] cannot
+/// tell its orientation). Pass coordinates scaled by [`normalising_exponent`], so that
+/// rounding is all that is uncertain.
 pub fn segments_intersect(a: Point, b: Point, c: Point, d: Point) -> bool {
-    let side = |p, q, r| certain_orient(p, q, r).unwrap_or(0.0);
-    let d1 = side(c, d, a);
-    let d2 = side(c, d, b);
-    let d3 = side(a, b, c);
-    let d4 = side(a, b, d);
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+    use Ordering::{Greater, Less};
+    let on = |p: Point, q: Point, r: Point| within(p, q, r) && certain_orient(p, q, r).is_none();
+    if on(c, d, a) || on(c, d, b) || on(a, b, c) || on(a, b, d) {
         return true;
     }
-    (d1 == 0.0 && within(c, d, a))
-        || (d2 == 0.0 && within(c, d, b))
-        || (d3 == 0.0 && within(a, b, c))
-        || (d4 == 0.0 && within(a, b, d))
+    let opposite = |x: Ordering, y: Ordering| matches!((x, y), (Less, Greater) | (Greater, Less));
+    opposite(orientation(c, d, a), orientation(c, d, b)) && opposite(orientation(a, b, c), orientation(a, b, d))
 }
 
 /// Whether `p` lies strictly inside the closed polygon `ring` (even-odd rule; points on the
@@ -247,6 +345,76 @@ mod tests {
         assert_eq!(certain_orient([0.0, 0.0], [1.0, 1.0], [3.0, 3.0 + 4.4e-16]), None);
         // Underflowing products are never certain.
         assert_eq!(certain_orient([0.0, 0.0], [1e-160, 0.0], [0.0, 1e-160]), None);
+    }
+
+    #[test]
+    fn orientation_is_exact_where_rounding_is_not() {
+        // Shewchuk's example: (0.5 + i u, 0.5 + j u), (12, 12), (24, 24) with u = 2^-53,
+        // nearly collinear. Scaled by 2^53 every coordinate is an integer below 2^58, so
+        // i128 gives the exact sign.
+        let u = f64::EPSILON / 2.0;
+        let mut wrong_by_rounding = 0;
+        for i in 0..64i64 {
+            for j in 0..64i64 {
+                let (a, b, c) = ([0.5 + i as f64 * u, 0.5 + j as f64 * u], [12.0, 12.0], [24.0, 24.0]);
+                let half = 1i128 << 52;
+                let (ax, ay) = (half + i128::from(i), half + i128::from(j));
+                let (bx, cx) = (12i128 << 53, 24i128 << 53);
+                let exact = ((bx - ax) * (cx - ay)).cmp(&((bx - ay) * (cx - ax)));
+                assert_eq!(orientation(a, b, c), exact, "i = {i}, j = {j}");
+                if orient(a, b, c).partial_cmp(&0.0) != Some(exact) {
+                    wrong_by_rounding += 1;
+                }
+            }
+        }
+        // The cases are hard: plain floating point gets many of them wrong.
+        assert!(wrong_by_rounding > 100, "{wrong_by_rounding}");
+        // Scaled by powers of two far beyond where products overflow or underflow, the
+        // signs are the same.
+        for (i, j) in [(3.0, 0.0), (0.0, 3.0), (5.0, 5.0), (7.0, 2.0)] {
+            let (a, b, c) = ([0.5 + i * u, 0.5 + j * u], [12.0, 12.0], [24.0, 24.0]);
+            let expected = orientation(a, b, c);
+            for k in [-1000, -600, 600, 1000] {
+                let s = 2f64.powi(k);
+                let scaled = |p: Point| [p[0] * s, p[1] * s];
+                assert_eq!(orientation(scaled(a), scaled(b), scaled(c)), expected, "2^{k}");
+            }
+        }
+        // Subnormal and huge triples are scaled without overflow.
+        let tiny = 5e-324;
+        assert_eq!(orientation([0.0, 0.0], [tiny, 0.0], [0.0, tiny]), Ordering::Greater);
+        assert_eq!(orientation([0.0, 0.0], [f64::MAX, 0.0], [0.0, -f64::MAX]), Ordering::Less);
+    }
+
+    #[test]
+    fn segments_meet_exactly_or_to_double_precision() {
+        let u = f64::EPSILON / 2.0;
+        // (12, 12) lies on the line of a b within rounding but, exactly, off it: the two
+        // segments touch to double precision whichever side it is on.
+        for i in [-3.0, 3.0] {
+            let (a, b) = ([0.5 + i * u, 0.5], [24.0, 24.0]);
+            assert_ne!(orientation(a, b, [12.0, 12.0]), Ordering::Equal);
+            assert_eq!(certain_orient(a, b, [12.0, 12.0]), None);
+            assert!(segments_intersect(a, b, [12.0, 12.0], [12.0, 11.0]), "{i}");
+            assert!(segments_intersect(a, b, [12.0, 12.0], [12.0, 13.0]), "{i}");
+        }
+        // Every pair that meets exactly meets, and a pair that does not meets only through an
+        // end whose side rounding cannot tell: the near-collinear grid of Shewchuk's example
+        // against the segment from (12, 12) down to (12, 11).
+        let (c, d) = ([12.0, 12.0], [12.0, 11.0]);
+        for i in -32..32 {
+            for j in -32..32 {
+                let (a, b) = ([0.5 + f64::from(i) * u, 0.5 + f64::from(j) * u], [24.0, 24.0]);
+                let exact = orientation(a, b, c) != Ordering::Less;
+                let meets = segments_intersect(a, b, c, d);
+                assert!(meets || !exact, "({i}, {j})");
+                assert!(exact || !meets || certain_orient(a, b, c).is_none(), "({i}, {j})");
+            }
+        }
+        // Far from any rounding: apart, crossing, touching at an end.
+        assert!(!segments_intersect([0.0, 0.0], [1.0, 0.0], [0.5, 1e-9], [0.5, 1.0]));
+        assert!(segments_intersect([0.0, 0.0], [1.0, 1.0], [0.0, 1.0], [1.0, 0.0]));
+        assert!(segments_intersect([0.0, 0.0], [1.0, 0.0], [0.5, 0.0], [0.5, 1.0]));
     }
 
     #[test]

@@ -32,6 +32,7 @@ pub mod outline;
 pub mod session;
 pub mod shapes;
 pub mod sparse;
+pub(crate) mod sweep;
 pub mod triangulate;
 
 #[cfg(target_arch = "wasm32")]

@@ -4,7 +4,8 @@
 //! [`crate::Mesh`]. Validation happens here, before any triangulation: at least three
 //! distinct points per ring, finite coordinates within [`MAX_COORDINATE`], a shape at least
 //! [`MIN_EXTENT`] across, non-zero area, no ring crossing or touching itself or another
-//! ring, every hole inside the outer boundary and outside the other holes.
+//! ring, every hole inside the outer boundary and outside the other holes. Crossings and
+//! containment come from one sweep (`crate::sweep`), O(n log n) in the number of points.
 //!
 //! The checks are scale-invariant: they run on the points scaled by a power of two (exact),
 //! and "touching" and "zero area" mean "to double precision" (within the rounding of the
@@ -14,9 +15,9 @@ use std::fmt;
 
 use crate::error::Number;
 use crate::geometry::{
-    bounding_box, normalising_exponent, point_in_polygon, polygon_area, scale_by_power_of_two, segments_intersect,
-    Point, MAX_COORDINATE, MIN_EXTENT,
+    bounding_box, normalising_exponent, polygon_area, scale_by_power_of_two, Point, MAX_COORDINATE, MIN_EXTENT,
 };
+use crate::sweep::{sweep, Find, Sweep};
 
 /// A polygon with optional holes. Rings are closed implicitly (the last point connects to
 /// the first) and may run in either direction.
@@ -234,18 +235,25 @@ impl Outline {
         let scaled: Vec<Vec<Point>> =
             rings.iter().map(|r| r.iter().map(|p| p.map(|x| scale_by_power_of_two(x, k))).collect()).collect();
         // Crossings first: a figure-eight has zero signed area, but its problem is the crossing.
-        check_no_intersections(&scaled)?;
+        let found = sweep(&scaled, Find::First, usize::MAX).expect("an unlimited sweep finishes");
+        first_meeting(&found)?;
         for (k, ring) in scaled.iter().enumerate() {
             if !area_is_certain(ring) {
                 return Err(OutlineError::ZeroArea { ring: Ring(k) });
             }
         }
-        // Rings do not meet, so one point decides containment for a whole ring.
-        for k in 1..scaled.len() {
-            if !point_in_polygon(scaled[k][0], &scaled[0]) {
+        // Rings do not meet, so the sweep's containment tree is exact: a hole must have the
+        // outer boundary as an ancestor (else it lies outside) and as its parent (else it
+        // lies inside another hole).
+        let mut top = vec![0; scaled.len()];
+        for &r in &found.order {
+            top[r] = found.parents[r].map_or(r, |p| top[p]);
+        }
+        for (k, &root) in top.iter().enumerate().skip(1) {
+            if root != 0 {
                 return Err(OutlineError::HoleOutside { hole: Ring(k) });
             }
-            if let Some(c) = (1..scaled.len()).find(|&c| c != k && point_in_polygon(scaled[k][0], &scaled[c])) {
+            if let Some(c) = found.parents[k].filter(|&c| c != 0) {
                 return Err(OutlineError::NestedHole { hole: Ring(k), container: Ring(c) });
             }
         }
@@ -271,20 +279,16 @@ fn area_is_certain(ring: &[Point]) -> bool {
     magnitude > 0.0 && twice.abs() > 1.01 * (ring.len() as f64 + 4.0) * u * magnitude
 }
 
-/// One segment of a ring, for the sweep.
-struct Segment {
-    ring: usize,
-    index: usize,
-    a: Point,
-    b: Point,
-    min_x: f64,
-    max_x: f64,
-}
-
 /// Rejects any two segments that meet, other than consecutive segments of one ring at
 /// their shared point.
+#[cfg(test)]
 pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), OutlineError> {
-    match meeting_segments(rings, true, usize::MAX).unwrap_or_default().first() {
+    let found = sweep(rings, Find::First, usize::MAX).expect("an unlimited sweep finishes");
+    first_meeting(&found)
+}
+
+fn first_meeting(found: &Sweep) -> Result<(), OutlineError> {
+    match found.meetings.first() {
         Some(&[(ring_a, segment_a), (ring_b, segment_b)]) => {
             Err(OutlineError::SelfIntersection { ring_a: Ring(ring_a), segment_a, ring_b: Ring(ring_b), segment_b })
         }
@@ -292,77 +296,10 @@ pub(crate) fn check_no_intersections(rings: &[Vec<Point>]) -> Result<(), Outline
     }
 }
 
-/// The pairs of segments, as `(ring, segment)` with the smaller first, that meet other than
-/// consecutive segments of one ring at their shared point: all of them, or only the first
-/// found. Sweeps segments sorted by their left end, so only segments whose x ranges
-/// overlap are compared; gives up (`None`) after `budget` such comparisons. Segments that
-/// touch to within rounding count as meeting ([`segments_intersect`]).
-pub(crate) fn meeting_segments(
-    rings: &[Vec<Point>],
-    first_only: bool,
-    budget: usize,
-) -> Option<Vec<[(usize, usize); 2]>> {
-    // On points scaled by a power of two (exact), so that only rounding is uncertain.
-    let k = normalising_exponent(rings.iter().flatten().copied());
-    let scaled: Vec<Vec<Point>> =
-        rings.iter().map(|r| r.iter().map(|p| p.map(|x| scale_by_power_of_two(x, k))).collect()).collect();
-    let rings = &scaled;
-    let mut segments: Vec<Segment> = Vec::new();
-    for (ring, points) in rings.iter().enumerate() {
-        for index in 0..points.len() {
-            let (a, b) = (points[index], points[(index + 1) % points.len()]);
-            segments.push(Segment { ring, index, a, b, min_x: a[0].min(b[0]), max_x: a[0].max(b[0]) });
-        }
-    }
-    segments.sort_by(|s, t| s.min_x.total_cmp(&t.min_x));
-    let mut pairs = Vec::new();
-    let mut comparisons = 0usize;
-    for (i, s) in segments.iter().enumerate() {
-        for t in &segments[i + 1..] {
-            if t.min_x > s.max_x {
-                break;
-            }
-            comparisons += 1;
-            if comparisons > budget {
-                return None;
-            }
-            if meet(s, t, rings) {
-                let (first, second) = if (s.ring, s.index) < (t.ring, t.index) { (s, t) } else { (t, s) };
-                pairs.push([(first.ring, first.index), (second.ring, second.index)]);
-                if first_only {
-                    return Some(pairs);
-                }
-            }
-        }
-    }
-    Some(pairs)
-}
-
-/// Whether two distinct segments meet anywhere they should not.
-fn meet(s: &Segment, t: &Segment, rings: &[Vec<Point>]) -> bool {
-    if s.ring == t.ring {
-        let len = rings[s.ring].len();
-        let (next_of_s, next_of_t) = ((s.index + 1) % len, (t.index + 1) % len);
-        // Consecutive segments share one end; they meet elsewhere only if they fold back
-        // onto each other, i.e. the far end of one lies on the other.
-        if next_of_s == t.index {
-            return on_segment(t.b, s.a, s.b) || on_segment(s.a, t.a, t.b);
-        }
-        if next_of_t == s.index {
-            return on_segment(s.b, t.a, t.b) || on_segment(t.a, s.a, s.b);
-        }
-    }
-    segments_intersect(s.a, s.b, t.a, t.b)
-}
-
-/// Whether `p` lies on the closed segment `a b`.
-fn on_segment(p: Point, a: Point, b: Point) -> bool {
-    segments_intersect(p, p, a, b)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::segments_intersect;
 
     fn square(x: f64, y: f64, s: f64) -> Vec<Point> {
         vec![[x, y], [x + s, y], [x + s, y + s], [x, y + s]]

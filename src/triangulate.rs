@@ -151,10 +151,13 @@ pub enum TriangulationError {
         /// The segment's index in the ring (after repeated points are dropped).
         segment: usize,
     },
-    /// Meeting the area and angle bounds needs more vertices than the limit.
+    /// Meeting the area and angle bounds needs more vertices than the limit: the mesh
+    /// keeps every outline point and refinement adds more.
     TooManyVertices {
         /// The vertex limit.
         limit: usize,
+        /// The outline's points (after repeated points are dropped), all of them vertices.
+        outline_points: usize,
     },
     /// The triangulation produced an invalid mesh (a bug: please report it).
     Mesh(MeshError),
@@ -175,10 +178,18 @@ impl fmt::Display for TriangulationError {
             Self::ConstraintConflict { ring, segment } => {
                 write!(f, "segment {segment} of {ring} touches or crosses another segment of the outline")
             }
-            Self::TooManyVertices { limit } => write!(
+            // An outline that takes half the limit or more is the reason, whatever the options.
+            Self::TooManyVertices { limit, outline_points } if 2 * outline_points >= *limit => write!(
                 f,
-                "the requested triangle size and angle need more than {limit} vertices; \
-                 raise maxVertices, or ask for larger triangles or a smaller minimum angle"
+                "the outline has {outline_points} points, too many to mesh within the vertex limit of {limit}: \
+                 the mesh keeps every outline point and refinement adds more inside and along it (a smooth \
+                 curve needs 2 to 3 vertices per outline point at the default minimum angle); raise \
+                 maxVertices or simplify the outline"
+            ),
+            Self::TooManyVertices { limit, outline_points } => write!(
+                f,
+                "the requested triangle size and angle need more than {limit} vertices (the outline has \
+                 {outline_points} points); raise maxVertices, or ask for larger triangles or a smaller minimum angle"
             ),
             Self::Mesh(e) => write!(f, "triangulation produced an invalid mesh (a bug, please report it): {e}"),
             Self::Internal { message } => {
@@ -251,7 +262,8 @@ pub fn triangulate(outline: &Outline, options: &TriangulationOptions) -> Result<
     }
     let result = cdt.refine(params);
     if !result.refinement_complete {
-        return Err(TriangulationError::TooManyVertices { limit: options.max_vertices });
+        let outline_points = rings.iter().map(Vec::len).sum();
+        return Err(TriangulationError::TooManyVertices { limit: options.max_vertices, outline_points });
     }
 
     let mut outside = vec![false; cdt.num_all_faces()];

@@ -64,6 +64,10 @@ fn arap_options_have_documented_ranges() {
     for (options, name) in [
         (ArapOptions::default().with_iterations(0), "iterations"),
         (ArapOptions::default().with_iterations(1_000_001), "iterations"),
+        // At a fixed count at most arap::MAX_ITERATIONS (1000) per step; to a tolerance at
+        // most arap::MAX_CONVERGENCE_ITERATIONS.
+        (ArapOptions::default().with_iterations(1001), "iterations"),
+        (ArapOptions::default().until_converged(1e-9, 1_000_001), "iterations"),
         (ArapOptions::default().until_converged(-0.1, 10), "tolerance"),
         (ArapOptions::default().until_converged(1.5, 10), "tolerance"),
         (ArapOptions::default().until_converged(f64::NAN, 10), "tolerance"),
@@ -72,8 +76,17 @@ fn arap_options_have_documented_ranges() {
         assert!(matches!(error, DeformError::InvalidOption { name: n, .. } if n == name), "{error}");
     }
     let error = MethodOptions::Arap(ArapOptions::default().with_iterations(0)).build(mesh.clone()).unwrap_err();
-    assert_eq!(error.to_string(), "option iterations is 0, expected a whole number from 1 to 1000000");
-    for options in [ArapOptions::default().with_iterations(1), ArapOptions::default().until_converged(1.0, 3)] {
+    assert_eq!(
+        error.to_string(),
+        "option iterations is 0, expected a whole number from 1 to 1000 per step (a step's work grows with it; \
+         1000 is far more than a frame needs)"
+    );
+    for options in [
+        ArapOptions::default().with_iterations(1),
+        ArapOptions::default().with_iterations(1000),
+        ArapOptions::default().until_converged(1.0, 3),
+        ArapOptions::default().until_converged(1e-9, 1_000_000),
+    ] {
         assert!(MethodOptions::Arap(options).build(mesh.clone()).is_ok());
     }
 }

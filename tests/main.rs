@@ -4,6 +4,7 @@ mod arap;
 mod common;
 mod deformer;
 mod gallery;
+mod hostile;
 mod import_mesh;
 mod import_raster;
 mod import_svg;

@@ -109,7 +109,11 @@ fn boundary_vertices_are_exactly_those_on_the_outline() {
 fn vertex_limit_and_bad_options_are_reported() {
     let outline = square_with_holes();
     let dense = TriangulationOptions::default().with_target_edge_length(0.001).with_max_vertices(500);
-    assert_eq!(triangulate(&outline, &dense), Err(TriangulationError::TooManyVertices { limit: 500 }));
+    // square_with_holes has 4 + 4 + 12 outline points.
+    assert_eq!(
+        triangulate(&outline, &dense),
+        Err(TriangulationError::TooManyVertices { limit: 500, outline_points: 20 })
+    );
     let few = TriangulationOptions::default().with_max_vertices(10);
     assert!(matches!(
         triangulate(&outline, &few),
@@ -267,4 +271,41 @@ proptest! {
 fn scaled(outline: &Outline, f: impl Fn(f64) -> f64) -> Outline {
     let ring = |r: &Vec<Point>| r.iter().map(|p| p.map(&f)).collect();
     Outline { outer: ring(&outline.outer), holes: outline.holes.iter().map(ring).collect() }
+}
+
+#[test]
+fn a_vertex_touching_a_segment_to_double_precision_is_refused_by_name() {
+    // Two holes: a diamond, and a triangle whose left corner p = (1, 1e-17) lies straight
+    // above the diamond's right corner (1, 0), on the line of the diamond's edge from (0, 1)
+    // to (1, 0) to double precision (the orientation's products, about 1, cannot tell
+    // 1e-17 from 0) yet, exactly, above it: touching, by the outline checks' one rule. The
+    // sweep in x-then-y order reaches p after that edge has left it (the edge ends at
+    // (1, 0), before p); the sweep of the mirror image finds it.
+    let square = vec![[-10.0, -10.0], [10.0, -10.0], [10.0, 10.0], [-10.0, 10.0]];
+    let diamond = vec![[0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [1.0, 0.0]];
+    for p in [1e-17, 1e-16] {
+        let triangle = vec![[1.0, p], [2.0, 0.5], [2.0, -0.5]];
+        let outline = Outline::new(square.clone()).with_hole(diamond.clone()).with_hole(triangle.clone());
+        let error = triangulate(&outline, &TriangulationOptions::default()).unwrap_err();
+        let TriangulationError::Outline(OutlineError::SelfIntersection { ring_a, segment_a, ring_b, segment_b }) =
+            error
+        else {
+            panic!("{p}: {error}");
+        };
+        // The diamond's edge into (1, 0) or out of it, and one of the triangle's edges at p.
+        assert_eq!((ring_a, ring_b), (Ring(1), Ring(2)), "{p}: {error}");
+        assert!([2, 3].contains(&segment_a) && [0, 2].contains(&segment_b), "{p}: {error}");
+        // Mirrored (y negated), the same.
+        let flip = |r: &Vec<[f64; 2]>| -> Vec<[f64; 2]> { r.iter().rev().map(|q| [q[0], -q[1]]).collect() };
+        let outline = Outline::new(flip(&square)).with_hole(flip(&diamond)).with_hole(flip(&triangle));
+        assert!(matches!(
+            triangulate(&outline, &TriangulationOptions::default()),
+            Err(TriangulationError::Outline(OutlineError::SelfIntersection { .. }))
+        ));
+    }
+    // Far enough that double precision tells: valid, and it meshes.
+    let triangle = vec![[1.0, 1e-12], [2.0, 0.5], [2.0, -0.5]];
+    let outline = Outline::new(square).with_hole(diamond).with_hole(triangle);
+    let mesh = triangulate(&outline, &TriangulationOptions::default()).unwrap();
+    assert_positive_triangles(&mesh);
 }

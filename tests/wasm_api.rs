@@ -137,6 +137,7 @@ fn deformer_methods_and_their_options() {
         (r#"{"iterations": 5}"#, "applies to method \"arap\""),
         (r#"{"method": "arap", "iterations": 0}"#, "whole number"),
         (r#"{"method": "arap", "iterations": 2.5}"#, "whole number"),
+        (r#"{"method": "arap", "iterations": 1001}"#, "from 1 to 1000 (iterations per step"),
         (r#"{"itterations": 5}"#, "unknown deformer option"),
     ];
     for (json, expected) in cases {

@@ -343,9 +343,8 @@ impl Deformer {
             .collect();
         let scale = self.scale();
         let points: Vec<Point> = handles.iter().map(|h| self.point_of(h)).collect();
-        self.distinct_points = (0..points.len())
-            .filter(|&i| points[..i].iter().all(|q| (q[0] - points[i][0]).hypot(q[1] - points[i][1]) > 1e-12 * scale))
-            .count();
+        // Two handle points closer than 1e-12 of the shape's size are one point.
+        self.distinct_points = handles::distinct_points(&points, 1e-12 * scale);
         self.boundary_handles_only = handles.iter().all(|h| {
             h.vertices.iter().zip(h.weights).all(|(&v, w)| w == 0.0 || self.mesh.is_boundary_vertex(v as usize))
         });

@@ -69,3 +69,85 @@ pub(crate) fn in_triangles(
         })
         .collect()
 }
+
+/// How many of `points` are distinct, where a point that lies within `tolerance` of an
+/// earlier one (`hypot` of the differences at most `tolerance`) is not: the count of `i`
+/// with every `j < i` farther than `tolerance`. O(n log n): points are bucketed in square
+/// cells of side `tolerance / 2`, so two points in one cell are always within the
+/// tolerance and only the first of a cell (by index) needs a look at the cells around
+/// (3 cells each way, a margin for rounding); each cell is looked into by at most 49
+/// first points. The points must lie within 2^50 tolerances of each other (handle points lie
+/// in the mesh, and the deformer's tolerance is 1e-12 of its size), so that cells are
+/// computed exactly enough.
+pub(crate) fn distinct_points(points: &[[f64; 2]], tolerance: f64) -> usize {
+    let lo = points.iter().fold([f64::INFINITY; 2], |lo, p| [lo[0].min(p[0]), lo[1].min(p[1])]);
+    let side = tolerance / 2.0;
+    debug_assert!(points.iter().all(|p| (p[0] - lo[0]).max(p[1] - lo[1]) < side * 2f64.powi(50)));
+    let cell = |p: &[f64; 2]| [((p[0] - lo[0]) / side).floor() as i64, ((p[1] - lo[1]) / side).floor() as i64];
+    // Points by cell, then by index.
+    let mut order: Vec<([i64; 2], usize)> = points.iter().enumerate().map(|(i, p)| (cell(p), i)).collect();
+    order.sort_unstable();
+    // Exactly the rule's comparison, so that NaN distances count as near too.
+    let far = |i: usize, j: usize| {
+        let (p, q) = (points[i], points[j]);
+        (q[0] - p[0]).hypot(q[1] - p[1]) > tolerance
+    };
+    let mut count = 0;
+    let mut start = 0;
+    while start < order.len() {
+        let (key, first) = order[start];
+        let end = start + order[start..].partition_point(|(k, _)| *k == key);
+        // The cells 3 rows above to 3 below in each of 7 columns are contiguous in `order`.
+        let near_earlier = (-3..=3i64).any(|dx| {
+            let column = key[0].saturating_add(dx);
+            let (low, high) = ([column, key[1].saturating_sub(3)], [column, key[1].saturating_add(3)]);
+            let from = order.partition_point(|(k, _)| *k < low);
+            order[from..].iter().take_while(|(k, _)| *k <= high).any(|&(_, j)| j < first && !far(first, j))
+        });
+        if !near_earlier {
+            count += 1;
+        }
+        start = end;
+    }
+    count
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The definition, comparing every pair.
+    fn brute_force(points: &[[f64; 2]], tolerance: f64) -> usize {
+        (0..points.len())
+            .filter(|&i| points[..i].iter().all(|q| (q[0] - points[i][0]).hypot(q[1] - points[i][1]) > tolerance))
+            .count()
+    }
+
+    #[test]
+    fn distinct_points_match_the_pairwise_definition() {
+        let mut state = 3u64;
+        let mut next = |n: u64| {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 33) % n
+        };
+        for round in 0..2000 {
+            let tolerance = [1e-12, 1e-3, 0.5, 7.0][round % 4];
+            // Clusters: points at offsets of fractions of the tolerance around a few
+            // centres, distances at and around the tolerance included.
+            let fractions = [0.0, 0.3, 0.5, 0.7, 0.99, 1.0, 1.01, 1.5, 2.0, 2.5, 3.0, 5.0];
+            let centres: Vec<[f64; 2]> =
+                (0..1 + next(4)).map(|_| [next(5) as f64 * 3.0 * tolerance, next(5) as f64 * 0.7]).collect();
+            let n = 1 + next(60) as usize;
+            let points: Vec<[f64; 2]> = (0..n)
+                .map(|_| {
+                    let c = centres[next(centres.len() as u64) as usize];
+                    let (fx, fy) = (fractions[next(12) as usize], fractions[next(12) as usize]);
+                    let (sx, sy) = (if next(2) == 0 { 1.0 } else { -1.0 }, if next(2) == 0 { 1.0 } else { -1.0 });
+                    [c[0] + sx * fx * tolerance, c[1] + sy * fy * tolerance]
+                })
+                .collect();
+            assert_eq!(distinct_points(&points, tolerance), brute_force(&points, tolerance), "{points:?} {tolerance}");
+        }
+        assert_eq!(distinct_points(&[], 1.0), 0);
+    }
+}

@@ -84,15 +84,28 @@ pub enum ImportError {
         /// The limit on the magnitude of coordinates.
         limit: f64,
     },
+    /// An SVG's elements have too many attributes for the XML parser's duplicate check
+    /// (see [`crate::import::Limits::max_attribute_pairs`]); refused before parsing.
+    TooManyAttributes {
+        /// Line of the start tag that goes beyond the limit, from 1.
+        line: u32,
+        /// Its column, from 1.
+        column: u32,
+        /// Its number of attributes.
+        attributes: usize,
+        /// The limit on pairs of attributes compared.
+        limit: usize,
+    },
     /// The SVG has no filled shape that could become an outline.
     NoShapes {
         /// Elements that were skipped because they are not supported (e.g. `text`, `use`).
         skipped: Vec<String>,
     },
-    /// Checking the outline for crossings would take too long: too many segments lie close
-    /// together (only adversarial inputs do this).
+    /// Checking the outline for crossings would take more comparisons of segments than
+    /// [`crate::import::Limits::max_segment_pairs`] allows (only far more points than the
+    /// point limit, or a small budget, come near it).
     TooComplex {
-        /// The number of nearby segment pairs after which the check gave up.
+        /// The number of comparisons after which the check gave up.
         pairs: usize,
     },
     /// The pixel buffer does not match the image size.
@@ -204,13 +217,19 @@ impl fmt::Display for ImportError {
                      limit for the geometry to work in double precision; scale the drawing down"
                 )
             }
+            Self::TooManyAttributes { line, column, attributes, limit } => write!(
+                f,
+                "too many attributes: the element at line {line}, column {column} has {attributes}, which takes \
+                 the pairs of attributes the XML parser compares for duplicates (n(n-1)/2 per element of n) \
+                 beyond the limit of {limit}; an SVG element needs a few dozen attributes at most"
+            ),
             Self::NoShapes { skipped } if skipped.is_empty() => write!(f, "the SVG has no filled shape"),
             Self::NoShapes { skipped } => {
                 write!(f, "the SVG has no filled shape (unsupported elements skipped: {})", skipped.join(", "))
             }
             Self::TooComplex { pairs } => write!(
                 f,
-                "the outline has more than {pairs} pairs of segments close together to check for crossings; \
+                "checking the outline for crossings needs more than {pairs} comparisons of segments; \
                  simplify the shape"
             ),
             Self::ImageSize { width, height, len } if *width == 0 || *height == 0 => {

@@ -52,9 +52,18 @@ pub struct Limits {
     pub max_vertices: usize,
     /// Most XML nodes (elements, attributes' text nodes and so on) of an SVG.
     pub max_elements: usize,
-    /// Most comparisons of nearby segments when checking that outlines neither cross nor
-    /// touch (a sweep; only adversarial inputs, thousands of segments stacked in one
-    /// place, come near the default).
+    /// Most comparisons the XML parser may make to find duplicate attributes in an SVG:
+    /// it compares every pair of an element's attributes, n(n-1)/2 for n of them, summed
+    /// over the elements (an element an entity defines counts once per node the document
+    /// may hold). The default, 10 million (about 15 ms of the parser's time natively),
+    /// allows one element of 4,000 attributes, or 100,000 elements of 14 each; real
+    /// elements have a few dozen at most.
+    pub max_attribute_pairs: usize,
+    /// Most comparisons of segments when checking that outlines neither cross nor touch
+    /// (a sweep making O(n log n) of them for n segments: about 20 per segment at the
+    /// point limit; simplifying a traced image repeats it, on fewer points, until nothing
+    /// crosses). The default, 50 million, is a backstop far above what the point limit
+    /// needs.
     pub max_segment_pairs: usize,
     /// Largest magnitude of a coordinate of an SVG's shapes once placed in the drawing (in
     /// the root `viewBox`'s units, after every transform), which also bounds the drawing's
@@ -73,6 +82,7 @@ impl Default for Limits {
             max_points: 100_000,
             max_vertices: crate::mesh::DEFAULT_MAX_VERTICES,
             max_elements: 200_000,
+            max_attribute_pairs: 10_000_000,
             max_segment_pairs: 50_000_000,
             max_coordinate: 1e30,
         }
@@ -98,6 +108,7 @@ impl Limits {
             ("maxPoints", self.max_points),
             ("maxVertices", self.max_vertices),
             ("maxElements", self.max_elements),
+            ("maxAttributePairs", self.max_attribute_pairs),
             ("maxSegmentPairs", self.max_segment_pairs),
         ];
         for (name, value) in counts {

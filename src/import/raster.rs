@@ -16,11 +16,12 @@
 use std::collections::HashMap;
 
 use crate::geometry::{orient, polygon_area, Point};
-use crate::import::regions::{assemble, containment, RegionError, SourceRing};
+use crate::import::regions::{assemble, RegionError, SourceRing};
 use crate::import::simplify::simplify_rings;
 use crate::import::vector::FillRule;
 use crate::import::{ImportError, Limits};
 use crate::outline::Outline;
+use crate::sweep::{sweep, Find};
 
 /// Which pixels belong to the shape.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -226,8 +227,13 @@ pub(crate) fn contour_outlines(
         .into_iter()
         .filter(|r| r.len() >= 3 && polygon_area(r).abs() >= min_area.max(f64::MIN_POSITIVE))
         .collect();
-    let (_, parents) = containment(&rings);
     let too_complex = ImportError::TooComplex { pairs: limits.max_segment_pairs };
+    // Contours never meet (each cell edge holds at most one contour point); if rounding
+    // made two meet, simplification keeps every point of them and assembly reports it. The
+    // marching limit bounds this sweep, O(n log n); the budget is for the rounds of
+    // simplification.
+    let found = sweep(&rings, Find::First, usize::MAX).expect("an unlimited sweep finishes");
+    let parents = if found.meetings.is_empty() { found.parents } else { vec![None; rings.len()] };
     let simplified =
         simplify_rings(&rings, &parents, tolerance, limits.max_segment_pairs).ok_or(too_complex.clone())?;
     let count: usize = simplified.iter().map(Vec::len).sum();

@@ -5,11 +5,14 @@
 //! ring, outside its children) has one winding number per shape, and a face is filled when
 //! any shape fills it. A ring with a filled face on one side and an empty one on the other
 //! is a boundary: the outer boundary of a part, or a hole in one. Parts come out largest
-//! first; a part inside a hole of another part is a part of its own.
+//! first; a part inside a hole of another part is a part of its own. The crossing check and
+//! the tree come from one sweep (`crate::sweep`), O(n log n) in the number of points; the
+//! fill of the faces from one walk of the tree.
 
-use crate::geometry::{bounding_box, distance, orient, point_in_polygon, polygon_area, Point};
+use crate::geometry::{bounding_box, distance, orient, polygon_area, Point};
 use crate::import::vector::FillRule;
-use crate::outline::{meeting_segments, Outline};
+use crate::outline::Outline;
+use crate::sweep::{sweep, Find, Sweep};
 
 /// A closed ring (not repeating its first point) of one shape.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,7 +28,7 @@ pub(crate) enum RegionError {
     /// The two rings (indices into the input) cross or touch (the same index twice: a ring
     /// meets itself).
     Crossing(usize, usize),
-    /// The crossing check gave up after `max_segment_pairs` comparisons.
+    /// The crossing check gave up after `max_segment_pairs` comparisons of segments.
     TooComplex,
 }
 
@@ -65,51 +68,34 @@ pub(crate) fn assemble(
         areas.push(area);
         points.push(ring_points);
     }
-    match meeting_segments(&points, true, max_segment_pairs).as_deref() {
-        None => return Err(RegionError::TooComplex),
-        Some([[(ring_a, _), (ring_b, _)], ..]) => {
-            return Err(RegionError::Crossing(sources[*ring_a], sources[*ring_b]))
-        }
-        Some([]) => {}
+    let found = sweep(&points, Find::First, max_segment_pairs).ok_or(RegionError::TooComplex)?;
+    if let Some([(ring_a, _), (ring_b, _)]) = found.meetings.first() {
+        return Err(RegionError::Crossing(sources[*ring_a], sources[*ring_b]));
     }
     let n = points.len();
-    let (order, parent) = containment(&points);
-
-    // Winding numbers per shape of each ring's inner face, parents before children.
-    let mut windings: Vec<Vec<(usize, i32)>> = vec![Vec::new(); n];
-    let mut filled = vec![false; n];
-    for &i in &order {
-        let mut w = parent[i].map(|p| windings[p].clone()).unwrap_or_default();
-        let shape = rings[sources[i]].shape;
-        let turn = if areas[i] > 0.0 { 1 } else { -1 };
-        match w.iter_mut().find(|(s, _)| *s == shape) {
-            Some(entry) => entry.1 += turn,
-            None => w.push((shape, turn)),
-        }
-        filled[i] = w.iter().any(|&(s, k)| rules.get(s).copied().unwrap_or_default().fills(k));
-        windings[i] = w;
-    }
+    let parent = &found.parents;
+    let filled = filled_faces(&found, |i| rings[sources[i]].shape, rules);
     let outside_filled = |i: usize| parent[i].is_some_and(|p| filled[p]);
     let is_boundary = |i: usize| filled[i] != outside_filled(i);
 
-    // Outer boundaries, then holes attached to the nearest enclosing outer boundary.
+    // Outer boundaries, then holes attached to the nearest enclosing outer boundary (the
+    // nearest boundary at or above each ring, found containers first).
     let mut part_of: Vec<Option<usize>> = vec![None; n];
+    let mut boundary_above = vec![usize::MAX; n];
     let mut parts: Vec<(Outline, f64)> = Vec::new();
-    for &i in &order {
+    for &i in &found.order {
+        boundary_above[i] = if is_boundary(i) { i } else { parent[i].map_or(usize::MAX, |p| boundary_above[p]) };
         if is_boundary(i) && filled[i] {
             part_of[i] = Some(parts.len());
             parts.push((Outline::new(points[i].clone()), areas[i].abs()));
         }
     }
-    for &i in &order {
-        if !is_boundary(i) || filled[i] {
-            continue;
-        }
-        let mut a = parent[i].expect("a hole has a filled face around it");
-        while !is_boundary(a) {
-            a = parent[a].expect("filled faces end at an outer boundary");
-        }
-        let part = part_of[a].expect("the enclosing boundary is an outer one");
+    // Holes by decreasing area, as they are listed.
+    let mut holes: Vec<usize> = (0..n).filter(|&i| is_boundary(i) && !filled[i]).collect();
+    holes.sort_by(|&i, &j| areas[j].abs().total_cmp(&areas[i].abs()));
+    for i in holes {
+        let around = parent[i].map(|p| boundary_above[p]).expect("a hole has a filled face around it");
+        let part = part_of[around].expect("the enclosing boundary is an outer one");
         if areas[i].abs() >= min_area {
             parts[part].0.holes.push(points[i].clone());
             parts[part].1 -= areas[i].abs();
@@ -120,25 +106,51 @@ pub(crate) fn assemble(
     Ok(parts.into_iter().map(|(outline, _)| outline).collect())
 }
 
-/// The containment tree of rings that neither cross nor touch: the rings ordered by
-/// decreasing area (so parents come first), and each ring's parent, the smallest ring
-/// around it.
-pub(crate) fn containment(rings: &[Vec<Point>]) -> (Vec<usize>, Vec<Option<usize>>) {
-    let areas: Vec<f64> = rings.iter().map(|r| polygon_area(r).abs()).collect();
-    let mut order: Vec<usize> = (0..rings.len()).collect();
-    order.sort_by(|&i, &j| areas[j].total_cmp(&areas[i]));
-    let boxes: Vec<(Point, Point)> =
-        rings.iter().map(|r| bounding_box(r.iter().copied()).unwrap_or(([0.0; 2], [0.0; 2]))).collect();
-    let mut parent = vec![None; rings.len()];
-    for (rank, &i) in order.iter().enumerate() {
-        let Some(&p) = rings[i].first() else { continue };
-        // Smallest first: the first container found is the immediate parent.
-        parent[i] = order[..rank].iter().rev().copied().find(|&j| {
-            let (lo, hi) = boxes[j];
-            p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && point_in_polygon(p, &rings[j])
-        });
+/// Whether the inner face of each ring is filled: some shape's winding number there is
+/// one its rule fills. Walks the containment tree depth first, adding a ring's turn (+1
+/// counter-clockwise, -1 clockwise) to its shape's winding number on the way in and
+/// taking it off on the way out, with a count of the shapes that fill: O(n) however deep
+/// the rings nest.
+fn filled_faces(found: &Sweep, shape_of: impl Fn(usize) -> usize, rules: &[FillRule]) -> Vec<bool> {
+    let n = found.parents.len();
+    let mut start = vec![0; n + 1];
+    for p in found.parents.iter().flatten() {
+        start[p + 1] += 1;
     }
-    (order, parent)
+    for k in 0..n {
+        start[k + 1] += start[k];
+    }
+    let mut children = vec![0; start[n]];
+    let mut next = start.clone();
+    for (i, p) in found.parents.iter().enumerate() {
+        if let Some(p) = *p {
+            children[next[p]] = i;
+            next[p] += 1;
+        }
+    }
+    let shapes = (0..n).map(&shape_of).max().map_or(0, |s| s + 1);
+    let mut winding = vec![0i32; shapes];
+    let mut filling = 0usize;
+    let mut filled = vec![false; n];
+    let mut stack: Vec<(usize, bool)> = (0..n).filter(|&i| found.parents[i].is_none()).map(|i| (i, true)).collect();
+    while let Some((i, entering)) = stack.pop() {
+        let shape = shape_of(i);
+        let rule = rules.get(shape).copied().unwrap_or_default();
+        let turn = if found.counter_clockwise[i] == entering { 1 } else { -1 };
+        let before = rule.fills(winding[shape]);
+        winding[shape] += turn;
+        match (before, rule.fills(winding[shape])) {
+            (false, true) => filling += 1,
+            (true, false) => filling -= 1,
+            _ => {}
+        }
+        if entering {
+            filled[i] = filling > 0;
+            stack.push((i, false));
+            stack.extend(children[start[i]..start[i + 1]].iter().map(|&c| (c, true)));
+        }
+    }
+    filled
 }
 
 #[cfg(test)]

@@ -6,13 +6,17 @@
 //! neighbour; every segment involved gets back the original point farthest from it, and a
 //! ring that changed sides is restored whole, until the rings are as valid as the input.
 //! That terminates: each round restores points, and the input rings themselves are valid.
+//! Each round's check is one sweep (`crate::sweep`), O(n log n): it reports enough meeting
+//! pairs that every crossing involves a reported segment, and when nothing crosses it gives
+//! the containment tree to compare with the input's.
 
-use crate::geometry::{orient, point_in_polygon, Point};
-use crate::outline::meeting_segments;
+use crate::geometry::{orient, Point};
+use crate::sweep::{sweep, Find};
 
 /// Simplifies rings that neither cross nor touch, keeping it so. `parents[r]` is the ring
-/// that immediately contains ring `r` (if any), which must stay so. `None` when a crossing
-/// check gives up after `max_segment_pairs` comparisons.
+/// that immediately contains ring `r` (if any), which must stay so. `None` when the
+/// crossing checks, all rounds together, would compare more than `max_segment_pairs`
+/// segments.
 pub(crate) fn simplify_rings(
     rings: &[Vec<Point>],
     parents: &[Option<usize>],
@@ -21,17 +25,20 @@ pub(crate) fn simplify_rings(
 ) -> Option<Vec<Vec<Point>>> {
     // Per ring, which original points are kept.
     let mut keep: Vec<Vec<bool>> = rings.iter().map(|r| douglas_peucker(r, tolerance)).collect();
+    let mut budget = max_segment_pairs;
     loop {
         let simplified: Vec<Vec<Point>> = rings
             .iter()
             .zip(&keep)
             .map(|(r, k)| r.iter().zip(k).filter(|(_, &k)| k).map(|(p, _)| *p).collect())
             .collect();
+        let found = sweep(&simplified, Find::Cover, budget)?;
+        budget -= found.comparisons;
         // The points to restore, found before any is restored (restoring renumbers the
         // simplified segments).
         let mut restore = Vec::new();
-        for [a, b] in meeting_segments(&simplified, false, max_segment_pairs)? {
-            for (ring, segment) in [a, b] {
+        for [a, b] in &found.meetings {
+            for &(ring, segment) in [a, b] {
                 restore.extend(refine(&rings[ring], &keep[ring], segment).map(|k| (ring, k)));
             }
         }
@@ -40,11 +47,12 @@ pub(crate) fn simplify_rings(
             changed |= !keep[ring][k];
             keep[ring][k] = true;
         }
-        for (r, parent) in parents.iter().enumerate() {
-            if let Some(p) = *parent {
-                // Rings do not meet, so one point of the ring decides containment.
-                if !point_in_polygon(simplified[r][0], &simplified[p]) {
-                    for ring in [r, p] {
+        if found.meetings.is_empty() {
+            // Nothing crosses, so the sweep's containment is exact: a ring whose container
+            // changed is restored whole, with its old and its new container.
+            for (r, &parent) in parents.iter().enumerate() {
+                if found.parents[r] != parent {
+                    for ring in [Some(r), parent, found.parents[r]].into_iter().flatten() {
                         if keep[ring].iter().any(|k| !k) {
                             keep[ring].fill(true);
                             changed = true;
@@ -143,6 +151,7 @@ fn distance_to_segment(p: Point, a: Point, b: Point) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::point_in_polygon;
     use crate::outline::check_no_intersections;
 
     #[test]

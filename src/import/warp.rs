@@ -1,12 +1,16 @@
 //! Carrying imported art along with a deformed mesh: points (an SVG's path points and
 //! control points) by barycentric coordinates in the rest mesh, and image texture
-//! coordinates for the vertices of a traced image's mesh.
+//! coordinates for the vertices of a traced image's mesh. Points are located by a
+//! bounding-volume hierarchy of the triangles: the nearest triangle in about O(log m)
+//! whether the point lies inside the mesh or outside it.
 //!
 //! Nothing here returns NaN or infinity: input that is not finite is refused, and so is a
 //! result that overflows double precision (a point far outside the mesh extrapolated through
 //! a huge deformed triangle, a position divided by a tiny image size), each by index.
 
-use crate::geometry::{distance, normalising_exponent, orient, scale_by_power_of_two, Point};
+use crate::geometry::{
+    binary_exponent, bounding_box, distance, normalising_exponent, orient, scale_by_power_of_two, Point,
+};
 use crate::import::ImportError;
 use crate::mesh::Mesh;
 
@@ -22,8 +26,10 @@ pub struct PointMapper {
 impl PointMapper {
     /// Locates `points` in `rest`. A point inside the mesh gets the triangle that contains
     /// it; a point outside (a curve's control point, say) gets the nearest triangle, and
-    /// follows that triangle's affine motion. Refuses a point with a coordinate that is not
-    /// finite ([`ImportError::NonFinite`]).
+    /// follows that triangle's affine motion. Of equally near triangles (a point on an
+    /// edge, or nearest to a vertex) the one with the smallest index. O((m + n) log m) for
+    /// m triangles and n points. Refuses a point with a coordinate that is not finite
+    /// ([`ImportError::NonFinite`]).
     pub fn new(rest: &Mesh, points: &[Point]) -> Result<Self, ImportError> {
         if let Some(index) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
             return Err(ImportError::NonFinite { what: "point", index });
@@ -34,8 +40,8 @@ impl PointMapper {
         let k = normalising_exponent(rest.positions().iter().copied());
         let scale = |p: &Point| p.map(|x| scale_by_power_of_two(x, k));
         let positions: Vec<Point> = rest.positions().iter().map(scale).collect();
-        let grid = Grid::new(&positions, rest.triangles());
-        let locations = points.iter().map(|p| grid.locate(&positions, rest.triangles(), scale(p))).collect();
+        let tree = Tree::new(&positions, rest.triangles());
+        let locations = points.iter().map(|p| tree.locate(&positions, rest.triangles(), *p, k)).collect();
         Ok(Self { vertex_count: rest.vertex_count(), locations })
     }
 
@@ -121,92 +127,132 @@ pub fn texture_coordinates(points: &[Point], width: f64, height: f64) -> Result<
         .collect()
 }
 
-/// Triangles bucketed by a uniform grid over the mesh's bounding box.
-struct Grid {
-    origin: Point,
-    cell: f64,
-    columns: usize,
-    rows: usize,
-    /// Triangles of cell `k` are `triangles[start[k]..start[k + 1]]`.
-    start: Vec<usize>,
+/// Triangles in a bounding-volume hierarchy: each node's box holds a range of triangles,
+/// split at the median of their centroids along the box's longer side, down to leaves of
+/// a few. Built in O(m log m); a query visits the nodes nearest the point first and skips
+/// any whose box lies farther than the best triangle so far, about O(log m) nodes for a
+/// point inside or outside the mesh.
+struct Tree {
+    nodes: Vec<Node>,
+    /// Triangle indices; each node holds a contiguous range of them.
     triangles: Vec<u32>,
+    /// Slack for rounding when comparing box and triangle distances: a small fraction of
+    /// the mesh's size.
+    slack: f64,
 }
 
-impl Grid {
-    fn new(p: &[Point], triangles: &[[u32; 3]]) -> Self {
-        let (lo, hi) = crate::geometry::bounding_box(p.iter().copied()).unwrap_or(([0.0; 2], [1.0; 2]));
-        let (w, h) = ((hi[0] - lo[0]).max(f64::MIN_POSITIVE), (hi[1] - lo[1]).max(f64::MIN_POSITIVE));
-        // About one triangle per cell.
-        let cell = (w * h / triangles.len() as f64).sqrt().max(w.max(h) / 4096.0);
-        let columns = ((w / cell).ceil() as usize).clamp(1, 4096);
-        let rows = ((h / cell).ceil() as usize).clamp(1, 4096);
-        let mut grid =
-            Self { origin: lo, cell, columns, rows, start: vec![0; columns * rows + 1], triangles: Vec::new() };
-        let ranges: Vec<(usize, usize, usize, usize)> = triangles
-            .iter()
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    lo: Point,
+    hi: Point,
+    start: usize,
+    end: usize,
+    /// The children, or `None` for a leaf.
+    children: Option<[usize; 2]>,
+}
+
+/// Triangles per leaf, at most.
+const LEAF: usize = 8;
+
+impl Tree {
+    /// The hierarchy of `triangles` on `p` (the mesh's positions, scaled).
+    fn new(p: &[Point], mesh_triangles: &[[u32; 3]]) -> Self {
+        let corners = |t: u32| mesh_triangles[t as usize].map(|i| p[i as usize]);
+        let centroids: Vec<Point> = (0..mesh_triangles.len() as u32)
             .map(|t| {
-                let corners = t.map(|i| p[i as usize]);
-                let (a, b) = grid.cell_of(corners[0]);
-                let (mut c0, mut c1, mut r0, mut r1) = (a, a, b, b);
-                for &q in &corners[1..] {
-                    let (c, r) = grid.cell_of(q);
-                    (c0, c1, r0, r1) = (c0.min(c), c1.max(c), r0.min(r), r1.max(r));
-                }
-                (c0, c1, r0, r1)
+                let [a, b, c] = corners(t);
+                [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0]
             })
             .collect();
-        for &(c0, c1, r0, r1) in &ranges {
-            for r in r0..=r1 {
-                for c in c0..=c1 {
-                    grid.start[r * columns + c + 1] += 1;
-                }
+        let mut triangles: Vec<u32> = (0..mesh_triangles.len() as u32).collect();
+        let mut nodes = Vec::with_capacity(2 * triangles.len() / LEAF + 1);
+        // (node, start, end): nodes are made parent first, children filled in later.
+        let mut stack = vec![(0, 0, triangles.len())];
+        nodes.push(Node { lo: [0.0; 2], hi: [0.0; 2], start: 0, end: 0, children: None });
+        while let Some((k, start, end)) = stack.pop() {
+            let range = &mut triangles[start..end];
+            let (lo, hi) = bounding_box(range.iter().flat_map(|&t| corners(t))).unwrap_or(([0.0; 2], [0.0; 2]));
+            nodes[k] = Node { lo, hi, start, end, children: None };
+            if range.len() <= LEAF {
+                continue;
             }
-        }
-        for k in 0..columns * rows {
-            grid.start[k + 1] += grid.start[k];
-        }
-        let mut fill = grid.start.clone();
-        grid.triangles = vec![0; grid.start[columns * rows]];
-        for (t, &(c0, c1, r0, r1)) in ranges.iter().enumerate() {
-            for r in r0..=r1 {
-                for c in c0..=c1 {
-                    grid.triangles[fill[r * columns + c]] = t as u32;
-                    fill[r * columns + c] += 1;
-                }
-            }
-        }
-        grid
-    }
-
-    /// The cell of a point, clamped to the grid.
-    fn cell_of(&self, p: Point) -> (usize, usize) {
-        let c = ((p[0] - self.origin[0]) / self.cell).floor().clamp(0.0, (self.columns - 1) as f64) as usize;
-        let r = ((p[1] - self.origin[1]) / self.cell).floor().clamp(0.0, (self.rows - 1) as f64) as usize;
-        (c, r)
-    }
-
-    fn locate(&self, positions: &[Point], triangles: &[[u32; 3]], p: Point) -> ([u32; 3], [f64; 3]) {
-        let (c, r) = self.cell_of(p);
-        let k = r * self.columns + c;
-        let in_cell = &self.triangles[self.start[k]..self.start[k + 1]];
-        let best = in_cell
-            .iter()
-            .map(|&t| t as usize)
-            .find(|&t| triangle_distance(triangles[t].map(|i| positions[i as usize]), p) == 0.0)
-            .unwrap_or_else(|| {
-                // Outside the mesh (or on a crack between cells): the nearest triangle.
-                (0..triangles.len())
-                    .min_by(|&s, &t| {
-                        let d = |t: usize| triangle_distance(triangles[t].map(|i| positions[i as usize]), p);
-                        d(s).total_cmp(&d(t))
-                    })
-                    .expect("a mesh has triangles")
+            let axis = usize::from(hi[1] - lo[1] > hi[0] - lo[0]);
+            let mid = range.len() / 2;
+            range.select_nth_unstable_by(mid, |&s, &t| {
+                centroids[s as usize][axis].total_cmp(&centroids[t as usize][axis])
             });
-        let tri = triangles[best];
+            let (left, right) = (nodes.len(), nodes.len() + 1);
+            nodes.push(nodes[k]);
+            nodes.push(nodes[k]);
+            nodes[k].children = Some([left, right]);
+            stack.push((left, start, start + mid));
+            stack.push((right, start + mid, end));
+        }
+        let size = (nodes[0].hi[0] - nodes[0].lo[0]).hypot(nodes[0].hi[1] - nodes[0].lo[1]);
+        Self { nodes, triangles, slack: 1e-9 * size }
+    }
+
+    /// The triangle nearest `p` (distance 0 inside or on it), the smallest index among
+    /// equally near ones: the same as comparing every triangle.
+    fn nearest(&self, positions: &[Point], triangles: &[[u32; 3]], p: Point) -> usize {
+        let distance_to = |t: u32| triangle_distance(triangles[t as usize].map(|i| positions[i as usize]), p);
+        // Rounding grows with the coordinates: the slack covers points far away too.
+        let slack = self.slack + 1e-12 * p[0].abs().max(p[1].abs());
+        let (mut best, mut best_distance) = (usize::MAX, f64::INFINITY);
+        let mut stack = vec![0];
+        while let Some(k) = stack.pop() {
+            let node = &self.nodes[k];
+            if box_distance(node, p) > best_distance + slack {
+                continue;
+            }
+            match node.children {
+                None => {
+                    for &t in &self.triangles[node.start..node.end] {
+                        let d = distance_to(t);
+                        if d < best_distance || (d == best_distance && (t as usize) < best) {
+                            (best, best_distance) = (t as usize, d);
+                        }
+                    }
+                }
+                Some([a, b]) => {
+                    // The nearer child last, so that it is searched first.
+                    if box_distance(&self.nodes[a], p) < box_distance(&self.nodes[b], p) {
+                        stack.extend([b, a]);
+                    } else {
+                        stack.extend([a, b]);
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// The triangle of `point` (as given; `k` scales it like `positions`) and its
+    /// barycentric coordinates there.
+    fn locate(&self, positions: &[Point], triangles: &[[u32; 3]], point: Point, k: i32) -> ([u32; 3], [f64; 3]) {
+        let p = point.map(|x| scale_by_power_of_two(x, k));
+        // A point more than 2^900 times the mesh's size away is looked for along its
+        // direction at 2^900 (there the mesh is a dot: every triangle is as near as rounding
+        // tells), so that distances stay finite; its weights, from where it is, may not be,
+        // and `map` refuses it then.
+        let largest = point[0].abs().max(point[1].abs());
+        let probe = if largest > 0.0 && binary_exponent(largest) + k > 900 {
+            point.map(|x| scale_by_power_of_two(x, 900 - binary_exponent(largest)))
+        } else {
+            p
+        };
+        let tri = triangles[self.nearest(positions, triangles, probe)];
         let [a, b, c] = tri.map(|i| positions[i as usize]);
         let whole = orient(a, b, c);
         (tri, [orient(b, c, p) / whole, orient(c, a, p) / whole, orient(a, b, p) / whole])
     }
+}
+
+/// Distance from `p` to a node's box: 0 inside it.
+fn box_distance(node: &Node, p: Point) -> f64 {
+    let dx = (node.lo[0] - p[0]).max(p[0] - node.hi[0]).max(0.0);
+    let dy = (node.lo[1] - p[1]).max(p[1] - node.hi[1]).max(0.0);
+    dx.hypot(dy)
 }
 
 /// Distance from `p` to a counter-clockwise triangle: 0 inside or on it.
@@ -281,6 +327,63 @@ mod tests {
         // stretched 1e10 times along x sends it to x = -1e310, beyond the largest double.
         let wide: Vec<Point> = rest.positions().iter().map(|p| [1e10 * p[0], p[1]]).collect();
         assert_eq!(mapper.map(&wide), Err(ImportError::NonFiniteResult { what: "mapped point", index: 1 }));
+    }
+
+    /// A grid of `n x n` unit squares, two triangles each, without the squares of `hole`
+    /// (columns and rows from `hole.0` to `hole.1`, exclusive), vertices numbered as used.
+    fn grid(n: usize, hole: (usize, usize)) -> Mesh {
+        let mut index = vec![u32::MAX; (n + 1) * (n + 1)];
+        let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+        let mut vertex = |i: usize, j: usize, positions: &mut Vec<Point>| {
+            let k = j * (n + 1) + i;
+            if index[k] == u32::MAX {
+                index[k] = positions.len() as u32;
+                positions.push([i as f64, j as f64]);
+            }
+            index[k]
+        };
+        for j in 0..n {
+            for i in 0..n {
+                if (hole.0..hole.1).contains(&i) && (hole.0..hole.1).contains(&j) {
+                    continue;
+                }
+                let [a, b, c, d] =
+                    [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(x, y)| vertex(x, y, &mut positions));
+                triangles.extend([[a, b, c], [a, c, d]]);
+            }
+        }
+        Mesh::new(positions, triangles).unwrap()
+    }
+
+    #[test]
+    fn nearest_triangle_matches_comparing_every_triangle() {
+        let meshes = [grid(8, (0, 0)), grid(9, (3, 6))];
+        let mut state = 11u64;
+        let mut next = |n: u64| {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 33) % n
+        };
+        for mesh in &meshes {
+            let positions = mesh.positions();
+            let tree = Tree::new(positions, mesh.triangles());
+            let brute_force = |p: Point| {
+                let d = |t: usize| triangle_distance(mesh.triangles()[t].map(|i| positions[i as usize]), p);
+                // The first of the nearest, as `min_by` keeps the first of equals.
+                (0..mesh.triangle_count()).map(|t| (d(t), t)).min_by(|a, b| a.0.total_cmp(&b.0)).unwrap().1
+            };
+            // Half-unit points inside, on edges and vertices, in the hole and outside (ties
+            // everywhere), and arbitrary points.
+            let mut points: Vec<Point> =
+                (0..400).map(|_| [next(60) as f64 / 2.0 - 10.0, next(60) as f64 / 2.0 - 10.0]).collect();
+            points.extend(
+                (0..4000).map(|_| [next(1 << 20) as f64 / 26214.4 - 10.0, next(1 << 20) as f64 / 26214.4 - 10.0]),
+            );
+            points.extend(positions.iter().copied());
+            points.extend([[4.5, 4.5], [1e9, -1e9], [-0.5, -0.5]]);
+            for p in points {
+                assert_eq!(tree.nearest(positions, mesh.triangles(), p), brute_force(p), "at {p:?}");
+            }
+        }
     }
 
     #[test]

@@ -7,6 +7,7 @@ use wasm_bindgen::JsCast;
 use super::mesh::read_mesh;
 use super::read::{self, entries};
 use super::{limits, max_coordinates, object, pairs, to_js};
+use crate::deform::arap::MAX_ITERATIONS;
 use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions, Orders};
 
 /// A deformer for one mesh: AKAP (`crate::deform::Deformer`) or ARAP
@@ -237,9 +238,16 @@ fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOption
                 };
             }
             ("iterations", MethodOptions::Arap(o)) => {
+                // The core's bound (`arap::MAX_ITERATIONS`), checked here on the caller's
+                // number so that the message names it (1e300 as usize would not).
                 o.iterations = match field.as_f64() {
-                    Some(n) if n.fract() == 0.0 && (1.0..=1e6).contains(&n) => n as usize,
-                    _ => return Err(JsError::new("option iterations must be a whole number from 1 to 1000000")),
+                    Some(n) if n.fract() == 0.0 && (1.0..=MAX_ITERATIONS as f64).contains(&n) => n as usize,
+                    _ => {
+                        return Err(JsError::new(&format!(
+                            "option iterations must be a whole number from 1 to {MAX_ITERATIONS} (iterations per \
+                             step: a step's work grows with them, and {MAX_ITERATIONS} is far more than a frame needs)"
+                        )))
+                    }
                 };
             }
             ("lambda" | "dirichlet" | "integrator", _) => return Err(only(key, "akap")),

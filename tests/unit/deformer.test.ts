@@ -185,6 +185,12 @@ describe("Deformer", () => {
     expect(() => deformer.setOptions({ method: "akap" })).toThrow(/chosen when the deformer is created/);
     expect(() => new Deformer(mesh.positions, mesh.triangles, { iterations: 3 })).toThrow(/applies to method "arap"/);
     deformer.setOptions({ iterations: 2 });
+    // At most 1000 iterations per step (the core's arap::MAX_ITERATIONS), so a step ends.
+    deformer.setOptions({ iterations: 1000 });
+    for (const iterations of [0, 1001, 1e6, 2.5]) {
+      expect(() => deformer.setOptions({ iterations })).toThrow(/whole number from 1 to 1000 \(iterations per step/);
+    }
+    deformer.setOptions({ iterations: 2 });
     // A pose set from outside: the handles' targets move with it, so a zero step stays.
     const shifted = p.map((x, i) => x + (i % 2 === 0 ? 0.3 : 0));
     deformer.setPositions(shifted);

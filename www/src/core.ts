@@ -114,7 +114,11 @@ export interface DeformerOptions {
   dirichlet?: boolean;
   /** AKAP: how vertices follow the field: along log spirals (default) or straight lines. */
   integrator?: "spiral" | "linear";
-  /** ARAP: local/global iterations per step, a whole number from 1 to 1000000 (default 10). */
+  /**
+   * ARAP: local/global iterations per step, a whole number from 1 to 1000 (default 10).
+   * The limit keeps one step's work bounded (1000 iterations take about 0.1 s at 1,000
+   * vertices natively, growing with the mesh); a frame needs far fewer.
+   */
   iterations?: number;
 }
 

@@ -13,7 +13,10 @@
 
 mod path_data;
 mod style;
+mod text;
 mod transform;
+
+use std::cell::RefCell;
 
 use roxmltree::{Document, Node, ParsingOptions};
 
@@ -29,6 +32,7 @@ use crate::import::vector::{FillRule, VectorPath, Verb};
 use crate::import::Limits;
 use crate::outline::Outline;
 use style::Style;
+use text::{check_attributes, Cursor};
 
 const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
@@ -133,6 +137,10 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
             unit: "bytes",
         });
     }
+    check_attributes(text, limits.max_elements, limits.max_attribute_pairs).map_err(|e| {
+        let (line, column) = Cursor::new(text).at(e.tag);
+        ImportError::TooManyAttributes { line, column, attributes: e.attributes, limit: limits.max_attribute_pairs }
+    })?;
     let parsing = ParsingOptions {
         allow_dtd: true,
         nodes_limit: u32::try_from(limits.max_elements).unwrap_or(u32::MAX),
@@ -150,7 +158,8 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
         return Err(ImportError::NotSvg { root: root.tag_name().name().to_string() });
     }
 
-    let mut walk = Walk { document: &document, limits, paths: Vec::new(), skipped: Vec::new(), points: 0 };
+    let mut walk =
+        Walk { cursor: RefCell::new(Cursor::new(text)), limits, paths: Vec::new(), skipped: Vec::new(), points: 0 };
     walk.run(root)?;
     let Walk { paths, skipped, .. } = walk;
 
@@ -191,7 +200,8 @@ fn in_svg_namespace(node: Node) -> bool {
 }
 
 struct Walk<'a, 'input> {
-    document: &'a Document<'input>,
+    /// Lines and columns of elements, met in document order.
+    cursor: RefCell<Cursor<'input>>,
     limits: &'a Limits,
     paths: Vec<SvgPath>,
     skipped: Vec<String>,
@@ -200,12 +210,12 @@ struct Walk<'a, 'input> {
 
 impl<'a, 'input> Walk<'a, 'input> {
     fn element_ref(&self, node: Node) -> ElementRef {
-        let pos = self.document.text_pos_at(node.range().start);
+        let (line, column) = self.cursor.borrow_mut().at(node.range().start);
         ElementRef {
             name: node.tag_name().name().to_string(),
             id: node.attribute("id").map(str::to_string),
-            line: pos.row,
-            column: pos.col,
+            line,
+            column,
         }
     }
 

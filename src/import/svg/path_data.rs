@@ -45,9 +45,20 @@ impl<'a> Scanner<'a> {
         self.text.as_bytes()
     }
 
-    /// The character offset of the cursor (the text is ASCII up to any error).
+    /// The character offset of the cursor (the text is ASCII up to any error). Counts
+    /// from the start: for errors only, or parsing would be quadratic.
     pub(crate) fn offset(&self) -> usize {
-        self.text[..self.pos].chars().count()
+        self.offset_at(self.pos)
+    }
+
+    /// The cursor's byte position, for [`Self::offset_at`] if an error needs it later.
+    pub(crate) fn position(&self) -> usize {
+        self.pos
+    }
+
+    /// The character offset of byte position `pos`.
+    pub(crate) fn offset_at(&self, pos: usize) -> usize {
+        self.text[..pos].chars().count()
     }
 
     pub(crate) fn peek(&self) -> Option<u8> {
@@ -190,7 +201,8 @@ pub fn parse_path_data(data: &str, max_points: usize) -> Result<VectorPath, Synt
         if path.points.len() > max_points {
             return Err(SyntaxError::too_many(s.offset(), format!("the path has more than {max_points} points")));
         }
-        let command_offset = s.offset();
+        // A byte position: character offsets are counted only for an error.
+        let command_start = s.position();
         let letter = match s.peek() {
             Some(c) if c.is_ascii_alphabetic() => {
                 s.bump();
@@ -208,7 +220,7 @@ pub fn parse_path_data(data: &str, max_points: usize) -> Result<VectorPath, Synt
             _ => return Err(s.error(format!("expected a path command or a number, {}", s.found()))),
         };
         if command.is_none() && !matches!(letter, b'M' | b'm') {
-            return Err(SyntaxError::new(command_offset, "path data must start with a moveto (M or m)"));
+            return Err(SyntaxError::new(s.offset_at(command_start), "path data must start with a moveto (M or m)"));
         }
         command = Some(letter);
         let relative = letter.is_ascii_lowercase();
@@ -290,7 +302,10 @@ pub fn parse_path_data(data: &str, max_points: usize) -> Result<VectorPath, Synt
                 current = start;
                 s.skip_separator();
             }
-            _ => return Err(SyntaxError::new(command_offset, format!("unknown path command `{}`", letter as char))),
+            _ => {
+                let offset = s.offset_at(command_start);
+                return Err(SyntaxError::new(offset, format!("unknown path command `{}`", letter as char)));
+            }
         }
         last_cubic = next_cubic;
         last_quad = next_quad;

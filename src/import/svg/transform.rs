@@ -61,7 +61,8 @@ pub fn parse_transform(text: &str) -> Result<Affine, SyntaxError> {
     let mut total = Affine::IDENTITY;
     s.skip_whitespace();
     while !s.at_end() {
-        let name_start = s.offset();
+        // A byte position: the character offset is counted only for an error.
+        let name_start = s.position();
         let mut name = String::new();
         while let Some(c) = s.peek().filter(u8::is_ascii_alphabetic) {
             name.push(c as char);
@@ -84,7 +85,7 @@ pub fn parse_transform(text: &str) -> Result<Affine, SyntaxError> {
         s.bump();
         let bad = || {
             let plural = if args.len() == 1 { "" } else { "s" };
-            SyntaxError::new(name_start, format!("{name}() does not take {} number{plural}", args.len()))
+            SyntaxError::new(s.offset_at(name_start), format!("{name}() does not take {} number{plural}", args.len()))
         };
         let step = match (name.as_str(), args.as_slice()) {
             ("matrix", &[a, b, c, d, e, f]) => Affine([a, b, c, d, e, f]),
@@ -100,7 +101,7 @@ pub fn parse_transform(text: &str) -> Result<Affine, SyntaxError> {
             ("skewY", &[a]) => Affine([1.0, a.to_radians().tan(), 0.0, 1.0, 0.0, 0.0]),
             ("matrix" | "translate" | "scale" | "rotate" | "skewX" | "skewY", _) => return Err(bad()),
             _ => {
-                return Err(SyntaxError::new(name_start, format!("unknown transform `{name}`")));
+                return Err(SyntaxError::new(s.offset_at(name_start), format!("unknown transform `{name}`")));
             }
         };
         total = total.then_apply_to(step);
