@@ -281,23 +281,50 @@ describe("an instance that traps", () => {
   });
 });
 
-describe.runIf(process.env.HOSTILE_OOM)(
-  "memory exhausted by deformers never freed (HOSTILE_OOM=1, about a minute)",
-  () => {
-    it("gives an Error saying so, and after freeing them the instance works", () => {
-      const mesh = api.triangulate(api.defaultShape(), { targetEdgeLength: 0.008 });
-      const kept: api.Deformer[] = [];
-      let error: unknown;
-      try {
-        for (let i = 0; i < 1000; i++) kept.push(new api.Deformer(mesh.positions, mesh.triangles));
-      } catch (e) {
-        error = e;
+describe.runIf(process.env.HOSTILE_OOM)("memory exhausted (HOSTILE_OOM=1, about a minute)", () => {
+  it("by deformers never freed: an Error saying so, and after freeing them the instance works", () => {
+    const before = canary();
+    const mesh = api.triangulate(api.defaultShape(), { targetEdgeLength: 0.008 });
+    const kept: api.Deformer[] = [];
+    let error: unknown;
+    try {
+      for (let i = 0; i < 1000; i++) kept.push(new api.Deformer(mesh.positions, mesh.triangles));
+    } catch (e) {
+      error = e;
+    }
+    expect(error).toBeInstanceOf(Error);
+    expect(error).not.toBeInstanceOf(WebAssembly.RuntimeError);
+    expect(String((error as Error).message)).toMatch(/out of memory/);
+    for (const d of kept) d.free();
+    expect(canary()).toEqual(before);
+  }, 600_000);
+
+  it("by meshes, whose allocation cannot fail gracefully: the instance traps, the bindings move to a fresh one", async () => {
+    const { raw: guarded } = await import("../../www/src/internal/wasm.js");
+    const before = canary();
+    const side = 310;
+    const p: number[] = [];
+    const t: number[] = [];
+    for (let y = 0; y < side; y++) for (let x = 0; x < side; x++) p.push(x, y);
+    for (let y = 0; y + 1 < side; y++) {
+      for (let x = 0; x + 1 < side; x++) {
+        const v = side * y + x;
+        t.push(v, v + 1, v + side + 1, v, v + side + 1, v + side);
       }
-      expect(error).toBeInstanceOf(Error);
-      expect(error).not.toBeInstanceOf(WebAssembly.RuntimeError);
-      expect(String((error as Error).message)).toMatch(/out of memory/);
-      for (const d of kept) d.free();
-      expect(canary()).toEqual(canary());
-    }, 600_000);
-  },
-);
+    }
+    const [positions, triangles] = [Float64Array.from(p), Uint32Array.from(t)];
+    const kept: { vertexCount: number }[] = [];
+    let error: unknown;
+    try {
+      for (let i = 0; i < 5000; i++) kept.push(new guarded.Mesh(positions, triangles));
+    } catch (e) {
+      error = e;
+    }
+    expect(error).toBeInstanceOf(Error);
+    expect(error).not.toBeInstanceOf(WebAssembly.RuntimeError);
+    expect(String((error as Error).message)).toMatch(/stopped \(unreachable\).*a new instance has started/);
+    // Objects of the old instance say so; new ones work, and compute as before.
+    expect(() => kept[0]!.vertexCount).toThrow(/cannot be used again/);
+    expect(canary()).toEqual(before);
+  }, 600_000);
+});

@@ -2,9 +2,12 @@
  * Loads the WebAssembly module once, in a page or in Node, and hands out its bindings
  * (`raw`) with every call guarded: the bindings refuse bad input with `Error`s, but should
  * the instance ever trap (a `WebAssembly.RuntimeError`: memory exhausted by an allocation
- * that is not fallible, say), its state is no longer trustworthy, so from then on every
- * call throws an `Error` that says so instead of computing with a broken instance.
- * Internal: the public API in `../index.ts` re-exports what users need.
+ * that is not fallible, say), its state is no longer trustworthy. That call then throws an
+ * `Error` that says so, and the bindings move to a fresh instance of the same compiled
+ * module (a spare copy of wasm-bindgen's glue, imported ahead, since the glue holds its
+ * instance in module state and initialises once): later calls work, while objects made by
+ * the old instance throw, saying to make them again. Internal: the public API in
+ * `../index.ts` re-exports what users need.
  */
 import initWasm, * as glue from "../../pkg/akap.js";
 
@@ -16,7 +19,10 @@ export type * as rawTypes from "../../pkg/akap.js";
  * methods and getters guarded too. After a trap (a `WebAssembly.RuntimeError`) every call
  * throws `failure()`, an `Error` saying the instance stopped.
  */
-export function guardBindings<M extends object>(module: M): { bindings: M; failure(): Error | undefined } {
+export function guardBindings<M extends object>(
+  module: M,
+  onTrap: (error: WebAssembly.RuntimeError) => string = () => "reload the page, or restart the process",
+): { bindings: M; failure(): Error | undefined } {
   let failure: Error | undefined;
   const guarded = <T>(call: () => T): T => {
     if (failure) throw new Error(failure.message, { cause: failure });
@@ -26,8 +32,7 @@ export function guardBindings<M extends object>(module: M): { bindings: M; failu
     } catch (error) {
       if (error instanceof WebAssembly.RuntimeError) {
         failure = new Error(
-          `the akap WebAssembly instance stopped (${error.message}) and cannot be used again; ` +
-            "reload the page, or restart the process",
+          `the akap WebAssembly instance stopped (${error.message}) and cannot be used again; ` + onTrap(error),
           { cause: error },
         );
         throw failure;
@@ -62,11 +67,45 @@ export function guardBindings<M extends object>(module: M): { bindings: M; failu
   return { bindings, failure: () => failure };
 }
 
-const guardedGlue = guardBindings(glue);
+/** The compiled module, for fresh instances after a trap. */
+let compiled: WebAssembly.Module | undefined;
+/** A copy of the glue module not yet initialised, ready to hold a fresh instance. */
+let spare: typeof glue | undefined;
+let spares = 0;
+
+/**
+ * Imports another copy of the glue (a distinct URL is a distinct module instance). Never
+ * rejects: without a spare, a trap's message says to reload instead.
+ */
+async function prepareSpare(): Promise<void> {
+  const url = new URL("../../pkg/akap.js", import.meta.url);
+  url.searchParams.set("instance", String(++spares));
+  spare = await import(/* @vite-ignore */ url.href).then(
+    (copy: typeof glue) => copy,
+    () => undefined,
+  );
+}
+
+/** After a trap: the bindings move to a fresh instance if one can be made now. */
+function restart(): string {
+  const copy = spare;
+  if (!copy || !compiled) return "reload the page, or restart the process";
+  spare = undefined;
+  try {
+    memory = copy.initSync({ module: compiled }).memory;
+  } catch {
+    return "reload the page, or restart the process";
+  }
+  current = guardBindings(copy, restart);
+  Object.assign(raw, current.bindings);
+  void prepareSpare();
+  return "a new instance has started: make the objects you had (deformers, meshes, mappers) again";
+}
+
+let current = guardBindings(glue, restart);
 
 /** The bindings, every call guarded (see the module's note). */
-export const raw = guardedGlue.bindings;
-
+export const raw = { ...current.bindings };
 let ready: Promise<void> | undefined;
 let loaded = false;
 let memory: WebAssembly.Memory | undefined;
@@ -86,13 +125,27 @@ async function readBesideThisModule(): Promise<BufferSource> {
   return fs.readFile(new URL("../../pkg/akap_bg.wasm", import.meta.url));
 }
 
+/** The module compiled from `source` (bytes, a URL, a response or a module), or from the file beside this one. */
+async function compile(source?: WasmSource): Promise<WebAssembly.Module> {
+  if (source instanceof WebAssembly.Module) return source;
+  if (source === undefined && isNode()) return WebAssembly.compile(await readBesideThisModule());
+  if (source === undefined || typeof source === "string" || source instanceof URL) {
+    const response = await fetch(source ?? new URL("../../pkg/akap_bg.wasm", import.meta.url));
+    if (!response.ok) throw new Error(`${response.url}: ${response.status} ${response.statusText}`);
+    return WebAssembly.compile(await response.arrayBuffer());
+  }
+  if (source instanceof Response) return WebAssembly.compile(await source.arrayBuffer());
+  return WebAssembly.compile(source);
+}
+
 /** Instantiates the module; later calls return the same promise. */
 export function load(source?: WasmSource): Promise<void> {
   ready ??= (async () => {
-    const input = source ?? (isNode() ? await readBesideThisModule() : undefined);
-    const exports = await initWasm(input === undefined ? undefined : { module_or_path: input });
+    compiled = await compile(source);
+    const exports = await initWasm({ module_or_path: compiled });
     memory = exports.memory;
     loaded = true;
+    await prepareSpare();
   })().catch((error: unknown) => {
     ready = undefined;
     throw new Error(`could not load the akap WebAssembly module: ${String(error)}`, { cause: error });
@@ -108,7 +161,7 @@ export function wasmMemory(): WebAssembly.Memory {
 
 /** Throws a clear error when the module is used before `load` finished. */
 export function assertLoaded(): void {
-  const failure = guardedGlue.failure();
+  const failure = current.failure();
   if (failure) throw new Error(failure.message, { cause: failure });
   if (!loaded) throw new Error("akap is not initialised: await init() first");
 }
