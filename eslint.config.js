@@ -6,6 +6,11 @@ export default tseslint.config(
   js.configs.recommended,
   ...tseslint.configs.strict,
   {
+    // The package check's consumer project: a page's scripts and its workers.
+    files: ["tests/package/consumer/**/*.js"],
+    languageOptions: { globals: { self: "readonly", Worker: "readonly", URL: "readonly" } },
+  },
+  {
     languageOptions: { globals: { window: "readonly", document: "readonly", console: "readonly" } },
     rules: {
       // With noUncheckedIndexedAccess, typed-array reads inside checked loops need `!`.

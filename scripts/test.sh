@@ -34,6 +34,7 @@ check typecheck tsc --noEmit -p tsconfig.json
 check lint bash -c 'eslint . && prettier --check . --log-level warn'
 check unit vitest run
 check browser env CHROMIUM_PATH="${CHROMIUM_PATH:-/usr/bin/chromium}" playwright test
+check package env CHROMIUM_PATH="${CHROMIUM_PATH:-/usr/bin/chromium}" node scripts/test-package.mjs
 
 echo
 for name in "${passed[@]}"; do echo "  ok      $name"; done

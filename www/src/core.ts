@@ -13,9 +13,14 @@
  */
 import { toFloat64, toUint32 } from "./internal/arrays.js";
 import { readMesh } from "./internal/mesh.js";
-import { assertLoaded, load, raw, wasmMemory, type WasmSource, type rawTypes } from "./internal/wasm.js";
+import { assertLoaded, load, raw, wasmMemory, wasmModule, type rawTypes } from "./internal/wasm.js";
 
-export type { WasmSource };
+/**
+ * Where the WebAssembly module comes from: its bytes, its URL, a fetch `Response` or an
+ * already compiled module. (The public types never reach wasm-bindgen's generated ones,
+ * so a consumer's `lib` setting need not know them.)
+ */
+export type WasmSource = BufferSource | WebAssembly.Module | URL | string | Response;
 
 /** A list of points, x and y interleaved: `[x0, y0, x1, y1, ...]`. */
 export type Coordinates = Float64Array | readonly number[];
@@ -61,6 +66,14 @@ export interface MeshData {
  */
 export function init(source?: WasmSource): Promise<void> {
   return load(source);
+}
+
+/**
+ * The compiled WebAssembly module (after {@link init}). Post it to a Web Worker and call
+ * `init(module)` there: the worker instantiates it without fetching or compiling again.
+ */
+export function compiledModule(): WebAssembly.Module {
+  return wasmModule();
 }
 
 function copyOut(mesh: rawTypes.Mesh): MeshData {

@@ -10,6 +10,7 @@
  * `../index.ts` re-exports what users need.
  */
 import initWasm, * as glue from "../../pkg/akap.js";
+import type { WasmSource } from "../core.js";
 
 export type * as rawTypes from "../../pkg/akap.js";
 
@@ -73,12 +74,29 @@ let compiled: WebAssembly.Module | undefined;
 let spare: typeof glue | undefined;
 let spares = 0;
 
+/** The package's name: where its files are under `node_modules/`. */
+const PACKAGE = "akap";
+
+/**
+ * Where a file of the package is served from when a dev server pre-bundled this module
+ * away from the files beside it (Vite's dev server serves dependencies from
+ * `/node_modules/.vite/deps/` without them, vitejs/vite#8427): the package's own folder,
+ * which it serves too. `undefined` when this module was not moved. The callers keep the
+ * `new URL("…", import.meta.url)` form for the usual case, which bundlers recognise and
+ * rewrite in production builds.
+ */
+export function unbundledFile(pathInPackage: string): URL | undefined {
+  const here = import.meta.url;
+  const at = here.indexOf("/node_modules/.vite/");
+  return at < 0 ? undefined : new URL(`${here.slice(0, at)}/node_modules/${PACKAGE}/${pathInPackage}`);
+}
+
 /**
  * Imports another copy of the glue (a distinct URL is a distinct module instance). Never
  * rejects: without a spare, a trap's message says to reload instead.
  */
 async function prepareSpare(): Promise<void> {
-  const url = new URL("../../pkg/akap.js", import.meta.url);
+  const url = unbundledFile("www/pkg/akap.js") ?? new URL("../../pkg/akap.js", import.meta.url);
   url.searchParams.set("instance", String(++spares));
   spare = await import(/* @vite-ignore */ url.href).then(
     (copy: typeof glue) => copy,
@@ -110,9 +128,6 @@ let ready: Promise<void> | undefined;
 let loaded = false;
 let memory: WebAssembly.Memory | undefined;
 
-/** Bytes, a URL or a compiled module, as wasm-bindgen's initialiser accepts them. */
-export type WasmSource = BufferSource | WebAssembly.Module | URL | string | Response;
-
 function isNode(): boolean {
   const p = (globalThis as { process?: { versions?: { node?: string } } }).process;
   return typeof p?.versions?.node === "string" && typeof (globalThis as { window?: unknown }).window === "undefined";
@@ -129,13 +144,34 @@ async function readBesideThisModule(): Promise<BufferSource> {
 async function compile(source?: WasmSource): Promise<WebAssembly.Module> {
   if (source instanceof WebAssembly.Module) return source;
   if (source === undefined && isNode()) return WebAssembly.compile(await readBesideThisModule());
-  if (source === undefined || typeof source === "string" || source instanceof URL) {
-    const response = await fetch(source ?? new URL("../../pkg/akap_bg.wasm", import.meta.url));
-    if (!response.ok) throw new Error(`${response.url}: ${response.status} ${response.statusText}`);
-    return WebAssembly.compile(await response.arrayBuffer());
+  if (source === undefined) {
+    const url = unbundledFile("www/pkg/akap_bg.wasm") ?? new URL("../../pkg/akap_bg.wasm", import.meta.url);
+    return WebAssembly.compile(await fetchWasm(url, true));
   }
+  if (typeof source === "string" || source instanceof URL) return WebAssembly.compile(await fetchWasm(source, false));
   if (source instanceof Response) return WebAssembly.compile(await source.arrayBuffer());
   return WebAssembly.compile(source);
+}
+
+/**
+ * The bytes at `url`, refused unless they are a WebAssembly module (servers answer a missing
+ * file with their index page, too). `beside`: the URL was the default, so the message says
+ * how to pass another.
+ */
+async function fetchWasm(url: string | URL, beside: boolean): Promise<ArrayBuffer> {
+  const response = await fetch(url);
+  const bytes = response.ok ? await response.arrayBuffer() : new ArrayBuffer(0);
+  const magic = new Uint8Array(bytes, 0, Math.min(4, bytes.byteLength));
+  if (String(magic) === "0,97,115,109") return bytes;
+  const got = response.ok
+    ? `a ${response.headers.get("content-type") ?? "file"} that is not WebAssembly`
+    : `${response.status} ${response.statusText}`;
+  throw new Error(
+    `${response.url || String(url)} answered ${got}` +
+      (beside
+        ? "; if a bundler or server moved akap's files, pass the module to init(): its URL, bytes or a WebAssembly.Module"
+        : ""),
+  );
 }
 
 /** Instantiates the module; later calls return the same promise. */
@@ -151,6 +187,15 @@ export function load(source?: WasmSource): Promise<void> {
     throw new Error(`could not load the akap WebAssembly module: ${String(error)}`, { cause: error });
   });
   return ready;
+}
+
+/**
+ * The compiled module (after `load`): hand it to a Worker, whose `init(module)` then
+ * instantiates it without fetching or compiling again.
+ */
+export function wasmModule(): WebAssembly.Module {
+  if (!compiled) throw new Error("akap is not initialised: await init() first");
+  return compiled;
 }
 
 /** The module's linear memory (after `load`). Its buffer changes when it grows. */

@@ -2,7 +2,7 @@
  * The widget's options, its methods and their deformer settings, and the events it sends:
  * what pages (and the custom element) see of the widget's configuration.
  */
-import type { DeformerOptions, Metrics, Outline, Timings } from "../core.js";
+import type { DeformerOptions, Metrics, Outline, Timings, WasmSource } from "../core.js";
 
 /** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
 export const METHODS = {
@@ -25,6 +25,12 @@ export const METHODS = {
 export type Method = keyof typeof METHODS;
 
 export interface WidgetOptions {
+  /**
+   * Where the WebAssembly module is, for hosts that move the package's files: its URL,
+   * bytes or a compiled `WebAssembly.Module`, as {@link init} takes. Default: beside the
+   * package's modules (or whatever an earlier `init()` loaded).
+   */
+  wasm?: WasmSource;
   /** A built-in shape (see `builtinShapes()`); default the first one. */
   shape?: string;
   /** A shape of your own instead of a built-in one. */
@@ -70,7 +76,7 @@ export interface WidgetOptions {
 
 /** The settings a widget runs with (its options that can change while it runs). */
 export type WidgetSettings = Required<
-  Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey">
+  Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm">
 >;
 
 /** A file the toolbar offers beside the built-in shapes. */

@@ -1,24 +1,25 @@
 /**
- * The set-up worker (see `setup.ts`): with a wasm instance of its own, meshes an outline and
- * computes the deformer's orders, reporting each stage, and sends the shape back with its
- * arrays transferred, not copied.
+ * The set-up worker (see `setup.ts`): with a wasm instance of its own (of the module the
+ * page compiled, sent with each request), meshes an outline and computes the deformer's
+ * orders, reporting each stage, and sends the shape back with its arrays transferred, not
+ * copied.
  */
 import { deformerOrders, init } from "../core.js";
-import { STAGES, makeShape, type SetupReply, type SetupRequest } from "./setup.js";
+import { STAGES, makeShape, type SetupMessage, type SetupReply } from "./setup.js";
 
 interface WorkerScope {
-  onmessage: ((event: MessageEvent<{ id: number; request: SetupRequest }>) => void) | null;
+  onmessage: ((event: MessageEvent<SetupMessage>) => void) | null;
   postMessage(message: SetupReply, transfer: Transferable[]): void;
 }
 
 const scope = globalThis as unknown as WorkerScope;
 
 scope.onmessage = (event) => {
-  const { id, request } = event.data;
+  const { id, request, wasm } = event.data;
   const post = (reply: SetupReply, transfer: Transferable[] = []) => scope.postMessage(reply, transfer);
   void (async () => {
     try {
-      await init();
+      await init(wasm);
       post({ id, kind: "progress", stage: STAGES.meshing[0], fraction: STAGES.meshing[1] });
       const shape = makeShape(request);
       post({ id, kind: "progress", stage: STAGES.ordering[0], fraction: STAGES.ordering[1] });

@@ -7,7 +7,8 @@
  * Where workers cannot run (no `Worker`, a page that forbids them), the work runs on the
  * main thread after a frame, so the busy indicator shows first.
  */
-import { builtinShape, type DeformerOptions, type Outline } from "../core.js";
+import { builtinShape, compiledModule, type DeformerOptions, type Outline } from "../core.js";
+import { unbundledFile } from "../internal/wasm.js";
 import { meshOutline, type Shape } from "./shape.js";
 import { BUSY_DELAY_MS, type BusyIndicator } from "./status.js";
 
@@ -20,6 +21,13 @@ export interface SetupRequest {
   vertices: number;
   minAngle: number;
   options: DeformerOptions;
+}
+
+/** Messages to the worker: the request, and the compiled module it instantiates (once). */
+export interface SetupMessage {
+  id: number;
+  request: SetupRequest;
+  wasm: WebAssembly.Module;
 }
 
 /** Messages from the worker. */
@@ -63,7 +71,7 @@ export class ShapeMaker {
     return new Promise<Prepared>((resolve, reject) => {
       const pending: Pending = { id: this.#next++, resolve, reject, progress };
       this.#pending = pending;
-      worker.postMessage({ id: pending.id, request });
+      worker.postMessage({ id: pending.id, request, wasm: compiledModule() } satisfies SetupMessage);
     });
   }
 
@@ -86,7 +94,11 @@ export class ShapeMaker {
   #start(): Worker | null {
     if (this.#worker !== undefined) return this.#worker;
     try {
-      const worker = new Worker(new URL("./setup-worker.js", import.meta.url), { type: "module" });
+      // The literal form is what bundlers recognise (and bundle the worker with its imports).
+      const unbundled = unbundledFile("www/lib/widget/setup-worker.js");
+      const worker = unbundled
+        ? new Worker(unbundled, { type: "module" })
+        : new Worker(new URL("./setup-worker.js", import.meta.url), { type: "module" });
       worker.onmessage = (event: MessageEvent<SetupReply>) => this.#reply(event.data);
       worker.onerror = (event) => {
         // A worker that cannot load (blocked, or its script missing): work here from now on.

@@ -159,7 +159,7 @@ export class Widget {
 
   /** Creates a widget inside `target` (see {@link mount}). */
   static async create(target: HTMLElement, options: WidgetOptions = {}): Promise<Widget> {
-    await init();
+    await init(options.wasm);
     const widget = new Widget(target, options);
     const posing = widget.#posing;
     try {

@@ -1,0 +1,59 @@
+/**
+ * The package check's browser part (run by scripts/test-package.mjs, which installs the
+ * packed tarball into the project at AKAP_CONSUMER): the Vite app's production build and
+ * dev server, and a plain page served as static files.
+ */
+import { defineConfig } from "@playwright/test";
+import { join } from "node:path";
+
+const project = process.env.AKAP_CONSUMER ?? "";
+const chromium = process.env.CHROMIUM_PATH ?? "/usr/bin/chromium";
+const base = Number(process.env.PACKAGE_PORT ?? 4331);
+const vite = join(import.meta.dirname, "../../node_modules/.bin/vite");
+export const SERVERS = {
+  build: `http://127.0.0.1:${base}`,
+  dev: `http://127.0.0.1:${base + 1}`,
+  plain: `http://127.0.0.1:${base + 2}`,
+};
+
+export default defineConfig({
+  testDir: ".",
+  testMatch: "*.spec.ts",
+  timeout: 60_000,
+  retries: 0,
+  workers: 1,
+  reporter: [["list"]],
+  use: {
+    launchOptions: {
+      executablePath: chromium,
+      args: [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--no-first-run",
+      ],
+    },
+  },
+  webServer: [
+    {
+      command: `${vite} preview --host 127.0.0.1 --port ${base} --strictPort`,
+      cwd: project,
+      url: `${SERVERS.build}/`,
+      reuseExistingServer: false,
+    },
+    {
+      command: `${vite} --host 127.0.0.1 --port ${base + 1} --strictPort`,
+      cwd: project,
+      url: `${SERVERS.dev}/`,
+      reuseExistingServer: false,
+    },
+    {
+      command: `node ${join(import.meta.dirname, "static-server.mjs")} ${project} ${base + 2}`,
+      url: `${SERVERS.plain}/plain/`,
+      reuseExistingServer: false,
+    },
+  ],
+});
