@@ -33,6 +33,8 @@ function run(command, args, cwd, { env = {}, capture = false } = {}) {
 const REQUIRED = [
   "package.json",
   "README.md",
+  "LICENSE-MIT",
+  "LICENSE-APACHE",
   "www/pkg/akap_bg.wasm",
   "www/pkg/akap.js",
   "www/pkg/akap.d.ts",
