@@ -82,3 +82,34 @@ test("a plain page without a bundler: <akap-deformer> draws and poses; a worker 
   await workerRotates(page);
   expect(errors).toEqual([]);
 });
+
+test("a host that moved the wasm passes its URL or bytes; a wrong URL is an error that says what came back", async ({
+  page,
+}) => {
+  type Akap = typeof import("../../www/src/index.js");
+  const wasm = "../node_modules/akap/www/pkg/akap_bg.wasm";
+  const vertices = (source: string, asBytes: boolean) =>
+    page.evaluate(
+      async ({ source, asBytes }) => {
+        const akap = (window as unknown as { akap: Akap }).akap;
+        try {
+          await akap.init(asBytes ? await (await fetch(source)).arrayBuffer() : source);
+          return akap.triangulate(akap.defaultShape(), { targetEdgeLength: 0.1 }).vertexCount;
+        } catch (error) {
+          return String(error);
+        }
+      },
+      { source, asBytes },
+    );
+  const open = async () => {
+    await page.goto(`${SERVERS.plain}/plain/core.html`);
+    await page.waitForFunction(() => "akap" in window);
+  };
+  await open();
+  expect(await vertices("./missing.wasm", false)).toMatch(/missing\.wasm answered 404/);
+  expect(await vertices("./core.html", false)).toMatch(/answered a text\/html that is not WebAssembly/);
+  // Nothing was kept from the failures: the right URL works in the same page.
+  expect(await vertices(wasm, false)).toBeGreaterThan(50);
+  await open();
+  expect(await vertices(wasm, true)).toBeGreaterThan(50);
+});
