@@ -10,6 +10,8 @@ mod import_raster;
 mod import_svg;
 mod killing;
 mod limits;
+#[cfg(not(target_arch = "wasm32"))]
+mod pose_obj;
 mod session;
 mod sparse;
 mod triangulation;
