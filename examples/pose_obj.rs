@@ -18,7 +18,7 @@ use std::time::Instant;
 
 use akap::deform::{ArapOptions, DeformerOptions, MethodOptions, Metrics};
 use akap::geometry::{bounding_box, Point};
-use akap::import::mesh_file::{read_obj, write_obj};
+use akap::import::mesh_file::{read_obj, write_obj_pose};
 use akap::import::Limits;
 use akap::{shapes, triangulate, Mesh, TriangulationOptions};
 
@@ -137,11 +137,9 @@ pub(crate) fn pose_obj(obj: Option<&str>, pose: &Pose) -> Result<Posed, String> 
     let metrics = deformer.metrics();
     let miss = (deformer.handle_positions().iter().zip(&targets))
         .fold(0.0f64, |m, (p, t)| m.max((p[0] - t[0]).hypot(p[1] - t[1])));
-    let posed = Mesh::new(deformer.positions().to_vec(), deformer.mesh().triangles().to_vec()).map_err(|e| {
-        let flipped = metrics.flipped;
-        format!("the pose is no valid mesh ({e}; {flipped} triangles flipped): try more --steps or smaller moves")
-    })?;
-    let obj = write_obj(&posed, uvs.as_deref(), &limits).map_err(|e| e.to_string())?;
+    // The pose as it is, flipped triangles included (the summary counts them).
+    let obj = write_obj_pose(deformer.positions(), deformer.mesh().triangles(), uvs.as_deref(), &limits)
+        .map_err(|e| e.to_string())?;
     Ok(Posed { obj, vertices, triangles, has_uvs: uvs.is_some(), pose, steps, setup_ms, steps_ms, metrics, miss })
 }
 

@@ -198,8 +198,13 @@ pub struct Mesh {
 }
 
 impl Mesh {
-    /// Validates positions and counter-clockwise triangles and builds the mesh.
-    pub fn new(positions: Vec<Point>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
+    /// Checks what every use of triangles at positions needs, a pose as much as a rest
+    /// mesh: counts within [`MAX_MESH_ELEMENTS`], at least one triangle, finite coordinates
+    /// within [`MAX_COORDINATE`], indices that name vertices, three different ones per
+    /// triangle. [`Mesh::new`] checks this and then the geometry (orientation, size,
+    /// manifoldness), which a pose need not keep: the mesh writers write poses with
+    /// flipped or collapsed triangles as they are.
+    pub fn check_arrays(positions: &[Point], triangles: &[[u32; 3]]) -> Result<(), MeshError> {
         let n = positions.len();
         if n > MAX_MESH_ELEMENTS {
             return Err(MeshError::TooLarge { what: "vertices", count: n });
@@ -218,6 +223,22 @@ impl Mesh {
                 return Err(MeshError::CoordinateOutOfRange { vertex, value });
             }
         }
+        for (t, tri) in triangles.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
+                return Err(MeshError::IndexOutOfRange { triangle: t, index, vertex_count: n });
+            }
+            let [a, b, c] = *tri;
+            if a == b || b == c || a == c {
+                return Err(MeshError::RepeatedVertex { triangle: t });
+            }
+        }
+        Ok(())
+    }
+
+    /// Validates positions and counter-clockwise triangles and builds the mesh.
+    pub fn new(positions: Vec<Point>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
+        Self::check_arrays(&positions, &triangles)?;
+        let n = positions.len();
         let (lo, hi) = bounding_box(positions.iter().copied()).ok_or(MeshError::Empty)?;
         let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
         if extent < MIN_EXTENT {
@@ -231,15 +252,9 @@ impl Mesh {
         let mut used = vec![false; n];
         for (t, tri) in triangles.iter().enumerate() {
             for &index in tri {
-                if index as usize >= n {
-                    return Err(MeshError::IndexOutOfRange { triangle: t, index, vertex_count: n });
-                }
                 used[index as usize] = true;
             }
             let [a, b, c] = *tri;
-            if a == b || b == c || a == c {
-                return Err(MeshError::RepeatedVertex { triangle: t });
-            }
             match certain_orient(scaled(a), scaled(b), scaled(c)) {
                 None => return Err(MeshError::Degenerate { triangle: t }),
                 Some(det) if det < 0.0 => return Err(MeshError::Clockwise { triangle: t }),

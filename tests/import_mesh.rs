@@ -2,7 +2,7 @@
 //! features we read, and malformed files reported with line and column.
 
 use akap::geometry::Point;
-use akap::import::mesh_file::{read_json, read_obj, write_json, write_obj};
+use akap::import::mesh_file::{read_json, read_obj, write_json, write_json_pose, write_obj, write_obj_pose};
 use akap::import::{ImportError, Limits};
 use akap::shapes::gingerbread;
 use akap::{triangulate, Mesh, MeshError, TriangulationOptions};
@@ -243,4 +243,68 @@ fn the_largest_mesh_within_the_default_limits_writes_within_them() {
     assert_eq!(read_obj(&obj, &limits()).unwrap().mesh, mesh);
     let json = write_json(&mesh, Some(&uvs), &limits()).unwrap();
     assert!(json.len() < obj.len());
+}
+
+#[test]
+fn a_pose_with_flipped_and_collapsed_triangles_is_written_as_it_is() {
+    let (mesh, uvs) = figure();
+    // The pose: the rest mesh sheared, then one vertex of triangle 0 carried across the
+    // opposite edge (the triangle flips) and triangle 1 squashed to a point.
+    let mut pose: Vec<Point> = mesh.positions().iter().map(|p| [p[0] + 0.5 * p[1], p[1] - 3.0]).collect();
+    let [a, b, c] = mesh.triangles()[0].map(|v| v as usize);
+    let mid = [(pose[b][0] + pose[c][0]) / 2.0, (pose[b][1] + pose[c][1]) / 2.0];
+    pose[a] = [2.0 * mid[0] - pose[a][0], 2.0 * mid[1] - pose[a][1]];
+    let [d, e, f] = mesh.triangles()[1].map(|v| v as usize);
+    (pose[e], pose[f]) = (pose[d], pose[d]);
+    let triangles = mesh.triangles();
+
+    let obj = write_obj_pose(&pose, triangles, Some(&uvs), &limits()).unwrap();
+    let written: Vec<Point> = (obj.lines().filter_map(|l| l.strip_prefix("v ")))
+        .map(|l| {
+            let n: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            assert_eq!(n[2], 0.0);
+            [n[0], n[1]]
+        })
+        .collect();
+    assert_eq!(written, pose);
+    assert_eq!(obj.lines().filter(|l| l.starts_with("f ")).count(), triangles.len());
+    // Read back, the file is held to a rest mesh's rules.
+    assert!(matches!(read_obj(&obj, &limits()), Err(ImportError::Mesh(MeshError::Clockwise { triangle: 0 }))));
+
+    let json = write_json_pose(&pose, triangles, None, &limits()).unwrap();
+    let value: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let numbers: Vec<f64> = value["positions"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert_eq!(numbers, pose.iter().flatten().copied().collect::<Vec<_>>());
+
+    // The rest positions through the pose writers: the mesh writers' text exactly.
+    assert_eq!(
+        write_obj_pose(mesh.positions(), triangles, Some(&uvs), &limits()).unwrap(),
+        write_obj(&mesh, Some(&uvs), &limits()).unwrap()
+    );
+    assert_eq!(
+        write_json_pose(mesh.positions(), triangles, None, &limits()).unwrap(),
+        write_json(&mesh, None, &limits()).unwrap()
+    );
+}
+
+#[test]
+fn a_pose_that_names_no_vertex_or_is_not_finite_is_refused() {
+    let (mesh, _) = figure();
+    let n = mesh.vertex_count();
+    let t = mesh.triangles();
+    let error = |p: &[Point], t: &[[u32; 3]]| write_obj_pose(p, t, None, &limits()).unwrap_err();
+    let mut nan = mesh.positions().to_vec();
+    nan[7][1] = f64::NAN;
+    assert!(matches!(error(&nan, t), ImportError::Mesh(MeshError::NonFinitePosition { vertex: 7 })));
+    let mut far = mesh.positions().to_vec();
+    far[3][0] = 1e301;
+    assert!(matches!(error(&far, t), ImportError::Mesh(MeshError::CoordinateOutOfRange { vertex: 3, .. })));
+    let mut out = t.to_vec();
+    out[5][2] = n as u32;
+    assert!(matches!(error(mesh.positions(), &out), ImportError::Mesh(MeshError::IndexOutOfRange { triangle: 5, .. })));
+    let mut twice = t.to_vec();
+    twice[2][1] = twice[2][0];
+    assert!(matches!(error(mesh.positions(), &twice), ImportError::Mesh(MeshError::RepeatedVertex { triangle: 2 })));
+    assert!(matches!(error(mesh.positions(), &[]), ImportError::Mesh(MeshError::Empty)));
+    assert!(write_json_pose(&nan, t, None, &limits()).is_err());
 }

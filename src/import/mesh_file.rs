@@ -4,7 +4,9 @@
 //! [`Mesh`] (the same rules and errors as [`Mesh::new`]) and written back so that a round
 //! trip gives the same numbers. Readers and writers share one set of [`Limits`]: the
 //! writers refuse a mesh whose file the readers would refuse, so whatever is written within
-//! some limits reads back within them.
+//! some limits reads back within them. The `_pose` writers write a mesh's triangles at other
+//! positions (a pose), checked only by [`Mesh::check_arrays`]: flipped or collapsed
+//! triangles are written as they are, and such a file reads back only once they are undone.
 
 use std::fmt::Write;
 
@@ -42,14 +44,21 @@ fn check_counts(vertices: usize, triangles: usize, limits: &Limits, what: &'stat
     Limits::check(triangles, limits.max_vertices.saturating_mul(2), what, "triangles")
 }
 
-/// What the writers check before writing: valid limits, texture coordinates that fit, and
-/// counts the readers accept.
-fn check_writable(mesh: &Mesh, uvs: Option<&[Point]>, limits: &Limits) -> Result<(), ImportError> {
+/// What the writers check before writing: valid limits, triangles that name vertices at
+/// finite positions, texture coordinates that fit, and counts the readers accept.
+fn check_writable(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    uvs: Option<&[Point]>,
+    limits: &Limits,
+) -> Result<(), ImportError> {
     limits.validate()?;
+    check_counts(positions.len(), triangles.len(), limits, "the mesh to write")?;
+    Mesh::check_arrays(positions, triangles)?;
     if let Some(uvs) = uvs {
-        check_uvs(uvs, mesh.vertex_count())?;
+        check_uvs(uvs, positions.len())?;
     }
-    check_counts(mesh.vertex_count(), mesh.triangle_count(), limits, "the mesh to write")
+    Ok(())
 }
 
 /// What the writers check after writing: the file's size against the readers' limit.
@@ -128,10 +137,22 @@ pub fn read_json(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_json(mesh: &Mesh, uvs: Option<&[Point]>, limits: &Limits) -> Result<String, ImportError> {
-    check_writable(mesh, uvs, limits)?;
+    write_json_pose(mesh.positions(), mesh.triangles(), uvs, limits)
+}
+
+/// Writes `triangles` at `positions` (a pose of a mesh) as [`write_json`] writes a mesh,
+/// checking only what a file needs ([`Mesh::check_arrays`]): a pose with flipped or
+/// collapsed triangles is written as it is.
+pub fn write_json_pose(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    uvs: Option<&[Point]>,
+    limits: &Limits,
+) -> Result<String, ImportError> {
+    check_writable(positions, triangles, uvs, limits)?;
     let json = JsonMesh {
-        positions: mesh.positions().iter().flatten().copied().collect(),
-        triangles: mesh.triangles().iter().flatten().copied().collect(),
+        positions: positions.iter().flatten().copied().collect(),
+        triangles: triangles.iter().flatten().copied().collect(),
         uvs: uvs.map(|u| u.iter().flatten().copied().collect()),
     };
     // Arrays of finite numbers and indices always serialise.
@@ -353,16 +374,28 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_obj(mesh: &Mesh, uvs: Option<&[Point]>, limits: &Limits) -> Result<String, ImportError> {
-    check_writable(mesh, uvs, limits)?;
+    write_obj_pose(mesh.positions(), mesh.triangles(), uvs, limits)
+}
+
+/// Writes `triangles` at `positions` (a pose of a mesh) as [`write_obj`] writes a mesh,
+/// checking only what a file needs ([`Mesh::check_arrays`]): a pose with flipped or
+/// collapsed triangles is written as it is.
+pub fn write_obj_pose(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    uvs: Option<&[Point]>,
+    limits: &Limits,
+) -> Result<String, ImportError> {
+    check_writable(positions, triangles, uvs, limits)?;
     let mut out = String::new();
-    let _ = writeln!(out, "# akap mesh: {} vertices, {} triangles", mesh.vertex_count(), mesh.triangle_count());
-    for p in mesh.positions() {
+    let _ = writeln!(out, "# akap mesh: {} vertices, {} triangles", positions.len(), triangles.len());
+    for p in positions {
         let _ = writeln!(out, "v {} {} 0", Number(p[0]), Number(p[1]));
     }
     for t in uvs.unwrap_or(&[]) {
         let _ = writeln!(out, "vt {} {}", Number(t[0]), Number(t[1]));
     }
-    for t in mesh.triangles() {
+    for t in triangles {
         let [a, b, c] = t.map(|i| i + 1);
         if uvs.is_some() {
             let _ = writeln!(out, "f {a}/{a} {b}/{b} {c}/{c}");

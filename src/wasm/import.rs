@@ -4,15 +4,15 @@
 use js_sys::Array;
 use wasm_bindgen::prelude::*;
 
-use super::mesh::{read_mesh, JsMesh};
+use super::mesh::{read_mesh, read_positions, JsMesh};
 use super::read::{self, entries};
-use super::{flat, limits, max_coordinates, object, outlines_to_js, pairs, to_js};
+use super::{flat, limits, max_coordinates, max_indices, object, outlines_to_js, pairs, to_js};
 use crate::import::mesh_file::{self, MeshFile};
 use crate::import::raster::{self, MaskMode, TraceOptions};
 use crate::import::svg::{self as svg_import, SvgOptions};
 use crate::import::vector::FillRule;
 use crate::import::warp::{self, PointMapper};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, MeshError};
 
 fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, JsError> {
     let mut options = SvgOptions::default();
@@ -151,33 +151,42 @@ pub fn mesh_from_json(text: JsValue) -> Result<JsMeshFile, JsError> {
     Ok(JsMeshFile { file: mesh_file::read_json(&text, &limits).map_err(to_js)? })
 }
 
-/// A mesh and its optional texture coordinates, as the writers take them.
-type MeshAndUvs = (Mesh, Option<Vec<[f64; 2]>>);
+/// A mesh or a pose of one, and its optional texture coordinates, as the writers take them.
+struct ToWrite {
+    positions: Vec<[f64; 2]>,
+    triangles: Vec<[u32; 3]>,
+    uvs: Option<Vec<[f64; 2]>>,
+}
 
-fn mesh_and_uvs(positions: &JsValue, triangles: &JsValue, uvs: &JsValue) -> Result<MeshAndUvs, JsError> {
-    let mesh = read_mesh(positions, triangles)?;
+fn to_write(positions: &JsValue, triangles: &JsValue, uvs: &JsValue) -> Result<ToWrite, JsError> {
+    let positions = pairs(&read_positions(positions)?, "positions")?;
+    let flat = read::uint32s(triangles, "triangles", max_indices())?;
+    let (triangles, rest) = flat.as_chunks::<3>();
+    if !rest.is_empty() {
+        return Err(to_js(MeshError::TrianglesLength { len: flat.len() }));
+    }
     let uvs = if uvs.is_undefined() || uvs.is_null() {
         None
     } else {
         let flat = read::float64s(uvs, "uvs", max_coordinates())?;
         Some(pairs(&flat, "uvs")?)
     };
-    Ok((mesh, uvs))
+    Ok(ToWrite { positions, triangles: triangles.to_vec(), uvs })
 }
 
-/// Writes a mesh (validated first) as Wavefront OBJ, with `vt` lines when `uvs` (a
-/// `Float64Array`) are given.
+/// Writes a mesh, or a pose of one (flipped triangles as they are), as Wavefront OBJ, with
+/// `vt` lines when `uvs` (a `Float64Array`) are given.
 #[wasm_bindgen]
 pub fn mesh_to_obj(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, JsError> {
-    let (mesh, uvs) = mesh_and_uvs(&positions, &triangles, &uvs)?;
-    mesh_file::write_obj(&mesh, uvs.as_deref(), &limits()).map_err(to_js)
+    let m = to_write(&positions, &triangles, &uvs)?;
+    mesh_file::write_obj_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits()).map_err(to_js)
 }
 
-/// Writes a mesh (validated first) in our JSON format.
+/// Writes a mesh, or a pose of one (flipped triangles as they are), in our JSON format.
 #[wasm_bindgen]
 pub fn mesh_to_json(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, JsError> {
-    let (mesh, uvs) = mesh_and_uvs(&positions, &triangles, &uvs)?;
-    mesh_file::write_json(&mesh, uvs.as_deref(), &limits()).map_err(to_js)
+    let m = to_write(&positions, &triangles, &uvs)?;
+    mesh_file::write_json_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits()).map_err(to_js)
 }
 
 /// Texture coordinates (u, v interleaved) of positions (`Float64Array`) in a traced

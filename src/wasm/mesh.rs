@@ -19,6 +19,13 @@ pub struct JsMesh {
 /// Reads a mesh argument pair: `positions` (`Float64Array`, xy-interleaved) and
 /// `triangles` (`Uint32Array`), validated.
 pub(super) fn read_mesh(positions: &JsValue, triangles: &JsValue) -> Result<Mesh, JsError> {
+    let positions = read_positions(positions)?;
+    let triangles = read::uint32s(triangles, "triangles", max_indices())?;
+    Mesh::from_flat(&positions, &triangles).map_err(to_js)
+}
+
+/// A mesh's xy-interleaved positions, refused by their vertex count beyond the limit.
+pub(super) fn read_positions(positions: &JsValue) -> Result<Vec<f64>, JsError> {
     let claimed = read::length(positions, "positions")?;
     let limit = limits().max_vertices;
     if claimed > max_coordinates() as f64 {
@@ -27,9 +34,7 @@ pub(super) fn read_mesh(positions: &JsValue, triangles: &JsValue) -> Result<Mesh
             claimed / 2.0
         )));
     }
-    let positions = read::float64s(positions, "positions", max_coordinates())?;
-    let triangles = read::uint32s(triangles, "triangles", max_indices())?;
-    Mesh::from_flat(&positions, &triangles).map_err(to_js)
+    read::float64s(positions, "positions", max_coordinates())
 }
 
 #[wasm_bindgen(js_class = Mesh)]

@@ -230,6 +230,21 @@ describe("mesh files", () => {
     expect(fromJson.boundaryVertices.length).toBe(3);
   });
 
+  it("writes a pose as it is, a flipped triangle too, and refuses indices and numbers that cannot be", () => {
+    // The square with vertex 3 carried across the diagonal: triangle 1 (0, 2, 3) flips.
+    const pose = [0, 0, 1, 0, 1, 1, 0.9, 0.1];
+    const obj = meshToObj({ positions: pose, triangles, uvs });
+    expect(obj.split("\n").filter((l) => l.startsWith("v "))).toEqual(["v 0 0 0", "v 1 0 0", "v 1 1 0", "v 0.9 0.1 0"]);
+    expect(Array.from(JSON.parse(meshToJson({ positions: pose, triangles })).positions)).toEqual(pose);
+    expect(() => meshFromObj(obj)).toThrow("triangle 1 is clockwise; triangles must be counter-clockwise");
+    for (const write of [meshToObj, meshToJson]) {
+      expect(() => write({ positions: [0, 0, 1, 0, 1, NaN], triangles: [0, 1, 2] })).toThrow(/vertex 2/);
+      expect(() => write({ positions: pose, triangles: [0, 1, 4] })).toThrow(/refers to vertex 4/);
+      expect(() => write({ positions: pose, triangles: [0, 1, 1] })).toThrow(/same vertex/);
+      expect(() => write({ positions: pose, triangles: [0, 1] })).toThrow(/not a multiple of 3/);
+    }
+  });
+
   it("writes only what it reads back: 100,000 vertices at most, the readers' limit", () => {
     // A strip of 2 x 50,001 vertices: 100,002, two over the limit.
     const strip = (columns: number) => {
@@ -255,7 +270,8 @@ describe("mesh files", () => {
     expect(() => meshFromObj("v 0 0\nv 1 x\n")).toThrow(/OBJ error at line 2, column 5/);
     expect(() => meshFromObj("v 0 0\nv 1 0\nv 0 1\nf 1 3 2\n")).toThrow(/counter-clockwise/);
     expect(() => meshFromJson('{"positions": [], "triangles": [], "extra": 1}')).toThrow(/unknown field `extra`/);
-    expect(() => meshToObj({ positions, triangles: [0, 2, 1] })).toThrow(/clockwise/);
+    // A writer writes what it is given (a pose may be clockwise); the reader holds it to a mesh's rules.
+    expect(() => meshFromObj(meshToObj({ positions, triangles: [0, 2, 1] }))).toThrow(/clockwise/);
     expect(() => meshToJson({ positions, triangles, uvs: [0, 1] })).toThrow(
       "texture coordinates: 2 numbers for 4 vertices; 8 are needed, a u and a v per vertex",
     );

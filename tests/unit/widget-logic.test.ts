@@ -1,7 +1,7 @@
 /** The pure TypeScript parts of the widget: drag velocities, picking, history, sessions, exports. */
 import { describe, expect, it } from "vitest";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
-import { meshObj, outlineSvg } from "../../www/src/widget/export.js";
+import { outlineSvg } from "../../www/src/widget/export.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
 import { History } from "../../www/src/widget/history.js";
 import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
@@ -161,11 +161,7 @@ describe("geometry and exports", () => {
     expect(Array.from(uvs)).toEqual([0, 0.25, 1, 0.25, 1, 0.75, 0, 0.75]);
   });
 
-  it("writes OBJ with 1-based faces and texture coordinates, SVG with one subpath per loop", () => {
-    const obj = meshObj(square, squareTriangles, boxUvs(square));
-    expect(obj).toContain("v 1 1 0\n");
-    expect(obj).toContain("vt 1 1\n");
-    expect(obj).toContain("f 1/1 3/3 4/4\n");
+  it("writes SVG with one subpath per loop", () => {
     const svg = outlineSvg(square, [0, 1, 1, 2, 2, 3, 3, 0]);
     const d = /d="([^"]*)"/.exec(svg)![1]!;
     expect(d.match(/M/g)!.length).toBe(1);

@@ -199,7 +199,12 @@ export function meshFromJson(text: string): MeshFileData {
   return readMeshFile(raw.mesh_from_json(text));
 }
 
-/** A mesh to write: positions and triangles, optionally texture coordinates. */
+/**
+ * A mesh to write: positions and triangles, optionally texture coordinates. The positions
+ * may be a pose of the mesh (a deformer's): flipped or collapsed triangles are written as
+ * they are; only indices, finite coordinates and sizes are checked. (Reading such a file
+ * back as a mesh refuses them, as every rest mesh's are.)
+ */
 export interface MeshToWrite {
   positions: NumberList;
   triangles: IndexList;
@@ -211,13 +216,13 @@ function writeArgs(mesh: MeshToWrite): [Float64Array, Uint32Array, Float64Array 
   return [toFloat64(mesh.positions, "positions"), toUint32(mesh.triangles, "triangles"), uvs];
 }
 
-/** Writes a mesh (validated first) as Wavefront OBJ, with `vt` lines when it has uvs. */
+/** Writes a mesh or a pose of one as Wavefront OBJ, with `vt` lines when it has uvs. */
 export function meshToObj(mesh: MeshToWrite): string {
   assertLoaded();
   return raw.mesh_to_obj(...writeArgs(mesh));
 }
 
-/** Writes a mesh (validated first) in our JSON format. */
+/** Writes a mesh or a pose of one in our JSON format. */
 export function meshToJson(mesh: MeshToWrite): string {
   assertLoaded();
   return raw.mesh_to_json(...writeArgs(mesh));

@@ -1,31 +1,10 @@
 /**
- * Exports of the current pose: the mesh as JSON or Wavefront OBJ (with texture
- * coordinates), the outline as SVG, and a file download helper for pages.
+ * Exports of the current pose: the outline as SVG, and a file download helper for pages.
+ * (The mesh as JSON or Wavefront OBJ is written by the core's `meshToJson`/`meshToObj`.)
  */
 import { PointMapper, pathData, type VectorPath } from "../import.js";
 import { boundaryLoops } from "./geometry.js";
 import { bounds } from "./view.js";
-
-/** `{ positions, triangles, uvs }` with the current positions; numbers round-trip exactly. */
-export function meshJson(positions: ArrayLike<number>, triangles: ArrayLike<number>, uvs: ArrayLike<number>): string {
-  return JSON.stringify({
-    positions: Array.from(positions),
-    triangles: Array.from(triangles),
-    uvs: Array.from(uvs, (x) => Math.fround(x)),
-  });
-}
-
-/** Wavefront OBJ: `v x y 0`, `vt u v`, `f a/a b/b c/c` (1-based), counter-clockwise faces. */
-export function meshObj(positions: ArrayLike<number>, triangles: ArrayLike<number>, uvs: ArrayLike<number>): string {
-  const lines = ["# akap deformed mesh", `# ${positions.length / 2} vertices, ${triangles.length / 3} triangles`];
-  for (let i = 0; i + 1 < positions.length; i += 2) lines.push(`v ${positions[i]} ${positions[i + 1]} 0`);
-  for (let i = 0; i + 1 < uvs.length; i += 2) lines.push(`vt ${Math.fround(uvs[i]!)} ${Math.fround(uvs[i + 1]!)}`);
-  for (let i = 0; i + 2 < triangles.length; i += 3) {
-    const [a, b, c] = [triangles[i]! + 1, triangles[i + 1]! + 1, triangles[i + 2]! + 1];
-    lines.push(`f ${a}/${a} ${b}/${b} ${c}/${c}`);
-  }
-  return lines.join("\n") + "\n";
-}
 
 /** The fill of exported shapes and of vector art whose colour the importer does not know. */
 export const DEFAULT_FILL = "#c8773a";

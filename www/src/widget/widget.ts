@@ -19,8 +19,8 @@ import {
   type Outline,
   type Timings,
 } from "../core.js";
-
-import { meshJson, meshObj, posedSvg } from "./export.js";
+import { meshToJson, meshToObj } from "../import.js";
+import { posedSvg } from "./export.js";
 
 import {
   DEFAULTS,
@@ -488,9 +488,13 @@ export class Widget {
   /** The current pose as JSON (`positions`, `triangles`, `uvs`) or OBJ text. */
   exportMesh(format: "json" | "obj"): string {
     const { deformer, shape } = this.#posing;
-    const p = deformer.positionsView();
-    const { triangles } = shape.mesh;
-    return format === "json" ? meshJson(p, triangles, shape.uvs) : meshObj(p, triangles, shape.uvs);
+    // A copy, not a view: the writer allocates in the memory a view would see.
+    const pose = {
+      positions: deformer.positions(),
+      triangles: shape.mesh.triangles,
+      uvs: Float64Array.from(shape.uvs),
+    };
+    return format === "json" ? meshToJson(pose) : meshToObj(pose);
   }
 
   /** The pose as an SVG document: an imported SVG's own paths moved with the mesh, else the outline. */
