@@ -5,9 +5,9 @@
  */
 import { defineConfig } from "@playwright/test";
 import { join } from "node:path";
+import browserTests from "../../playwright.config.js";
 
 const project = process.env.AKAP_CONSUMER ?? "";
-const chromium = process.env.CHROMIUM_PATH ?? "/usr/bin/chromium";
 const base = Number(process.env.PACKAGE_PORT ?? 4331);
 const vite = join(import.meta.dirname, "../../node_modules/.bin/vite");
 export const SERVERS = {
@@ -23,20 +23,8 @@ export default defineConfig({
   retries: 0,
   workers: 1,
   reporter: [["list"]],
-  use: {
-    launchOptions: {
-      executablePath: chromium,
-      args: [
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--no-first-run",
-      ],
-    },
-  },
+  // Chromium as the browser tests launch it.
+  use: { launchOptions: browserTests.use?.launchOptions },
   webServer: [
     {
       command: `${vite} preview --host 127.0.0.1 --port ${base} --strictPort`,
