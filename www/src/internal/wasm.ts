@@ -14,6 +14,9 @@ import type { WasmSource } from "../core.js";
 
 export type * as rawTypes from "../../pkg/akap.js";
 
+/** What to do after a trap when no fresh instance can be made. */
+const RELOAD = "reload the page, or restart the process";
+
 /**
  * `module`'s bindings with every call guarded: functions called and classes constructed
  * (and their static methods) through `guarded`, and the objects they return with their
@@ -22,7 +25,7 @@ export type * as rawTypes from "../../pkg/akap.js";
  */
 export function guardBindings<M extends object>(
   module: M,
-  onTrap: (error: WebAssembly.RuntimeError) => string = () => "reload the page, or restart the process",
+  onTrap: (error: WebAssembly.RuntimeError) => string = () => RELOAD,
 ): { bindings: M; failure(): Error | undefined } {
   let failure: Error | undefined;
   const guarded = <T>(call: () => T): T => {
@@ -107,12 +110,12 @@ async function prepareSpare(): Promise<void> {
 /** After a trap: the bindings move to a fresh instance if one can be made now. */
 function restart(): string {
   const copy = spare;
-  if (!copy || !compiled) return "reload the page, or restart the process";
+  if (!copy || !compiled) return RELOAD;
   spare = undefined;
   try {
     memory = copy.initSync({ module: compiled }).memory;
   } catch {
-    return "reload the page, or restart the process";
+    return RELOAD;
   }
   current = guardBindings(copy, restart);
   Object.assign(raw, current.bindings);
