@@ -3,7 +3,8 @@
 //! stage. `cargo run --release --example deformer_frames [-- 1000 5000 10000]`.
 
 use akap::deform::{Deformer, DeformerOptions};
-use akap::{shapes, triangulate, TriangulationOptions};
+use akap::triangulate::triangulate_to_about;
+use akap::{shapes, TriangulationOptions};
 
 fn percentile(values: &mut [f64], q: f64) -> f64 {
     values.sort_by(f64::total_cmp);
@@ -17,10 +18,8 @@ fn main() {
     println!("| vertices | triangles | nnz(L) step 1 | assembly | factorisation | solve | integration | frame (median / p95) |");
     println!("|---|---|---|---|---|---|---|---|");
     for target in sizes {
-        // About 2 triangles per vertex, each of area sqrt(3)/4 h^2.
-        let h = (figure.area() / (2.0 * target as f64) / (3f64.sqrt() / 4.0)).sqrt();
-        let options = TriangulationOptions::default().with_target_edge_length(h).with_max_vertices(4 * target);
-        let mesh = triangulate(&figure, &options).expect("the figure triangulates");
+        let options = TriangulationOptions::default().with_max_vertices(4 * target);
+        let (mesh, _) = triangulate_to_about(&figure, target, &options).expect("the figure triangulates");
         let n = mesh.vertex_count();
         let m = mesh.triangle_count();
         let feet: Vec<u32> = (0..n as u32).filter(|&v| mesh.positions()[v as usize][1] < 0.0).collect();

@@ -20,7 +20,8 @@ use akap::deform::{ArapOptions, DeformerOptions, MethodOptions, Metrics};
 use akap::geometry::{bounding_box, Point};
 use akap::import::mesh_file::{read_obj, write_obj_pose};
 use akap::import::Limits;
-use akap::{shapes, triangulate, Mesh, TriangulationOptions};
+use akap::triangulate::triangulate_to_about;
+use akap::{shapes, Mesh, TriangulationOptions};
 
 const USAGE: &str = "\
 Poses a 2D triangle mesh with AKAP (As-Killing-As-Possible) and writes it as an OBJ.
@@ -146,15 +147,8 @@ pub(crate) fn pose_obj(obj: Option<&str>, pose: &Pose) -> Result<Posed, String> 
 /// The built-in figure, triangulated as the app does (about 1,500 vertices, angles of at
 /// least 28 degrees), and `pose`, or with no handles in it, feet pinned and hand raised.
 fn figure(pose: &Pose) -> Result<(Mesh, Option<Vec<Point>>, Pose), String> {
-    let outline = shapes::gingerbread();
-    // Edge h gives about 2 / (sqrt(3) h^2) vertices per unit area; corrected once by the count.
-    let mut edge = (2.0 * outline.area() / (3f64.sqrt() * 1500.0)).sqrt();
-    let options = |edge| TriangulationOptions::default().with_target_edge_length(edge).with_min_angle_degrees(28.0);
-    let mut mesh = triangulate(&outline, &options(edge)).map_err(|e| e.to_string())?;
-    if mesh.vertex_count().abs_diff(1500) > 150 {
-        edge *= (mesh.vertex_count() as f64 / 1500.0).sqrt();
-        mesh = triangulate(&outline, &options(edge)).map_err(|e| e.to_string())?;
-    }
+    let options = TriangulationOptions::default().with_min_angle_degrees(28.0);
+    let (mesh, _) = triangulate_to_about(&shapes::gingerbread(), 1500, &options).map_err(|e| e.to_string())?;
     let mut pose = pose.clone();
     if pose.pins.is_empty() && pose.moves.is_empty() {
         let nearest = |at: Point| {

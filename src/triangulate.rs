@@ -290,3 +290,57 @@ pub fn triangulate(outline: &Outline, options: &TriangulationOptions) -> Result<
     }
     Mesh::new(positions, triangles).map_err(TriangulationError::Mesh)
 }
+
+/// How close [`triangulate_to_about`] brings the vertex count to the one asked for.
+pub const ABOUT_TOLERANCE: f64 = 0.03;
+
+/// Triangulates `outline` to about `vertices` vertices, the one rule the widget, the
+/// examples and the benchmarks share. An equilateral mesh of edge `h` has about
+/// `2 / (sqrt(3) h^2)` vertices per unit area, which gives a first edge length from the
+/// outline's area; then, while the count is more than [`ABOUT_TOLERANCE`] off, at most
+/// three corrections scale the edge by `sqrt(count / vertices)`. The other `options` apply
+/// (`min_angle_degrees`, a `max_area` bound), and at most `4 vertices + 1000` vertices (or
+/// `options.max_vertices` if lower) are made. Returns the mesh and the target edge length
+/// that made it: `triangulate` with it gives the same mesh again. An outline with more
+/// points than `vertices`, or corners too sharp to mesh coarsely, ends further off.
+///
+/// ```
+/// use akap::{shapes, triangulate::triangulate_to_about, TriangulationOptions};
+/// let (mesh, edge) = triangulate_to_about(&shapes::gingerbread(), 2000, &TriangulationOptions::default())?;
+/// assert!(mesh.vertex_count().abs_diff(2000) <= 60);
+/// let again = akap::triangulate(&shapes::gingerbread(), &TriangulationOptions::default().with_target_edge_length(edge))?;
+/// assert_eq!(again, mesh);
+/// # Ok::<(), akap::TriangulationError>(())
+/// ```
+pub fn triangulate_to_about(
+    outline: &Outline,
+    vertices: usize,
+    options: &TriangulationOptions,
+) -> Result<(Mesh, f64), TriangulationError> {
+    if vertices < 3 || vertices > options.max_vertices {
+        return Err(TriangulationError::InvalidOption {
+            name: "vertices",
+            value: vertices as f64,
+            expected: "a count from 3 to the vertex limit",
+        });
+    }
+    let limit = options.max_vertices.min(vertices.saturating_mul(4).saturating_add(1000));
+    let target = vertices as f64;
+    let mesh_with = |edge: f64| triangulate(outline, &options.with_target_edge_length(edge).with_max_vertices(limit));
+    // The area of the outline scaled by 2^k (exact), so that no scale overflows or underflows.
+    let k = normalising_exponent(outline.rings().flatten().copied());
+    let scale = |ring: &Vec<Point>| ring.iter().map(|p| p.map(|x| scale_by_power_of_two(x, k))).collect();
+    let scaled = Outline { outer: scale(&outline.outer), holes: outline.holes.iter().map(scale).collect() };
+    let area = scaled.area();
+    let mut edge = scale_by_power_of_two((2.0 * area / (3f64.sqrt() * target)).sqrt(), -k);
+    let mut mesh = mesh_with(edge)?;
+    for _ in 0..3 {
+        let ratio = mesh.vertex_count() as f64 / target;
+        if (ratio - 1.0).abs() <= ABOUT_TOLERANCE {
+            break;
+        }
+        edge *= ratio.sqrt();
+        mesh = mesh_with(edge)?;
+    }
+    Ok((mesh, edge))
+}

@@ -2,8 +2,10 @@
 
 use akap::geometry::triangle_area;
 #[cfg(not(target_arch = "wasm32"))]
-use akap::geometry::{normalising_exponent, scale_by_power_of_two, Point};
+use akap::geometry::normalising_exponent;
+use akap::geometry::{scale_by_power_of_two, Point};
 use akap::shapes::{ellipse, gingerbread};
+use akap::triangulate::{triangulate_to_about, ABOUT_TOLERANCE};
 use akap::{triangulate, Mesh, Outline, OutlineError, Ring, TriangulationError, TriangulationOptions};
 #[cfg(not(target_arch = "wasm32"))]
 use proptest::prelude::*;
@@ -267,7 +269,6 @@ proptest! {
     }
 }
 
-#[cfg(not(target_arch = "wasm32"))]
 fn scaled(outline: &Outline, f: impl Fn(f64) -> f64) -> Outline {
     let ring = |r: &Vec<Point>| r.iter().map(|p| p.map(&f)).collect();
     Outline { outer: ring(&outline.outer), holes: outline.holes.iter().map(ring).collect() }
@@ -308,4 +309,31 @@ fn a_vertex_touching_a_segment_to_double_precision_is_refused_by_name() {
     let outline = Outline::new(square).with_hole(diamond).with_hole(triangle);
     let mesh = triangulate(&outline, &TriangulationOptions::default()).unwrap();
     assert_positive_triangles(&mesh);
+}
+
+#[test]
+fn meshes_to_about_a_vertex_count_at_every_scale() {
+    let options = TriangulationOptions::default().with_min_angle_degrees(28.0);
+    for (outline, target) in [(gingerbread(), 1500), (gingerbread(), 10_000), (square_with_holes(), 800)] {
+        let (mesh, edge) = triangulate_to_about(&outline, target, &options).unwrap();
+        let off = mesh.vertex_count().abs_diff(target) as f64 / target as f64;
+        assert!(off <= ABOUT_TOLERANCE, "{} vertices for {target}", mesh.vertex_count());
+        // The edge it reports makes the same mesh again.
+        assert_eq!(triangulate(&outline, &options.with_target_edge_length(edge)).unwrap(), mesh);
+        check_mesh(&mesh, &outline, &options.with_target_edge_length(edge));
+        // The same outline at 2^600 and 2^-600 (exact scalings): the same mesh, scaled.
+        for j in [600, -600] {
+            let (big, big_edge) =
+                triangulate_to_about(&scaled(&outline, |x| scale_by_power_of_two(x, j)), target, &options).unwrap();
+            assert_eq!(big_edge, scale_by_power_of_two(edge, j));
+            assert_eq!(big.triangles(), mesh.triangles());
+        }
+    }
+    let outline = square_with_holes();
+    for bad in [0, 2, 200_000] {
+        assert!(matches!(
+            triangulate_to_about(&outline, bad, &options),
+            Err(TriangulationError::InvalidOption { name: "vertices", .. })
+        ));
+    }
 }

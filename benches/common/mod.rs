@@ -17,14 +17,16 @@ use crate::{
     deform::killing::KillingMatrix,
     shapes,
     sparse::{expand_blocks, fill_reducing_order, Ordering},
-    triangulate, Mesh, Outline, TriangulationOptions,
+    triangulate::triangulate_to_about,
+    Mesh, Outline, TriangulationOptions,
 };
 #[cfg(not(target_arch = "wasm32"))]
 use akap::{
     deform::killing::KillingMatrix,
     shapes,
     sparse::{expand_blocks, fill_reducing_order, Ordering},
-    triangulate, Mesh, Outline, TriangulationOptions,
+    triangulate::triangulate_to_about,
+    Mesh, Outline, TriangulationOptions,
 };
 
 pub(crate) mod faer_llt;
@@ -204,27 +206,11 @@ pub(crate) fn size_label(vertices: usize) -> String {
     }
 }
 
-/// Triangulates `shape` with an edge length chosen for about `target` vertices: a first
-/// guess from the area (an equilateral triangle of edge h has area 0.433 h^2, and a mesh
-/// has about twice as many triangles as vertices), then up to three corrections from the
-/// counts the guesses gave, until the count is within 3% of the target.
+/// Triangulates `shape` to about `target` vertices (within 3%, the library's rule:
+/// [`triangulate_to_about`]).
 pub(crate) fn mesh_with_about(shape: Shape, target: usize) -> Mesh {
-    let outline = shape.outline();
-    let triangulate_with = |h: f64| {
-        let options = TriangulationOptions::default().with_target_edge_length(h).with_max_vertices(4 * target + 10_000);
-        triangulate(&outline, &options).expect("the benchmark shapes triangulate")
-    };
-    let mut h = (outline.area() / (0.866 * target as f64)).sqrt();
-    let mut mesh = triangulate_with(h);
-    for _ in 0..3 {
-        let ratio = mesh.vertex_count() as f64 / target as f64;
-        if (ratio - 1.0).abs() <= 0.03 {
-            break;
-        }
-        h *= ratio.sqrt();
-        mesh = triangulate_with(h);
-    }
-    mesh
+    let options = TriangulationOptions::default().with_max_vertices(4 * target + 10_000);
+    triangulate_to_about(&shape.outline(), target, &options).expect("the benchmark shapes triangulate").0
 }
 
 /// The Killing matrix at rest plus [`PENALTY`] on the two diagonal entries of each of four
