@@ -1,8 +1,8 @@
 //! Triangulation: the invariants any correct triangulation of an outline must satisfy.
 
-use akap::geometry::triangle_area;
 #[cfg(not(target_arch = "wasm32"))]
 use akap::geometry::normalising_exponent;
+use akap::geometry::triangle_area;
 use akap::geometry::{scale_by_power_of_two, Point};
 use akap::shapes::{ellipse, gingerbread};
 use akap::triangulate::{triangulate_to_about, ABOUT_TOLERANCE};

@@ -5,6 +5,7 @@
 
 use std::fmt::Write;
 
+use crate::error::Number;
 use crate::geometry::Point;
 
 /// A path command; each takes a fixed number of points from [`VectorPath::points`].
@@ -31,6 +32,11 @@ impl Verb {
             Self::Cubic => 3,
             Self::Close => 0,
         }
+    }
+
+    /// The verb of an SVG path-data letter in absolute form (`M`, `L`, `Q`, `C`, `Z`).
+    pub fn from_letter(letter: char) -> Option<Self> {
+        [Self::Move, Self::Line, Self::Quad, Self::Cubic, Self::Close].into_iter().find(|v| v.letter() == letter)
     }
 
     /// The SVG path-data letter (absolute form).
@@ -83,10 +89,29 @@ impl VectorPath {
         }
     }
 
+    /// The path of SVG path-data letters (`commands`, absolute M, L, Q, C, Z) and their
+    /// points. Fails, saying why, for another letter or a number of points other than the
+    /// commands take.
+    pub fn from_commands(commands: &str, points: Vec<Point>) -> Result<Self, String> {
+        let verbs = (commands.chars())
+            .map(|c| {
+                Verb::from_letter(c)
+                    .ok_or_else(|| format!("unknown path command {c:?}: the commands are M, L, Q, C, Z"))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let needed: usize = verbs.iter().map(|v| v.point_count()).sum();
+        if points.len() != needed {
+            return Err(format!("the commands take {needed} points, but {} were given", points.len()));
+        }
+        Ok(Self { verbs, points })
+    }
+
     /// SVG path data with absolute commands for these verbs and the given points (for
-    /// example the path's own points mapped through a deformed mesh). `points` must have
-    /// the length of [`VectorPath::points`]; extra points are ignored and missing ones end
-    /// the output early.
+    /// example the path's own points mapped through a deformed mesh): the one writer of
+    /// path data, in JavaScript too (`pathData`). Numbers are written in their shortest
+    /// exact form, in exponent form outside 1e-6 to 1e21, and `-0` as `0`. `points` must
+    /// have the length of [`VectorPath::points`]; extra points are ignored and missing ones
+    /// end the output early.
     pub fn to_path_data(&self, points: &[Point]) -> String {
         let mut out = String::new();
         let mut next = 0;
@@ -99,7 +124,8 @@ impl VectorPath {
             }
             out.push(verb.letter());
             for p in chunk {
-                let _ = write!(out, " {} {}", p[0], p[1]);
+                // Adding +0 turns -0 into 0 and changes nothing else.
+                let _ = write!(out, " {} {}", Number(p[0] + 0.0), Number(p[1] + 0.0));
             }
         }
         out

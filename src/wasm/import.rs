@@ -10,7 +10,7 @@ use super::{flat, limits, max_coordinates, max_indices, object, outlines_to_js, 
 use crate::import::mesh_file::{self, MeshFile};
 use crate::import::raster::{self, MaskMode, TraceOptions};
 use crate::import::svg::{self as svg_import, SvgOptions};
-use crate::import::vector::FillRule;
+use crate::import::vector::{FillRule, VectorPath};
 use crate::import::warp::{self, PointMapper};
 use crate::mesh::MeshError;
 
@@ -229,4 +229,26 @@ impl JsPointMapper {
     pub fn length(&self) -> usize {
         self.inner.len()
     }
+}
+
+/// SVG path data (absolute commands) for `commands` (a string of the letters M, L, Q, C, Z)
+/// and their points (x and y interleaved), with y negated when `flip_y` is true (y-up
+/// coordinates back to SVG's y-down ones): [`VectorPath::to_path_data`].
+#[wasm_bindgen]
+pub fn path_data(commands: JsValue, points: JsValue, flip_y: JsValue) -> Result<String, JsError> {
+    let commands = read::string(&commands, "commands", limits().max_bytes)?;
+    let mut points = pairs(&read::float64s(&points, "points", 2 * limits().max_points)?, "points")?;
+    if !points.iter().flatten().all(|x| x.is_finite()) {
+        return Err(JsError::new("points holds a number that is not finite"));
+    }
+    let flip = match flip_y.as_bool() {
+        Some(flip) => flip,
+        None if flip_y.is_undefined() => false,
+        None => return Err(read::type_error("flipY", "true or false", &flip_y)),
+    };
+    if flip {
+        points.iter_mut().for_each(|p| p[1] = -p[1]);
+    }
+    let path = VectorPath::from_commands(&commands, points).map_err(|e| JsError::new(&e))?;
+    Ok(path.to_path_data(&path.points))
 }

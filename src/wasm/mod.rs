@@ -17,8 +17,8 @@ mod read;
 
 pub use deformer::{deformer_orders, JsDeformer};
 pub use import::{
-    import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json, mesh_to_obj, texture_coordinates,
-    trace_image, JsMeshFile, JsPointMapper,
+    import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json, mesh_to_obj, path_data,
+    texture_coordinates, trace_image, JsMeshFile, JsPointMapper,
 };
 pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, JsMesh};
 

@@ -82,6 +82,17 @@ describe("outline SVG of a pose whose parts overlap", () => {
   });
 });
 
+describe("outline SVG export", () => {
+  it("writes each boundary loop as a subpath, y flipped into the view box with a 2% margin", () => {
+    // The unit square with its corner (1, 1) pulled out to (3, 1): bounds 0..3 x 0..1.
+    const svg = outlineSvg([0, 0, 1, 0, 3, 1, 0, 1], [0, 1, 1, 2, 2, 3, 3, 0]);
+    expect(/ d="([^"]*)"/.exec(svg)![1]).toBe("M 0 0 L 1 0 L 3 -1 L 0 -1 Z");
+    const box = /viewBox="([^"]*)"/.exec(svg)![1]!.split(" ").map(Number);
+    // margin 0.02 * 3; y from -(1 + margin) (the top) to margin.
+    [-0.06, -1.06, 3.12, 1.12].forEach((expected, i) => expect(box[i]).toBeCloseTo(expected, 12));
+  });
+});
+
 describe("vector SVG export", () => {
   const text =
     '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 20">' +

@@ -105,6 +105,15 @@ describe("vector export", () => {
     expect(pathData(path!, path!.points, { flipY: true })).toBe(
       "M 10 -90 C 30 -100 70 -100 90 -90 L 90 -10 L 10 -10 Z",
     );
+    // Shortest exact numbers, exponents outside 1e-6..1e21, no "-0"; bad paths refused.
+    expect(
+      pathData({ commands: "MLZ", points: Float64Array.from([1e-300, 0, 0.1, 2e21]) }, undefined, { flipY: true }),
+    ).toBe("M 1e-300 0 L 0.1 -2e21 Z");
+    expect(() => pathData({ commands: "MX", points: new Float64Array(2) })).toThrow(/unknown path command 'X'/);
+    expect(() => pathData({ commands: "MC", points: new Float64Array(4) })).toThrow(
+      "the commands take 4 points, but 2 were given",
+    );
+    expect(() => pathData({ commands: "M", points: Float64Array.from([0, NaN]) })).toThrow(/not finite/);
   });
 
   it("gives each path its fill colour as rgba(), opacities folded in, undefined when unknown", () => {

@@ -1,7 +1,6 @@
-/** The pure TypeScript parts of the widget: drag velocities, picking, history, sessions, exports. */
+/** The pure TypeScript parts of the widget: drag velocities, picking, history, sessions. */
 import { describe, expect, it } from "vitest";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
-import { outlineSvg } from "../../www/src/widget/export.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
 import { History } from "../../www/src/widget/history.js";
 import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
@@ -159,14 +158,6 @@ describe("geometry and exports", () => {
   it("maps the bounding box to texture space keeping the aspect ratio", () => {
     const uvs = boxUvs([0, 0, 2, 0, 2, 1, 0, 1]);
     expect(Array.from(uvs)).toEqual([0, 0.25, 1, 0.25, 1, 0.75, 0, 0.75]);
-  });
-
-  it("writes SVG with one subpath per loop", () => {
-    const svg = outlineSvg(square, [0, 1, 1, 2, 2, 3, 3, 0]);
-    const d = /d="([^"]*)"/.exec(svg)![1]!;
-    expect(d.match(/M/g)!.length).toBe(1);
-    // y flips: the shape's bottom-left corner (0, 0) is at the bottom of the picture.
-    expect(d.startsWith("M0.02 1.02")).toBe(true);
   });
 });
 

@@ -83,28 +83,15 @@ export function importSvgPaths(text: string, options: SvgImportOptions = {}): Ve
 /**
  * SVG path data for a vector path with the given points (its own by default, or mapped
  * ones). `flipY` negates y, turning the y-up coordinates back into SVG's y-down ones.
+ * Numbers are written in their shortest exact form (the one writer, in Rust).
  */
 export function pathData(
-  path: VectorPath,
+  path: Pick<VectorPath, "commands" | "points">,
   points: NumberList = path.points,
   options: { flipY?: boolean } = {},
 ): string {
-  const p = toFloat64(points, "points");
-  const sign = options.flipY ? -1 : 1;
-  const counts: Record<string, number> = { M: 1, L: 1, Q: 2, C: 3, Z: 0 };
-  const parts: string[] = [];
-  let next = 0;
-  for (const command of path.commands) {
-    const count = counts[command];
-    if (count === undefined) throw new RangeError(`unknown path command ${command}`);
-    if (2 * (next + count) > p.length)
-      throw new RangeError(`points has ${p.length / 2} points, too few for the commands`);
-    let part = command;
-    for (let i = next; i < next + count; i++) part += ` ${p[2 * i]} ${sign * p[2 * i + 1]!}`;
-    parts.push(part);
-    next += count;
-  }
-  return parts.join(" ");
+  assertLoaded();
+  return raw.path_data(path.commands, toFloat64(points, "points"), options.flipY ?? false);
 }
 
 /** Options of {@link traceImage}. Every field is optional. */

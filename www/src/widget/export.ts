@@ -24,24 +24,17 @@ export function outlineSvg(
 ): string {
   const b = bounds(positions);
   const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
-  const width = b.maxX - b.minX + 2 * margin;
-  const height = b.maxY - b.minY + 2 * margin;
-  const fmt = (x: number): string => String(Math.round(x * 1e6) / 1e6);
-  const d = boundaryLoops(boundaryEdges)
-    .map(
-      (loop) =>
-        loop
-          .map((v, k) => {
-            const x = positions[2 * v]! - b.minX + margin;
-            const y = b.maxY + margin - positions[2 * v + 1]!;
-            return `${k === 0 ? "M" : "L"}${fmt(x)} ${fmt(y)}`;
-          })
-          .join(" ") + " Z",
-    )
-    .join(" ");
+  const [x0, y0] = [b.minX - margin, -b.maxY - margin];
+  const [w, h] = [b.maxX - b.minX + 2 * margin, b.maxY - b.minY + 2 * margin];
+  const loops = boundaryLoops(boundaryEdges);
+  const outline = {
+    commands: loops.map((loop) => "M" + "L".repeat(loop.length - 1) + "Z").join(""),
+    points: Float64Array.from(loops.flat().flatMap((v) => [positions[2 * v]!, positions[2 * v + 1]!])),
+  };
+  const d = pathData(outline, outline.points, { flipY: true });
   return [
-    `<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 ${fmt(width)} ${fmt(height)}" width="${fmt(width * 400)}" height="${fmt(height * 400)}">`,
-    `  <path d="${d}" fill="${fill}" fill-rule="nonzero" stroke="#5a2d0c" stroke-width="${fmt(0.004 * Math.max(width, height))}" stroke-linejoin="round"/>`,
+    `<svg xmlns="http://www.w3.org/2000/svg" viewBox="${x0} ${y0} ${w} ${h}" width="${400 * w}" height="${400 * h}">`,
+    `  <path d="${d}" fill="${fill}" fill-rule="nonzero" stroke="#5a2d0c" stroke-width="${0.004 * Math.max(w, h)}" stroke-linejoin="round"/>`,
     "</svg>",
     "",
   ].join("\n");
