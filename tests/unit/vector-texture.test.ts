@@ -1,8 +1,12 @@
 /** The texture of vector art: where its pixels lie, and what is drawn (on a recording canvas). */
-import { afterEach, describe, expect, it, vi } from "vitest";
-import type { VectorPath } from "../../www/src/index.js";
+import { afterEach, beforeAll, describe, expect, it, vi } from "vitest";
+import { init, type VectorPath } from "../../www/src/index.js";
 import { boxUvs } from "../../www/src/widget/geometry.js";
 import { textureMapping, vectorTexture } from "../../www/src/widget/vector-texture.js";
+
+beforeAll(async () => {
+  await init(); // boxUvs goes through the core's textureCoordinates
+});
 
 /** Canvas pixel of a shape point under a mapping (y flips: shape y up, canvas y down). */
 function pixel(m: ReturnType<typeof textureMapping>, x: number, y: number): [number, number] {

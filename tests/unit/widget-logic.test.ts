@@ -1,13 +1,18 @@
 /** The pure TypeScript parts of the widget: drag velocities, picking, history, sessions, exports. */
-import { describe, expect, it } from "vitest";
+import { beforeAll, describe, expect, it } from "vitest";
+import { init } from "../../www/src/index.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
 import { outlineSvg } from "../../www/src/widget/export.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
 import { History } from "../../www/src/widget/history.js";
 import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
-import { fileKind, imageUvs } from "../../www/src/widget/sources.js";
+import { fileKind } from "../../www/src/widget/sources.js";
 import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
 import { Recorder, parseSession } from "../../www/src/widget/session.js";
+
+beforeAll(async () => {
+  await init(); // boxUvs goes through the core's textureCoordinates
+});
 
 // A unit square split into two counter-clockwise triangles, with a square hole-free boundary.
 const square = Float64Array.from([0, 0, 1, 0, 1, 1, 0, 1]);
@@ -213,9 +218,5 @@ describe("user files", () => {
     expect(fileKind("model.obj")).toBe("obj");
     expect(fileKind("pose.json")).toBe("json");
     expect(fileKind("notes.txt", "text/plain")).toBeUndefined();
-  });
-
-  it("map traced image coordinates (pixels, y up) to texture space", () => {
-    expect(Array.from(imageUvs([0, 0, 200, 100, 50, 25], 200, 100))).toEqual([0, 0, 1, 1, 0.25, 0.25]);
   });
 });
