@@ -111,51 +111,67 @@ function quadrantVertices(positions: [number, number][]): [number, number][] {
   return quadrantMiddles().map((c) => positions.reduce((a, b) => (gap(b, c) < gap(a, c) ? b : a)));
 }
 
+/** Makes the page's canvases refuse WebGL2, as browsers without it do: the widget falls back to 2D. */
+async function withoutWebGl2(page: Page): Promise<void> {
+  await page.addInitScript(() => {
+    const getContext = HTMLCanvasElement.prototype.getContext;
+    HTMLCanvasElement.prototype.getContext = function (this: HTMLCanvasElement, type: string, options?: unknown) {
+      return type === "webgl2" ? null : getContext.call(this, type, options);
+    } as typeof getContext;
+  });
+}
+
 test.beforeAll(async () => {
   await init(); // the library in Node, to compute what the README tells users to
 });
 
-test("an imported image is drawn unmirrored, and its OBJ's vt find each vertex's pixel", async ({ page }) => {
-  await page.setViewportSize({ width: 900, height: 700 });
-  await open(page);
-  await page.locator('input[name="shape-file"]').setInputFiles({
-    name: "quadrants.png",
-    mimeType: "image/png",
-    buffer: await png(page),
+for (const renderer of ["webgl2", "2d"] as const) {
+  test(`an imported image is drawn unmirrored (${renderer}), and its OBJ's vt find each vertex's pixel`, async ({
+    page,
+  }) => {
+    if (renderer === "2d") await withoutWebGl2(page);
+    await page.setViewportSize({ width: 900, height: 700 });
+    await open(page);
+    expect(await page.evaluate(() => window.akapDemo!.widget.renderer)).toBe(renderer);
+    await page.locator('input[name="shape-file"]').setInputFiles({
+      name: "quadrants.png",
+      mimeType: "image/png",
+      buffer: await png(page),
+    });
+    await expect(page.getByRole("combobox", { name: "Shape" }).locator("option:checked")).toHaveText("quadrants.png");
+    await page.evaluate(() => window.akapDemo!.widget.whenIdle());
+
+    const download = page.waitForEvent("download");
+    await page.getByRole("button", { name: "OBJ", exact: true }).click();
+    const fs = await import("node:fs/promises");
+    const { positions, uvs } = objVertices(await fs.readFile((await (await download).path())!, "utf8"));
+    expect(uvs.length).toBe(positions.length);
+
+    // Each vertex inside a quadrant samples that quadrant's colour through its vt.
+    let checked = 0;
+    positions.forEach(([x, y], i) => {
+      const want = colourAt(x, y);
+      if (!want) return;
+      const [u, v] = uvs[i]!;
+      expect(pixel(Math.floor(u * W), Math.floor((1 - v) * H)), `vertex ${i} at (${x}, ${y}), vt ${u} ${v}`).toEqual(
+        want,
+      );
+      checked++;
+    });
+    expect(checked).toBeGreaterThan(100);
+
+    // The vt are what the library's textureCoordinates gives, as the README has users do.
+    const expected = textureCoordinates(positions.flat(), W, H);
+    uvs.forEach(([u, v], i) => {
+      expect(Math.abs(u - expected[2 * i]!) + Math.abs(v - expected[2 * i + 1]!), `vertex ${i}`).toBeLessThan(1e-6);
+    });
+
+    // On screen, each quadrant's middle shows its own colour (a mirrored texture swaps rows).
+    for (const [k, at] of quadrantVertices(positions).entries()) {
+      expect(near(await drawnAt(page, "#app", ...at), COLOURS[k]!), `at (${at[0]}, ${at[1]})`).toBeLessThan(16);
+    }
   });
-  await expect(page.getByRole("combobox", { name: "Shape" }).locator("option:checked")).toHaveText("quadrants.png");
-  await page.evaluate(() => window.akapDemo!.widget.whenIdle());
-
-  const download = page.waitForEvent("download");
-  await page.getByRole("button", { name: "OBJ", exact: true }).click();
-  const fs = await import("node:fs/promises");
-  const { positions, uvs } = objVertices(await fs.readFile((await (await download).path())!, "utf8"));
-  expect(uvs.length).toBe(positions.length);
-
-  // Each vertex inside a quadrant samples that quadrant's colour through its vt.
-  let checked = 0;
-  positions.forEach(([x, y], i) => {
-    const want = colourAt(x, y);
-    if (!want) return;
-    const [u, v] = uvs[i]!;
-    expect(pixel(Math.floor(u * W), Math.floor((1 - v) * H)), `vertex ${i} at (${x}, ${y}), vt ${u} ${v}`).toEqual(
-      want,
-    );
-    checked++;
-  });
-  expect(checked).toBeGreaterThan(100);
-
-  // The vt are what the library's textureCoordinates gives, as the README has users do.
-  const expected = textureCoordinates(positions.flat(), W, H);
-  uvs.forEach(([u, v], i) => {
-    expect(Math.abs(u - expected[2 * i]!) + Math.abs(v - expected[2 * i + 1]!), `vertex ${i}`).toBeLessThan(1e-6);
-  });
-
-  // On screen, each quadrant's middle shows its own colour (a mirrored texture swaps rows).
-  for (const [k, at] of quadrantVertices(positions).entries()) {
-    expect(near(await drawnAt(page, "#app", ...at), COLOURS[k]!), `at (${at[0]}, ${at[1]})`).toBeLessThan(16);
-  }
-});
+}
 
 test("an OBJ with v-up vt (the README's textureCoordinates, or another tool's) shows the image unmirrored", async ({
   page,
