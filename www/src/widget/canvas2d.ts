@@ -7,6 +7,9 @@
 import { toPixel, type View } from "./view.js";
 import type { MeshRenderer, RenderOptions } from "./gl.js";
 
+/** How far, in canvas pixels, each textured triangle's clip reaches past its corners. */
+const GROWTH = 1;
+
 /** A texture as the 2D canvas draws it, with its size in pixels. */
 interface Texture {
   image: CanvasImageSource;
@@ -89,18 +92,31 @@ export class Canvas2dRenderer implements MeshRenderer {
     const texel = (v: number): [number, number] => [uv[2 * v]! * texture.width, (1 - uv[2 * v + 1]!) * texture.height];
     for (let i = 0; i + 2 < t.length; i += 3) {
       const [a, b, c] = [t[i]!, t[i + 1]!, t[i + 2]!];
-      const m = affineThrough([texel(a), texel(b), texel(c)], [at(a), at(b), at(c)]);
+      const texels = [texel(a), texel(b), texel(c)];
+      const m = affineThrough(texels, [at(a), at(b), at(c)]);
       if (!m) continue; // no texture area: the flat fill shows
       ctx.save();
       ctx.beginPath();
-      const [[ax, ay], [bx, by], [cx, cy]] = [at(a), at(b), at(c)];
-      ctx.moveTo(ax, ay);
-      ctx.lineTo(bx, by);
-      ctx.lineTo(cx, cy);
+      // The clip grown by a pixel about the centroid: neighbours overlap, so no seam of the
+      // fill shows through their antialiased edges.
+      const corners = [at(a), at(b), at(c)];
+      const mx = (corners[0]![0] + corners[1]![0] + corners[2]![0]) / 3;
+      const my = (corners[0]![1] + corners[1]![1] + corners[2]![1]) / 3;
+      for (const [k, [x, y]] of corners.entries()) {
+        const reach = Math.hypot(x - mx, y - my);
+        const grow = reach > 0 ? 1 + GROWTH / reach : 1;
+        if (k === 0) ctx.moveTo(mx + (x - mx) * grow, my + (y - my) * grow);
+        else ctx.lineTo(mx + (x - mx) * grow, my + (y - my) * grow);
+      }
       ctx.closePath();
       ctx.clip();
       ctx.setTransform(m[0], m[1], m[2], m[3], m[4], m[5]);
-      ctx.drawImage(texture.image, 0, 0, texture.width, texture.height);
+      // Only the texels under the triangle (and a pixel around them, for the grown clip).
+      const x0 = Math.max(0, Math.floor(Math.min(...texels.map((p) => p[0])) - 1));
+      const y0 = Math.max(0, Math.floor(Math.min(...texels.map((p) => p[1])) - 1));
+      const x1 = Math.min(texture.width, Math.ceil(Math.max(...texels.map((p) => p[0])) + 1));
+      const y1 = Math.min(texture.height, Math.ceil(Math.max(...texels.map((p) => p[1])) + 1));
+      if (x1 > x0 && y1 > y0) ctx.drawImage(texture.image, x0, y0, x1 - x0, y1 - y0, x0, y0, x1 - x0, y1 - y0);
       ctx.restore();
     }
   }
