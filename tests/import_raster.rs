@@ -195,16 +195,22 @@ fn noise_gives_valid_outlines() {
 
 #[test]
 fn texture_coordinates_map_the_image_onto_the_mesh() {
+    // A disc below the image's middle (y up): mirrored top to bottom it would lie elsewhere.
     let (w, h) = (64, 32);
-    let rgba = coverage_image(w, h, 2, disc([20.0, 16.0], 12.0));
+    let (centre, radius) = ([20.0, 10.0], 8.0);
+    let rgba = coverage_image(w, h, 2, disc(centre, radius));
     let outlines = trace_image(&rgba, w, h, &TraceOptions::default()).unwrap();
-    let mesh = triangulate(&outlines[0], &TriangulationOptions::default().with_target_edge_length(4.0)).unwrap();
+    let mesh = triangulate(&outlines[0], &TriangulationOptions::default().with_target_edge_length(2.0)).unwrap();
     let uvs = texture_coordinates(mesh.positions(), w as f64, h as f64).unwrap();
     for (uv, p) in uvs.iter().zip(mesh.positions()) {
         assert!((0.0..=1.0).contains(&uv[0]) && (0.0..=1.0).contains(&uv[1]));
-        // The pixel under (u, v) is inside the image and near the disc.
-        let (x, y) = ((uv[0] * w as f64) as usize, (uv[1] * h as f64) as usize);
-        assert!(distance([x as f64 + 0.5, h as f64 - (y as f64 + 0.5)], [20.0, 16.0]) < 14.0, "{p:?}");
+        // OBJ's convention: v up from the bottom row, so the pixel under (u, v) is column
+        // u * w and row (1 - v) * h from the top; its centre in the traced frame (y up) is
+        // within a pixel of the vertex, so near the disc.
+        let (column, row) =
+            ((uv[0] * w as f64).min(w as f64 - 1.0) as usize, ((1.0 - uv[1]) * h as f64).min(h as f64 - 1.0) as usize);
+        let pixel_centre = [column as f64 + 0.5, h as f64 - (row as f64 + 0.5)];
+        assert!(distance(pixel_centre, centre) < radius + 2.0, "{p:?} samples pixel ({column}, {row})");
     }
 }
 

@@ -7,6 +7,11 @@
 //! some limits reads back within them. The `_pose` writers write a mesh's triangles at other
 //! positions (a pose), checked only by [`Mesh::check_arrays`]: flipped or collapsed
 //! triangles are written as they are, and such a file reads back only once they are undone.
+//!
+//! Texture coordinates, OBJ's `vt` and JSON's `uvs`, are in the crate's one convention,
+//! Wavefront OBJ's (see [`crate::import::warp::texture_coordinates`]): `u` from the image's
+//! left edge, `v` up from its bottom edge, `(0, 0)` at the bottom-left corner and `(1, 1)`
+//! at the top-right. They are read and written as the numbers they are, never flipped.
 
 use std::fmt::Write;
 
@@ -22,7 +27,7 @@ use crate::mesh::Mesh;
 pub struct MeshFile {
     /// The validated mesh.
     pub mesh: Mesh,
-    /// One `[u, v]` per vertex, or `None`.
+    /// One `[u, v]` per vertex (v up from the image's bottom edge), or `None`.
     pub uvs: Option<Vec<Point>>,
 }
 

@@ -99,8 +99,12 @@ pub fn map_points(rest: &Mesh, deformed: &[Point], points: &[Point]) -> Result<V
 }
 
 /// Texture coordinates of points given in the pixel frame of a traced image (y up, origin
-/// at the bottom-left corner, see [`crate::import::raster`]): `u = x / width` and, as
-/// images store their top row first, `v = 1 - y / height` (so `v = 0` at the top row).
+/// at the image's bottom-left corner, see [`crate::import::raster`]), in the one
+/// convention of this crate, Wavefront OBJ's: `u = x / width` from the left edge and
+/// `v = y / height` up from the bottom edge, so `(0, 0)` is the image's bottom-left corner,
+/// `v = 1` its top edge, and the centre of the top-left pixel is
+/// `(0.5 / width, 1 - 0.5 / height)`. Images store their top row first: a renderer samples
+/// row `(1 - v) * height` from the top (WebGL flips the image on upload for this).
 /// Refuses a size that is not a finite number above 0 ([`ImportError::InvalidOption`]), a
 /// point that is not finite, and a coordinate that overflows (a huge position over a tiny
 /// size).
@@ -117,7 +121,7 @@ pub fn texture_coordinates(points: &[Point], width: f64, height: f64) -> Result<
             if !(p[0].is_finite() && p[1].is_finite()) {
                 return Err(ImportError::NonFinite { what: "position", index });
             }
-            let uv = [p[0] / width, 1.0 - p[1] / height];
+            let uv = [p[0] / width, p[1] / height];
             if uv[0].is_finite() && uv[1].is_finite() {
                 Ok(uv)
             } else {
@@ -387,8 +391,14 @@ mod tests {
     }
 
     #[test]
-    fn texture_coordinates_put_the_top_row_at_v_0() {
-        assert_eq!(texture_coordinates(&[[0.0, 10.0], [20.0, 0.0]], 20.0, 10.0), Ok(vec![[0.0, 0.0], [1.0, 1.0]]));
+    fn texture_coordinates_have_v_up_from_the_bottom_row() {
+        // A 4 x 2 image in its traced frame (y up, origin at the bottom-left corner). Its
+        // top-left pixel, row 0 from the top, has its centre at (0.5, 2 - 0.5); OBJ's
+        // convention puts that at u = 0.5 / 4 and v = 1 - 0.5 / 2.
+        let (w, h) = (4.0, 2.0);
+        let points = [[0.5, 1.5], [3.5, 0.5], [0.0, 0.0], [4.0, 2.0], [0.0, 2.0], [2.0, 1.0]];
+        let expected = [[0.125, 0.75], [0.875, 0.25], [0.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.5]];
+        assert_eq!(texture_coordinates(&points, w, h), Ok(expected.to_vec()));
     }
 
     #[test]

@@ -190,7 +190,7 @@ pub fn mesh_to_json(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Res
 }
 
 /// Texture coordinates (u, v interleaved) of positions (`Float64Array`) in a traced
-/// image's pixel frame.
+/// image's pixel frame, in OBJ's convention (v up): see [`warp::texture_coordinates`].
 #[wasm_bindgen]
 pub fn texture_coordinates(positions: JsValue, width: JsValue, height: JsValue) -> Result<Vec<f64>, JsError> {
     let width = read::number(&width, "width")?;

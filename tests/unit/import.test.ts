@@ -186,6 +186,49 @@ function image(w: number, h: number, inside: (x: number, y: number) => boolean):
   return rgba;
 }
 
+describe("textureCoordinates", () => {
+  it("follow OBJ's convention: u from the left, v up from the bottom row", () => {
+    // A 4 x 2 image in its traced frame (y up, origin at the bottom-left corner): the
+    // centre of its top-left pixel is (0.5, 1.5), of its bottom-right pixel (3.5, 0.5).
+    const uvs = textureCoordinates([0.5, 1.5, 3.5, 0.5, 0, 0, 4, 2], 4, 2);
+    expect(Array.from(uvs)).toEqual([0.5 / 4, 1 - 0.5 / 2, 3.5 / 4, 0.5 / 2, 0, 0, 1, 1]);
+  });
+
+  it("put each vertex of a traced image on its own pixel", () => {
+    // Rows from the top, as ImageData: an opaque 40 x 20 block in a clear 2-pixel margin,
+    // its quadrants red (top left), green (top right), blue (bottom left), white.
+    const [w, h] = [44, 24];
+    const colours = [
+      [255, 0, 0],
+      [0, 255, 0],
+      [0, 0, 255],
+      [255, 255, 255],
+    ];
+    const rgba = new Uint8ClampedArray(w * h * 4);
+    for (let row = 2; row < h - 2; row++) {
+      for (let column = 2; column < w - 2; column++) {
+        const quadrant = (row < h / 2 ? 0 : 2) + (column < w / 2 ? 0 : 1);
+        rgba.set([...colours[quadrant]!, 255], 4 * (row * w + column));
+      }
+    }
+    const mesh = triangulate(traceImage(rgba, w, h, { tolerance: 0.25 })[0]!, { targetEdgeLength: 2 });
+    const uvs = textureCoordinates(mesh.positions, w, h);
+    let checked = 0;
+    for (let i = 0; i < mesh.positions.length; i += 2) {
+      const [x, y] = [mesh.positions[i]!, mesh.positions[i + 1]!];
+      // Skip the seams between quadrants and the traced edge, where neighbours blend.
+      if (Math.abs(x - w / 2) < 1 || Math.abs(y - h / 2) < 1 || x < 3 || x > w - 3 || y < 3 || y > h - 3) continue;
+      // The quadrant from the position (y up), the colour from the pixel under (u, v):
+      // column u * w, row (1 - v) * h from the top.
+      const quadrant = (y > h / 2 ? 0 : 2) + (x < w / 2 ? 0 : 1);
+      const [column, row] = [Math.floor(uvs[i]! * w), Math.floor((1 - uvs[i + 1]!) * h)];
+      expect(Array.from(rgba.subarray(4 * (row * w + column), 4 * (row * w + column) + 3))).toEqual(colours[quadrant]);
+      checked++;
+    }
+    expect(checked).toBeGreaterThan(20);
+  });
+});
+
 describe("traceImage", () => {
   it("traces an annulus into one outline with a hole, within the pixel bound", () => {
     const r = (x: number, y: number) => Math.hypot(x - 50, y - 40);

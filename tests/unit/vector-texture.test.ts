@@ -5,7 +5,7 @@ import { boxUvs } from "../../www/src/widget/geometry.js";
 import { textureMapping, vectorTexture } from "../../www/src/widget/vector-texture.js";
 
 beforeAll(async () => {
-  await init();
+  await init(); // boxUvs goes through the core's textureCoordinates
 });
 
 /** Canvas pixel of a shape point under a mapping (y flips: shape y up, canvas y down). */

@@ -1,12 +1,18 @@
 /** The pure TypeScript parts of the widget: drag velocities, picking, history, sessions. */
-import { describe, expect, it } from "vitest";
+import { beforeAll, describe, expect, it } from "vitest";
+import { init } from "../../www/src/index.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
+import { affineThrough } from "../../www/src/widget/canvas2d.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
 import { History } from "../../www/src/widget/history.js";
 import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
-import { fileKind, imageUvs } from "../../www/src/widget/sources.js";
+import { fileKind } from "../../www/src/widget/sources.js";
 import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
 import { Recorder, parseSession } from "../../www/src/widget/session.js";
+
+beforeAll(async () => {
+  await init(); // boxUvs goes through the core's textureCoordinates
+});
 
 // A unit square split into two counter-clockwise triangles, with a square hole-free boundary.
 const square = Float64Array.from([0, 0, 1, 0, 1, 1, 0, 1]);
@@ -159,6 +165,51 @@ describe("geometry and exports", () => {
     const uvs = boxUvs([0, 0, 2, 0, 2, 1, 0, 1]);
     expect(Array.from(uvs)).toEqual([0, 0.25, 1, 0.25, 1, 0.75, 0, 0.75]);
   });
+
+  it("maps a triangle's texture pixels onto its screen corners (the 2D renderer's affine map)", () => {
+    // The unit triangle to one scaled by 2 and 3 at (10, 20): a = 2, d = 3, no shear.
+    expect(
+      affineThrough(
+        [
+          [0, 0],
+          [1, 0],
+          [0, 1],
+        ],
+        [
+          [10, 20],
+          [12, 20],
+          [10, 23],
+        ],
+      ),
+    ).toEqual([2, 0, 0, 3, 10, 20]);
+    // A texture triangle with rows down (v up flips y) onto a rotated one: each corner lands.
+    const from: [number, number][] = [
+      [4, 8],
+      [20, 8],
+      [4, 2],
+    ];
+    const to: [number, number][] = [
+      [100, 100],
+      [100, 132],
+      [88, 100],
+    ];
+    const [a, b, c, d, e, f] = affineThrough(from, to)!;
+    from.forEach(([x, y], k) => {
+      expect(a * x + c * y + e).toBeCloseTo(to[k]![0], 12);
+      expect(b * x + d * y + f).toBeCloseTo(to[k]![1], 12);
+    });
+    // Texture points on a line have no area: no map.
+    expect(
+      affineThrough(
+        [
+          [0, 0],
+          [1, 1],
+          [2, 2],
+        ],
+        to,
+      ),
+    ).toBeUndefined();
+  });
 });
 
 describe("keyboard shortcuts", () => {
@@ -204,9 +255,5 @@ describe("user files", () => {
     expect(fileKind("model.obj")).toBe("obj");
     expect(fileKind("pose.json")).toBe("json");
     expect(fileKind("notes.txt", "text/plain")).toBeUndefined();
-  });
-
-  it("map traced image coordinates (pixels, y up) to texture space", () => {
-    expect(Array.from(imageUvs([0, 0, 200, 100, 50, 25], 200, 100))).toEqual([0, 0, 1, 1, 0.25, 0.25]);
   });
 });

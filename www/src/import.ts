@@ -141,8 +141,14 @@ export function traceImage(
   return raw.trace_image(bytes, width, height, options) as ImportedOutline[];
 }
 
-/** Texture coordinates for positions in a traced image's pixel frame: u = x / width,
- * v = 1 - y / height (v = 0 at the image's top row), interleaved. */
+/**
+ * Texture coordinates, interleaved, for positions in a traced image's pixel frame (y up,
+ * origin at the image's bottom-left corner), in Wavefront OBJ's convention, the one the
+ * widget, the mesh files and the renderers use: u = x / width from the left edge,
+ * v = y / height up from the bottom edge (the centre of the top-left pixel is at
+ * (0.5 / width, 1 - 0.5 / height)). Throws for a size that is not a finite number above 0,
+ * a position that is not finite, and a coordinate that would overflow.
+ */
 export function textureCoordinates(positions: NumberList, width: number, height: number): Float64Array {
   assertLoaded();
   return raw.texture_coordinates(toFloat64(positions, "positions"), width, height);

@@ -1,4 +1,5 @@
 /** Mesh helpers for drawing and export: unique edges, boundary loops, texture coordinates. */
+import { textureCoordinates } from "../import.js";
 import { bounds } from "./view.js";
 
 /** Every edge of the triangles once, as index pairs. */
@@ -66,14 +67,19 @@ export function uvSquare(b: { minX: number; minY: number; maxX: number; maxY: nu
   return { x0: b.minX - (size - (b.maxX - b.minX)) / 2, y0: b.minY - (size - (b.maxY - b.minY)) / 2, size };
 }
 
-/** Texture coordinates through a square: u = (x - x0) / size, v = (y - y0) / size (v up). */
+/**
+ * Texture coordinates through a square: the square is the texture's frame, and the
+ * positions' coordinates in it go through `textureCoordinates` (OBJ's convention, v up:
+ * u = (x - x0) / size, v = (y - y0) / size), so the texture's bottom-left corner is the
+ * square's. Needs the wasm module loaded (`init`).
+ */
 export function squareUvs(positions: ArrayLike<number>, square: UvSquare): Float32Array {
-  const uvs = new Float32Array(positions.length);
+  const local = new Float64Array(positions.length);
   for (let i = 0; i + 1 < positions.length; i += 2) {
-    uvs[i] = (positions[i]! - square.x0) / square.size;
-    uvs[i + 1] = (positions[i + 1]! - square.y0) / square.size;
+    local[i] = positions[i]! - square.x0;
+    local[i + 1] = positions[i + 1]! - square.y0;
   }
-  return uvs;
+  return Float32Array.from(textureCoordinates(local, square.size, square.size));
 }
 
 /**

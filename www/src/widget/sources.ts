@@ -14,6 +14,7 @@ import {
   importSvgPaths,
   meshFromJson,
   meshFromObj,
+  textureCoordinates,
   traceImage,
   type ImportedOutline,
   type VectorPath,
@@ -31,7 +32,7 @@ export type Loaded =
       kind: "outlines";
       name: string;
       parts: ImportedOutline[];
-      /** The texture and how shape coordinates map to it (u = x / width, v = y / height). */
+      /** The texture, and the size of the frame the outlines are in (its pixels, y up). */
       image?: { source: TexImageSource; width: number; height: number };
       /** The SVG's filled paths, for exporting the art deformed as vectors. */
       vector?: VectorPath[];
@@ -121,16 +122,6 @@ export function asOutline(part: ImportedOutline): Outline {
   return { outer: part.outer, holes: part.holes };
 }
 
-/** Texture coordinates of positions in an image's pixel frame (y up): u = x / w, v = y / h. */
-export function imageUvs(positions: ArrayLike<number>, width: number, height: number): Float32Array {
-  const uvs = new Float32Array(positions.length);
-  for (let i = 0; i + 1 < positions.length; i += 2) {
-    uvs[i] = positions[i]! / width;
-    uvs[i + 1] = positions[i + 1]! / height;
-  }
-  return uvs;
-}
-
 function megabytes(bytes: number): string {
   return `${(bytes / 1024 / 1024).toFixed(1)} MB`;
 }
@@ -149,7 +140,8 @@ export async function partShape<P extends { shape: Shape }>(
   const prepared = await mesh(asOutline(loaded.parts[index]!), loaded.name);
   const shape = prepared.shape;
   if (loaded.image) {
-    shape.uvs = imageUvs(shape.mesh.positions, loaded.image.width, loaded.image.height);
+    const { width, height } = loaded.image;
+    shape.uvs = Float32Array.from(textureCoordinates(shape.mesh.positions, width, height));
     shape.texture = loaded.image.source;
   }
   if (loaded.vector) paintVector(document, shape, loaded.vector);
