@@ -13,7 +13,7 @@
  *
  * @module
  */
-import { type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
+import { coded, type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
 import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
 import type { MeshData } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
@@ -96,9 +96,10 @@ export function pathData(
   let next = 0;
   for (const command of path.commands) {
     const count = counts[command];
-    if (count === undefined) throw new RangeError(`unknown path command ${command}`);
-    if (2 * (next + count) > p.length)
-      throw new RangeError(`points has ${p.length / 2} points, too few for the commands`);
+    if (count === undefined) throw coded(new RangeError(`unknown path command ${command}`), "invalid-argument");
+    if (2 * (next + count) > p.length) {
+      throw coded(new RangeError(`points has ${p.length / 2} points, too few for the commands`), "invalid-argument");
+    }
     let part = command;
     for (let i = next; i < next + count; i++) part += ` ${p[2 * i]} ${sign * p[2 * i + 1]!}`;
     parts.push(part);
@@ -141,14 +142,14 @@ export function traceImage(
 ): ImportedOutline[] {
   assertLoaded();
   if (!(rgba instanceof Uint8Array || rgba instanceof Uint8ClampedArray)) {
-    throw new TypeError("rgba must be a Uint8Array or Uint8ClampedArray");
+    throw coded(new TypeError("rgba must be a Uint8Array or Uint8ClampedArray"), "invalid-argument");
   }
   for (const [name, value] of [
     ["width", width],
     ["height", height],
   ] as const) {
     if (!Number.isInteger(value) || value < 1 || value > 0xffffffff)
-      throw new RangeError(`${name} is ${value}, not a pixel count`);
+      throw coded(new RangeError(`${name} is ${value}, not a pixel count`), "invalid-argument");
   }
   const bytes = rgba instanceof Uint8Array ? rgba : new Uint8Array(rgba.buffer, rgba.byteOffset, rgba.byteLength);
   return raw.trace_image(bytes, width, height, options) as ImportedOutline[];
