@@ -175,6 +175,18 @@ describe("a misspelt option is refused by every options object", () => {
     });
   }
 
+  it("pathData (read in TypeScript, as the bindings read theirs)", () => {
+    const [path] = api.importSvgPaths(svg);
+    // The 8 x 6 rectangle at the top of a 10 x 10 viewBox: y up, from 4 to 10; flipped, -10 to -4.
+    expect(api.pathData(path!, path!.points, { flipY: true })).toBe("M 0 -10 L 8 -10 L 8 -4 L 0 -4 Z");
+    const error = thrown(() => api.pathData(path!, path!.points, { flipy: true } as never));
+    expect(error.code).toBe("invalid-option");
+    expect(error.message).toBe("unknown pathData option `flipy`; the options are flipY");
+    const wrong = thrown(() => api.pathData(path!, path!.points, { flipY: "yes" } as never));
+    expect(wrong.code).toBe("invalid-option");
+    expect(wrong.message).toBe("option flipY must be true or false, not string");
+  });
+
   it("a value of the wrong type names the option", () => {
     const cases: [() => unknown, string | RegExp][] = [
       [() => api.triangulate(square, { maxArea: "1" as never }), "option maxArea must be a number, not a string"],

@@ -90,6 +90,15 @@ export function pathData(
   options: { flipY?: boolean } = {},
 ): string {
   const p = toFloat64(points, "points");
+  // Read as the bindings read their options (Rust's `read::Options`): a misspelt key or a
+  // value of the wrong type is refused by name.
+  const unknown = Object.keys(options).find((key) => key !== "flipY");
+  if (unknown !== undefined) {
+    throw coded(new Error(`unknown pathData option \`${unknown}\`; the options are flipY`), "invalid-option");
+  }
+  if (options.flipY !== undefined && typeof options.flipY !== "boolean") {
+    throw coded(new Error(`option flipY must be true or false, not ${typeof options.flipY}`), "invalid-option");
+  }
   const sign = options.flipY ? -1 : 1;
   const counts: Record<string, number> = { M: 1, L: 1, Q: 2, C: 3, Z: 0 };
   const parts: string[] = [];
