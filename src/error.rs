@@ -1,12 +1,20 @@
-//! The crate's top-level error: one variant per area, each with its own typed error.
+//! The crate's top-level error, one variant per area, each with its own typed error; and
+//! [`ErrorCode`], the stable kind of every error (JavaScript sees it as `error.code`),
+//! defined here once for all the areas' error types.
 
 use std::fmt;
 
+use crate::deform::DeformError;
 use crate::import::ImportError;
 use crate::mesh::MeshError;
 use crate::outline::OutlineError;
 use crate::session::SessionError;
+use crate::sparse::FactorError;
 use crate::triangulate::TriangulationError;
+
+mod code;
+
+pub use code::ErrorCode;
 
 /// Any error this crate reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,6 +28,10 @@ pub enum Error {
     Session(SessionError),
     /// An SVG, image or mesh file could not be imported.
     Import(ImportError),
+    /// A deformer refused an input or a step.
+    Deform(DeformError),
+    /// A sparse factorisation failed (used directly, not through a deformer).
+    Factor(FactorError),
 }
 
 impl fmt::Display for Error {
@@ -29,6 +41,8 @@ impl fmt::Display for Error {
             Self::Triangulation(e) => e.fmt(f),
             Self::Session(e) => e.fmt(f),
             Self::Import(e) => e.fmt(f),
+            Self::Deform(e) => e.fmt(f),
+            Self::Factor(e) => e.fmt(f),
         }
     }
 }
@@ -40,6 +54,8 @@ impl std::error::Error for Error {
             Self::Triangulation(e) => Some(e),
             Self::Session(e) => Some(e),
             Self::Import(e) => Some(e),
+            Self::Deform(e) => Some(e),
+            Self::Factor(e) => Some(e),
         }
     }
 }
@@ -88,6 +104,18 @@ impl From<SessionError> for Error {
 impl From<ImportError> for Error {
     fn from(e: ImportError) -> Self {
         Self::Import(e)
+    }
+}
+
+impl From<DeformError> for Error {
+    fn from(e: DeformError) -> Self {
+        Self::Deform(e)
+    }
+}
+
+impl From<FactorError> for Error {
+    fn from(e: FactorError) -> Self {
+        Self::Factor(e)
     }
 }
 

@@ -40,7 +40,7 @@ pub mod wasm;
 #[cfg(all(target_arch = "wasm32", feature = "bench"))]
 mod wasm_bench;
 
-pub use error::Error;
+pub use error::{Error, ErrorCode};
 pub use mesh::{Mesh, MeshError};
 pub use outline::{Outline, OutlineError, Ring};
 pub use triangulate::{triangulate, TriangulationError, TriangulationOptions};

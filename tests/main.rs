@@ -3,6 +3,7 @@
 mod arap;
 mod common;
 mod deformer;
+mod errors;
 mod gallery;
 mod hostile;
 mod import_mesh;

@@ -1,7 +1,7 @@
 //! The JavaScript bindings, called from Rust inside wasm (run with `wasm-pack test --node`):
 //! results match the geometry and every bad input becomes a JavaScript Error, not a panic.
 
-use akap::wasm::{default_shape, triangulate_outline, JsMesh};
+use akap::wasm::{default_shape, triangulate_outline, BindingError, JsMesh};
 use js_sys::{Array, Float64Array, Reflect, Uint32Array};
 use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -23,11 +23,16 @@ fn js(body: &str) -> JsValue {
     js_sys::Function::new_no_args(body).call0(&JsValue::NULL).unwrap()
 }
 
-fn message(result: Result<impl Sized, wasm_bindgen::JsError>) -> String {
+/// The message of the JavaScript `Error` a refused call throws, after checking that the
+/// `Error` carries the Rust error's code and message.
+fn message(result: Result<impl Sized, BindingError>) -> String {
     let Err(e) = result else { panic!("expected an error") };
+    let (code, text) = (e.code(), e.message().to_owned());
     let value = JsValue::from(e);
     let error: &js_sys::Error = value.dyn_ref().expect("a JavaScript Error");
-    String::from(error.message())
+    assert_eq!(Reflect::get(&value, &"code".into()).unwrap().as_string().as_deref(), Some(code.as_str()));
+    assert_eq!(String::from(error.message()), text);
+    text
 }
 
 #[test]
@@ -63,7 +68,7 @@ fn default_shape_triangulates() {
 #[test]
 fn bad_input_becomes_a_javascript_error() {
     let square = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
-    let cases: Vec<(Result<JsMesh, wasm_bindgen::JsError>, &str)> = vec![
+    let cases: Vec<(Result<JsMesh, BindingError>, &str)> = vec![
         (triangulate_outline(f64s(&[0.0, 0.0, 1.0, 0.0]), JsValue::UNDEFINED, JsValue::UNDEFINED), "at least 3"),
         (
             triangulate_outline(f64s(&[0.0, 0.0, 1.0, f64::NAN, 0.0, 1.0]), JsValue::UNDEFINED, JsValue::UNDEFINED),
@@ -155,8 +160,7 @@ fn arguments_of_the_wrong_type_are_refused_with_their_name() {
     use akap::wasm::{builtin_shape, import_svg, mesh_from_json, mesh_from_obj, JsDeformer};
     // These used to be copied by the generated glue as whatever they were (a number as a
     // string's bytes, a string as an array's elements) or to trap the instance.
-    let shape = builtin_shape(42.into()).unwrap_err();
-    let text = shape.dyn_ref::<js_sys::Error>().map(|e| String::from(e.message())).unwrap_or_default();
+    let text = message(builtin_shape(42.into()));
     assert!(text.contains("the shape's name must be a string, not the number 42"), "{text}");
     assert!(
         message(import_svg(true.into(), JsValue::UNDEFINED)).contains("the SVG text must be a string, not a boolean")
@@ -241,4 +245,47 @@ fn careless_callers_get_errors_in_their_own_numbers_and_never_nan() {
         message(mesh_to_obj(f64s(&positions), u32s(&strip), JsValue::UNDEFINED)),
         "the mesh has 100002 vertices (200004 numbers), more than the limit of 100000 vertices"
     );
+}
+
+#[test]
+fn every_code_reaches_javascript_with_its_message() {
+    use akap::deform::DeformError;
+    use akap::sparse::{FactorError, Numeric, Ordering, Symbolic};
+    use akap::{ErrorCode, TriangulationError};
+    // The codes no binding call can produce on purpose, from real Rust errors: an
+    // indefinite matrix's failed factorisation (as a deformer's step reports it), memory
+    // running short, and a bug.
+    let mut a = sprs::TriMat::new((2, 2));
+    for (i, j, v) in [(0, 0, 1.0), (1, 0, 2.0), (0, 1, 2.0), (1, 1, 1.0)] {
+        a.add_triplet(i, j, v);
+    }
+    let a = a.to_csc::<usize>();
+    let symbolic = std::sync::Arc::new(Symbolic::analyse(a.view(), &Ordering::Natural).unwrap());
+    let factor = Numeric::factor(symbolic, a.view()).unwrap_err();
+    let cases: [(BindingError, &str); 3] = [
+        (DeformError::from(factor).into(), "not-positive-definite"),
+        (DeformError::OutOfMemory { bytes: 3_000_000 }.into(), "out-of-memory"),
+        (TriangulationError::Internal { message: "spade said no".into() }.into(), "internal"),
+    ];
+    for (error, code) in cases {
+        assert_eq!(error.code().as_str(), code);
+        let text = message(Err::<(), _>(error));
+        assert!(!text.is_empty());
+    }
+    assert_eq!(
+        message(Err::<(), BindingError>(DeformError::from(FactorError::OutOfMemory { bytes: 1 }).into())),
+        "the step failed, the mesh may have collapsed triangles: out of memory: the factor needs 1 MB more"
+    );
+    // Every code converts, and the `Error`'s `code` is its own property, defined without
+    // running a setter a page may have put on `Error.prototype`.
+    js("Object.defineProperty(Error.prototype, 'code', { set() { throw new Error('setter ran') }, configurable: true })");
+    for code in ErrorCode::ALL {
+        let value = JsValue::from(BindingError::new(code, "words"));
+        let own =
+            Reflect::get_own_property_descriptor(value.unchecked_ref::<js_sys::Object>(), &"code".into()).unwrap();
+        assert_eq!(Reflect::get(&own, &"value".into()).unwrap().as_string().as_deref(), Some(code.as_str()));
+        assert_eq!(Reflect::get(&own, &"enumerable".into()).unwrap().as_bool(), Some(true));
+        assert_eq!(String::from(value.unchecked_ref::<js_sys::Error>().message()), "words");
+    }
+    js("delete Error.prototype.code");
 }

@@ -166,7 +166,14 @@ impl fmt::Display for DeformError {
     }
 }
 
-impl std::error::Error for DeformError {}
+impl std::error::Error for DeformError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Factor(e) => Some(e),
+            _ => None,
+        }
+    }
+}
 
 impl From<FactorError> for DeformError {
     fn from(e: FactorError) -> Self {

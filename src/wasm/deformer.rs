@@ -4,9 +4,10 @@ use js_sys::{Array, Function, Object, Reflect, Uint32Array};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
+use super::error::BindingError;
 use super::mesh::read_mesh;
-use super::read::{self, entries};
-use super::{limits, max_coordinates, object, pairs, to_js};
+use super::read::{self, Options};
+use super::{limits, max_coordinates, object, pairs};
 use crate::deform::arap::MAX_ITERATIONS;
 use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions, Orders};
 
@@ -20,7 +21,7 @@ pub struct JsDeformer {
 /// The fill-reducing orders a deformer of the method in `options` needs for this mesh (the
 /// bulk of its set-up), as an array of `Uint32Array`s for `Deformer.withOrders`.
 #[wasm_bindgen]
-pub fn deformer_orders(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<Array, JsError> {
+pub fn deformer_orders(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<Array, BindingError> {
     let options = deformer_options(&options, MethodOptions::default())?;
     let mesh = read_mesh(&positions, &triangles)?;
     let list = Array::new();
@@ -43,10 +44,10 @@ impl JsDeformer {
     /// dirichlet?: boolean, integrator?: "spiral" | "linear", iterations?: number }`
     /// (the last for ARAP, the three before it for AKAP).
     #[wasm_bindgen(constructor)]
-    pub fn new(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<JsDeformer, JsError> {
+    pub fn new(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<JsDeformer, BindingError> {
         let options = deformer_options(&options, MethodOptions::default())?;
         let mesh = read_mesh(&positions, &triangles)?;
-        let mut inner = options.build(mesh).map_err(to_js)?;
+        let mut inner = options.build(mesh)?;
         inner.set_clock(performance_now);
         Ok(Self { inner })
     }
@@ -60,7 +61,7 @@ impl JsDeformer {
         triangles: JsValue,
         options: JsValue,
         orders: JsValue,
-    ) -> Result<JsDeformer, JsError> {
+    ) -> Result<JsDeformer, BindingError> {
         let options = deformer_options(&options, MethodOptions::default())?;
         let mesh = read_mesh(&positions, &triangles)?;
         let systems = read::list(&orders, "orders", 4)?
@@ -70,17 +71,17 @@ impl JsDeformer {
                 let order = read::uint32s(order, &format!("orders[{i}]"), mesh.vertex_count())?;
                 Ok(order.into_iter().map(|v| v as usize).collect())
             })
-            .collect::<Result<Vec<_>, JsError>>()?;
-        let mut inner = options.build_with_orders(mesh, &Orders { systems }).map_err(to_js)?;
+            .collect::<Result<Vec<_>, BindingError>>()?;
+        let mut inner = options.build_with_orders(mesh, &Orders { systems })?;
         inner.set_clock(performance_now);
         Ok(Self { inner })
     }
 
     /// Changes some options; the others keep their values. The method cannot change.
     #[wasm_bindgen(js_name = setOptions)]
-    pub fn set_options(&mut self, options: JsValue) -> Result<(), JsError> {
+    pub fn set_options(&mut self, options: JsValue) -> Result<(), BindingError> {
         let options = deformer_options(&options, self.inner.method_options())?;
-        self.inner.set_method_options(options).map_err(to_js)
+        Ok(self.inner.set_method_options(options)?)
     }
 
     /// `"akap"` or `"arap"`.
@@ -91,19 +92,19 @@ impl JsDeformer {
 
     /// One handle on each of these vertices (a `Uint32Array`), replacing the handles.
     #[wasm_bindgen(js_name = setHandles)]
-    pub fn set_handles(&mut self, vertices: JsValue) -> Result<(), JsError> {
+    pub fn set_handles(&mut self, vertices: JsValue) -> Result<(), BindingError> {
         let vertices = read::uint32s(&vertices, "vertices", max_handles())?;
-        self.inner.set_handle_vertices(&vertices).map_err(to_js)
+        Ok(self.inner.set_handle_vertices(&vertices)?)
     }
 
     /// Handles at points in triangles: triangle indices (`Uint32Array`) and three
     /// barycentric coordinates per point (`Float64Array`), replacing the handles.
     #[wasm_bindgen(js_name = setHandlePoints)]
-    pub fn set_handle_points(&mut self, triangles: JsValue, barycentric: JsValue) -> Result<(), JsError> {
+    pub fn set_handle_points(&mut self, triangles: JsValue, barycentric: JsValue) -> Result<(), BindingError> {
         let triangles = read::uint32s(&triangles, "triangles", max_handles())?;
         let barycentric = read::float64s(&barycentric, "barycentric", 3 * max_handles())?;
         if barycentric.len() != 3 * triangles.len() {
-            return Err(JsError::new(&format!(
+            return Err(BindingError::argument(format!(
                 "barycentric has {} numbers; {} triangles need 3 each ({})",
                 barycentric.len(),
                 triangles.len(),
@@ -111,13 +112,13 @@ impl JsDeformer {
             )));
         }
         let (weights, _) = barycentric.as_chunks::<3>();
-        self.inner.set_handle_points(&triangles, weights).map_err(to_js)
+        Ok(self.inner.set_handle_points(&triangles, weights)?)
     }
 
     /// One step with two velocity components per handle, in handle order (`Float64Array`).
-    pub fn step(&mut self, velocities: JsValue) -> Result<(), JsError> {
+    pub fn step(&mut self, velocities: JsValue) -> Result<(), BindingError> {
         let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
-        self.inner.step(&pairs(&velocities, "velocities")?).map_err(to_js)
+        Ok(self.inner.step(&pairs(&velocities, "velocities")?)?)
     }
 
     /// A copy of the current positions, x and y interleaved.
@@ -137,9 +138,9 @@ impl JsDeformer {
     /// Puts the mesh into the given pose (`Float64Array`, xy-interleaved, length
     /// `2 * vertexCount`); handles stay.
     #[wasm_bindgen(js_name = setPositions)]
-    pub fn set_positions(&mut self, positions: JsValue) -> Result<(), JsError> {
+    pub fn set_positions(&mut self, positions: JsValue) -> Result<(), BindingError> {
         let positions = read::float64s(&positions, "positions", max_coordinates())?;
-        self.inner.set_positions(&pairs(&positions, "positions")?).map_err(to_js)
+        Ok(self.inner.set_positions(&pairs(&positions, "positions")?)?)
     }
 
     /// The last velocity field after the Dirichlet step (`U_opt`; ARAP: the last step's
@@ -174,7 +175,7 @@ impl JsDeformer {
     }
 
     /// `{ areaDistortion, angleDistortion, flipped }` of the current pose.
-    pub fn metrics(&self) -> Result<Object, JsValue> {
+    pub fn metrics(&self) -> Result<Object, BindingError> {
         let m = self.inner.metrics();
         object(&[
             ("areaDistortion", m.area_distortion.into()),
@@ -186,7 +187,7 @@ impl JsDeformer {
     /// `{ assembly, factorisation, dirichletFactorisation, solve, integration }`:
     /// milliseconds of the last step (`dirichletFactorisation` is the part of
     /// `factorisation` spent on AKAP's step 2).
-    pub fn timings(&self) -> Result<Object, JsValue> {
+    pub fn timings(&self) -> Result<Object, BindingError> {
         let t = self.inner.timings();
         object(&[
             ("assembly", t.assembly.into()),
@@ -203,19 +204,18 @@ impl JsDeformer {
     }
 }
 
+/// The deformer options' names: `method`, then AKAP's, then ARAP's.
+const NAMES: [&str; 5] = ["method", "lambda", "dirichlet", "integrator", "iterations"];
+/// The options of AKAP only.
+const AKAP_ONLY: [&str; 3] = ["lambda", "dirichlet", "integrator"];
+
 /// Reads `{ method?, lambda?, dirichlet?, integrator?, iterations? }` over `base`, refusing
 /// unknown keys and options of the other method. A different `method` starts from that
 /// method's defaults.
-fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, JsError> {
-    const NAMES: [&str; 5] = ["method", "lambda", "dirichlet", "integrator", "iterations"];
-    let given = entries(value, "deformer", &NAMES)?;
+fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, BindingError> {
+    let given = Options::read(value, "deformer", &NAMES)?;
     let mut options = base;
-    if let Some((_, field)) = given.iter().find(|(k, _)| k == "method") {
-        let method = match field.as_string().as_deref() {
-            Some("akap") => Method::Akap,
-            Some("arap") => Method::Arap,
-            _ => return Err(JsError::new("option method must be \"akap\" or \"arap\"")),
-        };
+    if let Some(method) = given.choice("method", &[("akap", Method::Akap), ("arap", Method::Arap)])? {
         if method != base.method() {
             options = match method {
                 Method::Akap => MethodOptions::Akap(DeformerOptions::default()),
@@ -223,35 +223,32 @@ fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOption
             };
         }
     }
-    let only = |name: &str, method: &str| JsError::new(&format!("option {name} applies to method \"{method}\" only"));
-    for (key, field) in given.iter().filter(|(k, _)| k != "method") {
-        match (key.as_str(), &mut options) {
-            ("lambda", MethodOptions::Akap(o)) => o.lambda = read::number(field, "option lambda")?,
-            ("dirichlet", MethodOptions::Akap(o)) => {
-                o.dirichlet = field.as_bool().ok_or_else(|| JsError::new("option dirichlet must be true or false"))?;
+    let method = options.method();
+    if let Some(name) =
+        given.names().find(|&name| (method == Method::Akap) != AKAP_ONLY.contains(&name) && name != "method")
+    {
+        let other = if method == Method::Akap { "arap" } else { "akap" };
+        return Err(BindingError::option(format!("option {name} applies to method \"{other}\" only")));
+    }
+    match &mut options {
+        MethodOptions::Akap(o) => {
+            o.lambda = given.number("lambda")?.unwrap_or(o.lambda);
+            o.dirichlet = given.boolean("dirichlet")?.unwrap_or(o.dirichlet);
+            let integrators = [("spiral", Integrator::Spiral), ("linear", Integrator::Linear)];
+            o.integrator = given.choice("integrator", &integrators)?.unwrap_or(o.integrator);
+        }
+        MethodOptions::Arap(o) => {
+            // The core's bound (`arap::MAX_ITERATIONS`), checked here on the caller's number
+            // so that the message names it (1e300 as usize would not).
+            if let Some(n) = given.number("iterations")? {
+                if !(n.fract() == 0.0 && (1.0..=MAX_ITERATIONS as f64).contains(&n)) {
+                    return Err(BindingError::option(format!(
+                        "option iterations must be a whole number from 1 to {MAX_ITERATIONS} (iterations per step: a \
+                         step's work grows with them, and {MAX_ITERATIONS} is far more than a frame needs)"
+                    )));
+                }
+                o.iterations = n as usize;
             }
-            ("integrator", MethodOptions::Akap(o)) => {
-                o.integrator = match field.as_string().as_deref() {
-                    Some("spiral") => Integrator::Spiral,
-                    Some("linear") => Integrator::Linear,
-                    _ => return Err(JsError::new("option integrator must be \"spiral\" or \"linear\"")),
-                };
-            }
-            ("iterations", MethodOptions::Arap(o)) => {
-                // The core's bound (`arap::MAX_ITERATIONS`), checked here on the caller's
-                // number so that the message names it (1e300 as usize would not).
-                o.iterations = match field.as_f64() {
-                    Some(n) if n.fract() == 0.0 && (1.0..=MAX_ITERATIONS as f64).contains(&n) => n as usize,
-                    _ => {
-                        return Err(JsError::new(&format!(
-                            "option iterations must be a whole number from 1 to {MAX_ITERATIONS} (iterations per \
-                             step: a step's work grows with them, and {MAX_ITERATIONS} is far more than a frame needs)"
-                        )))
-                    }
-                };
-            }
-            ("lambda" | "dirichlet" | "integrator", _) => return Err(only(key, "akap")),
-            _ => return Err(only(key, "arap")),
         }
     }
     Ok(options)

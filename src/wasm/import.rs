@@ -4,9 +4,10 @@
 use js_sys::Array;
 use wasm_bindgen::prelude::*;
 
+use super::error::BindingError;
 use super::mesh::{read_mesh, read_positions, JsMesh};
-use super::read::{self, entries};
-use super::{flat, limits, max_coordinates, max_indices, object, outlines_to_js, pairs, to_js};
+use super::read::{self, Options};
+use super::{flat, limits, max_coordinates, max_indices, object, outlines_to_js, pairs};
 use crate::import::mesh_file::{self, MeshFile};
 use crate::import::raster::{self, MaskMode, TraceOptions};
 use crate::import::svg::{self as svg_import, SvgOptions};
@@ -14,57 +15,46 @@ use crate::import::vector::{FillRule, VectorPath};
 use crate::import::warp::{self, PointMapper};
 use crate::mesh::MeshError;
 
-fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, JsError> {
+/// Reads `{ tolerance?, minArea?, maxPoints?, maxBytes? }`.
+fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, BindingError> {
+    let given = Options::read(value, "SVG import", &["tolerance", "minArea", "maxPoints", "maxBytes"])?;
     let mut options = SvgOptions::default();
-    for (key, field) in entries(value, "SVG import", &["tolerance", "minArea", "maxPoints", "maxBytes"])? {
-        let what = format!("option {key}");
-        match key.as_str() {
-            "tolerance" => options.tolerance = Some(read::number(&field, &what)?),
-            "minArea" => options.min_area = read::number(&field, &what)?,
-            "maxPoints" => options.limits.max_points = read::count(&field, &what, usize::MAX)?,
-            _ => options.limits.max_bytes = read::count(&field, &what, usize::MAX)?,
-        }
-    }
+    options.tolerance = given.number("tolerance")?.or(options.tolerance);
+    options.min_area = given.number("minArea")?.unwrap_or(options.min_area);
+    options.limits.max_points = given.count("maxPoints", usize::MAX)?.unwrap_or(options.limits.max_points);
+    options.limits.max_bytes = given.count("maxBytes", usize::MAX)?.unwrap_or(options.limits.max_bytes);
     Ok(options)
 }
 
-fn parse_trace_options(value: &JsValue) -> Result<TraceOptions, JsError> {
+/// Reads `{ mode?, alphaThreshold?, colourThreshold?, tolerance?, minArea?, maxPoints?,
+/// maxPixels? }`.
+fn parse_trace_options(value: &JsValue) -> Result<TraceOptions, BindingError> {
     const NAMES: [&str; 7] =
         ["mode", "alphaThreshold", "colourThreshold", "tolerance", "minArea", "maxPoints", "maxPixels"];
+    let given = Options::read(value, "image tracing", &NAMES)?;
     let mut options = TraceOptions::default();
-    for (key, field) in entries(value, "image tracing", &NAMES)? {
-        let what = format!("option {key}");
-        match key.as_str() {
-            "mode" => {
-                options.mode = match field.as_string().as_deref() {
-                    Some("auto") => MaskMode::Auto,
-                    Some("alpha") => MaskMode::Alpha,
-                    Some("colour") => MaskMode::Colour,
-                    _ => return Err(JsError::new("option mode must be \"auto\", \"alpha\" or \"colour\"")),
-                }
-            }
-            "alphaThreshold" => options.alpha_threshold = read::number(&field, &what)?,
-            "colourThreshold" => options.colour_threshold = read::number(&field, &what)?,
-            "tolerance" => options.tolerance = read::number(&field, &what)?,
-            "minArea" => options.min_area = read::number(&field, &what)?,
-            "maxPoints" => options.limits.max_points = read::count(&field, &what, usize::MAX)?,
-            _ => options.limits.max_pixels = read::count(&field, &what, usize::MAX)?,
-        }
-    }
+    let modes = [("auto", MaskMode::Auto), ("alpha", MaskMode::Alpha), ("colour", MaskMode::Colour)];
+    options.mode = given.choice("mode", &modes)?.unwrap_or(options.mode);
+    options.alpha_threshold = given.number("alphaThreshold")?.unwrap_or(options.alpha_threshold);
+    options.colour_threshold = given.number("colourThreshold")?.unwrap_or(options.colour_threshold);
+    options.tolerance = given.number("tolerance")?.unwrap_or(options.tolerance);
+    options.min_area = given.number("minArea")?.unwrap_or(options.min_area);
+    options.limits.max_points = given.count("maxPoints", usize::MAX)?.unwrap_or(options.limits.max_points);
+    options.limits.max_pixels = given.count("maxPixels", usize::MAX)?.unwrap_or(options.limits.max_pixels);
     Ok(options)
 }
 
 /// An SVG document argument (a string), within the byte limit of `options`.
-fn svg_text(text: &JsValue, options: &SvgOptions) -> Result<String, JsError> {
+fn svg_text(text: &JsValue, options: &SvgOptions) -> Result<String, BindingError> {
     read::string(text, "the SVG text", options.limits.max_bytes)
 }
 
 /// The filled region of an SVG document as outlines, largest part first. `options`:
 /// `{ tolerance?, minArea?, maxPoints?, maxBytes? }`.
 #[wasm_bindgen]
-pub fn import_svg(text: JsValue, options: JsValue) -> Result<Array, JsError> {
+pub fn import_svg(text: JsValue, options: JsValue) -> Result<Array, BindingError> {
     let options = parse_svg_options(&options)?;
-    let shape = svg_import::import_svg(&svg_text(&text, &options)?, &options).map_err(to_js)?;
+    let shape = svg_import::import_svg(&svg_text(&text, &options)?, &options)?;
     outlines_to_js(&shape.outlines)
 }
 
@@ -73,9 +63,9 @@ pub fn import_svg(text: JsValue, options: JsValue) -> Result<Array, JsError> {
 /// `fill` is `"rgba(R, G, B, A)"` (channels 0-255, alpha 0-1 with every opacity folded in)
 /// or `undefined` when the importer does not know the colour (a gradient, say).
 #[wasm_bindgen]
-pub fn import_svg_paths(text: JsValue, options: JsValue) -> Result<Array, JsError> {
+pub fn import_svg_paths(text: JsValue, options: JsValue) -> Result<Array, BindingError> {
     let options = parse_svg_options(&options)?;
-    let shape = svg_import::import_svg(&svg_text(&text, &options)?, &options).map_err(to_js)?;
+    let shape = svg_import::import_svg(&svg_text(&text, &options)?, &options)?;
     let list = Array::new();
     for p in &shape.paths {
         let commands: String = p.path.verbs.iter().map(|v| v.letter()).collect();
@@ -89,8 +79,7 @@ pub fn import_svg_paths(text: JsValue, options: JsValue) -> Result<Array, JsErro
             ("points", flat(&p.path.points).into()),
             ("fillRule", rule.into()),
             ("fill", p.fill.map_or(JsValue::UNDEFINED, |c| css_colour(c).into())),
-        ])
-        .map_err(|_| JsError::new("could not build a path object"))?;
+        ])?;
         list.push(&entry);
     }
     Ok(list)
@@ -106,13 +95,13 @@ fn css_colour(c: svg_import::FillColour) -> String {
 /// top) into outlines in pixel units, y up. `options`: `{ mode?, alphaThreshold?,
 /// colourThreshold?, tolerance?, minArea?, maxPoints?, maxPixels? }`.
 #[wasm_bindgen]
-pub fn trace_image(rgba: JsValue, width: JsValue, height: JsValue, options: JsValue) -> Result<Array, JsError> {
+pub fn trace_image(rgba: JsValue, width: JsValue, height: JsValue, options: JsValue) -> Result<Array, BindingError> {
     let options = parse_trace_options(&options)?;
     let pixels = options.limits.max_pixels;
     let width = read::count(&width, "width", pixels)?;
     let height = read::count(&height, "height", pixels)?;
     let rgba = read::bytes(&rgba, "the pixels", 4 * pixels)?;
-    let outlines = raster::trace_image(&rgba, width, height, &options).map_err(to_js)?;
+    let outlines = raster::trace_image(&rgba, width, height, &options)?;
     outlines_to_js(&outlines)
 }
 
@@ -137,18 +126,18 @@ impl JsMeshFile {
 
 /// Reads a Wavefront OBJ mesh (xy plane) from a string.
 #[wasm_bindgen]
-pub fn mesh_from_obj(text: JsValue) -> Result<JsMeshFile, JsError> {
+pub fn mesh_from_obj(text: JsValue) -> Result<JsMeshFile, BindingError> {
     let limits = limits();
     let text = read::string(&text, "the OBJ text", limits.max_bytes)?;
-    Ok(JsMeshFile { file: mesh_file::read_obj(&text, &limits).map_err(to_js)? })
+    Ok(JsMeshFile { file: mesh_file::read_obj(&text, &limits)? })
 }
 
 /// Reads a mesh in our JSON format from a string.
 #[wasm_bindgen]
-pub fn mesh_from_json(text: JsValue) -> Result<JsMeshFile, JsError> {
+pub fn mesh_from_json(text: JsValue) -> Result<JsMeshFile, BindingError> {
     let limits = limits();
     let text = read::string(&text, "the JSON text", limits.max_bytes)?;
-    Ok(JsMeshFile { file: mesh_file::read_json(&text, &limits).map_err(to_js)? })
+    Ok(JsMeshFile { file: mesh_file::read_json(&text, &limits)? })
 }
 
 /// A mesh or a pose of one, and its optional texture coordinates, as the writers take them.
@@ -158,12 +147,12 @@ struct ToWrite {
     uvs: Option<Vec<[f64; 2]>>,
 }
 
-fn to_write(positions: &JsValue, triangles: &JsValue, uvs: &JsValue) -> Result<ToWrite, JsError> {
+fn to_write(positions: &JsValue, triangles: &JsValue, uvs: &JsValue) -> Result<ToWrite, BindingError> {
     let positions = pairs(&read_positions(positions)?, "positions")?;
     let flat = read::uint32s(triangles, "triangles", max_indices())?;
     let (triangles, rest) = flat.as_chunks::<3>();
     if !rest.is_empty() {
-        return Err(to_js(MeshError::TrianglesLength { len: flat.len() }));
+        return Err(MeshError::TrianglesLength { len: flat.len() }.into());
     }
     let uvs = if uvs.is_undefined() || uvs.is_null() {
         None
@@ -177,27 +166,27 @@ fn to_write(positions: &JsValue, triangles: &JsValue, uvs: &JsValue) -> Result<T
 /// Writes a mesh, or a pose of one (flipped triangles as they are), as Wavefront OBJ, with
 /// `vt` lines when `uvs` (a `Float64Array`) are given.
 #[wasm_bindgen]
-pub fn mesh_to_obj(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, JsError> {
+pub fn mesh_to_obj(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, BindingError> {
     let m = to_write(&positions, &triangles, &uvs)?;
-    mesh_file::write_obj_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits()).map_err(to_js)
+    Ok(mesh_file::write_obj_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits())?)
 }
 
 /// Writes a mesh, or a pose of one (flipped triangles as they are), in our JSON format.
 #[wasm_bindgen]
-pub fn mesh_to_json(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, JsError> {
+pub fn mesh_to_json(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, BindingError> {
     let m = to_write(&positions, &triangles, &uvs)?;
-    mesh_file::write_json_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits()).map_err(to_js)
+    Ok(mesh_file::write_json_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits())?)
 }
 
 /// Texture coordinates (u, v interleaved) of positions (`Float64Array`) in a traced
 /// image's pixel frame, in OBJ's convention (v up): see [`warp::texture_coordinates`].
 #[wasm_bindgen]
-pub fn texture_coordinates(positions: JsValue, width: JsValue, height: JsValue) -> Result<Vec<f64>, JsError> {
+pub fn texture_coordinates(positions: JsValue, width: JsValue, height: JsValue) -> Result<Vec<f64>, BindingError> {
     let width = read::number(&width, "width")?;
     let height = read::number(&height, "height")?;
     let positions = read::float64s(&positions, "positions", max_coordinates())?;
     let points = pairs(&positions, "positions")?;
-    Ok(warp::texture_coordinates(&points, width, height).map_err(to_js)?.into_iter().flatten().collect())
+    Ok(warp::texture_coordinates(&points, width, height)?.into_iter().flatten().collect())
 }
 
 /// Points located once in a rest mesh, then carried along to deformed positions.
@@ -210,18 +199,18 @@ pub struct JsPointMapper {
 impl JsPointMapper {
     /// Validates the rest mesh and locates the points (`Float64Array`, xy-interleaved) in it.
     #[wasm_bindgen(constructor)]
-    pub fn new(positions: JsValue, triangles: JsValue, points: JsValue) -> Result<JsPointMapper, JsError> {
+    pub fn new(positions: JsValue, triangles: JsValue, points: JsValue) -> Result<JsPointMapper, BindingError> {
         let mesh = read_mesh(&positions, &triangles)?;
         let points = read::float64s(&points, "points", max_coordinates())?;
-        Ok(Self { inner: PointMapper::new(&mesh, &pairs(&points, "points")?).map_err(to_js)? })
+        Ok(Self { inner: PointMapper::new(&mesh, &pairs(&points, "points")?)? })
     }
 
     /// The points carried along to `deformed` (`Float64Array`, xy-interleaved, one pair per
     /// rest vertex).
-    pub fn map(&self, deformed: JsValue) -> Result<Vec<f64>, JsError> {
+    pub fn map(&self, deformed: JsValue) -> Result<Vec<f64>, BindingError> {
         let deformed = read::float64s(&deformed, "deformed positions", max_coordinates())?;
         let pairs = pairs(&deformed, "deformed positions")?;
-        Ok(self.inner.map(&pairs).map_err(to_js)?.into_iter().flatten().collect())
+        Ok(self.inner.map(&pairs)?.into_iter().flatten().collect())
     }
 
     /// Number of points.
@@ -235,11 +224,11 @@ impl JsPointMapper {
 /// and their points (x and y interleaved), with y negated when `flip_y` is true (y-up
 /// coordinates back to SVG's y-down ones): [`VectorPath::to_path_data`].
 #[wasm_bindgen]
-pub fn path_data(commands: JsValue, points: JsValue, flip_y: JsValue) -> Result<String, JsError> {
+pub fn path_data(commands: JsValue, points: JsValue, flip_y: JsValue) -> Result<String, BindingError> {
     let commands = read::string(&commands, "commands", limits().max_bytes)?;
     let mut points = pairs(&read::float64s(&points, "points", 2 * limits().max_points)?, "points")?;
     if !points.iter().flatten().all(|x| x.is_finite()) {
-        return Err(JsError::new("points holds a number that is not finite"));
+        return Err(BindingError::argument("points holds a number that is not finite"));
     }
     let flip = match flip_y.as_bool() {
         Some(flip) => flip,
@@ -249,6 +238,6 @@ pub fn path_data(commands: JsValue, points: JsValue, flip_y: JsValue) -> Result<
     if flip {
         points.iter_mut().for_each(|p| p[1] = -p[1]);
     }
-    let path = VectorPath::from_commands(&commands, points).map_err(|e| JsError::new(&e))?;
+    let path = VectorPath::from_commands(&commands, points).map_err(BindingError::argument)?;
     Ok(path.to_path_data(&path.points))
 }

@@ -3,8 +3,9 @@
 use js_sys::{Array, Object};
 use wasm_bindgen::prelude::*;
 
-use super::read::{self, entries};
-use super::{limits, max_coordinates, max_indices, outline_object, to_js};
+use super::error::BindingError;
+use super::read::{self, Options};
+use super::{limits, max_coordinates, max_indices, outline_object};
 use crate::mesh::Mesh;
 use crate::outline::Outline;
 use crate::shapes;
@@ -18,18 +19,18 @@ pub struct JsMesh {
 
 /// Reads a mesh argument pair: `positions` (`Float64Array`, xy-interleaved) and
 /// `triangles` (`Uint32Array`), validated.
-pub(super) fn read_mesh(positions: &JsValue, triangles: &JsValue) -> Result<Mesh, JsError> {
+pub(super) fn read_mesh(positions: &JsValue, triangles: &JsValue) -> Result<Mesh, BindingError> {
     let positions = read_positions(positions)?;
     let triangles = read::uint32s(triangles, "triangles", max_indices())?;
-    Mesh::from_flat(&positions, &triangles).map_err(to_js)
+    Ok(Mesh::from_flat(&positions, &triangles)?)
 }
 
 /// A mesh's xy-interleaved positions, refused by their vertex count beyond the limit.
-pub(super) fn read_positions(positions: &JsValue) -> Result<Vec<f64>, JsError> {
+pub(super) fn read_positions(positions: &JsValue) -> Result<Vec<f64>, BindingError> {
     let claimed = read::length(positions, "positions")?;
     let limit = limits().max_vertices;
     if claimed > max_coordinates() as f64 {
-        return Err(JsError::new(&format!(
+        return Err(BindingError::limit(format!(
             "the mesh has {} vertices ({claimed} numbers), more than the limit of {limit} vertices",
             claimed / 2.0
         )));
@@ -42,7 +43,7 @@ impl JsMesh {
     /// Validates xy-interleaved positions (`Float64Array`) and counter-clockwise index
     /// triples (`Uint32Array`).
     #[wasm_bindgen(constructor)]
-    pub fn new(positions: JsValue, triangles: JsValue) -> Result<JsMesh, JsError> {
+    pub fn new(positions: JsValue, triangles: JsValue) -> Result<JsMesh, BindingError> {
         Ok(Self { mesh: read_mesh(&positions, &triangles)? })
     }
 
@@ -81,11 +82,11 @@ impl JsMesh {
     }
 
     /// The vertices sharing an edge with `vertex`, ascending.
-    pub fn neighbors(&self, vertex: JsValue) -> Result<Vec<u32>, JsError> {
+    pub fn neighbors(&self, vertex: JsValue) -> Result<Vec<u32>, BindingError> {
         let n = self.mesh.vertex_count();
         let v = read::count(&vertex, "vertex", usize::MAX)?;
         if v >= n {
-            return Err(JsError::new(&format!("vertex {v} is out of range: the mesh has {n} vertices")));
+            return Err(BindingError::argument(format!("vertex {v} is out of range: the mesh has {n} vertices")));
         }
         Ok(self.mesh.neighbors(v).to_vec())
     }
@@ -97,18 +98,13 @@ impl JsMesh {
 }
 
 /// Reads `{ maxArea?, targetEdgeLength?, minAngle?, maxVertices? }`.
-fn triangulation_options(value: &JsValue) -> Result<TriangulationOptions, JsError> {
-    const NAMES: [&str; 4] = ["maxArea", "targetEdgeLength", "minAngle", "maxVertices"];
+fn triangulation_options(value: &JsValue) -> Result<TriangulationOptions, BindingError> {
+    let given = Options::read(value, "triangulation", &["maxArea", "targetEdgeLength", "minAngle", "maxVertices"])?;
     let mut options = TriangulationOptions::default();
-    for (key, field) in entries(value, "triangulation", &NAMES)? {
-        let what = format!("option {key}");
-        match key.as_str() {
-            "maxArea" => options.max_area = Some(read::number(&field, &what)?),
-            "targetEdgeLength" => options.target_edge_length = Some(read::number(&field, &what)?),
-            "minAngle" => options.min_angle_degrees = read::number(&field, &what)?,
-            _ => options.max_vertices = read::count(&field, &what, limits().max_vertices)?,
-        }
-    }
+    options.max_area = given.number("maxArea")?.or(options.max_area);
+    options.target_edge_length = given.number("targetEdgeLength")?.or(options.target_edge_length);
+    options.min_angle_degrees = given.number("minAngle")?.unwrap_or(options.min_angle_degrees);
+    options.max_vertices = given.count("maxVertices", limits().max_vertices)?.unwrap_or(options.max_vertices);
     Ok(options)
 }
 
@@ -116,7 +112,7 @@ fn triangulation_options(value: &JsValue) -> Result<TriangulationOptions, JsErro
 /// the same (or undefined); `options` `{ maxArea?, targetEdgeLength?, minAngle?,
 /// maxVertices? }`.
 #[wasm_bindgen]
-pub fn triangulate_outline(outer: JsValue, holes: JsValue, options: JsValue) -> Result<JsMesh, JsError> {
+pub fn triangulate_outline(outer: JsValue, holes: JsValue, options: JsValue) -> Result<JsMesh, BindingError> {
     let options = triangulation_options(&options)?;
     let points = max_coordinates();
     let outer = read::float64s(&outer, "outline.outer", points)?;
@@ -127,16 +123,16 @@ pub fn triangulate_outline(outer: JsValue, holes: JsValue, options: JsValue) -> 
         .collect::<Result<Vec<_>, _>>()?;
     let total: usize = outer.len() + holes.iter().map(Vec::len).sum::<usize>();
     if total > points {
-        return Err(JsError::new(&format!("the outline has {} points; the limit is {}", total / 2, points / 2)));
+        return Err(BindingError::limit(format!("the outline has {} points; the limit is {}", total / 2, points / 2)));
     }
-    let outline = Outline::from_flat(&outer, &holes).map_err(to_js)?;
-    let mesh = triangulate(&outline, &options).map_err(to_js)?;
+    let outline = Outline::from_flat(&outer, &holes)?;
+    let mesh = triangulate(&outline, &options)?;
     Ok(JsMesh { mesh })
 }
 
 /// The built-in default shape, `{ outer: Float64Array, holes: Float64Array[] }`.
 #[wasm_bindgen(js_name = defaultShape)]
-pub fn default_shape() -> Result<Object, JsValue> {
+pub fn default_shape() -> Result<Object, BindingError> {
     outline_object(&shapes::gingerbread())
 }
 
@@ -148,10 +144,13 @@ pub fn builtin_shapes() -> Array {
 
 /// A built-in shape by name, `{ outer, holes }` as for `defaultShape`.
 #[wasm_bindgen(js_name = builtinShape)]
-pub fn builtin_shape(name: JsValue) -> Result<Object, JsValue> {
+pub fn builtin_shape(name: JsValue) -> Result<Object, BindingError> {
     let name = read::string(&name, "the shape's name", 1024)?;
     let outline = shapes::by_name(&name).ok_or_else(|| {
-        JsError::new(&format!("there is no built-in shape `{name}`; the shapes are {}", shapes::NAMES.join(", ")))
+        BindingError::argument(format!(
+            "there is no built-in shape `{name}`; the shapes are {}",
+            shapes::NAMES.join(", ")
+        ))
     })?;
     outline_object(&outline)
 }

@@ -4,18 +4,22 @@
 //! triangles as `Uint32Array` index triples. Every argument is read by [`read`], which
 //! checks its type and size (an `Error` naming the argument otherwise) and never lets a
 //! JavaScript exception unwind through Rust frames; every error becomes a JavaScript
-//! `Error` with the message of the Rust error; nothing here panics on bad input. The
+//! `Error` with the message of the Rust error and a stable `code` ([`BindingError`], the
+//! codes of [`crate::ErrorCode`]); nothing here panics on bad input. Options objects are
+//! read by one reader (`read::Options`), which refuses unknown keys. The
 //! TypeScript wrapper in `www/src/` gives these functions their public, documented shape.
 //!
 //! `mesh`: meshes, triangulation, built-in shapes; `deformer`: the deformers and their
 //! options; `import`: shapes from SVG, images and mesh files, and `PointMapper`.
 
 mod deformer;
+mod error;
 mod import;
 mod mesh;
 mod read;
 
 pub use deformer::{deformer_orders, JsDeformer};
+pub use error::BindingError;
 pub use import::{
     import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json, mesh_to_obj, path_data,
     texture_coordinates, trace_image, JsMeshFile, JsPointMapper,
@@ -25,6 +29,7 @@ pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline
 use js_sys::{Array, Float64Array, Object, Reflect};
 use wasm_bindgen::prelude::*;
 
+use crate::error::ErrorCode;
 use crate::import::Limits;
 use crate::outline::Outline;
 
@@ -43,14 +48,13 @@ fn max_indices() -> usize {
     6 * limits().max_vertices
 }
 
-fn to_js(error: impl std::fmt::Display) -> JsError {
-    JsError::new(&error.to_string())
-}
-
-fn object(entries: &[(&str, JsValue)]) -> Result<Object, JsValue> {
+/// A fresh object with these properties (an `ErrorCode::Internal` error should setting one
+/// ever fail).
+fn object(entries: &[(&str, JsValue)]) -> Result<Object, BindingError> {
     let object = Object::new();
     for (key, value) in entries {
-        Reflect::set(&object, &JsValue::from_str(key), value)?;
+        Reflect::set(&object, &JsValue::from_str(key), value)
+            .map_err(|_| BindingError::new(ErrorCode::Internal, format!("could not set property {key}")))?;
     }
     Ok(object)
 }
@@ -60,25 +64,28 @@ fn flat(points: &[[f64; 2]]) -> Float64Array {
 }
 
 /// Pairs from a flat array of `2 n` numbers (the caller's array is named `what`).
-fn pairs(values: &[f64], what: &str) -> Result<Vec<[f64; 2]>, JsError> {
+fn pairs(values: &[f64], what: &str) -> Result<Vec<[f64; 2]>, BindingError> {
     let (pairs, rest) = values.as_chunks::<2>();
     if !rest.is_empty() {
-        return Err(JsError::new(&format!("{what} has {} numbers; x, y pairs need an even count", values.len())));
+        return Err(BindingError::argument(format!(
+            "{what} has {} numbers; x, y pairs need an even count",
+            values.len()
+        )));
     }
     Ok(pairs.to_vec())
 }
 
 /// An outline as `{ outer: Float64Array, holes: Float64Array[] }`.
-fn outline_object(outline: &Outline) -> Result<Object, JsValue> {
+fn outline_object(outline: &Outline) -> Result<Object, BindingError> {
     let holes: Array = outline.holes.iter().map(|h| flat(h)).collect();
     object(&[("outer", flat(&outline.outer).into()), ("holes", holes.into())])
 }
 
 /// Outlines as `[{ outer: Float64Array, holes: Float64Array[] }]`.
-fn outlines_to_js(outlines: &[Outline]) -> Result<Array, JsError> {
+fn outlines_to_js(outlines: &[Outline]) -> Result<Array, BindingError> {
     let list = Array::new();
     for outline in outlines {
-        let entry = outline_object(outline).map_err(|_| JsError::new("could not build an outline object"))?;
+        let entry = outline_object(outline)?;
         list.push(&entry);
     }
     Ok(list)
@@ -88,7 +95,7 @@ fn outlines_to_js(outlines: &[Outline]) -> Result<Array, JsError> {
 /// bytes, image in pixels, outline in points and mesh in vertices. One definition
 /// (`akap::import::Limits`), which the TypeScript layer reads instead of repeating it.
 #[wasm_bindgen(js_name = limits)]
-pub fn js_limits() -> Result<Object, JsValue> {
+pub fn js_limits() -> Result<Object, BindingError> {
     let l = limits();
     object(&[
         ("bytes", (l.max_bytes as f64).into()),
@@ -96,4 +103,10 @@ pub fn js_limits() -> Result<Object, JsValue> {
         ("points", (l.max_points as f64).into()),
         ("vertices", (l.max_vertices as f64).into()),
     ])
+}
+
+/// Every `code` the bindings' errors can carry (see `ErrorCode`), in the README's order.
+#[wasm_bindgen(js_name = errorCodes)]
+pub fn error_codes() -> Array {
+    ErrorCode::ALL.iter().map(|code| JsValue::from_str(code.as_str())).collect()
 }

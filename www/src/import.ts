@@ -13,7 +13,7 @@
  *
  * @module
  */
-import { type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
+import { coded, type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
 import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
 import type { MeshData } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
@@ -90,6 +90,15 @@ export function pathData(
   points: NumberList = path.points,
   options: { flipY?: boolean } = {},
 ): string {
+  // Read as the bindings read their options (Rust's `read::Options`): a misspelt key or a
+  // value of the wrong type is refused by name.
+  const unknown = Object.keys(options).find((key) => key !== "flipY");
+  if (unknown !== undefined) {
+    throw coded(new Error(`unknown pathData option \`${unknown}\`; the options are flipY`), "invalid-option");
+  }
+  if (options.flipY !== undefined && typeof options.flipY !== "boolean") {
+    throw coded(new Error(`option flipY must be true or false, not ${typeof options.flipY}`), "invalid-option");
+  }
   assertLoaded();
   return raw.path_data(path.commands, toFloat64(points, "points"), options.flipY ?? false);
 }
@@ -128,14 +137,14 @@ export function traceImage(
 ): ImportedOutline[] {
   assertLoaded();
   if (!(rgba instanceof Uint8Array || rgba instanceof Uint8ClampedArray)) {
-    throw new TypeError("rgba must be a Uint8Array or Uint8ClampedArray");
+    throw coded(new TypeError("rgba must be a Uint8Array or Uint8ClampedArray"), "invalid-argument");
   }
   for (const [name, value] of [
     ["width", width],
     ["height", height],
   ] as const) {
     if (!Number.isInteger(value) || value < 1 || value > 0xffffffff)
-      throw new RangeError(`${name} is ${value}, not a pixel count`);
+      throw coded(new RangeError(`${name} is ${value}, not a pixel count`), "invalid-argument");
   }
   const bytes = rgba instanceof Uint8Array ? rgba : new Uint8Array(rgba.buffer, rgba.byteOffset, rgba.byteLength);
   return raw.trace_image(bytes, width, height, options) as ImportedOutline[];

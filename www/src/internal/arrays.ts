@@ -1,4 +1,10 @@
 /** Conversions of user arrays to the typed arrays the wasm bindings take. Internal. */
+import type { AkapError, ErrorCode } from "../core.js";
+
+/** `error` with a `code`, as the bindings' own errors have (see `ErrorCode`). */
+export function coded<E extends Error>(error: E, code: ErrorCode): E & AkapError {
+  return Object.assign(error, { code });
+}
 
 /** A list of numbers: a Float64Array or a plain array. */
 export type NumberList = Float64Array | readonly number[];
@@ -9,13 +15,15 @@ export type IndexList = Uint32Array | readonly number[];
 export function toFloat64(values: NumberList, what: string): Float64Array {
   if (values instanceof Float64Array) return values;
   if (Array.isArray(values)) return Float64Array.from(values, Number);
-  throw new TypeError(`${what} must be a Float64Array or an array of numbers`);
+  throw coded(new TypeError(`${what} must be a Float64Array or an array of numbers`), "invalid-argument");
 }
 
 export function toUint32(values: IndexList, what: string): Uint32Array {
   if (values instanceof Uint32Array) return values;
-  if (!Array.isArray(values)) throw new TypeError(`${what} must be a Uint32Array or an array of numbers`);
+  if (!Array.isArray(values)) {
+    throw coded(new TypeError(`${what} must be a Uint32Array or an array of numbers`), "invalid-argument");
+  }
   const bad = values.findIndex((i) => !Number.isInteger(i) || i < 0 || i > 0xffffffff);
-  if (bad >= 0) throw new RangeError(`${what}[${bad}] is ${values[bad]}, not an index`);
+  if (bad >= 0) throw coded(new RangeError(`${what}[${bad}] is ${values[bad]}, not an index`), "invalid-argument");
   return Uint32Array.from(values);
 }
