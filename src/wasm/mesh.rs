@@ -5,11 +5,11 @@ use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;
 use super::read::{self, Options};
-use super::{limits, max_coordinates, max_indices, outline_object};
+use super::{limits, max_coordinates, max_indices, object, outline_object};
 use crate::mesh::Mesh;
 use crate::outline::Outline;
 use crate::shapes;
-use crate::triangulate::{triangulate, TriangulationOptions};
+use crate::triangulate::{triangulate, triangulate_to_about, TriangulationOptions};
 
 /// A validated triangle mesh.
 #[wasm_bindgen(js_name = Mesh)]
@@ -114,9 +114,33 @@ fn triangulation_options(value: &JsValue) -> Result<TriangulationOptions, Bindin
 #[wasm_bindgen]
 pub fn triangulate_outline(outer: JsValue, holes: JsValue, options: JsValue) -> Result<JsMesh, BindingError> {
     let options = triangulation_options(&options)?;
+    let outline = read_outline(&outer, &holes)?;
+    Ok(JsMesh { mesh: triangulate(&outline, &options)? })
+}
+
+/// Triangulates an outline (as [`triangulate_outline`] reads it) to about `vertices`
+/// vertices ([`triangulate_to_about`]; `targetEdgeLength` in `options` is ignored):
+/// `{ mesh: Mesh, targetEdgeLength }`, the edge length that makes the same mesh again.
+#[wasm_bindgen]
+pub fn triangulate_to_vertices(
+    outer: JsValue,
+    holes: JsValue,
+    vertices: JsValue,
+    options: JsValue,
+) -> Result<Object, BindingError> {
+    let options = triangulation_options(&options)?;
+    let vertices = read::count(&vertices, "vertices", options.max_vertices)?;
+    let outline = read_outline(&outer, &holes)?;
+    let (mesh, edge) = triangulate_to_about(&outline, vertices, &options)?;
+    object(&[("mesh", JsMesh { mesh }.into()), ("targetEdgeLength", edge.into())])
+}
+
+/// An outline argument pair: `outer` a `Float64Array`, xy-interleaved; `holes` an array of
+/// the same (or undefined), within the points limit.
+fn read_outline(outer: &JsValue, holes: &JsValue) -> Result<Outline, BindingError> {
     let points = max_coordinates();
-    let outer = read::float64s(&outer, "outline.outer", points)?;
-    let holes = read::list(&holes, "outline.holes", points / 6)?
+    let outer = read::float64s(outer, "outline.outer", points)?;
+    let holes = read::list(holes, "outline.holes", points / 6)?
         .iter()
         .enumerate()
         .map(|(k, hole)| read::float64s(hole, &format!("outline.holes[{k}]"), points))
@@ -125,9 +149,7 @@ pub fn triangulate_outline(outer: JsValue, holes: JsValue, options: JsValue) -> 
     if total > points {
         return Err(BindingError::limit(format!("the outline has {} points; the limit is {}", total / 2, points / 2)));
     }
-    let outline = Outline::from_flat(&outer, &holes)?;
-    let mesh = triangulate(&outline, &options)?;
-    Ok(JsMesh { mesh })
+    Ok(Outline::from_flat(&outer, &holes)?)
 }
 
 /// The built-in default shape, `{ outer: Float64Array, holes: Float64Array[] }`.

@@ -24,7 +24,7 @@ pub use import::{
     import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json, mesh_to_obj, path_data,
     texture_coordinates, trace_image, JsMeshFile, JsPointMapper,
 };
-pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, JsMesh};
+pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, triangulate_to_vertices, JsMesh};
 
 use js_sys::{Array, Float64Array, Object, Reflect};
 use wasm_bindgen::prelude::*;

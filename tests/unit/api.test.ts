@@ -1,6 +1,14 @@
 /** The public API in Node, through the real wasm package (built by scripts/build.sh). */
 import { beforeAll, describe, expect, it } from "vitest";
-import { defaultShape, importSvg, init, limits, meshFromArrays, triangulate } from "../../www/src/index.js";
+import {
+  defaultShape,
+  importSvg,
+  init,
+  limits,
+  meshFromArrays,
+  triangulate,
+  triangulateToVertices,
+} from "../../www/src/index.js";
 
 beforeAll(async () => {
   await init();
@@ -15,6 +23,25 @@ function ringArea(ring: ArrayLike<number>): number {
   }
   return twice / 2;
 }
+
+describe("triangulateToVertices", () => {
+  it("meshes to within 3% of a vertex count, and its edge length makes the same mesh", () => {
+    const outline = { outer: [0, 0, 4, 0, 4, 4, 0, 4], holes: [[1, 1, 1, 2, 2, 2, 2, 1]] };
+    for (const [shape, vertices] of [
+      [defaultShape(), 1500],
+      [outline, 5000],
+    ] as const) {
+      const { mesh, targetEdgeLength } = triangulateToVertices(shape, vertices, { minAngle: 28 });
+      expect(Math.abs(mesh.vertexCount - vertices)).toBeLessThanOrEqual(0.03 * vertices);
+      const again = triangulate(shape, { targetEdgeLength, minAngle: 28 });
+      expect(again.positions).toEqual(mesh.positions);
+      expect(again.triangles).toEqual(mesh.triangles);
+    }
+    expect(() => triangulateToVertices(outline, 2)).toThrow(/vertices/);
+    expect(() => triangulateToVertices(outline, 1.5)).toThrow(/whole number/);
+    expect(() => triangulateToVertices(outline, 100, { vertexes: 3 } as never)).toThrow(/unknown triangulation option/);
+  });
+});
 
 describe("triangulate", () => {
   it("covers a square with a hole exactly, with counter-clockwise triangles", () => {

@@ -135,6 +135,28 @@ export function triangulate(outline: Outline, options: TriangulationOptions = {}
 }
 
 /**
+ * Triangulates an outline to about `vertices` vertices (within 3% where the outline allows:
+ * the edge length guessed from the area, then corrected by the counts obtained; the same
+ * rule as Rust's `triangulate_to_about`). `options.targetEdgeLength` is ignored; the
+ * others apply. Returns the mesh and the edge length that made it, which `triangulate`
+ * with `{ targetEdgeLength }` and the same options turns into the same mesh again.
+ */
+export function triangulateToVertices(
+  outline: Outline,
+  vertices: number,
+  options: TriangulationOptions = {},
+): { mesh: MeshData; targetEdgeLength: number } {
+  assertLoaded();
+  const outer = toFloat64(outline.outer, "outline.outer");
+  const holes = (outline.holes ?? []).map((hole, k) => toFloat64(hole, `outline.holes[${k}]`));
+  const made = raw.triangulate_to_vertices(outer, holes, vertices, options) as {
+    mesh: rawTypes.Mesh;
+    targetEdgeLength: number;
+  };
+  return { mesh: copyOut(made.mesh), targetEdgeLength: made.targetEdgeLength };
+}
+
+/**
  * Validates a mesh given as arrays (positions xy-interleaved, counter-clockwise triangles)
  * and returns it with its boundary. Throws an `Error` naming the first problem found.
  */

@@ -3,7 +3,15 @@
  * and how it was made (a built-in shape's name and triangulation, so sessions can rebuild
  * it exactly).
  */
-import { builtinShape, limits, meshFromArrays, triangulate, type MeshData, type Outline } from "../core.js";
+import {
+  builtinShape,
+  limits,
+  meshFromArrays,
+  triangulate,
+  triangulateToVertices,
+  type MeshData,
+  type Outline,
+} from "../core.js";
 import type { VectorPath } from "../import.js";
 import type { Session, ShapeSpec } from "./session.js";
 import { boxUvs, uniqueEdges } from "./geometry.js";
@@ -32,9 +40,8 @@ export function maxVertices(): number {
 }
 
 /**
- * Triangulates an outline to about `vertices` vertices: an equilateral mesh of edge h has
- * about 2 / (sqrt(3) h^2) vertices per unit area, so aim with the outline's area, then
- * correct the edge length once with the count obtained. `name` marks a built-in shape.
+ * Triangulates an outline to about `vertices` vertices (the core's `triangulateToVertices`,
+ * the one rule). `name` marks a built-in shape.
  */
 export function meshOutline(
   outline: Outline,
@@ -47,13 +54,7 @@ export function meshOutline(
   if (!(Number.isFinite(vertices) && vertices >= 50 && vertices <= most)) {
     throw new RangeError(`the vertex count ${vertices} is outside 50..${most}`);
   }
-  const limit = Math.min(4 * vertices + 1000, most);
-  let edge = Math.sqrt((2 * outlineArea(outline)) / (Math.sqrt(3) * vertices));
-  let mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: limit });
-  if (Math.abs(mesh.vertexCount - vertices) > 0.1 * vertices) {
-    edge *= Math.sqrt(mesh.vertexCount / vertices);
-    mesh = triangulate(outline, { targetEdgeLength: edge, minAngle, maxVertices: limit });
-  }
+  const { mesh, targetEdgeLength: edge } = triangulateToVertices(outline, vertices, { minAngle, maxVertices: most });
   return shapeFromMesh(
     mesh,
     name === undefined ? undefined : { name, targetEdgeLength: edge, minAngle },
@@ -108,20 +109,6 @@ export function sessionShape(session: Session, current: Shape): Shape {
   const m = current.mesh;
   if (!now && sameArray(m.positions, positions) && sameArray(m.triangles, triangles)) return current;
   return shapeFromMesh(meshFromArrays(positions, triangles), undefined);
-}
-
-/** Area of an outline: the outer ring's less the holes'. */
-export function outlineArea(outline: Outline): number {
-  const ring = (points: ArrayLike<number>): number => {
-    let twice = 0;
-    const n = points.length / 2;
-    for (let i = 0; i < n; i++) {
-      const j = (i + 1) % n;
-      twice += points[2 * i]! * points[2 * j + 1]! - points[2 * j]! * points[2 * i + 1]!;
-    }
-    return Math.abs(twice) / 2;
-  };
-  return Math.max(ring(outline.outer) - (outline.holes ?? []).reduce((sum, h) => sum + ring(h), 0), 1e-12);
 }
 
 function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
