@@ -536,9 +536,11 @@ mod tests {
         let (p, t) = square();
         let mesh = Mesh::new(p, t).unwrap();
         assert_eq!(mesh.vertex_graph(), (vec![0, 3, 5, 8, 10], vec![1, 2, 3, 0, 2, 0, 1, 3, 0, 2]));
-        // Vertex 1 left out, the others numbered 2, 0, 1: node 0 is vertex 2, and so on.
+        // Vertex 1 left out, vertices 0, 2, 3 numbered 2, 0, 1: node 0 is vertex 2 (neighbours
+        // 0 and 3: nodes 2, 1), node 1 vertex 3 (0, 2: nodes 2, 0), node 2 vertex 0 (2, 3:
+        // nodes 0, 1).
         let none = usize::MAX;
-        assert_eq!(mesh.relabelled_vertex_graph(&[2, none, 0, 1]), (vec![0, 2, 4, 6], vec![2, 1, 2, 0, 1, 0]));
+        assert_eq!(mesh.relabelled_vertex_graph(&[2, none, 0, 1]), (vec![0, 2, 4, 6], vec![2, 1, 2, 0, 0, 1]));
         let identity: Vec<usize> = (0..4).collect();
         assert_eq!(mesh.relabelled_vertex_graph(&identity), mesh.vertex_graph());
     }

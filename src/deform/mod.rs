@@ -15,8 +15,9 @@
 //!   the Killing matrix, the spiral step, the solver;
 //! - [`arap`]: the [`ArapDeformer`] (Liu et al. 2008 elements energy, local/global).
 //!
-//! A new method is one more file beside `akap` and `arap` and one more line in the list of
-//! methods (see `ARCHITECTURE.md`, "How to add a method").
+//! A new method is one more file beside `akap` and `arap` (declared here), its options
+//! struct in [`options`] and one more line in the list of methods there (see
+//! `ARCHITECTURE.md`, "How to add a method").
 
 pub mod akap;
 pub mod arap;

@@ -1,4 +1,4 @@
-//! The deformation methods and their settings: the list of methods ([`methods`], one line
+//! The deformation methods and their settings: the list of methods (`methods!`, one line
 //! each), the [`Method`] and [`MethodOptions`] enums made from it, and each method's options
 //! with their ranges. Plain data: nothing here knows a deformer, so every file of
 //! `deform` can use it (the `Deform` trait returns [`MethodOptions`]; the deformers implement
