@@ -8,7 +8,7 @@
 
 use std::sync::Arc;
 
-use akap::deform::killing::KillingMatrix;
+use akap::deform::akap::killing::KillingMatrix;
 use akap::sparse::{amd_order, amf_order, expand_blocks, nested_dissection_order, Numeric, Ordering, Symbolic};
 use akap::{shapes, triangulate, TriangulationOptions};
 
@@ -31,12 +31,7 @@ fn main() {
         a.data_mut()[d] += 100.0;
     }
     let n = mesh.vertex_count();
-    let mut ptr = vec![0];
-    let mut adj = Vec::new();
-    for v in 0..n {
-        adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
-        ptr.push(adj.len());
-    }
+    let (ptr, adj) = mesh.vertex_graph();
     if count_only {
         let mut numeric = Numeric::new(Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap()));
         for _ in 0..3 {

@@ -50,12 +50,7 @@ fn graph(mesh: &Mesh, label: &[usize]) -> (Vec<usize>, Vec<usize>, Vec<[f64; 2]>
     for (v, &l) in label.iter().enumerate() {
         vertex[l] = v;
     }
-    let mut ptr = vec![0];
-    let mut adj = Vec::new();
-    for &v in &vertex {
-        adj.extend(mesh.neighbors(v).iter().map(|&w| label[w as usize]));
-        ptr.push(adj.len());
-    }
+    let (ptr, adj) = mesh.relabelled_vertex_graph(label);
     (ptr, adj, vertex.iter().map(|&v| mesh.positions()[v]).collect())
 }
 

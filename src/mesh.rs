@@ -331,6 +331,37 @@ impl Mesh {
         &self.neighbors[self.neighbor_start[v] as usize..self.neighbor_start[v + 1] as usize]
     }
 
+    /// The vertex graph in compressed form with `usize` indices, as the sparse orderings
+    /// ([`crate::sparse::fill_reducing_order`]) read it: the neighbours of vertex `v` are
+    /// `adj[ptr[v]..ptr[v + 1]]`, ascending.
+    pub fn vertex_graph(&self) -> (Vec<usize>, Vec<usize>) {
+        let ptr = self.neighbor_start.iter().map(|&s| s as usize).collect();
+        (ptr, self.neighbors.iter().map(|&w| w as usize).collect())
+    }
+
+    /// The graph of some of the vertices, renumbered, in the form of [`Self::vertex_graph`]:
+    /// `label[v]` is vertex v's number in it, or `usize::MAX` to leave v out. Node `label[v]`
+    /// has the labels of v's labelled neighbours, in the order of their vertex indices.
+    ///
+    /// # Panics
+    /// If `label` does not have one entry per vertex, or the labels other than `usize::MAX`
+    /// are not `0..m`, each once.
+    pub fn relabelled_vertex_graph(&self, label: &[usize]) -> (Vec<usize>, Vec<usize>) {
+        assert_eq!(label.len(), self.vertex_count(), "one label per vertex");
+        let mut vertex = vec![usize::MAX; label.iter().filter(|&&l| l != usize::MAX).count()];
+        for (v, &l) in label.iter().enumerate().filter(|(_, &l)| l != usize::MAX) {
+            assert_eq!(std::mem::replace(&mut vertex[l], v), usize::MAX, "label {l} is given twice");
+        }
+        let mut ptr = Vec::with_capacity(vertex.len() + 1);
+        let mut adj = Vec::new();
+        ptr.push(0);
+        for &v in &vertex {
+            adj.extend(self.neighbors(v).iter().map(|&w| label[w as usize]).filter(|&l| l != usize::MAX));
+            ptr.push(adj.len());
+        }
+        (ptr, adj)
+    }
+
     /// Every edge once, as `[a, b]` with `a < b`, in ascending order.
     pub fn edges(&self) -> impl Iterator<Item = [u32; 2]> + '_ {
         (0..self.vertex_count())
@@ -498,6 +529,20 @@ mod tests {
         assert_eq!(mesh.edges().count(), 5);
         assert_eq!(mesh.connected_components(), 1);
         assert_eq!(mesh.boundary_vertices().count(), 4);
+    }
+
+    #[test]
+    fn vertex_graphs_list_the_neighbours_in_compressed_form() {
+        let (p, t) = square();
+        let mesh = Mesh::new(p, t).unwrap();
+        assert_eq!(mesh.vertex_graph(), (vec![0, 3, 5, 8, 10], vec![1, 2, 3, 0, 2, 0, 1, 3, 0, 2]));
+        // Vertex 1 left out, vertices 0, 2, 3 numbered 2, 0, 1: node 0 is vertex 2 (neighbours
+        // 0 and 3: nodes 2, 1), node 1 vertex 3 (0, 2: nodes 2, 0), node 2 vertex 0 (2, 3:
+        // nodes 0, 1).
+        let none = usize::MAX;
+        assert_eq!(mesh.relabelled_vertex_graph(&[2, none, 0, 1]), (vec![0, 2, 4, 6], vec![2, 1, 2, 0, 0, 1]));
+        let identity: Vec<usize> = (0..4).collect();
+        assert_eq!(mesh.relabelled_vertex_graph(&identity), mesh.vertex_graph());
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! exactly (Appendix A), optimality conditions of both solves, near-isometric bending,
 //! handle edge cases and untouched state after bad input. Runs natively and as wasm.
 
-use akap::deform::killing::KillingMatrix;
+use akap::deform::akap::killing::KillingMatrix;
 use akap::deform::{ArapOptions, DeformError, Deformer, DeformerOptions, Integrator, Method, MethodOptions, Orders};
 use akap::geometry::Point;
 use akap::shapes::{ellipse, gingerbread};

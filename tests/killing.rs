@@ -1,6 +1,6 @@
 //! The Killing matrix against the energy computed straight from its definition.
 
-use akap::deform::killing::KillingMatrix;
+use akap::deform::akap::killing::KillingMatrix;
 use akap::geometry::Point;
 use akap::shapes::ellipse;
 use akap::{triangulate, Mesh, Outline, TriangulationOptions};

@@ -125,8 +125,8 @@ fn random_block_spd(vertices: usize, edges: usize, rng: &mut Rng) -> CsMat<f64> 
 #[test]
 fn block_matrices_ordered_vertex_by_vertex_factor_exactly() {
     // With each vertex's two unknowns kept together, updates are scattered two rows and two
-    // columns at a time: check those factors against dense algebra, for AMD and for random
-    // vertex orders, on matrices large enough for wide supernodes.
+    // columns at a time: check those factors against dense algebra, for AMD, AMF and for
+    // random vertex orders, on matrices large enough for wide supernodes.
     let mut rng = Rng::new(23);
     for case in 0..24 {
         let vertices = 1 + rng.below(120);
@@ -135,7 +135,7 @@ fn block_matrices_ordered_vertex_by_vertex_factor_exactly() {
         for i in (1..vertices).rev() {
             vertex_order.swap(i, rng.below(i + 1));
         }
-        for ordering in [Ordering::Amd, Ordering::Given(expand_blocks(&vertex_order, 2))] {
+        for ordering in [Ordering::Amd, Ordering::Amf, Ordering::Given(expand_blocks(&vertex_order, 2))] {
             let symbolic = Arc::new(Symbolic::analyse(a.view(), &ordering).unwrap());
             let numeric = Numeric::factor(symbolic, a.view()).unwrap();
             let err = reconstruction_error(&numeric, &a);
@@ -150,14 +150,16 @@ fn minimum_degree_on_block_matrices_keeps_vertices_together() {
     for case in 0..20 {
         let vertices = 1 + rng.below(40);
         let a = random_block_spd(vertices, rng.below(3 * vertices + 1), &mut rng);
-        let symbolic = Arc::new(Symbolic::analyse(a.view(), &Ordering::Amd).unwrap());
-        let perm = symbolic.permutation();
-        for pair in perm.chunks(2) {
-            assert_eq!(pair[0] / 2, pair[1] / 2, "case {case}: a vertex's unknowns are split in {perm:?}");
+        for ordering in [Ordering::Amd, Ordering::Amf] {
+            let symbolic = Arc::new(Symbolic::analyse(a.view(), &ordering).unwrap());
+            let perm = symbolic.permutation();
+            for pair in perm.chunks(2) {
+                assert_eq!(pair[0] / 2, pair[1] / 2, "case {case}: a vertex's unknowns are split in {perm:?}");
+            }
+            let numeric = Numeric::factor(symbolic, a.view()).unwrap();
+            let err = reconstruction_error(&numeric, &a);
+            assert!(err <= 1e-12, "case {case}, {ordering:?}: reconstruction error {err}");
         }
-        let numeric = Numeric::factor(symbolic, a.view()).unwrap();
-        let err = reconstruction_error(&numeric, &a);
-        assert!(err <= 1e-12, "case {case}: reconstruction error {err}");
     }
 }
 
@@ -294,7 +296,7 @@ fn non_positive_pivots_name_their_column() {
         tri.add_triplet(i, i, if i == 7 { -2.0 } else { 3.0 });
     }
     let a: CsMat<f64> = tri.to_csc();
-    for ordering in [Ordering::Natural, Ordering::Amd] {
+    for ordering in [Ordering::Natural, Ordering::Amd, Ordering::Amf] {
         let symbolic = Arc::new(Symbolic::analyse(a.view(), &ordering).unwrap());
         let err = Numeric::factor(symbolic, a.view()).unwrap_err();
         assert_eq!(err, FactorError::NotPositiveDefinite { column: 7, pivot: -2.0 });
@@ -499,12 +501,7 @@ fn nested_dissection_needs_fewer_flops_than_amd_on_a_gingerbread_mesh() {
     let mesh = triangulate(&figure, &options).unwrap();
     let n = mesh.vertex_count();
     assert!((12_000..20_000).contains(&n), "{n} vertices");
-    let mut ptr = vec![0];
-    let mut adj = Vec::new();
-    for v in 0..n {
-        adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
-        ptr.push(adj.len());
-    }
+    let (ptr, adj) = mesh.vertex_graph();
     let nd = nested_dissection_order(&ptr, &adj, mesh.positions());
     assert_permutation(&nd, n);
     let amd = amd_order(n, &ptr, &adj);
@@ -544,16 +541,7 @@ fn minimum_fill_needs_fewer_flops_than_minimum_degree_on_meshes() {
                     label.swap(k, rng.below(k + 1));
                 }
             }
-            let mut vertex = vec![0; n];
-            for (v, &l) in label.iter().enumerate() {
-                vertex[l] = v;
-            }
-            let mut ptr = vec![0];
-            let mut adj = Vec::new();
-            for &v in &vertex {
-                adj.extend(mesh.neighbors(v).iter().map(|&w| label[w as usize]));
-                ptr.push(adj.len());
-            }
+            let (ptr, adj) = mesh.relabelled_vertex_graph(&label);
             let amf = amf_order(n, &ptr, &adj);
             assert_permutation(&amf, n);
             amf_flops += order_flops(&ptr, &adj, &amf, 2);

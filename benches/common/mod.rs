@@ -14,7 +14,7 @@ use sprs::CsMat;
 
 #[cfg(target_arch = "wasm32")]
 use crate::{
-    deform::killing::KillingMatrix,
+    deform::akap::killing::KillingMatrix,
     shapes,
     sparse::{expand_blocks, fill_reducing_order, Ordering},
     triangulate::triangulate_to_about,
@@ -22,7 +22,7 @@ use crate::{
 };
 #[cfg(not(target_arch = "wasm32"))]
 use akap::{
-    deform::killing::KillingMatrix,
+    deform::akap::killing::KillingMatrix,
     shapes,
     sparse::{expand_blocks, fill_reducing_order, Ordering},
     triangulate::triangulate_to_about,
@@ -152,11 +152,7 @@ impl Problem {
             index[v] = points.len();
             points.push(mesh.positions()[v]);
         }
-        let (mut ptr, mut adj) = (vec![0], Vec::new());
-        for v in (0..mesh.vertex_count()).filter(|&v| keep(v)) {
-            adj.extend(mesh.neighbors(v).iter().map(|&w| index[w as usize]).filter(|&w| w != usize::MAX));
-            ptr.push(adj.len());
-        }
+        let (ptr, adj) = mesh.relabelled_vertex_graph(&index);
         Self { shape, variant, target_vertices, vertices: mesh.vertex_count(), matrix, graph: (ptr, adj, points) }
     }
 

@@ -44,12 +44,14 @@ use std::sync::Arc;
 
 use sprs::CsMat;
 
-use super::deformer::{default_clock, vertex_graph, Clock, Timings};
-use super::error::{check_pose, check_velocities, in_range, out_of_memory, DeformError};
-use super::handles::{self, HandlePoint};
-use super::method::Orders;
+use super::error::{out_of_memory, DeformError};
+use super::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
+use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
-use crate::geometry::{bounding_box, normalising_exponent, power_of_two, scale_by_power_of_two, Point};
+pub use super::options::{ArapOptions, MAX_CONVERGENCE_ITERATIONS, MAX_ITERATIONS};
+use super::options::{Method, MethodOptions};
+use super::pattern::BlockPattern;
+use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
 
@@ -60,58 +62,6 @@ const PENALTY: f64 = 1e6;
 
 /// A weight this close to 1 puts a handle on a vertex (a hard constraint).
 const AT_VERTEX: f64 = 1e-12;
-
-/// The most local/global iterations a step may run at a fixed count (`tolerance` 0), the
-/// `iterations` option's maximum in Rust and JavaScript alike, so that one step's work
-/// stays bounded: each iteration costs about a solve (0.12 ms natively at 1,089
-/// vertices, growing like n log n), so 1000 of them take about 0.12 s there. That is far
-/// more than a frame needs: iterations converge linearly, each step starts from the last
-/// pose, and the widget runs 10. Convergence runs ([`ArapOptions::until_converged`],
-/// [`ArapDeformer::iterate`]) stop when converged and take a larger count.
-pub const MAX_ITERATIONS: usize = 1000;
-
-/// The most iterations a convergence run (a `tolerance` above 0:
-/// [`ArapOptions::until_converged`], [`ArapDeformer::iterate`]) may be allowed: it stops
-/// when converged, but a tolerance finer than rounding never is, and a step must end.
-pub const MAX_CONVERGENCE_ITERATIONS: usize = 1_000_000;
-
-/// ARAP settings, with builders.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ArapOptions {
-    /// Local/global iterations per step (at most): from 1 to [`MAX_ITERATIONS`] when
-    /// `tolerance` is 0, to [`MAX_CONVERGENCE_ITERATIONS`] with a tolerance.
-    pub iterations: usize,
-    /// A step stops early once an iteration moves no vertex further than `tolerance`
-    /// times the rest shape's bounding-box diagonal (0: always run `iterations`), from 0
-    /// to 1 (a move as large as the shape is no convergence). With a tolerance,
-    /// `iterations` only bounds a step and may exceed [`MAX_ITERATIONS`] (for converged
-    /// poses in tests and `examples/compare`).
-    pub tolerance: f64,
-}
-
-impl Default for ArapOptions {
-    fn default() -> Self {
-        Self { iterations: 10, tolerance: 0.0 }
-    }
-}
-
-impl ArapOptions {
-    /// Sets the number of iterations per step (1 to [`MAX_ITERATIONS`]).
-    pub fn with_iterations(mut self, iterations: usize) -> Self {
-        self.iterations = iterations;
-        self
-    }
-
-    /// Iterates until an iteration moves no vertex further than `tolerance` times the
-    /// shape's size, or `max_iterations` have run (for tests and final poses; with a
-    /// tolerance above 0, `max_iterations` may go beyond [`MAX_ITERATIONS`], to
-    /// [`MAX_CONVERGENCE_ITERATIONS`]).
-    pub fn until_converged(mut self, tolerance: f64, max_iterations: usize) -> Self {
-        self.tolerance = tolerance;
-        self.iterations = max_iterations;
-        self
-    }
-}
 
 /// How the last call of [`ArapDeformer::step`] or [`ArapDeformer::iterate`] ended.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -124,20 +74,12 @@ pub struct IterationReport {
     pub converged: bool,
 }
 
+/// A handle point and how it holds the mesh.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Handle {
-    vertices: [u32; 3],
-    weights: [f64; 3],
-    /// The triangle the point lies in.
-    triangle: usize,
+    point: HandlePoint,
     /// The vertex this handle pins (a hard constraint), or `NONE` for a penalty handle.
     pinned: usize,
-}
-
-impl Handle {
-    fn new(point: &HandlePoint, pinned: usize) -> Self {
-        Self { vertices: point.vertices, weights: point.weights, triangle: point.triangle, pinned }
-    }
 }
 
 /// The ARAP deformer for one mesh.
@@ -201,48 +143,32 @@ impl ArapDeformer {
 
     /// The fill-reducing order of the Laplacian (one system), the bulk of the set-up.
     pub fn orders(mesh: &Mesh) -> Orders {
-        let (ptr, adj) = vertex_graph(mesh, |_| true);
+        let (ptr, adj) = mesh.vertex_graph();
         Orders { systems: vec![fill_reducing_order(&ptr, &adj, mesh.positions(), 1)] }
     }
 
     /// [`Self::new`] with the order computed beforehand by [`Self::orders`].
     pub fn with_orders(mesh: Mesh, options: ArapOptions, orders: &Orders) -> Result<Self, DeformError> {
         check_options(&options)?;
-        let components = mesh.connected_components();
-        if components != 1 {
-            return Err(DeformError::Disconnected { components });
-        }
+        check_connected(&mesh)?;
         let n = mesh.vertex_count();
         orders.check(&[n])?;
         let m = mesh.triangle_count();
         let x = mesh.positions();
 
         // Pattern: column v holds rows N(v) and v, ascending (full symmetric storage).
-        let mut indptr = Vec::with_capacity(n + 1);
-        let mut indices = Vec::new();
-        indptr.push(0);
-        for v in 0..n {
-            let neighbors = mesh.neighbors(v);
-            let split = neighbors.partition_point(|&w| (w as usize) < v);
-            indices.extend(neighbors[..split].iter().map(|&w| w as usize));
-            indices.push(v);
-            indices.extend(neighbors[split..].iter().map(|&w| w as usize));
-            indptr.push(indices.len());
-        }
-        let slot = |row: usize, col: usize| {
-            let (start, end) = (indptr[col], indptr[col + 1]);
-            start + indices[start..end].binary_search(&row).expect("triangle vertices are neighbours")
-        };
+        let pattern = BlockPattern::new(&mesh, 1);
+        let slot = |row: usize, col: usize| pattern.slot(row, col).expect("a vertex pair of the pattern");
+        let all_slots = pattern.triangle_slots(&mesh);
         let mut cot = Vec::with_capacity(m);
         let mut rest_edges = Vec::with_capacity(m);
-        let mut triangle_slots = Vec::with_capacity(m);
-        let mut laplacian = vec![0.0; indices.len()];
+        let mut laplacian = vec![0.0; pattern.nnz()];
         // Cotangents and rest edges from the mesh scaled by `2^unit` (exact): free of
         // overflow and underflow at any scale, and the rest edges in the units the local and
         // global steps work in.
         // (Clamped: a validated mesh never needs it, and 2^unit and 2^-unit are then normal.)
         let unit = normalising_exponent(x.iter().copied()).clamp(-1022, 1022);
-        for t in mesh.triangles() {
+        for (t, s) in mesh.triangles().iter().zip(&all_slots) {
             let p = t.map(|v| x[v as usize].map(|c| scale_by_power_of_two(c, unit)));
             let mut c = [0.0; 3];
             let mut e = [[0.0; 2]; 3];
@@ -250,12 +176,6 @@ impl ArapDeformer {
                 let (a, b) = (sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
                 c[k] = (a[0] * b[0] + a[1] * b[1]) / (a[0] * b[1] - a[1] * b[0]);
                 e[k] = sub(p[(k + 1) % 3], p[(k + 2) % 3]);
-            }
-            let mut s = [0; 9];
-            for i in 0..3 {
-                for j in 0..3 {
-                    s[3 * i + j] = slot(t[i] as usize, t[j] as usize);
-                }
             }
             for (k, &weight) in c.iter().enumerate() {
                 let (i, j) = ((k + 1) % 3, (k + 2) % 3);
@@ -266,25 +186,23 @@ impl ArapDeformer {
             }
             cot.push(c);
             rest_edges.push(e);
-            triangle_slots.push(s);
         }
         let diagonal_sum: f64 = (0..n).map(|v| laplacian[slot(v, v)]).sum();
         let penalty = PENALTY * diagonal_sum / n as f64;
 
-        let matrix = CsMat::new_csc((n, n), indptr, indices, laplacian.clone());
+        let matrix = pattern.matrix(laplacian.clone());
         let best = Symbolic::analyse(matrix.view(), &Ordering::Given(orders.systems[0].clone()))
             .expect("a checked vertex order is a valid ordering of the vertex Laplacian");
-        let (lo, hi) = bounding_box(x.iter().copied()).expect("a mesh has vertices");
 
         Ok(Self {
             options,
             clock: default_clock,
             unit,
-            size: (hi[0] - lo[0]).hypot(hi[1] - lo[1]),
+            size: diagonal(x),
             cot,
             rest_edges,
             laplacian,
-            triangle_slots,
+            triangle_slots: all_slots,
             matrix,
             numeric: Numeric::try_new(Arc::new(best)).map_err(out_of_memory)?,
             factored: false,
@@ -339,7 +257,7 @@ impl ArapDeformer {
     /// constraint.
     pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
         let points = handles::at_vertices(&self.mesh, vertices)?;
-        self.install(points.iter().zip(vertices).map(|(p, &v)| Handle::new(p, v as usize)).collect());
+        self.install(points.iter().zip(vertices).map(|(p, &v)| Handle { point: *p, pinned: v as usize }).collect());
         Ok(())
     }
 
@@ -354,7 +272,7 @@ impl ArapDeformer {
                 .map(|p| {
                     let pinned =
                         (0..3).find(|&k| p.weights[k] >= 1.0 - AT_VERTEX).map_or(NONE, |k| p.vertices[k] as usize);
-                    Handle::new(p, pinned)
+                    Handle { point: *p, pinned }
                 })
                 .collect(),
         );
@@ -371,10 +289,10 @@ impl ArapDeformer {
         let data = self.matrix.data_mut();
         data.copy_from_slice(&self.laplacian);
         for h in handles.iter().filter(|h| h.pinned == NONE) {
-            let slots = self.triangle_slots[h.triangle];
+            let slots = self.triangle_slots[h.point.triangle];
             for i in 0..3 {
                 for j in 0..3 {
-                    data[slots[3 * i + j]] += self.penalty * h.weights[i] * h.weights[j];
+                    data[slots[3 * i + j]] += self.penalty * h.point.weights[i] * h.point.weights[j];
                 }
             }
         }
@@ -401,15 +319,6 @@ impl ArapDeformer {
         self.factored = false;
     }
 
-    fn point_of(&self, h: &Handle, positions: &[Point]) -> Point {
-        let mut p = [0.0, 0.0];
-        for (v, w) in h.vertices.iter().zip(h.weights) {
-            p[0] += w * positions[*v as usize][0];
-            p[1] += w * positions[*v as usize][1];
-        }
-        p
-    }
-
     /// Number of handles.
     pub fn handle_count(&self) -> usize {
         self.handles.len()
@@ -417,7 +326,7 @@ impl ArapDeformer {
 
     /// Current positions of the handle points.
     pub fn handle_positions(&self) -> Vec<Point> {
-        self.handles.iter().map(|h| self.point_of(h, &self.positions)).collect()
+        self.handles.iter().map(|h| h.point.position(&self.positions)).collect()
     }
 
     /// The handles' targets of the last step (their positions when the handles were set).
@@ -431,7 +340,7 @@ impl ArapDeformer {
     pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
         check_velocities(velocities, self.handles.len())?;
         for (k, (h, v)) in self.handles.iter().zip(velocities).enumerate() {
-            let p = self.point_of(h, &self.positions);
+            let p = h.point.position(&self.positions);
             self.next_targets[k] = [p[0] + v[0], p[1] + v[1]];
         }
         let options = self.options;
@@ -559,7 +468,7 @@ impl ArapDeformer {
         for (h, target) in self.handles.iter().zip(&self.next_targets) {
             if h.pinned == NONE {
                 let target = into(*target);
-                for (v, w) in h.vertices.iter().zip(h.weights) {
+                for (v, w) in h.point.vertices.iter().zip(h.point.weights) {
                     self.rhs_x[*v as usize] += self.penalty * w * target[0];
                     self.rhs_y[*v as usize] += self.penalty * w * target[1];
                 }
@@ -598,7 +507,7 @@ impl ArapDeformer {
         }
         for (h, target) in self.handles.iter().zip(&self.targets) {
             if h.pinned == NONE {
-                let (p, target) = (into(self.point_of(h, u)), into(*target));
+                let (p, target) = (into(h.point.position(u)), into(*target));
                 energy += 0.5 * self.penalty * ((p[0] - target[0]).powi(2) + (p[1] - target[1]).powi(2));
             }
         }
@@ -663,6 +572,66 @@ impl ArapDeformer {
     pub fn factor_stats(&self) -> (usize, f64) {
         let s = self.numeric.symbolic();
         (s.nnz_l(), s.flops())
+    }
+}
+
+impl Deform for ArapDeformer {
+    fn method_options(&self) -> MethodOptions {
+        MethodOptions::Arap(self.options())
+    }
+    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
+        match options {
+            MethodOptions::Arap(options) => self.set_options(options),
+            other => Err(DeformError::WrongMethod { current: Method::Arap, given: other.method() }),
+        }
+    }
+    fn set_clock(&mut self, clock: Clock) {
+        ArapDeformer::set_clock(self, clock);
+    }
+    fn mesh(&self) -> &Mesh {
+        ArapDeformer::mesh(self)
+    }
+    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        ArapDeformer::set_handle_vertices(self, vertices)
+    }
+    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        ArapDeformer::set_handle_points(self, triangles, barycentric)
+    }
+    fn handle_count(&self) -> usize {
+        ArapDeformer::handle_count(self)
+    }
+    fn handle_positions(&self) -> Vec<Point> {
+        ArapDeformer::handle_positions(self)
+    }
+    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+        ArapDeformer::step(self, velocities)
+    }
+    fn positions(&self) -> &[Point] {
+        ArapDeformer::positions(self)
+    }
+    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
+        ArapDeformer::set_positions(self, positions)
+    }
+    fn field(&self) -> &[[f64; 2]] {
+        ArapDeformer::field(self)
+    }
+    fn metrics(&self) -> Metrics {
+        ArapDeformer::metrics(self)
+    }
+    fn timings(&self) -> Timings {
+        ArapDeformer::timings(self)
+    }
+    fn reset(&mut self) {
+        ArapDeformer::reset(self);
+    }
+}
+
+impl Build for ArapOptions {
+    fn orders(&self, mesh: &Mesh) -> Orders {
+        ArapDeformer::orders(mesh)
+    }
+    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
+        Ok(Box::new(ArapDeformer::with_orders(mesh, self, orders)?))
     }
 }
 

@@ -1,10 +1,11 @@
 //! `DeformError`: why a deformer refused an input or a step. Lengths are counted in numbers
 //! (two per point or velocity, three per barycentric triple), as the flat arrays of the
-//! JavaScript API hold them.
+//! JavaScript API hold them. The checks that raise them for every deformer are in
+//! `handles.rs`.
 
 use std::fmt;
 
-use super::method::Method;
+use super::options::Method;
 use crate::error::Number;
 use crate::geometry::MAX_COORDINATE;
 use crate::sparse::FactorError;
@@ -179,51 +180,6 @@ impl From<FactorError> for DeformError {
     fn from(e: FactorError) -> Self {
         Self::Factor(e)
     }
-}
-
-/// Checks a pose given to `set_positions`: one position per vertex, each finite and within
-/// ±[`MAX_COORDINATE`].
-pub(crate) fn check_pose(positions: &[[f64; 2]], vertex_count: usize) -> Result<(), DeformError> {
-    if positions.len() != vertex_count {
-        return Err(DeformError::Length {
-            what: "positions",
-            expected: 2 * vertex_count,
-            found: 2 * positions.len(),
-            per: 2,
-            items: "vertices",
-        });
-    }
-    for (vertex, p) in positions.iter().enumerate() {
-        if !(p[0].is_finite() && p[1].is_finite()) {
-            return Err(DeformError::NonFinitePosition { vertex });
-        }
-        if let Some(&value) = p.iter().find(|x| x.abs() > MAX_COORDINATE) {
-            return Err(DeformError::PositionOutOfRange { vertex, value });
-        }
-    }
-    Ok(())
-}
-
-/// Checks velocities: one per handle, each finite.
-pub(crate) fn check_velocities(velocities: &[[f64; 2]], handle_count: usize) -> Result<(), DeformError> {
-    if velocities.len() != handle_count {
-        return Err(DeformError::Length {
-            what: "velocities",
-            expected: 2 * handle_count,
-            found: 2 * velocities.len(),
-            per: 2,
-            items: "handles",
-        });
-    }
-    if let Some(handle) = velocities.iter().position(|v| !v[0].is_finite() || !v[1].is_finite()) {
-        return Err(DeformError::NonFiniteVelocity { handle });
-    }
-    Ok(())
-}
-
-/// Whether every position of a step's result is finite and within ±[`MAX_COORDINATE`].
-pub(crate) fn in_range(positions: &[[f64; 2]]) -> bool {
-    positions.iter().flatten().all(|x| x.abs() <= MAX_COORDINATE)
 }
 
 /// A factorisation's storage error as the deformer's (out of memory is the one expected

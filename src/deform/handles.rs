@@ -1,7 +1,10 @@
-//! Handle points, validated once for every deformer: a handle is a point of the mesh, given
-//! as a vertex or as a triangle and barycentric coordinates.
+//! What every deformer checks and computes alike, written once: handle points (a point of
+//! the mesh, given as a vertex or as a triangle and barycentric coordinates) validated and
+//! placed, distinct handle points counted, velocities and poses checked, the mesh's
+//! connectivity, results within the coordinate limits, and the size of a shape.
 
-use super::DeformError;
+use super::error::DeformError;
+use crate::geometry::{bounding_box, Point, MAX_COORDINATE};
 use crate::mesh::Mesh;
 
 /// A validated handle point: the triangle it lies in, its vertices and its barycentric
@@ -11,6 +14,18 @@ pub(crate) struct HandlePoint {
     pub(crate) triangle: usize,
     pub(crate) vertices: [u32; 3],
     pub(crate) weights: [f64; 3],
+}
+
+impl HandlePoint {
+    /// Where the point is when the mesh's vertices are at `positions`.
+    pub(crate) fn position(&self, positions: &[Point]) -> Point {
+        let mut p = [0.0, 0.0];
+        for (v, w) in self.vertices.iter().zip(self.weights) {
+            p[0] += w * positions[*v as usize][0];
+            p[1] += w * positions[*v as usize][1];
+        }
+        p
+    }
 }
 
 /// One handle on each vertex (weight 1 at that corner of a triangle using it).
@@ -110,6 +125,65 @@ pub(crate) fn distinct_points(points: &[[f64; 2]], tolerance: f64) -> usize {
         start = end;
     }
     count
+}
+
+/// Refuses a mesh in several pieces: a deformer needs one connected piece.
+pub(crate) fn check_connected(mesh: &Mesh) -> Result<(), DeformError> {
+    match mesh.connected_components() {
+        1 => Ok(()),
+        components => Err(DeformError::Disconnected { components }),
+    }
+}
+
+/// The length of the diagonal of the points' bounding box (the size of a shape).
+pub(crate) fn diagonal(points: &[Point]) -> f64 {
+    let (lo, hi) = bounding_box(points.iter().copied()).expect("a mesh has vertices");
+    (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+}
+
+/// Checks a pose given to `set_positions`: one position per vertex, each finite and within
+/// ±[`MAX_COORDINATE`].
+pub(crate) fn check_pose(positions: &[[f64; 2]], vertex_count: usize) -> Result<(), DeformError> {
+    if positions.len() != vertex_count {
+        return Err(DeformError::Length {
+            what: "positions",
+            expected: 2 * vertex_count,
+            found: 2 * positions.len(),
+            per: 2,
+            items: "vertices",
+        });
+    }
+    for (vertex, p) in positions.iter().enumerate() {
+        if !(p[0].is_finite() && p[1].is_finite()) {
+            return Err(DeformError::NonFinitePosition { vertex });
+        }
+        if let Some(&value) = p.iter().find(|x| x.abs() > MAX_COORDINATE) {
+            return Err(DeformError::PositionOutOfRange { vertex, value });
+        }
+    }
+    Ok(())
+}
+
+/// Checks velocities: one per handle, each finite.
+pub(crate) fn check_velocities(velocities: &[[f64; 2]], handle_count: usize) -> Result<(), DeformError> {
+    if velocities.len() != handle_count {
+        return Err(DeformError::Length {
+            what: "velocities",
+            expected: 2 * handle_count,
+            found: 2 * velocities.len(),
+            per: 2,
+            items: "handles",
+        });
+    }
+    if let Some(handle) = velocities.iter().position(|v| !v[0].is_finite() || !v[1].is_finite()) {
+        return Err(DeformError::NonFiniteVelocity { handle });
+    }
+    Ok(())
+}
+
+/// Whether every position of a step's result is finite and within ±[`MAX_COORDINATE`].
+pub(crate) fn in_range(positions: &[[f64; 2]]) -> bool {
+    positions.iter().flatten().all(|x| x.abs() <= MAX_COORDINATE)
 }
 
 #[cfg(test)]

@@ -1,86 +1,61 @@
 //! One interface for every deformation method, so that callers (the JavaScript bindings,
 //! session replay, the comparison) can switch between them: the [`Deform`] trait, which
-//! both [`Deformer`] (AKAP) and [`ArapDeformer`] implement, and [`MethodOptions`], which
-//! names a method with its settings and builds a boxed deformer.
+//! every deformer implements beside its type, [`MethodOptions::build`], which makes the
+//! deformer a method's options name, the [`Orders`] its set-up can compute apart, and the
+//! stage [`Timings`] of a step.
 
 use std::fmt;
 
-use super::arap::{ArapDeformer, ArapOptions};
-use super::deformer::{Clock, Deformer, DeformerOptions, Timings};
 use super::error::DeformError;
 use super::metrics::Metrics;
+use super::options::{methods, ArapOptions, DeformerOptions, MethodOptions};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 
-/// The deformation methods.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Method {
-    /// As-Killing-As-Possible vector fields (the paper).
-    Akap,
-    /// As-rigid-as-possible local/global iterations.
-    Arap,
+/// How a method's options make its deformer: implemented for each options type beside its
+/// deformer, so that [`MethodOptions`] reaches every method through the list of methods
+/// alone.
+pub(crate) trait Build {
+    /// The fill-reducing orders the method's deformer needs for `mesh`.
+    fn orders(&self, mesh: &Mesh) -> Orders;
+    /// The method's deformer with orders from [`Build::orders`].
+    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError>;
 }
 
-impl Method {
-    /// The name the JavaScript API and sessions use: `"akap"` or `"arap"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Akap => "akap",
-            Self::Arap => "arap",
+/// Writes [`MethodOptions`]' dispatch to [`Build`] from the list of methods.
+macro_rules! method_dispatch {
+    ($($(#[$doc:meta])* $variant:ident($name:literal, $options:ident),)*) => {
+        impl MethodOptions {
+            /// The fill-reducing orders this method's deformer needs for `mesh` (see [`Orders`]).
+            pub fn orders(&self, mesh: &Mesh) -> Orders {
+                match self {
+                    $(Self::$variant(options) => Build::orders(options, mesh),)*
+                }
+            }
+
+            /// [`Self::build`] with orders from [`Self::orders`] (for this method and mesh).
+            pub fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
+                match self {
+                    $(Self::$variant(options) => Build::build_with_orders(options, mesh, orders),)*
+                }
+            }
         }
-    }
+
+        // Every options type of the list makes a deformer.
+        const _: fn() = || {
+            fn builds<T: Build>() {}
+            $(builds::<$options>();)*
+        };
+    };
 }
 
-impl fmt::Display for Method {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// A method with its settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum MethodOptions {
-    /// AKAP with these options.
-    Akap(DeformerOptions),
-    /// ARAP with these options.
-    Arap(ArapOptions),
-}
-
-impl Default for MethodOptions {
-    fn default() -> Self {
-        Self::Akap(DeformerOptions::default())
-    }
-}
+methods!(method_dispatch);
 
 impl MethodOptions {
-    /// Which method.
-    pub fn method(&self) -> Method {
-        match self {
-            Self::Akap(_) => Method::Akap,
-            Self::Arap(_) => Method::Arap,
-        }
-    }
-
     /// A deformer of this method for a connected mesh.
     pub fn build(self, mesh: Mesh) -> Result<Box<dyn Deform>, DeformError> {
         let orders = self.orders(&mesh);
         self.build_with_orders(mesh, &orders)
-    }
-
-    /// The fill-reducing orders this method's deformer needs for `mesh` (see [`Orders`]).
-    pub fn orders(&self, mesh: &Mesh) -> Orders {
-        match self {
-            Self::Akap(_) => Deformer::orders(mesh),
-            Self::Arap(_) => ArapDeformer::orders(mesh),
-        }
-    }
-
-    /// [`Self::build`] with orders from [`Self::orders`] (for this method and mesh).
-    pub fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
-        Ok(match self {
-            Self::Akap(options) => Box::new(Deformer::with_orders(mesh, options, orders)?),
-            Self::Arap(options) => Box::new(ArapDeformer::with_orders(mesh, options, orders)?),
-        })
     }
 }
 
@@ -158,107 +133,35 @@ pub trait Deform: fmt::Debug {
     fn reset(&mut self);
 }
 
-impl Deform for Deformer {
-    fn method_options(&self) -> MethodOptions {
-        MethodOptions::Akap(self.options())
-    }
-    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
-        match options {
-            MethodOptions::Akap(options) => self.set_options(options),
-            other => Err(DeformError::WrongMethod { current: Method::Akap, given: other.method() }),
-        }
-    }
-    fn set_clock(&mut self, clock: Clock) {
-        Deformer::set_clock(self, clock);
-    }
-    fn mesh(&self) -> &Mesh {
-        Deformer::mesh(self)
-    }
-    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        Deformer::set_handle_vertices(self, vertices)
-    }
-    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        Deformer::set_handle_points(self, triangles, barycentric)
-    }
-    fn handle_count(&self) -> usize {
-        Deformer::handle_count(self)
-    }
-    fn handle_positions(&self) -> Vec<Point> {
-        Deformer::handle_positions(self)
-    }
-    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        Deformer::step(self, velocities)
-    }
-    fn positions(&self) -> &[Point] {
-        Deformer::positions(self)
-    }
-    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        Deformer::set_positions(self, positions)
-    }
-    fn field(&self) -> &[[f64; 2]] {
-        Deformer::field(self)
-    }
-    fn soft_field(&self) -> &[[f64; 2]] {
-        Deformer::soft_field(self)
-    }
-    fn metrics(&self) -> Metrics {
-        Deformer::metrics(self)
-    }
-    fn timings(&self) -> Timings {
-        Deformer::timings(self)
-    }
-    fn reset(&mut self) {
-        Deformer::reset(self);
-    }
+/// Milliseconds spent in each stage of the last step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Assembling the matrices and right-hand sides (AKAP: the Killing matrix and both
+    /// systems; ARAP: the local steps and right-hand sides).
+    pub assembly: f64,
+    /// Numeric factorisations (AKAP: both systems; ARAP: after a change of handles).
+    pub factorisation: f64,
+    /// The part of `factorisation` spent on AKAP's step 2 system (the Dirichlet re-solve).
+    pub dirichlet_factorisation: f64,
+    /// Triangular solves.
+    pub solve: f64,
+    /// Moving the vertices.
+    pub integration: f64,
 }
 
-impl Deform for ArapDeformer {
-    fn method_options(&self) -> MethodOptions {
-        MethodOptions::Arap(self.options())
+/// A clock in milliseconds, for [`Timings`].
+pub type Clock = fn() -> f64;
+
+/// The clock deformers start with: milliseconds since first use natively, 0 in wasm (where
+/// the bindings pass `performance.now`).
+pub(crate) fn default_clock() -> f64 {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+        START.get_or_init(std::time::Instant::now).elapsed().as_secs_f64() * 1e3
     }
-    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
-        match options {
-            MethodOptions::Arap(options) => self.set_options(options),
-            other => Err(DeformError::WrongMethod { current: Method::Arap, given: other.method() }),
-        }
-    }
-    fn set_clock(&mut self, clock: Clock) {
-        ArapDeformer::set_clock(self, clock);
-    }
-    fn mesh(&self) -> &Mesh {
-        ArapDeformer::mesh(self)
-    }
-    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        ArapDeformer::set_handle_vertices(self, vertices)
-    }
-    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        ArapDeformer::set_handle_points(self, triangles, barycentric)
-    }
-    fn handle_count(&self) -> usize {
-        ArapDeformer::handle_count(self)
-    }
-    fn handle_positions(&self) -> Vec<Point> {
-        ArapDeformer::handle_positions(self)
-    }
-    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        ArapDeformer::step(self, velocities)
-    }
-    fn positions(&self) -> &[Point] {
-        ArapDeformer::positions(self)
-    }
-    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        ArapDeformer::set_positions(self, positions)
-    }
-    fn field(&self) -> &[[f64; 2]] {
-        ArapDeformer::field(self)
-    }
-    fn metrics(&self) -> Metrics {
-        ArapDeformer::metrics(self)
-    }
-    fn timings(&self) -> Timings {
-        ArapDeformer::timings(self)
-    }
-    fn reset(&mut self) {
-        ArapDeformer::reset(self);
+    #[cfg(target_arch = "wasm32")]
+    {
+        0.0
     }
 }

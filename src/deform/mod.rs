@@ -1,24 +1,36 @@
 //! Deformation: the As-Killing-As-Possible deformer, the ARAP deformer it is compared with,
-//! and what they are built from.
+//! and what every method shares. Each file stands on the ones before it and none imports a
+//! later one:
 //!
-//! - [`killing`]: the Killing-energy matrix (paper eq. (6)), fixed pattern, values per frame;
-//! - [`deformer`]: the [`Deformer`] (eqs. (3), (4) and the spiral step), handles and options;
-//! - [`spiral`]: the log-spiral step (eqs. (14)-(16), corrected) and the linear step;
-//! - [`arap`]: the [`ArapDeformer`] (Liu et al. 2008 elements energy, local/global);
-//! - [`method`]: the [`Deform`] trait both implement and [`MethodOptions`] to pick one;
-//! - [`metrics`]: area and angle distortion and flipped triangles (Table 1).
+//! - [`options`]: the list of methods, [`Method`], [`MethodOptions`] and each method's
+//!   options (plain data);
+//! - `error`: [`DeformError`];
+//! - [`metrics`]: area and angle distortion and flipped triangles (Table 1);
+//! - [`method`]: the [`Deform`] trait every deformer implements, [`MethodOptions::build`],
+//!   [`Orders`], [`Timings`] and [`Clock`];
+//! - `pattern`: the sparsity pattern of both deformers' matrices, a block per vertex pair;
+//! - `handles`: the checks and helpers every deformer shares (handle points, velocities,
+//!   poses, connectivity, sizes);
+//! - [`akap`]: the [`Deformer`] of the paper (eqs. (3), (4), (6), (14)-(16)) in three files:
+//!   the Killing matrix, the spiral step, the solver;
+//! - [`arap`]: the [`ArapDeformer`] (Liu et al. 2008 elements energy, local/global).
+//!
+//! A new method is one more file beside `akap` and `arap` (declared here), its options
+//! struct in [`options`] and one more line in the list of methods there (see
+//! `ARCHITECTURE.md`, "How to add a method").
 
+pub mod akap;
 pub mod arap;
-pub mod deformer;
 mod error;
 mod handles;
-pub mod killing;
 pub mod method;
 pub mod metrics;
-pub mod spiral;
+pub mod options;
+mod pattern;
 
-pub use arap::{ArapDeformer, ArapOptions, IterationReport};
-pub use deformer::{Clock, Deformer, DeformerOptions, Integrator, Timings, LAMBDA_RANGE};
+pub use akap::Deformer;
+pub use arap::{ArapDeformer, IterationReport};
 pub use error::DeformError;
-pub use method::{Deform, Method, MethodOptions, Orders};
+pub use method::{Clock, Deform, Orders, Timings};
 pub use metrics::Metrics;
+pub use options::{ArapOptions, DeformerOptions, Integrator, Method, MethodOptions, LAMBDA_RANGE};

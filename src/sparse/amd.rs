@@ -51,7 +51,7 @@ pub fn amd_order(n: usize, ptr: &[usize], indices: &[usize]) -> Vec<usize> {
 
 /// Approximate minimum fill ordering: as [`amd_order`] (same input, output and panics),
 /// but each pivot is a supervariable of least approximate mean local fill (the fill its
-/// elimination creates per variable eliminated, see [`super::priority`]) rather than of
+/// elimination creates per variable eliminated, see the module `priority`) rather than of
 /// least approximate degree. About 2x the time of [`amd_order`]; on the vertex graphs of
 /// triangle meshes its orders need 0.81-0.96x the factorisation flops of AMD's.
 pub fn amf_order(n: usize, ptr: &[usize], indices: &[usize]) -> Vec<usize> {

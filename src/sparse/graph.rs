@@ -10,7 +10,7 @@
 //! where the degrees of the compressed graph are those of the full graph divided by that
 //! size, so that nothing is lost.
 
-use super::amd_order;
+use super::amd::{amd_order, amf_order};
 
 /// Off-diagonal adjacency of a symmetric pattern: the neighbours of `v` are
 /// `adj[ptr[v]..ptr[v + 1]]`, in ascending order, each edge stored in both directions.
@@ -68,6 +68,11 @@ impl Graph {
     /// indistinguishable nodes run it on [`Self::compressed`], see the module documentation.)
     pub(super) fn amd_order(&self) -> Vec<usize> {
         amd_order(self.len(), &self.ptr, &self.adj)
+    }
+
+    /// Approximate minimum fill order of the nodes (as [`Self::amd_order`]).
+    pub(super) fn amf_order(&self) -> Vec<usize> {
+        amf_order(self.len(), &self.ptr, &self.adj)
     }
 
     /// The graph of the groups `b g .. b g + b` (`block` = b): groups adjacent when their

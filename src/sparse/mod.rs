@@ -2,8 +2,9 @@
 //! split the way a per-frame solver needs it:
 //!
 //! 1. [`Symbolic::analyse`], once per sparsity pattern: a fill-reducing ordering
-//!    ([`Ordering`]: approximate minimum degree, a given order such as a geometric
-//!    [`nested_dissection_order`], or natural), the elimination
+//!    ([`Ordering`]: approximate minimum degree or minimum fill, a given order such as
+//!    one from [`fill_reducing_order`] or [`nested_dissection_order`], or natural; the
+//!    policy that chooses among orders is in `ordering`), the elimination
 //!    tree and its postorder, column counts, supernodes and the row pattern of every
 //!    supernode of `L`, and a map from each entry of `A` to its slot in `L`.
 //! 2. [`Numeric::factor`] / [`Numeric::refactor`], for every new set of values on that
@@ -23,6 +24,7 @@ mod dense;
 mod graph;
 mod nested_dissection;
 mod numeric;
+mod ordering;
 mod priority;
 mod separator;
 mod symbolic;
@@ -30,24 +32,16 @@ mod symbolic;
 use std::fmt;
 
 pub use amd::{amd_order, amf_order};
-pub use nested_dissection::{expand_blocks, nested_dissection_order};
+pub use nested_dissection::nested_dissection_order;
 pub use numeric::Numeric;
-pub use symbolic::{cheaper_order, fill_reducing_order, order_flops, Symbolic, DISSECTION_MIN_NODES};
+pub use ordering::{
+    cheaper_order, dissection_if_large, expand_blocks, fill_or_dissection, fill_reducing_order, order_flops, Ordering,
+    DISSECTION_MIN_NODES,
+};
+pub use symbolic::Symbolic;
 
 /// A matrix view in compressed sparse column form with `usize` indices.
 pub type CsMatView<'a> = sprs::CsMatView<'a, f64>;
-
-/// How [`Symbolic::analyse`] orders the unknowns.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub enum Ordering {
-    /// Keep the given order (for tests and for matrices that are already well ordered).
-    Natural,
-    /// Approximate minimum degree on the pattern of `A` (Amestoy, Davis and Duff 1996).
-    #[default]
-    Amd,
-    /// Eliminate the unknowns in this order: `order[k]` is the original index of the k-th.
-    Given(Vec<usize>),
-}
 
 /// Why a factorisation could not be computed.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,6 +1,5 @@
 //! Nested dissection: a fill-reducing order for sparse symmetric patterns such as the
-//! vertex graphs of triangle meshes, and the expansion of a vertex order to several
-//! unknowns per vertex.
+//! vertex graphs of triangle meshes (when to use it: [`super::ordering`]).
 //!
 //! The separators are those of George's nested dissection (1973) found as in METIS's
 //! `NodeND` (Karypis and Kumar 1998): each connected part of the graph is split by a
@@ -60,12 +59,6 @@ pub fn nested_dissection_order(ptr: &[usize], indices: &[usize], positions: &[[f
     let all: Vec<u32> = (0..n as u32).collect();
     dissection.split(&graph, &all);
     constrained_order(n, ptr, indices, dissection.class, Score::MeanFill)
-}
-
-/// Expands an order of vertices to `block` unknowns per vertex, numbered
-/// `block * v + k`: each vertex's unknowns stay together, in the vertex's place.
-pub fn expand_blocks(order: &[usize], block: usize) -> Vec<usize> {
-    order.iter().flat_map(|&v| (0..block).map(move |k| block * v + k)).collect()
 }
 
 /// The subgraph of `g` induced by `vertices` (its vertex `k` is `vertices[k]`), with

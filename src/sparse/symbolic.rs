@@ -4,7 +4,7 @@
 //! Steps and costs (n unknowns, |A| entries of the lower triangle, |L| entries of L). The
 //! pattern is read once into a symmetric adjacency [`Graph`]; every later step reads it
 //! through the permutation instead of building permuted copies.
-//! 1. fill-reducing order (AMD on the graph compressed to one node per group of
+//! 1. fill-reducing order (AMD or AMF on the graph compressed to one node per group of
 //!    indistinguishable unknowns, such as the 2x2 blocks of a vertex; or given),
 //!    O(|A|) in practice;
 //! 2. elimination tree of the permuted pattern (Liu's algorithm with path compression),
@@ -24,7 +24,8 @@
 //!    L, grouped by supernode with a counting sort, O(|A|).
 
 use super::graph::{prefix_sums, Graph};
-use super::{CsMatView, FactorError, Ordering};
+use super::ordering::Ordering;
+use super::{CsMatView, FactorError};
 
 const NONE: usize = usize::MAX;
 
@@ -87,6 +88,8 @@ impl Symbolic {
             (Ordering::Natural, _) => (0..n).collect(),
             (Ordering::Amd, Some(groups)) => expand_groups(block, &groups.amd_order()),
             (Ordering::Amd, None) => graph.amd_order(),
+            (Ordering::Amf, Some(groups)) => expand_groups(block, &groups.amf_order()),
+            (Ordering::Amf, None) => graph.amf_order(),
             (Ordering::Given(order), _) => {
                 if !is_permutation(order, n) {
                     return Err(FactorError::InvalidOrdering);
@@ -226,63 +229,20 @@ impl Symbolic {
     }
 }
 
-/// The flops ([`Symbolic::flops`]) of factoring a matrix with `block` unknowns per node of
-/// a graph, every pair of adjacent nodes coupled by a full `block x block` block (as the
-/// AKAP matrices couple the velocities of neighbouring vertices), eliminated node by node
-/// in `order` and each node's unknowns consecutively ([`super::expand_blocks`]).
-///
-/// Much cheaper than [`Symbolic::analyse`] on the expanded matrix (the elimination tree
-/// and column counts of the node graph only), so that several orders can be compared
-/// before one is analysed: the column of L of the k-th unknown of a node with `c` entries
-/// in its column of the node graph's factor has `block * c - k` entries. The graph is given
-/// by symmetric adjacency lists (`adj[ptr[v]..ptr[v + 1]]`, without self-loops).
+/// The column counts of L (diagonal included) of a graph's nodes eliminated in `order`,
+/// for [`super::ordering::order_flops`]: the elimination tree and column counts alone. The
+/// graph is given by symmetric adjacency lists (`adj[ptr[v]..ptr[v + 1]]`, without
+/// self-loops).
 ///
 /// # Panics
 /// If `order` is not a permutation of the nodes (a broken internal invariant of callers).
-pub fn order_flops(ptr: &[usize], adj: &[usize], order: &[usize], block: usize) -> f64 {
+pub(super) fn order_column_counts(ptr: &[usize], adj: &[usize], order: &[usize]) -> Vec<usize> {
     let n = ptr.len() - 1;
     assert!(is_permutation(order, n), "order must be a permutation of the graph's nodes");
     let graph = Graph::from_adjacency(ptr, adj);
     let inv = inverse(order);
     let parent = elimination_tree(&graph, order, &inv);
     column_counts(&graph, order, &inv, &parent)
-        .iter()
-        .map(|&c| (0..block).map(|k| ((block * c - k) * (block * c - k)) as f64).sum::<f64>())
-        .sum()
-}
-
-/// Graphs with fewer nodes than this are ordered by minimum fill alone: below it, our
-/// nested dissection saved few flops or none on the meshes measured (relative to AMD's
-/// flops, averaged over relabellings: 1.3-1.4x at 1k vertices, 1.0-1.07x at 5k, 0.91-0.93x
-/// at 10k, where minimum fill needs 0.86-0.90x; at 16k 0.85-0.91x against 0.86-0.88x, at
-/// 50k 0.78-0.80x against 0.81-0.85x; `cargo run --release --example orderings -- --relabel
-/// 4`), and it takes 3-4x minimum fill's time (5-8x AMD's).
-pub const DISSECTION_MIN_NODES: usize = 12_000;
-
-/// A fill-reducing order of the nodes of a graph with `block` unknowns per node (as
-/// [`order_flops`] counts them): approximate minimum fill ([`super::amf_order`]), or, for graphs of at least
-/// [`DISSECTION_MIN_NODES`] nodes, nested dissection when it needs fewer flops. The graph
-/// is given by symmetric adjacency lists; `positions` has one point per node.
-pub fn fill_reducing_order(ptr: &[usize], adj: &[usize], positions: &[[f64; 2]], block: usize) -> Vec<usize> {
-    let n = ptr.len() - 1;
-    let by_fill = super::amf_order(n, ptr, adj);
-    if n < DISSECTION_MIN_NODES {
-        return by_fill;
-    }
-    cheaper_order(ptr, adj, block, by_fill, super::nested_dissection_order(ptr, adj, positions))
-}
-
-/// Whichever of two orders of a graph's nodes needs fewer flops ([`order_flops`]); the
-/// first on a tie.
-///
-/// # Panics
-/// If an order is not a permutation of the nodes (a broken internal invariant of callers).
-pub fn cheaper_order(ptr: &[usize], adj: &[usize], block: usize, first: Vec<usize>, second: Vec<usize>) -> Vec<usize> {
-    if order_flops(ptr, adj, &second, block) < order_flops(ptr, adj, &first, block) {
-        second
-    } else {
-        first
-    }
 }
 
 /// Eliminates the nodes of `graph` in `order`, then relabels by a postorder of the

@@ -1,19 +1,24 @@
 //! The Killing energy of a piecewise-linear vector field on a triangle mesh, as a sparse
-//! symmetric matrix (the paper's eq. (6), read as the finite-element integral of
-//! `||J + J^T||_F^2`; see `shared/papers/README.md`).
+//! symmetric matrix: the paper's eq. (2), `E_K(U) = integral of ||J + J^T||_F^2` (`J` the
+//! field's Jacobian), discretised as its eqs. (5)-(7) say, with finite elements.
 //!
 //! Unknowns are interleaved per vertex: `U = [u1_0, u2_0, u1_1, u2_1, ...]`. On triangle f
 //! with area `A_f`, the Jacobian `J = [grad U1; grad U2] = [a b; c d]` is constant and
-//! `E_f(U) = A_f (4a^2 + 2(b + c)^2 + 4d^2)`, so `E(U) = U^T K U` with
-//! `K = sum_f A_f R_f^T R_f`, `R_f` the 3 x 6 matrix of rows `2 gx.U1`,
-//! `sqrt2 (gy.U1 + gx.U2)`, `2 gy.U2` over the triangle's six unknowns.
+//! `||J + J^T||_F^2 = 4a^2 + 2(b + c)^2 + 4d^2`, so `E_f(U) = A_f (4a^2 + 2(b + c)^2 + 4d^2)`
+//! and `E(U) = U^T K U` with `K = sum_f A_f R_f^T R_f`, `R_f` the 3 x 6 matrix of rows
+//! `2 gx.U1`, `sqrt2 (gy.U1 + gx.U2)`, `2 gy.U2` over the triangle's six unknowns. These rows
+//! are what eq. (6)'s schematic `P = [2G 0; sqrt2 G sqrt2 G; 0 2G]` stands for (the middle
+//! row takes the y-derivative of `U1` and the x-derivative of `U2`, not `G` twice), each
+//! weighted by `sqrt(A_f)`: `K = P^T P`, the matrix of eq. (7) without the handles.
 //!
 //! The pattern (a 2 x 2 block for every vertex and every pair of vertices sharing an
-//! edge) is fixed by the mesh; values depend on the current positions and are recomputed
-//! every frame by [`KillingMatrix::assemble`] without allocating.
+//! edge) is fixed by the mesh; values depend on the current positions (the paper's `G` is
+//! the current mesh's, so `K` changes every frame and its pattern never does, Section 3.1)
+//! and are recomputed every frame by [`KillingMatrix::assemble`] without allocating.
 
 use sprs::CsMat;
 
+use crate::deform::pattern::BlockPattern;
 use crate::geometry::{binary_exponent, in_comfortable_range, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
@@ -32,55 +37,28 @@ pub struct KillingMatrix {
 impl KillingMatrix {
     /// Builds the pattern for a mesh (values are zero until [`Self::assemble`]).
     pub fn new(mesh: &Mesh) -> Self {
-        let n = mesh.vertex_count();
         // Column 2v and 2v + 1 hold rows 2w, 2w + 1 for w in N(v) and v itself, ascending.
-        let mut indptr = Vec::with_capacity(2 * n + 1);
-        let mut indices = Vec::new();
-        indptr.push(0);
-        let mut block_rows: Vec<u32> = Vec::new();
-        let mut block_start = Vec::with_capacity(n + 1);
-        block_start.push(0);
-        for v in 0..n {
-            let mut rows: Vec<u32> = mesh.neighbors(v).to_vec();
-            rows.push(v as u32);
-            rows.sort_unstable();
-            for _ in 0..2 {
-                for &w in &rows {
-                    indices.push(2 * w as usize);
-                    indices.push(2 * w as usize + 1);
-                }
-                indptr.push(indices.len());
-            }
-            block_rows.extend_from_slice(&rows);
-            block_start.push(block_rows.len());
-        }
-        let nnz = indices.len();
-        let matrix = CsMat::new_csc((2 * n, 2 * n), indptr, indices, vec![0.0; nnz]);
-
-        let slot = |row: u32, col: u32| -> [usize; 2] {
-            let list = &block_rows[block_start[col as usize]..block_start[col as usize + 1]];
-            let pos = list.binary_search(&row).expect("triangle vertices are neighbours");
-            let first = matrix.indptr().index(2 * col as usize);
-            let second = matrix.indptr().index(2 * col as usize + 1);
-            [first + 2 * pos, second + 2 * pos]
-        };
-        let slots = mesh
-            .triangles()
-            .iter()
-            .map(|t| {
+        let pattern = BlockPattern::new(mesh, 2);
+        let slots = pattern
+            .triangle_slots(mesh)
+            .into_iter()
+            .zip(mesh.triangles())
+            .map(|(first, t)| {
                 let mut s = [[0; 2]; 9];
-                for i in 0..3 {
-                    for j in 0..3 {
-                        s[3 * i + j] = slot(t[i], t[j]);
-                    }
+                for (k, (slot, &first)) in s.iter_mut().zip(&first).enumerate() {
+                    // The block's entries in column 2 v_j, then in column 2 v_j + 1.
+                    *slot = [first, first + pattern.column_length(t[k % 3] as usize)];
                 }
                 s
             })
             .collect();
+        let nnz = pattern.nnz();
+        let matrix = pattern.matrix(vec![0.0; nnz]);
         Self { matrix, triangles: mesh.triangles().to_vec(), slots }
     }
 
-    /// Recomputes the values for vertex positions `positions` (same vertex count as the
+    /// Recomputes the values, `K = P^T P` of eqs. (6)-(7), for vertex positions `positions`
+    /// (same vertex count as the
     /// mesh). Any positions will do: each triangle's energy is weighted by its unsigned area
     /// (the integral of a square over it), so the matrix is positive semidefinite for flipped
     /// triangles too, and no triangle counts as thinner than [`SLIVER_LIMIT`] (see there), so

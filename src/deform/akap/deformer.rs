@@ -1,142 +1,41 @@
-//! The As-Killing-As-Possible deformer (Solomon et al. 2011, Section 3).
+//! The As-Killing-As-Possible deformer (Solomon et al. 2011, Sections 2 and 3).
 //!
 //! Each step, with handle velocities `u_i` at handle points `h_i`:
-//! 1. (eq. 3) `U0 = argmin E_K(U) + lambda sum_i |U(h_i) - u_i|^2`, i.e. the SPD system
-//!    `(K + lambda sum_i W_i^T W_i) U0 = lambda sum_i W_i^T u_i`, where `W_i` blends the
-//!    vertex values of the handle's triangle with its barycentric weights;
-//! 2. (eq. 4) `U = argmin E_K(U)` with `U = U0` on the boundary: `K_II U_I = -K_IB U0_B`
-//!    over the interior unknowns (skipped when switched off or when no vertex is interior);
-//! 3. (eqs. 14-16, corrected) every vertex moves along the logarithmic spirals fitted to
-//!    its edges ([`super::spiral`]), or by `U` itself with the linear integrator.
+//! 1. (eq. (3), discretised as eqs. (5)-(7)) `U0 = argmin E_K(U) + lambda sum_i |U(h_i) - u_i|^2`,
+//!    i.e. the SPD system `(K + lambda sum_i W_i^T W_i) U0 = lambda sum_i W_i^T u_i`, where
+//!    `W_i` blends the vertex values of the handle's triangle with its barycentric weights
+//!    (eq. (7) has vertex handles, `W_i` rows of the identity; lambda is eq. (3)'s, the
+//!    square of eqs. (5)-(7)'s);
+//! 2. (eq. (4), discretised as eq. (8)) `U = argmin E_K(U)` with `U = U0` on the boundary:
+//!    `K_II U_I = -K_IB U0_B` over the interior unknowns (skipped when switched off or when
+//!    no vertex is interior);
+//! 3. (eqs. (13)-(16), eq. (15) corrected) every vertex moves along the logarithmic spirals
+//!    fitted to its edges ([`super::spiral`]), or by `U` itself with the linear integrator.
 //!
-//! `K` ([`KillingMatrix`]) depends on the current positions, so both systems are factored
-//! anew every step, but their patterns are fixed by the mesh (a barycentric handle only
-//! touches blocks of one triangle, which exist already): orderings and symbolic analyses
-//! run once, in [`Deformer::new`]. Handles can change between any two steps. Buffers are
-//! sized when the mesh or the handle set changes; [`Deformer::step`] allocates nothing.
-//! A step that fails (a pivot that is not positive, a non-finite result) leaves the
-//! deformer as it was.
+//! `K` ([`KillingMatrix`], eqs. (2) and (6)) depends on the current positions, so both
+//! systems are factored anew every step, but their patterns are fixed by the mesh (a
+//! barycentric handle only touches blocks of one triangle, which exist already): orderings
+//! and symbolic analyses run once, in [`Deformer::new`]. Handles can change between any two
+//! steps. Buffers are sized when the mesh or the handle set changes; [`Deformer::step`]
+//! allocates nothing. A step that fails (a pivot that is not positive, a non-finite result)
+//! leaves the deformer as it was.
 
-use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use sprs::CsMat;
 
-pub use super::error::DeformError;
-use super::error::{check_pose, check_velocities, in_range, out_of_memory};
-use super::handles;
 use super::killing::KillingMatrix;
-use super::method::Orders;
-use super::metrics::{metrics, Metrics};
 use super::spiral::{linear_step, spiral_step};
+use crate::deform::error::{out_of_memory, DeformError};
+use crate::deform::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
+use crate::deform::method::{default_clock, Build, Clock, Deform, Orders, Timings};
+use crate::deform::metrics::{metrics, Metrics};
+use crate::deform::options::{DeformerOptions, Integrator, Method, MethodOptions, LAMBDA_RANGE};
 use crate::geometry::{in_comfortable_range, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
-use crate::sparse::{
-    amf_order, cheaper_order, expand_blocks, nested_dissection_order, Numeric, Ordering, Symbolic, DISSECTION_MIN_NODES,
-};
+use crate::sparse::{dissection_if_large, expand_blocks, fill_or_dissection, Numeric, Ordering, Symbolic};
 
 const NONE: usize = usize::MAX;
-
-/// How vertices follow the velocity field.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Integrator {
-    /// Along logarithmic spirals (the paper's method; reproduces rigid motions exactly).
-    #[default]
-    Spiral,
-    /// Straight along the velocity, `p <- p + U` (the paper's ablation; dilates rotations).
-    Linear,
-}
-
-/// The values [`DeformerOptions::lambda`] may take: 1e-6 to 1e10.
-///
-/// lambda weighs the handle penalties against the Killing energy, whose matrix entries are
-/// dimensionless: a few units per vertex (about 1 to 10; up to 1e6 on slivers, see
-/// [`super::killing::SLIVER_LIMIT`]) whatever the mesh's size, scale or resolution, since
-/// the energy of a triangle is its area times squared gradients. So the range is absolute.
-/// Both ends are where rounding starts to show, measured on the gingerbread figure (786 to
-/// 32,447 vertices, two handles, one step compared with the steps at ten times and a tenth
-/// the lambda):
-/// - below, the penalty drowns in the rounding of K (1e-16 of its entries, summed over the
-///   vertices): the rigid motions, which cost no energy, are pinned by lambda alone. At 1e-8
-///   the field carries noise of 2e-5 (786 vertices) to 5e-4 (32k) of its size, at 1e-6 of
-///   1e-6 to 5e-6, and near 1e-14 the factorisation fails;
-/// - above, step 2's right-hand side, `lambda (u - W U0)`, is a difference of nearly equal
-///   velocities times lambda: relative noise of about 2e-18 lambda (2e-8 at 1e10, 6e-7 at
-///   1e12, 1e-2 at 1e16), and at 1e308 the penalties overflow.
-pub const LAMBDA_RANGE: RangeInclusive<f64> = 1e-6..=1e10;
-
-/// Deformer settings, with builders.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DeformerOptions {
-    /// Weight of the soft handle constraints of step 1, in [`LAMBDA_RANGE`] (1e-6 to 1e10;
-    /// default 100).
-    pub lambda: f64,
-    /// Whether step 2 (the Dirichlet re-solve) runs.
-    pub dirichlet: bool,
-    /// How vertices move.
-    pub integrator: Integrator,
-}
-
-impl Default for DeformerOptions {
-    fn default() -> Self {
-        Self { lambda: 100.0, dirichlet: true, integrator: Integrator::Spiral }
-    }
-}
-
-impl DeformerOptions {
-    /// Sets lambda.
-    pub fn with_lambda(mut self, lambda: f64) -> Self {
-        self.lambda = lambda;
-        self
-    }
-    /// Switches the Dirichlet step on or off.
-    pub fn with_dirichlet(mut self, on: bool) -> Self {
-        self.dirichlet = on;
-        self
-    }
-    /// Sets the integrator.
-    pub fn with_integrator(mut self, integrator: Integrator) -> Self {
-        self.integrator = integrator;
-        self
-    }
-}
-
-/// Milliseconds spent in each stage of the last step.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Timings {
-    /// Assembling the Killing matrix and both systems.
-    pub assembly: f64,
-    /// Numeric factorisations (both systems).
-    pub factorisation: f64,
-    /// The part of `factorisation` spent on step 2's system (the Dirichlet re-solve).
-    pub dirichlet_factorisation: f64,
-    /// Triangular solves (both systems).
-    pub solve: f64,
-    /// Moving the vertices.
-    pub integration: f64,
-}
-
-/// A clock in milliseconds, for [`Timings`].
-pub type Clock = fn() -> f64;
-
-pub(crate) fn default_clock() -> f64 {
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
-        START.get_or_init(std::time::Instant::now).elapsed().as_secs_f64() * 1e3
-    }
-    #[cfg(target_arch = "wasm32")]
-    {
-        0.0
-    }
-}
-
-/// A handle: a point of the mesh given by a triangle's vertices and barycentric weights.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Handle {
-    vertices: [u32; 3],
-    weights: [f64; 3],
-}
 
 /// A sparse SPD system on the Killing matrix's values, with its factor.
 #[derive(Debug, Clone)]
@@ -185,7 +84,7 @@ pub struct Deformer {
     dirichlet: Option<System>,
     /// Interior vertex index of each vertex, or `NONE` on the boundary.
     interior_index: Vec<usize>,
-    handles: Vec<Handle>,
+    handles: Vec<HandlePoint>,
     /// Per handle, for each of its 9 vertex pairs, the two diagonal slots of the block.
     penalty_slots: Vec<[[usize; 2]; 9]>,
     distinct_points: usize,
@@ -217,26 +116,17 @@ impl Deformer {
     /// flops either way, at no cost). `systems[0]` orders every vertex (step 1),
     /// `systems[1]` the interior vertices, numbered in vertex order (step 2).
     pub fn orders(mesh: &Mesh) -> Orders {
-        let n = mesh.vertex_count();
-        let (ptr, adj) = vertex_graph(mesh, |_| true);
-        let dissection = (n >= DISSECTION_MIN_NODES).then(|| nested_dissection_order(&ptr, &adj, mesh.positions()));
-        let choose = |ptr: &[usize], adj: &[usize], dissection: Option<Vec<usize>>| {
-            let by_fill = amf_order(ptr.len() - 1, ptr, adj);
-            match dissection {
-                Some(order) => cheaper_order(ptr, adj, 2, by_fill, order),
-                None => by_fill,
-            }
-        };
-        let soft = choose(&ptr, &adj, dissection.clone());
+        let (ptr, adj) = mesh.vertex_graph();
+        let dissection = dissection_if_large(&ptr, &adj, mesh.positions());
+        let soft = fill_or_dissection(&ptr, &adj, 2, dissection.clone());
         let (interior_index, interior_count) = interior_numbering(mesh);
         let interior = if interior_count == 0 {
             Vec::new()
         } else {
-            let (ptr, adj) = vertex_graph(mesh, |v| interior_index[v] != NONE);
-            let (ptr, adj) = renumber(&ptr, &adj, &interior_index);
+            let (ptr, adj) = mesh.relabelled_vertex_graph(&interior_index);
             let interior_dissection =
                 dissection.map(|order| order.iter().map(|&v| interior_index[v]).filter(|&i| i != NONE).collect());
-            choose(&ptr, &adj, interior_dissection)
+            fill_or_dissection(&ptr, &adj, 2, interior_dissection)
         };
         Orders { systems: vec![soft, interior] }
     }
@@ -246,10 +136,7 @@ impl Deformer {
     /// permutations of the right sizes are refused ([`DeformError::OrdersMismatch`]).
     pub fn with_orders(mesh: Mesh, options: DeformerOptions, orders: &Orders) -> Result<Self, DeformError> {
         check_options(&options)?;
-        let components = mesh.connected_components();
-        if components != 1 {
-            return Err(DeformError::Disconnected { components });
-        }
+        check_connected(&mesh)?;
         let n = mesh.vertex_count();
         let (interior_index, interior_count) = interior_numbering(&mesh);
         orders.check(&[n, interior_count])?;
@@ -311,20 +198,18 @@ impl Deformer {
 
     /// Puts one handle on each of these vertices (replacing any handles).
     pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        let points = handles::at_vertices(&self.mesh, vertices)?;
-        self.install(points.iter().map(|p| Handle { vertices: p.vertices, weights: p.weights }).collect());
+        self.install(handles::at_vertices(&self.mesh, vertices)?);
         Ok(())
     }
 
     /// Puts handles at points inside triangles, given by triangle index and barycentric
     /// coordinates (replacing any handles).
     pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        let points = handles::in_triangles(&self.mesh, triangles, barycentric)?;
-        self.install(points.iter().map(|p| Handle { vertices: p.vertices, weights: p.weights }).collect());
+        self.install(handles::in_triangles(&self.mesh, triangles, barycentric)?);
         Ok(())
     }
 
-    fn install(&mut self, handles: Vec<Handle>) {
+    fn install(&mut self, handles: Vec<HandlePoint>) {
         self.penalty_slots = handles
             .iter()
             .map(|h| {
@@ -341,28 +226,13 @@ impl Deformer {
                 slots
             })
             .collect();
-        let scale = self.scale();
-        let points: Vec<Point> = handles.iter().map(|h| self.point_of(h)).collect();
+        let points: Vec<Point> = handles.iter().map(|h| h.position(&self.positions)).collect();
         // Two handle points closer than 1e-12 of the shape's size are one point.
-        self.distinct_points = handles::distinct_points(&points, 1e-12 * scale);
+        self.distinct_points = handles::distinct_points(&points, 1e-12 * diagonal(&self.positions));
         self.boundary_handles_only = handles.iter().all(|h| {
             h.vertices.iter().zip(h.weights).all(|(&v, w)| w == 0.0 || self.mesh.is_boundary_vertex(v as usize))
         });
         self.handles = handles;
-    }
-
-    fn scale(&self) -> f64 {
-        let (lo, hi) = crate::geometry::bounding_box(self.positions.iter().copied()).expect("mesh has vertices");
-        (hi[0] - lo[0]).hypot(hi[1] - lo[1])
-    }
-
-    fn point_of(&self, h: &Handle) -> Point {
-        let mut p = [0.0, 0.0];
-        for (v, w) in h.vertices.iter().zip(h.weights) {
-            p[0] += w * self.positions[*v as usize][0];
-            p[1] += w * self.positions[*v as usize][1];
-        }
-        p
     }
 
     /// Number of handles.
@@ -372,7 +242,7 @@ impl Deformer {
 
     /// Current positions of the handle points.
     pub fn handle_positions(&self) -> Vec<Point> {
-        self.handles.iter().map(|h| self.point_of(h)).collect()
+        self.handles.iter().map(|h| h.position(&self.positions)).collect()
     }
 
     /// One deformation step with a velocity per handle (in handle order).
@@ -422,7 +292,8 @@ impl Deformer {
         Ok(())
     }
 
-    /// Steps 1 and 2 into `next_soft` and `next_field`.
+    /// Steps 1 (eq. (7), with the handles' penalties) and 2 (eq. (8)) into `next_soft` and
+    /// `next_field`.
     ///
     /// The systems are linear in the velocities, so velocities outside the comfortable range
     /// (about 1e-75 to 1e75) are scaled by the power of two `2^e` that brings the largest
@@ -569,6 +440,69 @@ impl Deformer {
     }
 }
 
+impl Deform for Deformer {
+    fn method_options(&self) -> MethodOptions {
+        MethodOptions::Akap(self.options())
+    }
+    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
+        match options {
+            MethodOptions::Akap(options) => self.set_options(options),
+            other => Err(DeformError::WrongMethod { current: Method::Akap, given: other.method() }),
+        }
+    }
+    fn set_clock(&mut self, clock: Clock) {
+        Deformer::set_clock(self, clock);
+    }
+    fn mesh(&self) -> &Mesh {
+        Deformer::mesh(self)
+    }
+    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        Deformer::set_handle_vertices(self, vertices)
+    }
+    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        Deformer::set_handle_points(self, triangles, barycentric)
+    }
+    fn handle_count(&self) -> usize {
+        Deformer::handle_count(self)
+    }
+    fn handle_positions(&self) -> Vec<Point> {
+        Deformer::handle_positions(self)
+    }
+    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+        Deformer::step(self, velocities)
+    }
+    fn positions(&self) -> &[Point] {
+        Deformer::positions(self)
+    }
+    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
+        Deformer::set_positions(self, positions)
+    }
+    fn field(&self) -> &[[f64; 2]] {
+        Deformer::field(self)
+    }
+    fn soft_field(&self) -> &[[f64; 2]] {
+        Deformer::soft_field(self)
+    }
+    fn metrics(&self) -> Metrics {
+        Deformer::metrics(self)
+    }
+    fn timings(&self) -> Timings {
+        Deformer::timings(self)
+    }
+    fn reset(&mut self) {
+        Deformer::reset(self);
+    }
+}
+
+impl Build for DeformerOptions {
+    fn orders(&self, mesh: &Mesh) -> Orders {
+        Deformer::orders(mesh)
+    }
+    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
+        Ok(Box::new(Deformer::with_orders(mesh, self, orders)?))
+    }
+}
+
 fn check_options(options: &DeformerOptions) -> Result<(), DeformError> {
     if !LAMBDA_RANGE.contains(&options.lambda) {
         return Err(DeformError::InvalidOption {
@@ -594,22 +528,6 @@ fn as_pairs(flat: &[f64]) -> &[[f64; 2]] {
     let (pairs, rest) = flat.as_chunks::<2>();
     debug_assert!(rest.is_empty());
     pairs
-}
-
-/// The vertex adjacency of the vertices that `keep`, in CSR form (indices still global).
-pub(crate) fn vertex_graph(mesh: &Mesh, keep: impl Fn(usize) -> bool) -> (Vec<usize>, Vec<usize>) {
-    let mut ptr = vec![0];
-    let mut adj = Vec::new();
-    for v in (0..mesh.vertex_count()).filter(|&v| keep(v)) {
-        adj.extend(mesh.neighbors(v).iter().map(|&w| w as usize).filter(|&w| keep(w)));
-        ptr.push(adj.len());
-    }
-    (ptr, adj)
-}
-
-/// Renumbers global vertex indices in an adjacency list through `index`.
-fn renumber(ptr: &[usize], adj: &[usize], index: &[usize]) -> (Vec<usize>, Vec<usize>) {
-    (ptr.to_vec(), adj.iter().map(|&w| index[w]).collect())
 }
 
 /// Each vertex's index among the interior vertices (`NONE` on the boundary), and their number.

@@ -1,12 +1,43 @@
-//! Moving vertices along a velocity field: the paper's logarithmic-spiral step (eqs. 14-16,
-//! with the sign of eq. (15) corrected, see `shared/papers/README.md`) and the plain linear
-//! step it is compared with.
+//! Moving vertices along a velocity field: the paper's logarithmic-spiral step (Section
+//! 2.3, eqs. (13)-(16), with the sign of eq. (15) corrected as derived below) and the plain
+//! linear step `p <- p + U` it is compared with (Figure 8).
 //!
-//! In complex numbers, the spiral through `p_v` whose velocity field `U(p) = s (p - c)`
-//! matches `U_v` at `p_v` and `U_w` at `p_w` has `s = (U_v - U_w) / (p_v - p_w)`; following
-//! it for unit time moves `p_v` to `p_v + U_v (e^s - 1) / s`. Each vertex takes the mean of
-//! that factor over its edge neighbours. For a Killing field `U = a i (p - c) + d` every `s`
-//! equals `a i`, so the step is exactly the rotation by `a` about the field's centre.
+//! Points are complex numbers here, `(x, y) = x + iy`.
+//!
+//! **The fields fitted to an edge (eq. (13)).** A linear holomorphic field is
+//! `U(p) = s (p - c)` with complex `s != 0` (a rotation by `arg s` and a scaling by `|s|`
+//! about the centre `c`), or a constant `U(p) = d` (a translation). Its flow from `p` is
+//! the logarithmic spiral (eq. (14)) `gamma(t) = c + e^(s t) (p - c)`: it starts at `p` and
+//! `gamma'(t) = s (gamma(t) - c) = U(gamma(t))`.
+//!
+//! **Eq. (15), corrected.** For an edge from `p_v` to `p_w` with field values `u_v`, `u_w`,
+//! the field `s (p - c)` that takes both values has, subtracting the two conditions,
+//! `s = (u_v - u_w) / (p_v - p_w)` (as the paper says), and from `s (p_v - c) = u_v` the
+//! centre `c = p_v - u_v / s`. The paper prints `c = p_1 + u_1 / s`: with it, `U(p_1)` would
+//! be `-u_1`, so the spiral would run backwards. Putting the correct centre into eq. (14) at
+//! `t = 1`:
+//!
+//! `gamma(1) = c + e^s (p_v - c) = p_v + (e^s - 1)(p_v - c) = p_v + u_v (e^s - 1) / s`,
+//!
+//! since `p_v - c = u_v / s`. The centre is gone: each edge gives vertex `v` the complex
+//! factor `(e^s - 1) / s` on its velocity, and eq. (16), the mean of `gamma(1)` over `v`'s
+//! `d(v)` edge neighbours `w`, becomes
+//!
+//! `p_v,new = p_v + u_v * (1 / d(v)) sum_w (e^(s_vw) - 1) / s_vw`.
+//!
+//! `(e^s - 1) / s` tends to 1 as `s -> 0`, where the spiral becomes the translation
+//! `p + u`: computed by its power series for small `|s|` ([`exp_ratio`]), the translations
+//! (`u_v = u_w`) need no case of their own, and nearly translational edges, whose centres
+//! fly off to infinity, are accurate (which is why the paper averages positions, not
+//! centres). `s` is the same seen from either end of an edge, so each edge's factor is
+//! computed once.
+//!
+//! **Rigid motions (Appendix A).** For a Killing field `U(p) = a i (p - c) + d` (an
+//! infinitesimal rotation by `a` plus a translation) every edge has `s = a i`, so every
+//! vertex moves by the same factor: `p + U(p) (e^(ia) - 1) / (ia)`, exactly the rotation by
+//! `a` about the field's centre `c + i d / a`. (The chord of a finite rotation,
+//! `(e^(ia) - 1)(p - c)`, is not a Killing field, so it is the velocities `a i (p - c) + d`
+//! that are reproduced exactly, not given displacements.)
 
 use crate::geometry::{binary_exponent, scale_by_power_of_two, Point};
 
@@ -24,7 +55,8 @@ const SERIES: [f64; 13] = {
     c
 };
 
-/// `(e^s - 1) / s` for a complex `s = [re, im]`, accurate for all `s` (1 at `s = 0`).
+/// `(e^s - 1) / s` for a complex `s = [re, im]`, accurate for all `s` (1 at `s = 0`): the
+/// factor of a vertex's velocity along the spiral of one of its edges at `t = 1`.
 ///
 /// Per-frame fields are small, so most `s` are well inside the series' radius, where
 /// Horner's rule costs a dozen complex multiply-adds instead of five transcendental calls.
@@ -83,7 +115,8 @@ fn div(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [(a[0] * b[0] + a[1] * b[1]) / d, (a[1] * b[0] - a[0] * b[1]) / d]
 }
 
-/// The spiral step: writes the new position of every vertex into `out`. Neighbours of `v`
+/// The spiral step, eq. (16) with eq. (15) corrected (see the module documentation): writes
+/// the new position of every vertex into `out`. Neighbours of `v`
 /// are `neighbors(v)`; `field[v]` is the velocity of vertex v. `sums` (one per vertex: the
 /// factors' sum and their count) is scratch. `s` is the same seen from either end of an edge, so each edge's factor is
 /// computed once, for its lower-numbered end, and added to both ends.
@@ -124,7 +157,7 @@ pub fn spiral_step<'a>(
     }
 }
 
-/// The linear step `p <- p + U`.
+/// The linear step `p <- p + U` (the paper's ablation in Figure 8).
 pub fn linear_step(positions: &[Point], field: &[[f64; 2]], out: &mut [Point]) {
     for ((o, p), u) in out.iter_mut().zip(positions).zip(field) {
         *o = [p[0] + u[0], p[1] + u[1]];

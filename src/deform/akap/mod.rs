@@ -1,0 +1,16 @@
+//! As-Killing-As-Possible vector fields for planar deformation (Solomon, Ben-Chen,
+//! Butscher and Guibas, SGP 2011), in three files:
+//!
+//! - [`killing`]: the Killing energy `E_K(U) = U^T K U` of a piecewise-linear field, eq. (6),
+//!   as a matrix with a fixed pattern and values per frame;
+//! - [`deformer`]: the [`Deformer`]: handles, step 1 (soft constraints, eq. (3)), step 2
+//!   (Dirichlet re-solve, eq. (4)), and the move; its options are
+//!   [`super::DeformerOptions`];
+//! - [`spiral`]: the move along logarithmic spirals, eqs. (14)-(16) with eq. (15)'s sign
+//!   corrected (derived in its documentation), and the linear move.
+
+pub mod deformer;
+pub mod killing;
+pub mod spiral;
+
+pub use deformer::Deformer;

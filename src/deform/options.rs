@@ -1,0 +1,191 @@
+//! The deformation methods and their settings: the list of methods (`methods!`, one line
+//! each), the [`Method`] and [`MethodOptions`] enums made from it, and each method's options
+//! with their ranges. Plain data: nothing here knows a deformer, so every file of
+//! `deform` can use it (the `Deform` trait returns [`MethodOptions`]; the deformers implement
+//! that trait).
+
+use std::fmt;
+use std::ops::RangeInclusive;
+
+/// The list of methods, one line each: `Variant("name", Options)`, after the documentation
+/// of the [`Method`] variant. `methods!(callback)` hands the list to `callback!`, which
+/// writes whatever needs a case per method: the enums below, and
+/// [`MethodOptions::build_with_orders`]'s dispatch in `method.rs` (through the `Build`
+/// trait each options type implements beside its deformer).
+macro_rules! methods {
+    ($callback:ident) => {
+        $callback! {
+            /// As-Killing-As-Possible vector fields (the paper).
+            Akap("akap", DeformerOptions),
+            /// As-rigid-as-possible local/global iterations.
+            Arap("arap", ArapOptions),
+        }
+    };
+}
+pub(crate) use methods;
+
+/// Writes [`Method`], [`MethodOptions`] and their cases from the list.
+macro_rules! method_enums {
+    ($($(#[$doc:meta])* $variant:ident($name:literal, $options:ident),)*) => {
+        /// The deformation methods.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum Method {
+            $($(#[$doc])* $variant,)*
+        }
+
+        impl Method {
+            /// The name the JavaScript API and sessions use: `"akap"` or `"arap"`.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Self::$variant => $name,)*
+                }
+            }
+        }
+
+        /// A method with its settings.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum MethodOptions {
+            $(#[doc = concat!("`", $name, "` with these options.")] $variant($options),)*
+        }
+
+        impl MethodOptions {
+            /// Which method.
+            pub fn method(&self) -> Method {
+                match self {
+                    $(Self::$variant(_) => Method::$variant,)*
+                }
+            }
+        }
+    };
+}
+
+methods!(method_enums);
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Default for MethodOptions {
+    fn default() -> Self {
+        Self::Akap(DeformerOptions::default())
+    }
+}
+
+/// How AKAP's vertices follow the velocity field.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Integrator {
+    /// Along logarithmic spirals (the paper's method, eqs. (14)-(16); reproduces rigid
+    /// motions exactly).
+    #[default]
+    Spiral,
+    /// Straight along the velocity, `p <- p + U` (the paper's ablation; dilates rotations).
+    Linear,
+}
+
+/// The values [`DeformerOptions::lambda`] may take: 1e-6 to 1e10.
+///
+/// lambda weighs the handle penalties (eq. (3)) against the Killing energy, whose matrix
+/// entries are dimensionless: a few units per vertex (about 1 to 10; up to 1e6 on slivers,
+/// see [`super::akap::killing::SLIVER_LIMIT`]) whatever the mesh's size, scale or
+/// resolution, since the energy of a triangle is its area times squared gradients. So the
+/// range is absolute. Both ends are where rounding starts to show, measured on the
+/// gingerbread figure (786 to 32,447 vertices, two handles, one step compared with the steps
+/// at ten times and a tenth the lambda):
+/// - below, the penalty drowns in the rounding of K (1e-16 of its entries, summed over the
+///   vertices): the rigid motions, which cost no energy, are pinned by lambda alone. At 1e-8
+///   the field carries noise of 2e-5 (786 vertices) to 5e-4 (32k) of its size, at 1e-6 of
+///   1e-6 to 5e-6, and near 1e-14 the factorisation fails;
+/// - above, step 2's right-hand side, `lambda (u - W U0)`, is a difference of nearly equal
+///   velocities times lambda: relative noise of about 2e-18 lambda (2e-8 at 1e10, 6e-7 at
+///   1e12, 1e-2 at 1e16), and at 1e308 the penalties overflow.
+pub const LAMBDA_RANGE: RangeInclusive<f64> = 1e-6..=1e10;
+
+/// AKAP's settings ([`super::Deformer`]), with builders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeformerOptions {
+    /// Weight of the soft handle constraints of step 1, in [`LAMBDA_RANGE`] (1e-6 to 1e10;
+    /// default 100).
+    pub lambda: f64,
+    /// Whether step 2 (the Dirichlet re-solve, eq. (4)) runs.
+    pub dirichlet: bool,
+    /// How vertices move.
+    pub integrator: Integrator,
+}
+
+impl Default for DeformerOptions {
+    fn default() -> Self {
+        Self { lambda: 100.0, dirichlet: true, integrator: Integrator::Spiral }
+    }
+}
+
+impl DeformerOptions {
+    /// Sets lambda.
+    pub fn with_lambda(mut self, lambda: f64) -> Self {
+        self.lambda = lambda;
+        self
+    }
+    /// Switches the Dirichlet step on or off.
+    pub fn with_dirichlet(mut self, on: bool) -> Self {
+        self.dirichlet = on;
+        self
+    }
+    /// Sets the integrator.
+    pub fn with_integrator(mut self, integrator: Integrator) -> Self {
+        self.integrator = integrator;
+        self
+    }
+}
+
+/// The most local/global iterations an ARAP step may run at a fixed count (`tolerance` 0),
+/// the `iterations` option's maximum in Rust and JavaScript alike, so that one step's work
+/// stays bounded: each iteration costs about a solve (0.12 ms natively at 1,089
+/// vertices, growing like n log n), so 1000 of them take about 0.12 s there. That is far
+/// more than a frame needs: iterations converge linearly, each step starts from the last
+/// pose, and the widget runs 10. Convergence runs ([`ArapOptions::until_converged`],
+/// [`super::ArapDeformer::iterate`]) stop when converged and take a larger count.
+pub const MAX_ITERATIONS: usize = 1000;
+
+/// The most iterations an ARAP convergence run (a `tolerance` above 0:
+/// [`ArapOptions::until_converged`], [`super::ArapDeformer::iterate`]) may be allowed: it
+/// stops when converged, but a tolerance finer than rounding never is, and a step must end.
+pub const MAX_CONVERGENCE_ITERATIONS: usize = 1_000_000;
+
+/// ARAP's settings ([`super::ArapDeformer`]), with builders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArapOptions {
+    /// Local/global iterations per step (at most): from 1 to [`MAX_ITERATIONS`] when
+    /// `tolerance` is 0, to [`MAX_CONVERGENCE_ITERATIONS`] with a tolerance.
+    pub iterations: usize,
+    /// A step stops early once an iteration moves no vertex further than `tolerance`
+    /// times the rest shape's bounding-box diagonal (0: always run `iterations`), from 0
+    /// to 1 (a move as large as the shape is no convergence). With a tolerance,
+    /// `iterations` only bounds a step and may exceed [`MAX_ITERATIONS`] (for converged
+    /// poses in tests and `examples/compare`).
+    pub tolerance: f64,
+}
+
+impl Default for ArapOptions {
+    fn default() -> Self {
+        Self { iterations: 10, tolerance: 0.0 }
+    }
+}
+
+impl ArapOptions {
+    /// Sets the number of iterations per step (1 to [`MAX_ITERATIONS`]).
+    pub fn with_iterations(mut self, iterations: usize) -> Self {
+        self.iterations = iterations;
+        self
+    }
+
+    /// Iterates until an iteration moves no vertex further than `tolerance` times the
+    /// shape's size, or `max_iterations` have run (for tests and final poses; with a
+    /// tolerance above 0, `max_iterations` may go beyond [`MAX_ITERATIONS`], to
+    /// [`MAX_CONVERGENCE_ITERATIONS`]).
+    pub fn until_converged(mut self, tolerance: f64, max_iterations: usize) -> Self {
+        self.tolerance = tolerance;
+        self.iterations = max_iterations;
+        self
+    }
+}
