@@ -689,7 +689,7 @@ fn sub(a: Point, b: Point) -> Point {
     [a[0] - b[0], a[1] - b[1]]
 }
 
-fn check_options(options: &ArapOptions) -> Result<(), DeformError> {
+pub(crate) fn check_options(options: &ArapOptions) -> Result<(), DeformError> {
     if !(0.0..=1.0).contains(&options.tolerance) {
         return Err(DeformError::InvalidOption {
             name: "tolerance",

@@ -569,7 +569,7 @@ impl Deformer {
     }
 }
 
-fn check_options(options: &DeformerOptions) -> Result<(), DeformError> {
+pub(crate) fn check_options(options: &DeformerOptions) -> Result<(), DeformError> {
     if !LAMBDA_RANGE.contains(&options.lambda) {
         return Err(DeformError::InvalidOption {
             name: "lambda",

@@ -61,6 +61,14 @@ impl MethodOptions {
         }
     }
 
+    /// Checks the settings' ranges, as building a deformer with them would.
+    pub fn check(&self) -> Result<(), DeformError> {
+        match self {
+            Self::Akap(options) => super::deformer::check_options(options),
+            Self::Arap(options) => super::arap::check_options(options),
+        }
+    }
+
     /// A deformer of this method for a connected mesh.
     pub fn build(self, mesh: Mesh) -> Result<Box<dyn Deform>, DeformError> {
         let orders = self.orders(&mesh);
