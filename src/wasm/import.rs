@@ -12,7 +12,7 @@ use crate::import::raster::{self, MaskMode, TraceOptions};
 use crate::import::svg::{self as svg_import, SvgOptions};
 use crate::import::vector::FillRule;
 use crate::import::warp::{self, PointMapper};
-use crate::mesh::{Mesh, MeshError};
+use crate::mesh::MeshError;
 
 fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, JsError> {
     let mut options = SvgOptions::default();
