@@ -61,6 +61,9 @@ pub const FORMAT: &str = "akap-session";
 pub const VERSION: u32 = 2;
 /// The oldest version this code reads.
 pub const OLDEST_VERSION: u32 = 1;
+/// The largest session text the bindings read, in bytes (80 MB: about a million frames of
+/// a few handles, or 20,000 frames of 100 handles).
+pub const MAX_BYTES: usize = 80_000_000;
 
 /// A recorded session.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -206,7 +206,7 @@ impl JsDeformer {
 /// Reads `{ method?, lambda?, dirichlet?, integrator?, iterations? }` over `base`, refusing
 /// unknown keys and options of the other method. A different `method` starts from that
 /// method's defaults.
-fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, JsError> {
+pub(super) fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, JsError> {
     const NAMES: [&str; 5] = ["method", "lambda", "dirichlet", "integrator", "iterations"];
     let given = entries(value, "deformer", &NAMES)?;
     let mut options = base;
