@@ -79,7 +79,8 @@ pub struct Session {
     /// The size of the recorded mesh, checked on replay, and the mesh itself when there is
     /// no `shape`.
     pub mesh: SessionMesh,
-    /// The method and options of the recording at its start.
+    /// The method and options of the recording at its start (left out: AKAP's defaults).
+    #[serde(default)]
     pub options: RecordedOptions,
     /// What happened, in order.
     pub events: Vec<Event>,

@@ -18,10 +18,14 @@ fn read_session(text: &JsValue) -> Result<Session, JsError> {
 }
 
 /// Reads a session (JSON text, version 1 or 2), checks everything that does not need its
-/// mesh (see `Session::check`), and returns it as version-2 JSON, one event per line.
+/// mesh (see `Session::check`), and returns it as version-2 JSON, one event per line, with
+/// every option of the recorded method in the header (`options` left out of a file are
+/// that method's defaults), so that a replay starts from them alone.
 #[wasm_bindgen(js_name = sessionJson)]
 pub fn session_json(text: JsValue) -> Result<String, JsError> {
-    Ok(read_session(&text)?.to_json())
+    let mut session = read_session(&text)?;
+    session.options = RecordedOptions::of(session.method_options().map_err(to_js)?);
+    Ok(session.to_json())
 }
 
 /// The mesh of a session (JSON text): its built-in shape triangulated again, or its inline

@@ -3,9 +3,9 @@
  * and how it was made (a built-in shape's name and triangulation, so sessions can rebuild
  * it exactly).
  */
-import { builtinShape, limits, meshFromArrays, triangulate, type MeshData, type Outline } from "../core.js";
+import { limits, triangulate, type MeshData, type Outline } from "../core.js";
 import type { VectorPath } from "../import.js";
-import type { Session, ShapeSpec } from "./session.js";
+import { sessionMesh, type Session, type ShapeSpec } from "./session.js";
 import { boxUvs, uniqueEdges } from "./geometry.js";
 import { bounds } from "./view.js";
 
@@ -83,31 +83,32 @@ export function shapeFromMesh(
   };
 }
 
-/** The shape a session needs: `current` if it is that shape, else rebuilt from the session. */
+/** The shape a session needs: `current` if it is that shape, else rebuilt by the core from the session. */
 export function sessionShape(session: Session, current: Shape): Shape {
-  const spec = session.shape;
+  const { shape: spec, mesh } = session.data;
   const now = current.spec;
   if (spec) {
     if (
       now &&
       now.name === spec.name &&
       now.targetEdgeLength === spec.targetEdgeLength &&
-      now.minAngle === spec.minAngle
+      now.minAngle === spec.minAngle &&
+      spec.maxArea === undefined
     ) {
       return current;
     }
-    const mesh = triangulate(builtinShape(spec.name), {
-      targetEdgeLength: spec.targetEdgeLength,
-      minAngle: spec.minAngle,
-      maxVertices: Math.min(4 * session.mesh.vertexCount + 1000, maxVertices()),
-    });
-    return shapeFromMesh(mesh, { ...spec });
+  } else if (!now && mesh.positions && mesh.triangles) {
+    const m = current.mesh;
+    if (sameArray(m.positions, mesh.positions) && sameArray(m.triangles, mesh.triangles)) return current;
   }
-  const { positions, triangles } = session.mesh;
-  if (!positions || !triangles) throw new Error("the session names no shape and carries no mesh");
-  const m = current.mesh;
-  if (!now && sameArray(m.positions, positions) && sameArray(m.triangles, triangles)) return current;
-  return shapeFromMesh(meshFromArrays(positions, triangles), undefined);
+  const rebuilt = sessionMesh(session);
+  const sameSpec = spec && spec.targetEdgeLength !== undefined && spec.minAngle !== undefined && !spec.maxArea;
+  return shapeFromMesh(
+    rebuilt,
+    sameSpec ? { name: spec.name, targetEdgeLength: spec.targetEdgeLength!, minAngle: spec.minAngle! } : undefined,
+    undefined,
+    spec?.name,
+  );
 }
 
 /** Area of an outline: the outer ring's less the holes'. */
