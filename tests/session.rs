@@ -424,3 +424,45 @@ fn options_of_the_other_method_and_bad_lengths_are_refused_on_reading() {
     let message = with(arap_lambda, "").unwrap_err().to_string();
     assert_eq!(message, "option lambda does not apply to method arap");
 }
+
+/// A session recorded in the app by `tests/browser/session.spec.ts` (two drags, a change
+/// to ARAP, a reset, one more drag), with the bits of the pose the app reached.
+const APP_RECORDED: &str = include_str!("sessions/app/app-recorded.json");
+const APP_POSE: &str = include_str!("sessions/app/app-recorded.pose.json");
+
+#[test]
+fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
+    let s = Session::from_json(APP_RECORDED).unwrap();
+    let kinds: Vec<&str> = s
+        .events
+        .iter()
+        .map(|e| match e {
+            Event::Handles { .. } => "handles",
+            Event::Step(_) => "step",
+            Event::Positions(_) => "positions",
+            Event::Options(_) => "options",
+            Event::Reset(_) => "reset",
+        })
+        .collect();
+    for kind in ["handles", "step", "options", "reset"] {
+        assert!(kinds.contains(&kind), "the recording has a {kind} event");
+    }
+    let pose: serde_json::Value = serde_json::from_str(APP_POSE).unwrap();
+    let expected: Vec<u64> = pose["bits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| u64::from_str_radix(b.as_str().unwrap(), 16).unwrap())
+        .collect();
+    assert_eq!(expected.len(), 2 * s.mesh.vertex_count);
+
+    let mut deformer = s.recorded_deformer().unwrap();
+    replay(&s, &mut deformer).unwrap();
+    // The recording switched to ARAP.
+    assert_eq!(deformer.method_options().method(), Method::Arap);
+    let found: Vec<u64> = deformer.positions().iter().flatten().map(|x| x.to_bits()).collect();
+    let differing = found.iter().zip(&expected).filter(|(a, b)| a != b).count();
+    assert_eq!(differing, 0, "{differing} of {} coordinates differ from the app's", expected.len());
+    // And the pose really moved from rest.
+    assert_ne!(deformer.positions(), s.mesh().unwrap().positions());
+}

@@ -353,7 +353,7 @@ impl Deformer {
 
     fn scale(&self) -> f64 {
         let (lo, hi) = crate::geometry::bounding_box(self.positions.iter().copied()).expect("mesh has vertices");
-        (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+        libm::hypot(hi[0] - lo[0], hi[1] - lo[1])
     }
 
     fn point_of(&self, h: &Handle) -> Point {

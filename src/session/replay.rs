@@ -145,7 +145,7 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
     if last_was_step {
         let goal = replay.targets.last().expect("a step was replayed");
         let handles = slot.get().handle_positions();
-        let total: f64 = handles.iter().zip(goal).map(|(p, t)| (p[0] - t[0]).hypot(p[1] - t[1])).sum();
+        let total: f64 = handles.iter().zip(goal).map(|(p, t)| libm::hypot(p[0] - t[0], p[1] - t[1])).sum();
         replay.handle_error = Some(if handles.is_empty() { 0.0 } else { total / handles.len() as f64 });
     }
     Ok(replay)
