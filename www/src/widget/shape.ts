@@ -101,14 +101,13 @@ export function sessionShape(session: Session, current: Shape): Shape {
     const m = current.mesh;
     if (sameArray(m.positions, mesh.positions) && sameArray(m.triangles, mesh.triangles)) return current;
   }
-  const rebuilt = sessionMesh(session);
-  const sameSpec = spec && spec.targetEdgeLength !== undefined && spec.minAngle !== undefined && !spec.maxArea;
-  return shapeFromMesh(
-    rebuilt,
-    sameSpec ? { name: spec.name, targetEdgeLength: spec.targetEdgeLength!, minAngle: spec.minAngle! } : undefined,
-    undefined,
-    spec?.name,
-  );
+  // A shape the widget could have made keeps its spec (so it can be re-meshed and recorded by name).
+  const { targetEdgeLength, minAngle } = spec ?? {};
+  const widgetSpec =
+    spec && targetEdgeLength !== undefined && minAngle !== undefined && spec.maxArea === undefined
+      ? { name: spec.name, targetEdgeLength, minAngle }
+      : undefined;
+  return shapeFromMesh(sessionMesh(session), widgetSpec, undefined, spec?.name);
 }
 
 /** Area of an outline: the outer ring's less the holes'. */
