@@ -466,3 +466,70 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
     // And the pose really moved from rest.
     assert_ne!(deformer.positions(), s.mesh().unwrap().positions());
 }
+
+/// The session bindings called inside wasm: what they write is the Rust format, and bad
+/// input (wrong types, throwing getters, events that do not fit) is a JavaScript `Error`.
+#[cfg(target_arch = "wasm32")]
+mod bindings {
+    use akap::session::Session;
+    use akap::wasm::{session_json, session_mesh, JsSessionRecorder};
+    use js_sys::{Float64Array, Uint32Array};
+    use wasm_bindgen::{JsCast, JsValue};
+    use wasm_bindgen_test::wasm_bindgen_test as test;
+
+    fn js(body: &str) -> JsValue {
+        js_sys::Function::new_no_args(body).call0(&JsValue::NULL).unwrap()
+    }
+
+    fn message(result: Result<impl Sized, wasm_bindgen::JsError>) -> String {
+        let Err(e) = result else { panic!("expected an error") };
+        let value = JsValue::from(e);
+        String::from(value.dyn_ref::<js_sys::Error>().expect("a JavaScript Error").message())
+    }
+
+    #[test]
+    fn session_json_and_session_mesh_read_through_the_rust_format() {
+        let v2 = session_json(JsValue::from_str(super::SESSIONS[0].1)).unwrap();
+        assert!(v2.contains("\"version\": 2,") && v2.contains("\"method\":\"akap\""));
+        assert_eq!(Session::from_json(&v2).unwrap().events, super::session("bar").events);
+        let mesh = session_mesh(JsValue::from_str(super::APP_RECORDED)).unwrap();
+        let expected = Session::from_json(super::APP_RECORDED).unwrap().mesh().unwrap();
+        assert_eq!(mesh.positions(), expected.positions().iter().flatten().copied().collect::<Vec<_>>());
+        assert_eq!(message(session_json(JsValue::from(42))), "the session must be a string, not the number 42");
+        assert!(message(session_json(JsValue::from_str("{"))).starts_with("not a valid session: EOF"));
+    }
+
+    #[test]
+    fn the_recorder_writes_what_the_reader_reads_and_refuses_what_does_not_fit() {
+        let (mesh, _) = super::bar_and_shear();
+        let positions: JsValue = Float64Array::from(&mesh.positions().concat()[..]).into();
+        let triangles: JsValue = Uint32Array::from(&mesh.triangles().concat()[..]).into();
+        let arap = js("return { method: 'arap', iterations: 3 }");
+        let mut r =
+            JsSessionRecorder::new(arap.clone(), JsValue::UNDEFINED, positions.clone(), triangles.clone()).unwrap();
+        r.handles(
+            Uint32Array::from(&[0u32, 5][..]).into(),
+            Float64Array::from(&[1.0, 0.0, 0.0, 0.2, 0.3, 0.5][..]).into(),
+        )
+        .unwrap();
+        r.step(Float64Array::from(&[0.0, -0.0, 0.01, 0.02][..]).into()).unwrap();
+        let bad_step = r.step(Float64Array::from(&[0.0, 0.0][..]).into());
+        assert_eq!(message(bad_step), "velocities has 2 numbers; 2 handles need 2 each");
+        let foreign = r.options(js("return { lambda: 5 }"));
+        assert_eq!(message(foreign), "option lambda applies to method \"akap\" only");
+        r.options(js("return { method: 'akap', lambda: 5 }")).unwrap();
+        r.reset();
+        assert_eq!(r.event_count(), 4);
+        let session = Session::from_json(&r.to_json().unwrap()).unwrap();
+        assert!(session.shape.is_none());
+        assert_eq!(session.mesh().unwrap().positions(), mesh.positions());
+        assert_eq!(session.events[1], akap::session::Event::Step(vec![0.0, -0.0, 0.01, 0.02]));
+        assert!(matches!(session.events[1], akap::session::Event::Step(ref v) if v[1].is_sign_negative()));
+
+        let dragon =
+            JsSessionRecorder::new(arap.clone(), js("return { name: 'dragon' }"), positions.clone(), triangles.clone());
+        assert!(message(dragon).starts_with("there is no built-in shape `dragon`"));
+        let throwing = js("return { get name() { throw new Error('boom'); } }");
+        assert!(message(JsSessionRecorder::new(arap, throwing, positions, triangles)).contains("boom"));
+    }
+}
