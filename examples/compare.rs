@@ -140,11 +140,16 @@ fn main() {
         let mut poses = vec![rest];
         labels.clear();
         labels.push("rest");
-        for variant in variants(session.deformer_options()) {
-            let result = if variant.options == MethodOptions::Akap(session.deformer_options()) {
+        let recorded_options = session.method_options().expect("as above");
+        let akap_options = match recorded_options {
+            MethodOptions::Akap(options) => options,
+            _ => DeformerOptions::default(),
+        };
+        for variant in variants(akap_options) {
+            let result = if variant.options == recorded_options {
                 let mut deformer = session.recorded_deformer().expect("as above");
                 let r = replay(&session, &mut deformer).expect("as above");
-                outcome(&deformer, &r)
+                outcome(deformer.as_ref(), &r)
             } else {
                 let mut deformer = variant.options.build(mesh.clone()).expect("a connected mesh");
                 let r = replay_to_targets(&session, &recording.targets, deformer.as_mut())

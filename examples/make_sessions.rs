@@ -18,7 +18,7 @@ use std::f64::consts::PI;
 
 use akap::deform::{Deformer, DeformerOptions};
 use akap::geometry::{distance, Point};
-use akap::session::{Event, MeshCounts, Session, ShapeSpec};
+use akap::session::{Event, MeshCounts, Session, SessionMesh, ShapeSpec};
 use akap::{shapes, Mesh};
 
 /// A handle: a triangle and barycentric weights.
@@ -69,12 +69,12 @@ impl Recorder {
             min_angle: Some(28.0),
         };
         let counts = MeshCounts { vertex_count: 0, triangle_count: 0 };
+        let triangulation = shape.triangulation_options();
         let mut session = Session::new(shape, counts, DeformerOptions::default());
-        let mesh =
-            akap::triangulate(&shapes::by_name(name).expect("a built-in shape"), &session.triangulation_options())
-                .expect("the built-in shapes triangulate");
-        session.mesh = MeshCounts { vertex_count: mesh.vertex_count(), triangle_count: mesh.triangle_count() };
-        let deformer = Deformer::new(mesh, session.deformer_options()).expect("a connected mesh");
+        let mesh = akap::triangulate(&shapes::by_name(name).expect("a built-in shape"), &triangulation)
+            .expect("the built-in shapes triangulate");
+        session.mesh = SessionMesh::counts_of(MeshCounts::of(&mesh));
+        let deformer = Deformer::new(mesh, DeformerOptions::default()).expect("a connected mesh");
         Self { session, deformer }
     }
 
@@ -121,7 +121,7 @@ impl Recorder {
         let m = self.deformer.metrics();
         eprintln!(
             "{}: {} vertices, {} steps, E_area {:.4}, E_angle {:.4}, {} flipped",
-            self.session.shape.name,
+            self.session.shape.as_ref().map_or("", |s| &s.name),
             self.session.mesh.vertex_count,
             self.session.step_count(),
             m.area_distortion,

@@ -213,7 +213,7 @@ pub fn polygon_area(ring: &[Point]) -> f64 {
 /// Euclidean distance between two points.
 #[inline]
 pub fn distance(a: Point, b: Point) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+    libm::hypot(a[0] - b[0], a[1] - b[1])
 }
 
 /// The interior angle at `b` of the triangle (or corner) `a b c`, in radians, in `[0, pi]`.
@@ -222,7 +222,7 @@ pub fn angle_at(a: Point, b: Point, c: Point) -> f64 {
     let v = [c[0] - b[0], c[1] - b[1]];
     let cross = u[0] * v[1] - u[1] * v[0];
     let dot = u[0] * v[0] + u[1] * v[1];
-    cross.abs().atan2(dot)
+    libm::atan2(cross.abs(), dot)
 }
 
 /// Axis-aligned bounding box `(min, max)` of a set of points; `None` when it is empty.

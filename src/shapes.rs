@@ -194,7 +194,7 @@ pub fn ellipse(centre: Point, rx: f64, ry: f64, n: usize) -> Vec<Point> {
     (0..n)
         .map(|i| {
             let t = std::f64::consts::TAU * i as f64 / n as f64;
-            [centre[0] + rx * t.cos(), centre[1] + ry * t.sin()]
+            [centre[0] + rx * libm::cos(t), centre[1] + ry * libm::sin(t)]
         })
         .collect()
 }

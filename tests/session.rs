@@ -5,9 +5,13 @@
 
 use std::f64::consts::PI;
 
-use akap::deform::{ArapDeformer, ArapOptions, Deform, DeformError};
+use akap::deform::{
+    ArapDeformer, ArapOptions, Deform, DeformError, Deformer, DeformerOptions, Integrator, Method, MethodOptions,
+};
 use akap::geometry::Point;
-use akap::session::{replay, replay_to_targets, Event, MeshCounts, Session, SessionError, ShapeSpec};
+use akap::session::{
+    replay, replay_to_targets, Event, MeshCounts, MethodName, RecordedOptions, Session, SessionError, ShapeSpec,
+};
 use akap::shapes::{self, BAR_SIZE};
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -45,8 +49,9 @@ fn small_session() -> Session {
 #[test]
 fn json_round_trips_every_double_exactly() {
     let mut s = small_session();
-    // Extremes, for the format only (this step is not replayed).
-    s.events.push(Event::Step(vec![f64::MAX, f64::MIN_POSITIVE, -5e-324, 0.1 + 0.2, 1.0 / 3.0, -1e300]));
+    // Extremes, for the format only (these handles are not replayed).
+    let extremes = vec![f64::MAX, f64::MIN_POSITIVE, -5e-324, 0.1 + 0.2, 1.0 / 3.0, -1e300];
+    s.events.push(Event::Handles { triangles: vec![1, 2], barycentric: extremes });
     let text = s.to_json();
     let back = Session::from_json(&text).unwrap();
     assert_eq!(back, s);
@@ -54,8 +59,8 @@ fn json_round_trips_every_double_exactly() {
         s.events
             .iter()
             .flat_map(|e| match e {
-                Event::Step(v) | Event::Handles { barycentric: v, .. } => v.clone(),
-                Event::Reset(_) => Vec::new(),
+                Event::Step(v) | Event::Positions(v) | Event::Handles { barycentric: v, .. } => v.clone(),
+                Event::Reset(_) | Event::Options(_) => Vec::new(),
             })
             .map(f64::to_bits)
             .collect()
@@ -64,7 +69,7 @@ fn json_round_trips_every_double_exactly() {
     assert_eq!(bits(&back), bits(&s));
     assert_eq!(back.to_json(), text);
     // The documented layout: the fields of the format, one event per line.
-    for key in ["\"format\": \"akap-session\"", "\"version\": 1", "\"targetEdgeLength\":0.2", "\"vertexCount\""] {
+    for key in ["\"format\": \"akap-session\"", "\"version\": 2", "\"targetEdgeLength\":0.2", "\"vertexCount\""] {
         assert!(text.contains(key), "{key} in {text}");
     }
     assert!(text.contains("\n    {\"reset\":true},\n"));
@@ -110,7 +115,13 @@ fn bar_targets(rest: &[Point], phi: f64) -> Vec<Point> {
 #[test]
 fn committed_sessions_match_their_meshes_and_scripts() {
     for (name, text) in SESSIONS {
+        // Version 1 files, read as version 2 and written back so, with nothing lost.
+        assert!(text.contains("\"version\": 1,"), "{name} is a version-1 file");
         let s = Session::from_json(text).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(s.version, 2);
+        let again = s.to_json();
+        assert!(again.contains("\"version\": 2,"));
+        assert_eq!(Session::from_json(&again).unwrap(), s);
         let mesh = s.mesh().unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(mesh.vertex_count(), s.mesh.vertex_count);
         assert!(s.step_count() >= 6, "{name}");
@@ -180,19 +191,21 @@ fn bad_sessions_are_refused() {
     let edit = |from: &str, to: &str| Session::from_json(&text.replacen(from, to, 1));
     assert!(matches!(Session::from_json("{"), Err(SessionError::Json(_))));
     assert!(matches!(edit("akap-session", "other"), Err(SessionError::Format { .. })));
-    assert!(matches!(edit("\"version\": 1", "\"version\": 2"), Err(SessionError::Version { found: 2 })));
+    assert!(matches!(edit("\"version\": 2", "\"version\": 3"), Err(SessionError::Version { found: 3 })));
+    assert!(matches!(edit("\"version\": 2", "\"version\": 0"), Err(SessionError::Version { found: 0 })));
     assert!(matches!(edit("\"targetEdgeLength\"", "\"targetEdgeLen\""), Err(SessionError::Json(_))));
     assert!(matches!(edit("{\"reset\":true}", "{\"jump\":true}"), Err(SessionError::Json(_))));
     assert!(matches!(edit("\"lambda\":100.0", "\"lambda\":\"big\""), Err(SessionError::Json(_))));
+    assert!(matches!(edit("\"lambda\":100.0", "\"lambda\":-1.0"), Err(SessionError::Options(_))));
 
     let mut s = good.clone();
-    s.shape.name = "dragon".into();
+    s.shape.as_mut().unwrap().name = "dragon".into();
     assert!(matches!(s.mesh(), Err(SessionError::UnknownShape { .. })));
     let mut s = good.clone();
     s.mesh.vertex_count += 1;
     assert!(matches!(s.mesh(), Err(SessionError::MeshMismatch { .. })));
     let mut s = good.clone();
-    s.options.lambda = -1.0;
+    s.options.lambda = Some(-1.0);
     assert!(matches!(s.recorded_deformer(), Err(SessionError::Options(DeformError::InvalidOption { .. }))));
 
     let replay_with = |events: Vec<Event>| {
@@ -220,8 +233,303 @@ fn bad_sessions_are_refused() {
     ));
     // Targets that do not cover the steps.
     let mut deformer = good.recorded_deformer().unwrap();
-    assert!(matches!(replay_to_targets(&good, &[], &mut deformer), Err(SessionError::MissingTargets { index: 1 })));
+    assert!(matches!(replay_to_targets(&good, &[], deformer.as_mut()), Err(SessionError::MissingTargets { index: 1 })));
     // A session with only a reset changes nothing.
     let positions = replay_with(vec![Event::Reset(true), Event::Reset(false)]).unwrap();
     assert_eq!(positions, good.mesh().unwrap().positions());
+}
+
+#[test]
+fn version_1_files_are_read_but_not_with_what_only_version_2_has() {
+    let (_, bar) = SESSIONS[0];
+    let v1 = Session::from_json(bar).unwrap();
+    assert_eq!(v1.options.method, None, "version 1 names no method");
+    assert_eq!(v1.method_options().unwrap(), MethodOptions::Akap(DeformerOptions::default()));
+    let with = |from: &str, to: &str| {
+        assert!(bar.contains(from));
+        Session::from_json(&bar.replacen(from, to, 1))
+    };
+    let positions = format!("{{\"positions\":{:?}}},\n    {{\"step\"", vec![0.0; 2 * v1.mesh.vertex_count]);
+    assert!(matches!(with("{\"step\"", &positions), Err(SessionError::NotInVersion1 { .. })));
+    assert!(matches!(
+        with("\"options\": {", "\"options\": {\"method\":\"akap\","),
+        Err(SessionError::NotInVersion1 { .. })
+    ));
+    assert!(matches!(
+        with("{\"step\"", "{\"options\":{\"lambda\":5.0}},\n    {\"step\""),
+        Err(SessionError::NotInVersion1 { .. })
+    ));
+    // The same edits are version 2.
+    let v2 = bar.replacen("\"version\": 1,", "\"version\": 2,", 1);
+    let positions = v2.replacen("{\"step\"", &positions, 1);
+    assert_eq!(Session::from_json(&positions).unwrap().events.len(), v1.events.len() + 1);
+}
+
+/// The small bar's mesh, and a pose of it: sheared by 0.1, computed here.
+fn bar_and_shear() -> (akap::Mesh, Vec<f64>) {
+    let mesh = small_session().mesh().unwrap();
+    let pose = mesh.positions().iter().flat_map(|p| [p[0] + 0.1 * p[1], p[1]]).collect();
+    (mesh, pose)
+}
+
+#[test]
+fn positions_and_options_events_replay_as_the_calls_they_record() {
+    let (mesh, pose) = bar_and_shear();
+    let handles = (vec![0u32, 5], vec![[1.0, 0.0, 0.0], [0.2, 0.3, 0.5]]);
+    let v = |k: f64| vec![0.0, 0.0, 0.01 * k, 0.02];
+    let akap = |lambda: Option<f64>, integrator| RecordedOptions { lambda, integrator, ..Default::default() };
+    let mut s = small_session();
+    s.events = vec![
+        Event::Handles { triangles: handles.0.clone(), barycentric: handles.1.concat() },
+        Event::Step(v(1.0)),
+        Event::Options(akap(Some(10.0), None)),
+        Event::Step(v(2.0)),
+        Event::Positions(pose.clone()),
+        Event::Step(v(3.0)),
+        Event::Options(RecordedOptions { method: Some(MethodName::Arap), iterations: Some(3), ..Default::default() }),
+        Event::Step(v(4.0)),
+        Event::Options(RecordedOptions {
+            method: Some(MethodName::Akap),
+            ..akap(None, Some(akap::session::IntegratorName::Linear))
+        }),
+        Event::Step(v(5.0)),
+    ];
+    let s = Session::from_json(&s.to_json()).unwrap();
+    let mut replayed = s.recorded_deformer().unwrap();
+    replay(&s, &mut replayed).unwrap();
+
+    // The same calls made by hand.
+    let pairs = |flat: &[f64]| flat.as_chunks::<2>().0.to_vec();
+    let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    d.set_handle_points(&handles.0, &handles.1).unwrap();
+    d.step(&pairs(&v(1.0))).unwrap();
+    d.set_options(DeformerOptions::default().with_lambda(10.0)).unwrap();
+    d.step(&pairs(&v(2.0))).unwrap();
+    d.set_positions(&pairs(&pose)).unwrap();
+    // A positions event puts the mesh exactly into the pose.
+    assert!(d.positions().iter().flatten().zip(&pose).all(|(a, b)| a.to_bits() == b.to_bits()));
+    d.step(&pairs(&v(3.0))).unwrap();
+    let mut a = ArapDeformer::new(mesh.clone(), ArapOptions::default().with_iterations(3)).unwrap();
+    a.set_positions(d.positions()).unwrap();
+    a.set_handle_points(&handles.0, &handles.1).unwrap();
+    a.step(&pairs(&v(4.0))).unwrap();
+    // Another method starts from its defaults: lambda is 100 again.
+    let linear = DeformerOptions::default().with_integrator(Integrator::Linear);
+    let mut d = Deformer::new(mesh, linear).unwrap();
+    d.set_positions(a.positions()).unwrap();
+    d.set_handle_points(&handles.0, &handles.1).unwrap();
+    d.step(&pairs(&v(5.0))).unwrap();
+
+    assert_eq!(replayed.method_options(), MethodOptions::Akap(linear));
+    let bits = |p: &[Point]| p.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(replayed.positions()), bits(d.positions()));
+    // A compared method passes over options events and keeps its own.
+    let mut arap = ArapDeformer::new(s.mesh().unwrap(), ArapOptions::default().with_iterations(7)).unwrap();
+    let mut recorded = s.recorded_deformer().unwrap();
+    let targets = replay(&s, &mut recorded).unwrap().targets;
+    replay_to_targets(&s, &targets, &mut arap).unwrap();
+    assert_eq!(arap.options().iterations, 7);
+}
+
+#[test]
+fn inline_meshes_and_arap_sessions_round_trip_and_replay() {
+    let (mesh, _) = bar_and_shear();
+    let options = MethodOptions::Arap(ArapOptions::default().with_iterations(4));
+    let mut s = Session::with_mesh(&mesh, options);
+    let handles = (vec![0u32, 5], vec![[1.0, 0.0, 0.0], [0.2, 0.3, 0.5]]);
+    s.events = vec![
+        Event::Handles { triangles: handles.0.clone(), barycentric: handles.1.concat() },
+        Event::Step(vec![0.0, 0.0, 0.02, 0.01]),
+        Event::Reset(true),
+        Event::Step(vec![0.0, -0.0, -0.01, 0.03]),
+    ];
+    let text = s.to_json();
+    assert!(!text.contains("\"shape\"") && text.contains("\"positions\":[") && text.contains("\"iterations\":4"));
+    let back = Session::from_json(&text).unwrap();
+    assert_eq!(back, s);
+    let rebuilt = back.mesh().unwrap();
+    assert_eq!((rebuilt.positions(), rebuilt.triangles()), (mesh.positions(), mesh.triangles()));
+    assert_eq!(back.method_options().unwrap(), options);
+    let mut replayed = back.recorded_deformer().unwrap();
+    assert_eq!(replayed.method_options().method(), Method::Arap);
+    replay(&back, &mut replayed).unwrap();
+    let mut a = ArapDeformer::new(mesh.clone(), ArapOptions::default().with_iterations(4)).unwrap();
+    a.set_handle_points(&handles.0, &handles.1).unwrap();
+    a.step(&[[0.0, 0.0], [0.02, 0.01]]).unwrap();
+    a.reset();
+    a.step(&[[0.0, -0.0], [-0.01, 0.03]]).unwrap();
+    assert_eq!(replayed.positions(), a.positions());
+
+    // Where the mesh comes from: exactly one of a shape and an inline mesh, whole.
+    let shape = small_session().shape;
+    let mut both = s.clone();
+    both.shape = shape.clone();
+    assert_eq!(Session::from_json(&both.to_json()), Err(SessionError::MeshSource));
+    let mut half = s.clone();
+    half.mesh.triangles = None;
+    assert_eq!(Session::from_json(&half.to_json()), Err(SessionError::MeshSource));
+    let mut neither = small_session();
+    neither.shape = None;
+    assert_eq!(Session::from_json(&neither.to_json()), Err(SessionError::MeshSource));
+    let mut short = s.clone();
+    short.mesh.positions.as_mut().unwrap().pop();
+    assert!(matches!(Session::from_json(&short.to_json()), Err(SessionError::MeshMismatch { .. })));
+    let mut broken = s.clone();
+    broken.mesh.triangles.as_mut().unwrap()[0] = 1_000_000;
+    let broken = Session::from_json(&broken.to_json()).unwrap();
+    assert!(matches!(broken.mesh(), Err(SessionError::Mesh(_))));
+}
+
+#[test]
+fn options_of_the_other_method_and_bad_lengths_are_refused_on_reading() {
+    let mut s = small_session();
+    s.events.truncate(2);
+    let with = |options: &str, events: &str| {
+        let text = s.to_json();
+        let at = text.find("\"events\": [").unwrap();
+        let head = text[..at].replacen(
+            "\"options\": {\"method\":\"akap\",\"lambda\":100.0,\"dirichlet\":true,\"integrator\":\"spiral\"}",
+            options,
+            1,
+        );
+        Session::from_json(&format!("{head}\"events\": [{events}]}}"))
+    };
+    let akap = "\"options\": {}";
+    assert!(with(akap, "").is_ok());
+    let arap_lambda = "\"options\": {\"method\":\"arap\",\"lambda\":5}";
+    assert_eq!(
+        with(arap_lambda, ""),
+        Err(SessionError::ForeignOption { index: None, option: "lambda", method: Method::Arap })
+    );
+    assert_eq!(
+        with(akap, "{\"options\":{\"method\":\"arap\"}},{\"options\":{\"integrator\":\"linear\"}}"),
+        Err(SessionError::ForeignOption { index: Some(1), option: "integrator", method: Method::Arap })
+    );
+    assert!(matches!(
+        with(akap, "{\"options\":{\"method\":\"arap\",\"iterations\":0}}"),
+        Err(SessionError::Event { index: 0, error: DeformError::InvalidOption { name: "iterations", .. } })
+    ));
+    assert!(matches!(with(akap, "{\"options\":{\"iterations\":1e3}}"), Err(SessionError::Json(_))));
+    // Two velocity components per handle of the handles in place.
+    let handles = "{\"handles\":{\"triangles\":[0,5],\"barycentric\":[1,0,0,0,1,0]}}";
+    assert!(with(akap, &format!("{handles},{{\"step\":[0,0,1,1]}}")).is_ok());
+    assert!(matches!(
+        with(akap, &format!("{handles},{{\"step\":[0,0]}}")),
+        Err(SessionError::Event { index: 1, error: DeformError::Length { expected: 4, found: 2, .. } })
+    ));
+    assert!(matches!(
+        with(akap, "{\"positions\":[0,0]}"),
+        Err(SessionError::Event { index: 0, error: DeformError::Length { what: "positions", .. } })
+    ));
+    let message = with(arap_lambda, "").unwrap_err().to_string();
+    assert_eq!(message, "option lambda does not apply to method arap");
+}
+
+/// A session recorded in the app by `tests/browser/session.spec.ts` (two drags, a change
+/// to ARAP, a reset, one more drag), with the bits of the pose the app reached.
+const APP_RECORDED: &str = include_str!("sessions/app/app-recorded.json");
+const APP_POSE: &str = include_str!("sessions/app/app-recorded.pose.json");
+
+#[test]
+fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
+    let s = Session::from_json(APP_RECORDED).unwrap();
+    let kinds: Vec<&str> = s
+        .events
+        .iter()
+        .map(|e| match e {
+            Event::Handles { .. } => "handles",
+            Event::Step(_) => "step",
+            Event::Positions(_) => "positions",
+            Event::Options(_) => "options",
+            Event::Reset(_) => "reset",
+        })
+        .collect();
+    for kind in ["handles", "step", "options", "reset"] {
+        assert!(kinds.contains(&kind), "the recording has a {kind} event");
+    }
+    let pose: serde_json::Value = serde_json::from_str(APP_POSE).unwrap();
+    let expected: Vec<u64> = pose["bits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| u64::from_str_radix(b.as_str().unwrap(), 16).unwrap())
+        .collect();
+    assert_eq!(expected.len(), 2 * s.mesh.vertex_count);
+
+    let mut deformer = s.recorded_deformer().unwrap();
+    replay(&s, &mut deformer).unwrap();
+    // The recording switched to ARAP.
+    assert_eq!(deformer.method_options().method(), Method::Arap);
+    let found: Vec<u64> = deformer.positions().iter().flatten().map(|x| x.to_bits()).collect();
+    let differing = found.iter().zip(&expected).filter(|(a, b)| a != b).count();
+    assert_eq!(differing, 0, "{differing} of {} coordinates differ from the app's", expected.len());
+    // And the pose really moved from rest.
+    assert_ne!(deformer.positions(), s.mesh().unwrap().positions());
+}
+
+/// The session bindings called inside wasm: what they write is the Rust format, and bad
+/// input (wrong types, throwing getters, events that do not fit) is a JavaScript `Error`.
+#[cfg(target_arch = "wasm32")]
+mod bindings {
+    use akap::session::Session;
+    use akap::wasm::{session_json, session_mesh, JsSessionRecorder};
+    use js_sys::{Float64Array, Uint32Array};
+    use wasm_bindgen::{JsCast, JsValue};
+    use wasm_bindgen_test::wasm_bindgen_test as test;
+
+    fn js(body: &str) -> JsValue {
+        js_sys::Function::new_no_args(body).call0(&JsValue::NULL).unwrap()
+    }
+
+    fn message(result: Result<impl Sized, akap::wasm::BindingError>) -> String {
+        let Err(e) = result else { panic!("expected an error") };
+        let value = JsValue::from(e);
+        String::from(value.dyn_ref::<js_sys::Error>().expect("a JavaScript Error").message())
+    }
+
+    #[test]
+    fn session_json_and_session_mesh_read_through_the_rust_format() {
+        let v2 = session_json(JsValue::from_str(super::SESSIONS[0].1)).unwrap();
+        assert!(v2.contains("\"version\": 2,") && v2.contains("\"method\":\"akap\""));
+        assert_eq!(Session::from_json(&v2).unwrap().events, super::session("bar").events);
+        let mesh = session_mesh(JsValue::from_str(super::APP_RECORDED)).unwrap();
+        let expected = Session::from_json(super::APP_RECORDED).unwrap().mesh().unwrap();
+        assert_eq!(mesh.positions(), expected.positions().iter().flatten().copied().collect::<Vec<_>>());
+        assert_eq!(message(session_json(JsValue::from(42))), "the session must be a string, not the number 42");
+        assert!(message(session_json(JsValue::from_str("{"))).starts_with("not a valid session: EOF"));
+    }
+
+    #[test]
+    fn the_recorder_writes_what_the_reader_reads_and_refuses_what_does_not_fit() {
+        let (mesh, _) = super::bar_and_shear();
+        let positions: JsValue = Float64Array::from(&mesh.positions().concat()[..]).into();
+        let triangles: JsValue = Uint32Array::from(&mesh.triangles().concat()[..]).into();
+        let arap = js("return { method: 'arap', iterations: 3 }");
+        let mut r =
+            JsSessionRecorder::new(arap.clone(), JsValue::UNDEFINED, positions.clone(), triangles.clone()).unwrap();
+        r.handles(
+            Uint32Array::from(&[0u32, 5][..]).into(),
+            Float64Array::from(&[1.0, 0.0, 0.0, 0.2, 0.3, 0.5][..]).into(),
+        )
+        .unwrap();
+        r.step(Float64Array::from(&[0.0, -0.0, 0.01, 0.02][..]).into()).unwrap();
+        let bad_step = r.step(Float64Array::from(&[0.0, 0.0][..]).into());
+        assert_eq!(message(bad_step), "velocities has 2 numbers; 2 handles need 2 each");
+        let foreign = r.options(js("return { lambda: 5 }"));
+        assert_eq!(message(foreign), "option lambda applies to method \"akap\" only");
+        r.options(js("return { method: 'akap', lambda: 5 }")).unwrap();
+        r.reset();
+        assert_eq!(r.event_count(), 4);
+        let session = Session::from_json(&r.to_json().unwrap()).unwrap();
+        assert!(session.shape.is_none());
+        assert_eq!(session.mesh().unwrap().positions(), mesh.positions());
+        assert_eq!(session.events[1], akap::session::Event::Step(vec![0.0, -0.0, 0.01, 0.02]));
+        assert!(matches!(session.events[1], akap::session::Event::Step(ref v) if v[1].is_sign_negative()));
+
+        let dragon =
+            JsSessionRecorder::new(arap.clone(), js("return { name: 'dragon' }"), positions.clone(), triangles.clone());
+        assert!(message(dragon).starts_with("option name is \"dragon\", expected \"gingerbread\""));
+        let throwing = js("return { get name() { throw new Error('boom'); } }");
+        assert!(message(JsSessionRecorder::new(arap, throwing, positions, triangles)).contains("boom"));
+    }
 }

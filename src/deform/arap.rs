@@ -408,7 +408,7 @@ impl ArapDeformer {
                 if !in_range(&[q]) {
                     return Err(DeformError::NonFiniteResult);
                 }
-                moved = moved.max((q[0] - p[0]).hypot(q[1] - p[1]));
+                moved = moved.max(libm::hypot(q[0] - p[0], q[1] - p[1]));
                 *p = q;
             }
             let t3 = clock();
@@ -627,6 +627,9 @@ impl Deform for ArapDeformer {
 }
 
 impl Build for ArapOptions {
+    fn check(&self) -> Result<(), DeformError> {
+        check_options(self)
+    }
     fn orders(&self, mesh: &Mesh) -> Orders {
         ArapDeformer::orders(mesh)
     }
@@ -650,7 +653,7 @@ fn best_rotation(p: [Point; 3], c: &[f64; 3], e: &[Point; 3]) -> Option<[f64; 2]
     }
     // tr(R^T S) = cos (S00 + S11) + sin (S10 - S01).
     let (x, y) = (s[0][0] + s[1][1], s[1][0] - s[0][1]);
-    let r = x.hypot(y);
+    let r = libm::hypot(x, y);
     (r > 0.0 && r.is_finite()).then(|| [x / r, y / r])
 }
 

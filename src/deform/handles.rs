@@ -105,7 +105,7 @@ pub(crate) fn distinct_points(points: &[[f64; 2]], tolerance: f64) -> usize {
     // Exactly the rule's comparison, so that NaN distances count as near too.
     let far = |i: usize, j: usize| {
         let (p, q) = (points[i], points[j]);
-        (q[0] - p[0]).hypot(q[1] - p[1]) > tolerance
+        libm::hypot(q[0] - p[0], q[1] - p[1]) > tolerance
     };
     let mut count = 0;
     let mut start = 0;
@@ -138,7 +138,7 @@ pub(crate) fn check_connected(mesh: &Mesh) -> Result<(), DeformError> {
 /// The length of the diagonal of the points' bounding box (the size of a shape).
 pub(crate) fn diagonal(points: &[Point]) -> f64 {
     let (lo, hi) = bounding_box(points.iter().copied()).expect("a mesh has vertices");
-    (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+    libm::hypot(hi[0] - lo[0], hi[1] - lo[1])
 }
 
 /// Checks a pose given to `set_positions`: one position per vertex, each finite and within
@@ -193,7 +193,7 @@ mod tests {
     /// The definition, comparing every pair.
     fn brute_force(points: &[[f64; 2]], tolerance: f64) -> usize {
         (0..points.len())
-            .filter(|&i| points[..i].iter().all(|q| (q[0] - points[i][0]).hypot(q[1] - points[i][1]) > tolerance))
+            .filter(|&i| points[..i].iter().all(|q| libm::hypot(q[0] - points[i][0], q[1] - points[i][1]) > tolerance))
             .count()
     }
 

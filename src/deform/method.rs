@@ -16,6 +16,8 @@ use crate::mesh::Mesh;
 /// deformer, so that [`MethodOptions`] reaches every method through the list of methods
 /// alone.
 pub(crate) trait Build {
+    /// Checks the settings' ranges, as building a deformer with them would.
+    fn check(&self) -> Result<(), DeformError>;
     /// The fill-reducing orders the method's deformer needs for `mesh`.
     fn orders(&self, mesh: &Mesh) -> Orders;
     /// The method's deformer with orders from [`Build::orders`].
@@ -26,6 +28,13 @@ pub(crate) trait Build {
 macro_rules! method_dispatch {
     ($($(#[$doc:meta])* $variant:ident($name:literal, $options:ident),)*) => {
         impl MethodOptions {
+            /// Checks the settings' ranges, as building a deformer with them would.
+            pub fn check(&self) -> Result<(), DeformError> {
+                match self {
+                    $(Self::$variant(options) => Build::check(options),)*
+                }
+            }
+
             /// The fill-reducing orders this method's deformer needs for `mesh` (see [`Orders`]).
             pub fn orders(&self, mesh: &Mesh) -> Orders {
                 match self {

@@ -33,8 +33,8 @@ pub struct Metrics {
 pub fn singular_values(a: f64, b: f64, c: f64, d: f64) -> (f64, f64, f64) {
     // sigma1,2 = (sqrt((a + d)^2 + (c - b)^2) +- sqrt((a - d)^2 + (c + b)^2)) / 2, and
     // sigma1 sigma2 = |det|: the smaller one from that, free of the difference's cancellation.
-    let p = (a + d).hypot(c - b);
-    let q = (a - d).hypot(c + b);
+    let p = libm::hypot(a + d, c - b);
+    let q = libm::hypot(a - d, c + b);
     let det = a * d - b * c;
     let sigma1 = 0.5 * (p + q);
     let sigma2 = if sigma1 > 0.0 { (det.abs() / sigma1).min(sigma1) } else { 0.0 };

@@ -204,11 +204,15 @@ impl SessionError {
     pub fn code(&self) -> ErrorCode {
         match self {
             Self::Triangulation(e) => e.code(),
-            Self::Options(e) | Self::Event { error: e, .. } => e.code(),
+            Self::Mesh(e) => e.code(),
+            Self::Options(e) | Self::Setup(e) | Self::Event { error: e, .. } => e.code(),
+            Self::ForeignOption { .. } => ErrorCode::InvalidOption,
             Self::MissingTargets { .. } => ErrorCode::InvalidArgument,
             Self::Json(_)
             | Self::Format { .. }
             | Self::Version { .. }
+            | Self::NotInVersion1 { .. }
+            | Self::MeshSource
             | Self::UnknownShape { .. }
             | Self::MeshMismatch { .. } => ErrorCode::Import,
         }

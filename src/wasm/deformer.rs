@@ -212,7 +212,7 @@ const AKAP_ONLY: [&str; 3] = ["lambda", "dirichlet", "integrator"];
 /// Reads `{ method?, lambda?, dirichlet?, integrator?, iterations? }` over `base`, refusing
 /// unknown keys and options of the other method. A different `method` starts from that
 /// method's defaults.
-fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, BindingError> {
+pub(super) fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, BindingError> {
     let given = Options::read(value, "deformer", &NAMES)?;
     let mut options = base;
     if let Some(method) = given.choice("method", &[("akap", Method::Akap), ("arap", Method::Arap)])? {

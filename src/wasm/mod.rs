@@ -10,13 +10,15 @@
 //! TypeScript wrapper in `www/src/` gives these functions their public, documented shape.
 //!
 //! `mesh`: meshes, triangulation, built-in shapes; `deformer`: the deformers and their
-//! options; `import`: shapes from SVG, images and mesh files, and `PointMapper`.
+//! options; `import`: shapes from SVG, images and mesh files, and `PointMapper`; `session`:
+//! recorded sessions read, checked and written by `crate::session`.
 
 mod deformer;
 mod error;
 mod import;
 mod mesh;
 mod read;
+mod session;
 
 pub use deformer::{deformer_orders, JsDeformer};
 pub use error::BindingError;
@@ -25,6 +27,7 @@ pub use import::{
     texture_coordinates, trace_image, JsMeshFile, JsPointMapper,
 };
 pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, triangulate_to_vertices, JsMesh};
+pub use session::{session_json, session_mesh, JsSessionRecorder};
 
 use js_sys::{Array, Float64Array, Object, Reflect};
 use wasm_bindgen::prelude::*;
@@ -91,8 +94,9 @@ fn outlines_to_js(outlines: &[Outline]) -> Result<Array, BindingError> {
     Ok(list)
 }
 
-/// The limits on inputs, `{ bytes, pixels, points, vertices }`: the largest text file in
-/// bytes, image in pixels, outline in points and mesh in vertices. One definition
+/// The limits on inputs, `{ bytes, pixels, points, vertices, sessionBytes }`: the largest
+/// text file in bytes, image in pixels, outline in points, mesh in vertices, and session
+/// in bytes. One definition
 /// (`akap::import::Limits`), which the TypeScript layer reads instead of repeating it.
 #[wasm_bindgen(js_name = limits)]
 pub fn js_limits() -> Result<Object, BindingError> {
@@ -102,6 +106,7 @@ pub fn js_limits() -> Result<Object, BindingError> {
         ("pixels", (l.max_pixels as f64).into()),
         ("points", (l.max_points as f64).into()),
         ("vertices", (l.max_vertices as f64).into()),
+        ("sessionBytes", (crate::session::MAX_BYTES as f64).into()),
     ])
 }
 

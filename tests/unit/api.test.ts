@@ -120,9 +120,16 @@ describe("meshFromArrays", () => {
 
 describe("limits", () => {
   it("are the README's, and the ones every function enforces", () => {
-    // README: "32 MB per file, 4096 x 4096 pixels, 100000 vertices" (and 100000 outline points).
+    // README: "32 MB per file, 4096 x 4096 pixels, 100000 vertices" (and 100000 outline
+    // points), and sessions up to 80 MB.
     const l = limits();
-    expect(l).toEqual({ bytes: 32 * 1024 * 1024, pixels: 4096 * 4096, points: 100_000, vertices: 100_000 });
+    expect(l).toEqual({
+      bytes: 32 * 1024 * 1024,
+      pixels: 4096 * 4096,
+      points: 100_000,
+      vertices: 100_000,
+      sessionBytes: 80_000_000,
+    });
     expect(() => triangulate(defaultShape(), { maxVertices: l.vertices + 1 })).toThrow(
       `option maxVertices is ${l.vertices + 1}, expected a whole number from 0 to ${l.vertices}`,
     );

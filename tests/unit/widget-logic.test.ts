@@ -1,4 +1,4 @@
-/** The pure TypeScript parts of the widget: drag velocities, picking, history, sessions. */
+/** The pure TypeScript parts of the widget: drag velocities, picking, history. */
 import { beforeAll, describe, expect, it } from "vitest";
 import { init } from "../../www/src/index.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
@@ -8,7 +8,6 @@ import { History } from "../../www/src/widget/history.js";
 import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
 import { fileKind } from "../../www/src/widget/sources.js";
 import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
-import { Recorder, parseSession } from "../../www/src/widget/session.js";
 
 beforeAll(async () => {
   await init(); // boxUvs goes through the core's textureCoordinates
@@ -115,41 +114,6 @@ describe("history", () => {
     expect(h.undo(4)).toBe(3);
     expect(h.undo(3)).toBe(2);
     expect(h.undo(2)).toBeUndefined();
-  });
-});
-
-describe("sessions", () => {
-  const header = {
-    shape: { name: "gingerbread", targetEdgeLength: 0.035, minAngle: 28 },
-    mesh: { vertexCount: 10, triangleCount: 12 },
-    options: { lambda: 100 },
-  };
-
-  it("round-trips through JSON with every double intact", () => {
-    const r = new Recorder();
-    r.start(header, [{ reset: true }]);
-    const v = Float64Array.from([0.1 + 0.2, -1e-300, Math.PI, 5e-324]);
-    r.record({ handles: { triangles: [3, 4], barycentric: [0.2, 0.3, 0.5, 1 / 3, 1 / 3, 1 / 3] } });
-    r.record({ step: Array.from(v) });
-    v[0] = 0; // recorded events are copies
-    const session = r.stop()!;
-    expect(r.recording).toBe(false);
-    const back = parseSession(JSON.stringify(session));
-    expect(back).toEqual(session);
-    expect((back.events[2] as { step: number[] }).step[0]).toBe(0.1 + 0.2);
-  });
-
-  it("rejects malformed files with a message that says where", () => {
-    const good = { format: "akap-session", version: 1, ...header, events: [{ step: [1, 2] }] };
-    const bad = (patch: object) => JSON.stringify({ ...good, ...patch });
-    expect(() => parseSession("{")).toThrow(/not valid JSON/);
-    expect(() => parseSession(bad({ format: "x" }))).toThrow(/not an akap session/);
-    expect(() => parseSession(bad({ version: 2 }))).toThrow(/version 2/);
-    expect(() => parseSession(bad({ events: [{ step: [1, "2"] }] }))).toThrow(/events\[0\]\.step\[1\]/);
-    expect(() => parseSession(bad({ events: [{ jump: 1 }] }))).toThrow(/unknown kind "jump"/);
-    expect(() => parseSession(bad({ events: [{ step: [1], reset: true }] }))).toThrow(/exactly one key/);
-    expect(() => parseSession(bad({ shape: undefined }))).toThrow(/names no shape/);
-    expect(() => parseSession(bad({ mesh: { vertexCount: -1, triangleCount: 1 } }))).toThrow(/mesh.vertexCount/);
   });
 });
 

@@ -374,6 +374,8 @@ export interface Limits {
   points: number;
   /** Most vertices of a mesh. */
   vertices: number;
+  /** Largest recorded session (JSON), in bytes. */
+  sessionBytes: number;
 }
 
 /** The limits on inputs; bigger inputs are refused with an `Error` saying so. */

@@ -29,6 +29,6 @@ export {
   type WidgetOptions,
 } from "./widget/widget.js";
 export { defineElement, type AkapDeformerElement } from "./widget/element.js";
-export type { Session, SessionEvent, ShapeSpec } from "./widget/session.js";
-export { parseSession } from "./widget/session.js";
+export type { SessionData, SessionEvent, SessionMesh, SessionShape, ShapeSpec } from "./widget/session.js";
+export { Session, parseSession, sessionMesh } from "./widget/session.js";
 export * from "./import.js";

@@ -495,6 +495,9 @@ impl Deform for Deformer {
 }
 
 impl Build for DeformerOptions {
+    fn check(&self) -> Result<(), DeformError> {
+        check_options(self)
+    }
     fn orders(&self, mesh: &Mesh) -> Orders {
         Deformer::orders(mesh)
     }

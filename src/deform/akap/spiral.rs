@@ -76,8 +76,8 @@ pub fn exp_ratio(s: [f64; 2]) -> [f64; 2] {
     }
     // e^s - 1 = (e^x cos y - 1) + i e^x sin y, with the real part written without
     // cancellation: e^x cos y - 1 = expm1(x) cos y - 2 sin^2(y / 2).
-    let half = (0.5 * y).sin();
-    let numerator = [x.exp_m1() * y.cos() - 2.0 * half * half, x.exp() * y.sin()];
+    let half = libm::sin(0.5 * y);
+    let numerator = [libm::expm1(x) * libm::cos(y) - 2.0 * half * half, libm::exp(x) * libm::sin(y)];
     div(numerator, s)
 }
 

@@ -65,7 +65,7 @@ export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions
     replay: guard(() => (widget.lastSession ? widget.replay(widget.lastSession) : undefined)),
     saveSession: guard(() => {
       if (!widget.lastSession) return;
-      download(doc, JSON.stringify(widget.lastSession), "session.akap.json", "application/json");
+      download(doc, widget.lastSession.json, "session.akap.json", "application/json");
     }),
     loadSession: guard((file: File) => widget.loadSession(file)),
     export: guard(async (format: "json" | "obj" | "svg" | "png") => {

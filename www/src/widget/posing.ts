@@ -310,7 +310,7 @@ export class Posing {
       this.adopt(snapshot.shape, undefined, true);
     }
     this.deformer.setPositions(snapshot.positions);
-    this.record({ positions: Array.from(snapshot.positions) });
+    this.record({ positions: snapshot.positions });
     this.atRest = snapshot.atRest;
     this.handles = snapshot.handles.map((h) => ({ ...newHandle(h.point), target: [...h.target] }));
     this.applyHandles();
@@ -427,7 +427,7 @@ export class Posing {
       taken = smaller;
     }
     this.atRest = false;
-    if (this.recorder.recording) this.record({ step: Array.from(taken) });
+    this.record({ step: taken });
     const t = this.deformer.timings();
     timings.assembly += t.assembly;
     timings.factorisation += t.factorisation;
@@ -448,23 +448,10 @@ export class Posing {
 
   /** Starts recording every change of the deformer. */
   startRecording(): void {
-    const start: SessionEvent[] = this.atRest
-      ? [{ reset: true }]
-      : [{ positions: Array.from(this.deformer.positionsView()) }];
+    const start: SessionEvent[] = this.atRest ? [{ reset: true }] : [{ positions: this.deformer.positions() }];
     if (this.handles.length > 0) start.push(this.handlesEvent());
     const { mesh, spec } = this.shape;
-    this.recorder.start(
-      {
-        ...(spec ? { shape: { ...spec } } : {}),
-        mesh: {
-          vertexCount: mesh.vertexCount,
-          triangleCount: mesh.triangleCount,
-          ...(spec ? {} : { positions: Array.from(mesh.positions), triangles: Array.from(mesh.triangles) }),
-        },
-        options: this.deformerOptions(),
-      },
-      start,
-    );
+    this.recorder.start({ shape: spec, mesh, options: this.deformerOptions() }, start);
     this.#host.historyChanged();
   }
 
@@ -479,7 +466,7 @@ export class Posing {
     if ("handles" in event) {
       const { triangles, barycentric } = event.handles;
       this.deformer.setHandlePoints(triangles, barycentric);
-      this.handles = triangles.map((triangle, i) =>
+      this.handles = Array.from(triangles, (triangle, i) =>
         newHandle({
           triangle,
           barycentric: [barycentric[3 * i]!, barycentric[3 * i + 1]!, barycentric[3 * i + 2]!],

@@ -3,27 +3,44 @@
  * Replaying the calls on the same mesh gives the same positions bit for bit (the wasm
  * code is deterministic, and JSON numbers round-trip doubles exactly).
  *
+ * The format has one definition, in Rust (`src/session/`, version 2; version 1 files are
+ * read too): the widget records through the core's `SessionRecorder`, which writes the
+ * JSON, and reads sessions through `sessionJson`, which checks them and writes them back
+ * as version 2. The types here describe that JSON once parsed; nothing in TypeScript
+ * validates it.
+ *
  * ```json
- * { "format": "akap-session", "version": 1,
+ * { "format": "akap-session", "version": 2,
  *   "shape": { "name": "gingerbread", "targetEdgeLength": 0.035, "minAngle": 28 },
  *   "mesh": { "vertexCount": 812, "triangleCount": 1400 },
- *   "options": { "lambda": 100, "dirichlet": true, "integrator": "spiral" },
+ *   "options": { "method": "akap", "lambda": 100, "dirichlet": true, "integrator": "spiral" },
  *   "events": [ { "handles": { "triangles": [..], "barycentric": [.. 3 per handle ..] } },
  *               { "step": [vx0, vy0, vx1, vy1, ...] },
  *               { "positions": [.. 2 per vertex ..] },
- *               { "options": { "lambda": 50 } },
+ *               { "options": { "method": "arap", "iterations": 10 } },
  *               { "reset": true } ] }
  * ```
  * `shape` names a built-in shape and how it was triangulated; a session of another shape
  * carries the mesh itself in `mesh.positions` and `mesh.triangles`.
  */
-import type { DeformerOptions } from "../core.js";
+import type { DeformerOptions, MeshData } from "../core.js";
+import { toFloat64, toUint32, type IndexList, type NumberList } from "../internal/arrays.js";
+import { readMesh } from "../internal/mesh.js";
+import { assertLoaded, raw, type rawTypes } from "../internal/wasm.js";
 
-/** A built-in shape and the triangulation that made the mesh. */
+/** A built-in shape and the triangulation that made the mesh (as the widget makes them). */
 export interface ShapeSpec {
   name: string;
   targetEdgeLength: number;
   minAngle: number;
+}
+
+/** A session's `shape`: a built-in shape and its triangulation options, each optional. */
+export interface SessionShape {
+  name: string;
+  targetEdgeLength?: number;
+  minAngle?: number;
+  maxArea?: number;
 }
 
 export interface SessionMesh {
@@ -34,154 +51,119 @@ export interface SessionMesh {
   triangles?: number[];
 }
 
+/** One recorded call; arrays as typed arrays while recording, plain arrays once read. */
 export type SessionEvent =
-  | { handles: { triangles: number[]; barycentric: number[] } }
-  | { step: number[] }
-  | { positions: number[] }
+  | { handles: { triangles: IndexList; barycentric: NumberList } }
+  | { step: NumberList }
+  | { positions: NumberList }
   | { options: DeformerOptions }
   | { reset: true };
 
-export interface Session {
+/** A session's JSON, parsed. */
+export interface SessionData {
   format: "akap-session";
-  version: 1;
-  shape?: ShapeSpec;
+  version: 2;
+  shape?: SessionShape;
   mesh: SessionMesh;
   options: DeformerOptions;
   events: SessionEvent[];
 }
 
-/** Collects events while recording. */
-export class Recorder {
-  #session: Session | undefined;
+/** A session read and checked by the core: its JSON (version 2, as the core writes it) and that JSON parsed. */
+export class Session {
+  /** The JSON text, what Save writes. */
+  readonly json: string;
+  readonly data: SessionData;
 
-  /** Starts a new recording; `start` events put the deformer in its current state. */
-  start(header: Omit<Session, "format" | "version" | "events">, start: SessionEvent[]): void {
-    this.#session = { format: "akap-session", version: 1, ...header, events: [...start] };
+  /** `json` must come from the core (`sessionJson` or `SessionRecorder.toJson`). */
+  private constructor(json: string) {
+    this.json = json;
+    this.data = JSON.parse(json) as SessionData;
+  }
+
+  /** @internal A session from JSON the core wrote. */
+  static fromCoreJson(json: string): Session {
+    return new Session(json);
+  }
+}
+
+/**
+ * Reads and checks a session file (version 1 or 2) in the core. Throws an `Error` saying
+ * what is wrong and where (`not a valid session: ... at line 3 column 12`, `event 12: ...`);
+ * the mesh is checked when the session is replayed.
+ */
+export function parseSession(text: string): Session {
+  assertLoaded();
+  return Session.fromCoreJson(raw.sessionJson(text));
+}
+
+/**
+ * The mesh a session needs, rebuilt by the core: its built-in shape triangulated, or its
+ * inline mesh validated; either way with the recorded counts (an `Error` otherwise).
+ */
+export function sessionMesh(session: Session): MeshData {
+  assertLoaded();
+  const mesh = raw.sessionMesh(session.json);
+  try {
+    return readMesh(mesh);
+  } finally {
+    mesh.free();
+  }
+}
+
+/** Records events into the core's `SessionRecorder` while a recording runs. */
+export class Recorder {
+  #inner: rawTypes.SessionRecorder | undefined;
+
+  /**
+   * Starts a new recording of `mesh` (carried in the session unless `shape` names the
+   * built-in shape it came from); `start` events put the deformer in its current state.
+   */
+  start(
+    header: { shape: ShapeSpec | undefined; mesh: MeshData; options: DeformerOptions },
+    start: SessionEvent[],
+  ): void {
+    assertLoaded();
+    const { shape, mesh, options } = header;
+    const inner = new raw.SessionRecorder(options, shape, mesh.positions, mesh.triangles);
+    try {
+      for (const event of start) add(inner, event);
+    } catch (error) {
+      inner.free();
+      throw error;
+    }
+    this.#inner?.free();
+    this.#inner = inner;
   }
 
   get recording(): boolean {
-    return this.#session !== undefined;
+    return this.#inner !== undefined;
   }
 
-  /** Adds an event if recording (arrays are copied). */
+  /** Adds an event if recording. */
   record(event: SessionEvent): void {
-    this.#session?.events.push(copyEvent(event));
+    if (this.#inner) add(this.#inner, event);
   }
 
   /** Ends the recording and returns it (undefined if none was running). */
   stop(): Session | undefined {
-    const session = this.#session;
-    this.#session = undefined;
-    return session;
-  }
-}
-
-function copyEvent(event: SessionEvent): SessionEvent {
-  if ("handles" in event) {
-    return {
-      handles: { triangles: Array.from(event.handles.triangles), barycentric: Array.from(event.handles.barycentric) },
-    };
-  }
-  if ("step" in event) return { step: Array.from(event.step) };
-  if ("positions" in event) return { positions: Array.from(event.positions) };
-  if ("options" in event) return { options: { ...event.options } };
-  return { reset: true };
-}
-
-/** Largest session file we read (about 80 MB). */
-export const MAX_SESSION_BYTES = 80_000_000;
-
-/**
- * Reads and checks a session file. Throws an `Error` saying what is wrong and where
- * (`events[12].step[3] is not a number`); nothing else is checked against a mesh here.
- */
-export function parseSession(text: string): Session {
-  if (text.length > MAX_SESSION_BYTES) {
-    throw new Error(`the session file is ${text.length} bytes; the limit is ${MAX_SESSION_BYTES}`);
-  }
-  let data: unknown;
-  try {
-    data = JSON.parse(text);
-  } catch (error) {
-    throw new Error(`the session is not valid JSON: ${(error as Error).message}`, { cause: error });
-  }
-  const root = record(data, "the session");
-  if (root.format !== "akap-session")
-    throw new Error('the file is not an akap session (format must be "akap-session")');
-  if (root.version !== 1) throw new Error(`session version ${String(root.version)} is not supported (expected 1)`);
-  const mesh = record(root.mesh, "mesh");
-  const session: Session = {
-    format: "akap-session",
-    version: 1,
-    mesh: {
-      vertexCount: count(mesh.vertexCount, "mesh.vertexCount"),
-      triangleCount: count(mesh.triangleCount, "mesh.triangleCount"),
-    },
-    options: record(root.options ?? {}, "options") as DeformerOptions,
-    events: [],
-  };
-  if (mesh.positions !== undefined || mesh.triangles !== undefined) {
-    session.mesh.positions = numbers(mesh.positions, "mesh.positions");
-    session.mesh.triangles = numbers(mesh.triangles, "mesh.triangles").map((v, i) => count(v, `mesh.triangles[${i}]`));
-  }
-  if (root.shape !== undefined) {
-    const shape = record(root.shape, "shape");
-    if (typeof shape.name !== "string") throw new Error("shape.name must be a string");
-    session.shape = {
-      name: shape.name,
-      targetEdgeLength: finite(shape.targetEdgeLength, "shape.targetEdgeLength"),
-      minAngle: finite(shape.minAngle, "shape.minAngle"),
-    };
-  }
-  if (!session.shape && !session.mesh.positions) throw new Error("the session names no shape and carries no mesh");
-  if (!Array.isArray(root.events)) throw new Error("events must be an array");
-  root.events.forEach((item: unknown, i) => {
-    const where = `events[${i}]`;
-    const event = record(item, where);
-    const keys = Object.keys(event);
-    if (keys.length !== 1) throw new Error(`${where} must have exactly one key, found ${keys.join(", ") || "none"}`);
-    if ("handles" in event) {
-      const h = record(event.handles, `${where}.handles`);
-      session.events.push({
-        handles: {
-          triangles: numbers(h.triangles, `${where}.handles.triangles`),
-          barycentric: numbers(h.barycentric, `${where}.handles.barycentric`),
-        },
-      });
-    } else if ("step" in event) {
-      session.events.push({ step: numbers(event.step, `${where}.step`) });
-    } else if ("positions" in event) {
-      session.events.push({ positions: numbers(event.positions, `${where}.positions`) });
-    } else if ("options" in event) {
-      session.events.push({ options: record(event.options, `${where}.options`) as DeformerOptions });
-    } else if ("reset" in event) {
-      session.events.push({ reset: true });
-    } else {
-      throw new Error(`${where} has the unknown kind "${keys[0]}"`);
+    const inner = this.#inner;
+    if (!inner) return undefined;
+    this.#inner = undefined;
+    try {
+      return Session.fromCoreJson(inner.toJson());
+    } finally {
+      inner.free();
     }
-  });
-  return session;
+  }
 }
 
-function record(value: unknown, what: string): Record<string, unknown> {
-  if (typeof value !== "object" || value === null || Array.isArray(value)) throw new Error(`${what} must be an object`);
-  return value as Record<string, unknown>;
-}
-
-function numbers(value: unknown, what: string): number[] {
-  if (!Array.isArray(value)) throw new Error(`${what} must be an array of numbers`);
-  value.forEach((x: unknown, i) => {
-    if (typeof x !== "number" || !Number.isFinite(x)) throw new Error(`${what}[${i}] is not a finite number`);
-  });
-  return value as number[];
-}
-
-function finite(value: unknown, what: string): number {
-  if (typeof value !== "number" || !Number.isFinite(value)) throw new Error(`${what} must be a finite number`);
-  return value;
-}
-
-function count(value: unknown, what: string): number {
-  if (!Number.isSafeInteger(value) || (value as number) < 0) throw new Error(`${what} must be a whole number`);
-  return value as number;
+function add(recorder: rawTypes.SessionRecorder, event: SessionEvent): void {
+  if ("handles" in event) {
+    const { triangles, barycentric } = event.handles;
+    recorder.handles(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
+  } else if ("step" in event) recorder.step(toFloat64(event.step, "velocities"));
+  else if ("positions" in event) recorder.positions(toFloat64(event.positions, "positions"));
+  else if ("options" in event) recorder.options(event.options);
+  else recorder.reset();
 }

@@ -3,17 +3,9 @@
  * and how it was made (a built-in shape's name and triangulation, so sessions can rebuild
  * it exactly).
  */
-import {
-  builtinShape,
-  limits,
-  meshFromArrays,
-  triangulate,
-  triangulateToVertices,
-  type MeshData,
-  type Outline,
-} from "../core.js";
+import { limits, triangulateToVertices, type MeshData, type Outline } from "../core.js";
 import type { VectorPath } from "../import.js";
-import type { Session, ShapeSpec } from "./session.js";
+import { sessionMesh, type Session, type ShapeSpec } from "./session.js";
 import { boxUvs, uniqueEdges } from "./geometry.js";
 import { bounds } from "./view.js";
 
@@ -84,31 +76,31 @@ export function shapeFromMesh(
   };
 }
 
-/** The shape a session needs: `current` if it is that shape, else rebuilt from the session. */
+/** The shape a session needs: `current` if it is that shape, else rebuilt by the core from the session. */
 export function sessionShape(session: Session, current: Shape): Shape {
-  const spec = session.shape;
+  const { shape: spec, mesh } = session.data;
   const now = current.spec;
   if (spec) {
     if (
       now &&
       now.name === spec.name &&
       now.targetEdgeLength === spec.targetEdgeLength &&
-      now.minAngle === spec.minAngle
+      now.minAngle === spec.minAngle &&
+      spec.maxArea === undefined
     ) {
       return current;
     }
-    const mesh = triangulate(builtinShape(spec.name), {
-      targetEdgeLength: spec.targetEdgeLength,
-      minAngle: spec.minAngle,
-      maxVertices: Math.min(4 * session.mesh.vertexCount + 1000, maxVertices()),
-    });
-    return shapeFromMesh(mesh, { ...spec });
+  } else if (!now && mesh.positions && mesh.triangles) {
+    const m = current.mesh;
+    if (sameArray(m.positions, mesh.positions) && sameArray(m.triangles, mesh.triangles)) return current;
   }
-  const { positions, triangles } = session.mesh;
-  if (!positions || !triangles) throw new Error("the session names no shape and carries no mesh");
-  const m = current.mesh;
-  if (!now && sameArray(m.positions, positions) && sameArray(m.triangles, triangles)) return current;
-  return shapeFromMesh(meshFromArrays(positions, triangles), undefined);
+  // A shape the widget could have made keeps its spec (so it can be re-meshed and recorded by name).
+  const { targetEdgeLength, minAngle } = spec ?? {};
+  const widgetSpec =
+    spec && targetEdgeLength !== undefined && minAngle !== undefined && spec.maxArea === undefined
+      ? { name: spec.name, targetEdgeLength, minAngle }
+      : undefined;
+  return shapeFromMesh(sessionMesh(session), widgetSpec, undefined, spec?.name);
 }
 
 function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {

@@ -13,6 +13,7 @@ import {
   builtinShape,
   builtinShapes,
   init,
+  limits,
   type Deformer,
   type MeshData,
   type Metrics,
@@ -419,9 +420,13 @@ export class Widget {
     return session;
   }
 
-  /** Loads a recorded session from a file (up to 80 MB) and replays it (see {@link replay}). */
+  /**
+   * Loads a recorded session from a file (up to `limits().sessionBytes`, 80 MB), read and
+   * checked by the core, and replays it (see {@link replay}).
+   */
   async loadSession(file: Blob): Promise<void> {
-    if (file.size > 80_000_000) throw new Error(`the session is ${file.size} bytes; sessions are limited to 80 MB`);
+    const most = limits().sessionBytes;
+    if (file.size > most) throw new Error(`the session is ${file.size} bytes; sessions are limited to ${most}`);
     const session = parseSession(await file.text());
     await this.replay(session);
     this.#lastSession = session;
@@ -434,8 +439,10 @@ export class Widget {
   }
 
   /**
-   * Replays a session (an object, or JSON text): rebuilds its mesh if needed, then repeats
-   * its calls, drawing every `stepsPerFrame` steps. Resolves with the final positions.
+   * Replays a session (read by {@link parseSession}, or JSON text): rebuilds its mesh if
+   * needed (in the core), then, from the rest pose without handles and with the session's
+   * options, repeats its calls as the core's `session::replay` does, drawing every
+   * `stepsPerFrame` steps. Resolves with the final positions.
    * The result is bit-for-bit the pose the recording ended in, with the session's method;
    * the whole replay is one undoable step, and a session that fails partway leaves
    * everything as it was before.
@@ -446,9 +453,10 @@ export class Widget {
     if (posing.replaying) throw new Error("a replay is already running");
     posing.releasePointers();
     const shape = sessionShape(s, posing.shape);
-    if (shape.mesh.vertexCount !== s.mesh.vertexCount || shape.mesh.triangleCount !== s.mesh.triangleCount) {
+    const recorded = s.data.mesh;
+    if (shape.mesh.vertexCount !== recorded.vertexCount || shape.mesh.triangleCount !== recorded.triangleCount) {
       throw new Error(
-        `the session's mesh has ${s.mesh.vertexCount} vertices and ${s.mesh.triangleCount} triangles, ` +
+        `the session's mesh has ${recorded.vertexCount} vertices and ${recorded.triangleCount} triangles, ` +
           `but rebuilding it gave ${shape.mesh.vertexCount} and ${shape.mesh.triangleCount}`,
       );
     }
@@ -460,10 +468,13 @@ export class Widget {
         posing.parts = undefined;
         posing.install(shape);
       }
-      const defaults = s.options.method === "arap" ? {} : { ...METHODS.akap.options, lambda: DEFAULTS.lambda };
-      posing.applyOptions({ ...defaults, ...s.options });
+      // The state the core's replay starts from: the header's options (every one of them,
+      // as `sessionJson` writes them), the rest pose, no handles.
+      posing.applyOptions(s.data.options);
+      posing.apply({ reset: true });
+      posing.apply({ handles: { triangles: [], barycentric: [] } });
       let steps = 0;
-      for (const event of s.events) {
+      for (const event of s.data.events) {
         if (this.#destroyed) break;
         posing.apply(event);
         if ("step" in event && ++steps % stepsPerFrame === 0) {

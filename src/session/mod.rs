@@ -1,0 +1,628 @@
+//! Recorded interaction sessions: the one definition of the JSON format the app records
+//! (the widget records through the bindings' `SessionRecorder` and reads through
+//! `sessionJson`, both this module), and its replay on any [`Deform`] method.
+//!
+//! ```json
+//! { "format": "akap-session", "version": 2,
+//!   "shape": { "name": "bar", "targetEdgeLength": 0.05, "minAngle": 28 },
+//!   "mesh": { "vertexCount": 812, "triangleCount": 1400 },
+//!   "options": { "method": "akap", "lambda": 100, "dirichlet": true, "integrator": "spiral" },
+//!   "events": [ { "handles": { "triangles": [4, 9], "barycentric": [1, 0, 0, 0.2, 0.3, 0.5] } },
+//!               { "step": [0, 0, 0.01, 0.02] },
+//!               { "positions": [0, 0, 1, 0, 0.5, 1] },
+//!               { "options": { "method": "arap", "iterations": 10 } },
+//!               { "reset": true } ] }
+//! ```
+//!
+//! The mesh comes from one of two places. `shape.name` names a built-in shape
+//! ([`crate::shapes::NAMES`]) whose outline is triangulated again with the given options
+//! (`targetEdgeLength`, `maxArea`, `minAngle`, each optional, defaults as in
+//! [`TriangulationOptions`]); or there is no `shape` and the mesh is inline, in
+//! `mesh.positions` (x, y per vertex) and `mesh.triangles` (3 indices each, counter-clockwise).
+//! Either way it must have the recorded `vertexCount` and `triangleCount`.
+//!
+//! `options` are the method of the recording and its settings: `method` (`"akap"`, the
+//! default, or `"arap"`), AKAP's `lambda`, `dirichlet` and `integrator`, ARAP's
+//! `iterations`; each optional, that method's defaults otherwise, and an option of the
+//! other method is refused. Events: `handles` replaces the handles (a triangle and 3
+//! barycentric coordinates per handle); `step` is one frame with two velocity components
+//! per handle, exactly as passed to the deformer; `positions` puts the mesh into a pose (2
+//! numbers per vertex; handles stay); `options` changes the options as the widget's method
+//! list does (over the current options when it names the same method or none; another
+//! method gets a new deformer on the same mesh with the pose and handles carried over);
+//! `reset` (`true`; `false` does nothing) returns to the rest pose.
+//!
+//! Version 1, the first sessions (`tests/sessions/*.json`), had only a built-in shape, AKAP
+//! options and `handles`, `step` and `reset` events; it is still read (a version-1 file using
+//! more is refused), and written back as version 2.
+//!
+//! Numbers are written in the shortest form that reads back to the same double, and read
+//! exactly (serde_json's `float_roundtrip`), so replaying a session repeats the recording
+//! bit for bit ([`replay`]). Other methods see other handle positions, so they follow the
+//! recording's *targets* instead, each handle's position before a step plus its velocity in
+//! the recording: [`replay_to_targets`].
+
+mod replay;
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+pub use replay::{replay, replay_to_targets, Replay};
+
+use crate::deform::{ArapOptions, Deform, DeformError, DeformerOptions, Integrator, Method, MethodOptions};
+use crate::mesh::{Mesh, MeshError};
+use crate::shapes;
+use crate::triangulate::{triangulate, TriangulationError, TriangulationOptions};
+
+/// The value of the `format` field.
+pub const FORMAT: &str = "akap-session";
+/// The format version this code writes (and the newest it reads).
+pub const VERSION: u32 = 2;
+/// The oldest version this code reads.
+pub const OLDEST_VERSION: u32 = 1;
+/// The largest session text the bindings read, in bytes (80 MB: about a million frames of
+/// a few handles, or 20,000 frames of 100 handles).
+pub const MAX_BYTES: usize = 80_000_000;
+
+/// A recorded session.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Session {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// [`VERSION`] once read (a version-1 file is read as version 2).
+    pub version: u32,
+    /// The built-in shape and how it was triangulated; `None` when the mesh is inline.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shape: Option<ShapeSpec>,
+    /// The size of the recorded mesh, checked on replay, and the mesh itself when there is
+    /// no `shape`.
+    pub mesh: SessionMesh,
+    /// The method and options of the recording at its start (left out: AKAP's defaults).
+    #[serde(default)]
+    pub options: RecordedOptions,
+    /// What happened, in order.
+    pub events: Vec<Event>,
+}
+
+/// A built-in shape and its triangulation options.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct ShapeSpec {
+    /// One of [`crate::shapes::NAMES`].
+    pub name: String,
+    /// Target edge length of the triangulation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_edge_length: Option<f64>,
+    /// Area bound of the triangulation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_area: Option<f64>,
+    /// Minimum angle in degrees of the triangulation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_angle: Option<f64>,
+}
+
+impl ShapeSpec {
+    /// The triangulation options this spec names, defaults for the rest.
+    pub fn triangulation_options(&self) -> TriangulationOptions {
+        let mut options = TriangulationOptions {
+            target_edge_length: self.target_edge_length,
+            max_area: self.max_area,
+            ..TriangulationOptions::default()
+        };
+        if let Some(angle) = self.min_angle {
+            options.min_angle_degrees = angle;
+        }
+        options
+    }
+}
+
+/// Vertex and triangle counts of a mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MeshCounts {
+    /// Number of vertices.
+    pub vertex_count: usize,
+    /// Number of triangles.
+    pub triangle_count: usize,
+}
+
+impl MeshCounts {
+    /// The counts of `mesh`.
+    pub fn of(mesh: &Mesh) -> Self {
+        Self { vertex_count: mesh.vertex_count(), triangle_count: mesh.triangle_count() }
+    }
+}
+
+/// The recorded mesh: its counts, and the mesh itself when the session has no shape.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct SessionMesh {
+    /// Number of vertices.
+    pub vertex_count: usize,
+    /// Number of triangles.
+    pub triangle_count: usize,
+    /// Inline mesh: x and y of every vertex.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub positions: Option<Vec<f64>>,
+    /// Inline mesh: three vertex indices per triangle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub triangles: Option<Vec<u32>>,
+}
+
+impl SessionMesh {
+    /// Only the counts (the mesh comes from the session's shape).
+    pub fn counts_of(counts: MeshCounts) -> Self {
+        Self {
+            vertex_count: counts.vertex_count,
+            triangle_count: counts.triangle_count,
+            positions: None,
+            triangles: None,
+        }
+    }
+
+    /// The mesh itself, inline.
+    pub fn inline(mesh: &Mesh) -> Self {
+        Self {
+            vertex_count: mesh.vertex_count(),
+            triangle_count: mesh.triangle_count(),
+            positions: Some(mesh.positions().iter().flatten().copied().collect()),
+            triangles: Some(mesh.triangles().iter().flatten().copied().collect()),
+        }
+    }
+
+    /// The recorded counts.
+    pub fn counts(&self) -> MeshCounts {
+        MeshCounts { vertex_count: self.vertex_count, triangle_count: self.triangle_count }
+    }
+}
+
+/// The deformation method as sessions name it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MethodName {
+    /// AKAP.
+    Akap,
+    /// ARAP.
+    Arap,
+}
+
+impl From<MethodName> for Method {
+    fn from(m: MethodName) -> Self {
+        match m {
+            MethodName::Akap => Method::Akap,
+            MethodName::Arap => Method::Arap,
+        }
+    }
+}
+
+impl From<Method> for MethodName {
+    fn from(m: Method) -> Self {
+        match m {
+            Method::Akap => MethodName::Akap,
+            Method::Arap => MethodName::Arap,
+        }
+    }
+}
+
+/// The integrator as sessions name it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum IntegratorName {
+    /// Log-spiral steps.
+    Spiral,
+    /// Linear steps.
+    Linear,
+}
+
+/// A method and some of its options, as the header's `options` and `options` events
+/// record them; what is left out keeps its value (see [`Self::over`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordedOptions {
+    /// `"akap"` or `"arap"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub method: Option<MethodName>,
+    /// AKAP: weight of the soft handle constraints.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    /// AKAP: whether the Dirichlet step runs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dirichlet: Option<bool>,
+    /// AKAP: `"spiral"` or `"linear"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub integrator: Option<IntegratorName>,
+    /// ARAP: local/global iterations per step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub iterations: Option<usize>,
+}
+
+impl RecordedOptions {
+    /// Every option of a method. ARAP's `tolerance` (convergence runs, which the JavaScript
+    /// API does not offer) is not part of the format.
+    pub fn of(options: MethodOptions) -> Self {
+        match options {
+            MethodOptions::Akap(o) => Self {
+                method: Some(MethodName::Akap),
+                lambda: Some(o.lambda),
+                dirichlet: Some(o.dirichlet),
+                integrator: Some(match o.integrator {
+                    Integrator::Spiral => IntegratorName::Spiral,
+                    Integrator::Linear => IntegratorName::Linear,
+                }),
+                iterations: None,
+            },
+            MethodOptions::Arap(o) => {
+                Self { method: Some(MethodName::Arap), iterations: Some(o.iterations), ..Self::default() }
+            }
+        }
+    }
+
+    /// The options these make over `base`: `base` with the options given changed when they
+    /// name its method (or none), else the other method's defaults with them; ranges
+    /// checked. `index` is the event's, for errors (`None`: the header).
+    pub fn over(&self, base: MethodOptions, index: Option<usize>) -> Result<MethodOptions, SessionError> {
+        let method = self.method.map_or(base.method(), Method::from);
+        let mut options = if method == base.method() {
+            base
+        } else {
+            match method {
+                Method::Akap => MethodOptions::Akap(DeformerOptions::default()),
+                Method::Arap => MethodOptions::Arap(ArapOptions::default()),
+            }
+        };
+        let foreign = |option: &'static str| SessionError::ForeignOption { index, option, method };
+        match &mut options {
+            MethodOptions::Akap(o) => {
+                if self.iterations.is_some() {
+                    return Err(foreign("iterations"));
+                }
+                o.lambda = self.lambda.unwrap_or(o.lambda);
+                o.dirichlet = self.dirichlet.unwrap_or(o.dirichlet);
+                if let Some(integrator) = self.integrator {
+                    o.integrator = match integrator {
+                        IntegratorName::Spiral => Integrator::Spiral,
+                        IntegratorName::Linear => Integrator::Linear,
+                    };
+                }
+            }
+            MethodOptions::Arap(o) => {
+                let given = [("lambda", self.lambda.is_some()), ("dirichlet", self.dirichlet.is_some())];
+                let given = given.into_iter().chain([("integrator", self.integrator.is_some())]);
+                if let Some((option, _)) = given.into_iter().find(|(_, set)| *set) {
+                    return Err(foreign(option));
+                }
+                o.iterations = self.iterations.unwrap_or(o.iterations);
+            }
+        }
+        options.check().map_err(|error| match index {
+            None => SessionError::Options(error),
+            Some(index) => SessionError::Event { index, error },
+        })?;
+        Ok(options)
+    }
+
+    /// Whether these use what version 1 did not have (`method`, `iterations`).
+    fn beyond_version_1(&self) -> bool {
+        self.method.is_some() || self.iterations.is_some()
+    }
+}
+
+impl From<DeformerOptions> for RecordedOptions {
+    fn from(o: DeformerOptions) -> Self {
+        Self::of(MethodOptions::Akap(o))
+    }
+}
+
+/// One event of a session.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub enum Event {
+    /// New handles: a triangle and three barycentric coordinates each.
+    Handles {
+        /// Triangle of each handle.
+        triangles: Vec<u32>,
+        /// Barycentric coordinates, three per handle.
+        barycentric: Vec<f64>,
+    },
+    /// One frame: x and y velocity of each handle.
+    Step(Vec<f64>),
+    /// A pose: x and y of every vertex (the handles stay).
+    Positions(Vec<f64>),
+    /// New options, perhaps of another method.
+    Options(RecordedOptions),
+    /// Back to the rest pose (when `true`).
+    Reset(bool),
+}
+
+/// Why a session could not be read or replayed.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum SessionError {
+    /// Not JSON of this format (serde_json's message, with line and column).
+    Json(String),
+    /// The `format` field is not [`FORMAT`].
+    Format {
+        /// The value found.
+        found: String,
+    },
+    /// The `version` field is not one this code reads.
+    Version {
+        /// The value found.
+        found: u32,
+    },
+    /// A version-1 session uses what only version 2 has.
+    NotInVersion1 {
+        /// What, e.g. "a positions event".
+        what: &'static str,
+    },
+    /// The session names no shape and carries no mesh, or names a shape and carries one too,
+    /// or carries only half of one.
+    MeshSource,
+    /// `shape.name` is not a built-in shape.
+    UnknownShape {
+        /// The name found.
+        name: String,
+    },
+    /// The shape could not be triangulated with the session's options.
+    Triangulation(TriangulationError),
+    /// The inline mesh is invalid.
+    Mesh(MeshError),
+    /// The mesh differs from the recorded counts.
+    MeshMismatch {
+        /// The counts in the session.
+        recorded: MeshCounts,
+        /// The counts of the mesh now.
+        found: MeshCounts,
+    },
+    /// The recorded options are out of range.
+    Options(DeformError),
+    /// No deformer can be made on the session's mesh (it is not connected, say).
+    Setup(DeformError),
+    /// An option of another method than the one in use (or named beside it).
+    ForeignOption {
+        /// Index of the event in `events` (`None`: the header's options).
+        index: Option<usize>,
+        /// The option's name.
+        option: &'static str,
+        /// The method the options are for.
+        method: Method,
+    },
+    /// An event was refused.
+    Event {
+        /// Index of the event in `events`.
+        index: usize,
+        /// What the deformer said.
+        error: DeformError,
+    },
+    /// A step asks for targets, but the targets given do not cover it.
+    MissingTargets {
+        /// Index of the event in `events`.
+        index: usize,
+    },
+}
+
+impl fmt::Display for SessionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Json(e) => write!(f, "not a valid session: {e}"),
+            Self::Format { found } => write!(f, "format is {found:?}, expected {FORMAT:?}"),
+            Self::Version { found } => {
+                write!(f, "session version {found} is not supported (only {OLDEST_VERSION} to {VERSION})")
+            }
+            Self::NotInVersion1 { what } => {
+                write!(f, "a version-1 session cannot have {what}; version {VERSION} sessions can")
+            }
+            Self::MeshSource => f.write_str(
+                "the session must name a built-in shape or carry its mesh (mesh.positions and mesh.triangles), \
+                 one of the two",
+            ),
+            Self::UnknownShape { name } => {
+                write!(f, "unknown shape {name:?}; the built-in shapes are {}", shapes::NAMES.join(", "))
+            }
+            Self::Triangulation(e) => write!(f, "the session's shape does not triangulate: {e}"),
+            Self::Mesh(e) => write!(f, "the session's mesh is invalid: {e}"),
+            Self::MeshMismatch { recorded, found } => write!(
+                f,
+                "the session's mesh has {} vertices and {} triangles, the session recorded {} and {}",
+                found.vertex_count, found.triangle_count, recorded.vertex_count, recorded.triangle_count
+            ),
+            Self::Options(e) => write!(f, "the session's options are invalid: {e}"),
+            Self::Setup(e) => write!(f, "the session's mesh cannot be deformed: {e}"),
+            Self::ForeignOption { index, option, method } => {
+                if let Some(index) = index {
+                    write!(f, "event {index}: ")?;
+                }
+                write!(f, "option {option} does not apply to method {method}")
+            }
+            Self::Event { index, error } => write!(f, "event {index}: {error}"),
+            Self::MissingTargets { index } => write!(f, "event {index} is a step without targets"),
+        }
+    }
+}
+
+impl std::error::Error for SessionError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Triangulation(e) => Some(e),
+            Self::Mesh(e) => Some(e),
+            Self::Options(e) | Self::Setup(e) | Self::Event { error: e, .. } => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<TriangulationError> for SessionError {
+    fn from(e: TriangulationError) -> Self {
+        Self::Triangulation(e)
+    }
+}
+
+impl Session {
+    /// An empty AKAP session of a built-in shape (nothing checked until [`Self::mesh`]).
+    pub fn new(shape: ShapeSpec, mesh: MeshCounts, options: DeformerOptions) -> Self {
+        Self {
+            format: FORMAT.to_owned(),
+            version: VERSION,
+            shape: Some(shape),
+            mesh: SessionMesh::counts_of(mesh),
+            options: options.into(),
+            events: Vec::new(),
+        }
+    }
+
+    /// An empty session of a mesh carried inline, with any method.
+    pub fn with_mesh(mesh: &Mesh, options: MethodOptions) -> Self {
+        Self {
+            format: FORMAT.to_owned(),
+            version: VERSION,
+            shape: None,
+            mesh: SessionMesh::inline(mesh),
+            options: RecordedOptions::of(options),
+            events: Vec::new(),
+        }
+    }
+
+    /// Reads a session (version 1 or 2; read as version 2) and checks it as far as it can
+    /// without its mesh ([`Self::check`]).
+    pub fn from_json(text: &str) -> Result<Self, SessionError> {
+        let mut session: Self = serde_json::from_str(text).map_err(|e| SessionError::Json(e.to_string()))?;
+        if session.format != FORMAT {
+            return Err(SessionError::Format { found: session.format });
+        }
+        if !(OLDEST_VERSION..=VERSION).contains(&session.version) {
+            return Err(SessionError::Version { found: session.version });
+        }
+        if session.version == 1 {
+            if let Some(what) = session.beyond_version_1() {
+                return Err(SessionError::NotInVersion1 { what });
+            }
+            session.version = VERSION;
+        }
+        session.check()?;
+        Ok(session)
+    }
+
+    /// What of version 2 the session uses, if anything.
+    fn beyond_version_1(&self) -> Option<&'static str> {
+        if self.shape.is_none() {
+            return Some("a mesh without a shape");
+        }
+        if self.mesh.positions.is_some() || self.mesh.triangles.is_some() {
+            return Some("an inline mesh");
+        }
+        if self.options.beyond_version_1() {
+            return Some("options naming a method or ARAP's iterations");
+        }
+        self.events.iter().find_map(|e| match e {
+            Event::Positions(_) => Some("a positions event"),
+            Event::Options(_) => Some("an options event"),
+            _ => None,
+        })
+    }
+
+    /// Checks everything that does not need the mesh built: where the mesh comes from and
+    /// the inline mesh's array lengths, the options of the header and of every `options`
+    /// event (ranges, and options of the method in use at that point), and every event's
+    /// array lengths (3 barycentric coordinates per handle, 2 velocity components per
+    /// handle of the handles in place, 2 numbers per vertex). Triangle indices, barycentric
+    /// coordinates and velocities are checked by the deformer on replay.
+    pub fn check(&self) -> Result<(), SessionError> {
+        let counts = self.mesh.counts();
+        match (&self.shape, &self.mesh.positions, &self.mesh.triangles) {
+            (Some(_), None, None) => {}
+            (None, Some(p), Some(t)) => {
+                let found = MeshCounts { vertex_count: p.len() / 2, triangle_count: t.len() / 3 };
+                if p.len() % 2 != 0 || t.len() % 3 != 0 || found != counts {
+                    return Err(SessionError::MeshMismatch { recorded: counts, found });
+                }
+            }
+            _ => return Err(SessionError::MeshSource),
+        }
+        let mut options = self.method_options()?;
+        let mut handles = 0;
+        for (index, event) in self.events.iter().enumerate() {
+            let length = |what, expected, found, per, items| {
+                let error = DeformError::Length { what, expected, found, per, items };
+                SessionError::Event { index, error }
+            };
+            match event {
+                Event::Handles { triangles, barycentric } => {
+                    if barycentric.len() != 3 * triangles.len() {
+                        return Err(length("barycentric", 3 * triangles.len(), barycentric.len(), 3, "handles"));
+                    }
+                    handles = triangles.len();
+                }
+                Event::Step(v) if v.len() != 2 * handles => {
+                    return Err(length("velocities", 2 * handles, v.len(), 2, "handles"))
+                }
+                Event::Positions(p) if p.len() != 2 * counts.vertex_count => {
+                    return Err(length("positions", 2 * counts.vertex_count, p.len(), 2, "vertices"))
+                }
+                Event::Options(o) => options = o.over(options, Some(index))?,
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes the session as JSON, one event per line.
+    pub fn to_json(&self) -> String {
+        let mut out = String::from("{\n");
+        out += &format!("  \"format\": {},\n", json(&self.format));
+        out += &format!("  \"version\": {},\n", json(&self.version));
+        if let Some(shape) = &self.shape {
+            out += &format!("  \"shape\": {},\n", json(shape));
+        }
+        out += &format!("  \"mesh\": {},\n", json(&self.mesh));
+        out += &format!("  \"options\": {},\n", json(&self.options));
+        out += "  \"events\": [";
+        for (k, event) in self.events.iter().enumerate() {
+            out += if k == 0 { "\n    " } else { ",\n    " };
+            out += &json(event);
+        }
+        out += if self.events.is_empty() { "]\n}\n" } else { "\n  ]\n}\n" };
+        out
+    }
+
+    /// The session's mesh: its shape triangulated again, or its inline mesh validated;
+    /// checked against the recorded counts.
+    pub fn mesh(&self) -> Result<Mesh, SessionError> {
+        let mesh = match (&self.shape, &self.mesh.positions, &self.mesh.triangles) {
+            (Some(shape), None, None) => {
+                let outline = shapes::by_name(&shape.name)
+                    .ok_or_else(|| SessionError::UnknownShape { name: shape.name.clone() })?;
+                triangulate(&outline, &shape.triangulation_options())?
+            }
+            (None, Some(positions), Some(triangles)) => {
+                Mesh::from_flat(positions, triangles).map_err(SessionError::Mesh)?
+            }
+            _ => return Err(SessionError::MeshSource),
+        };
+        let found = MeshCounts::of(&mesh);
+        if found != self.mesh.counts() {
+            return Err(SessionError::MeshMismatch { recorded: self.mesh.counts(), found });
+        }
+        Ok(mesh)
+    }
+
+    /// The method and options the recording starts with.
+    pub fn method_options(&self) -> Result<MethodOptions, SessionError> {
+        self.options.over(MethodOptions::default(), None)
+    }
+
+    /// A deformer of the recorded method and options on the session's mesh.
+    pub fn recorded_deformer(&self) -> Result<Box<dyn Deform>, SessionError> {
+        self.method_options()?.build(self.mesh()?).map_err(SessionError::Setup)
+    }
+
+    /// Number of `step` events.
+    pub fn step_count(&self) -> usize {
+        self.events.iter().filter(|e| matches!(e, Event::Step(_))).count()
+    }
+}
+
+/// One part of a session as compact JSON.
+fn json<T: Serialize>(value: &T) -> String {
+    serde_json::to_string(value).expect("session parts are plain data with string keys")
+}

@@ -1,0 +1,152 @@
+//! Replaying a session's events on a deformer: as recorded ([`replay`], the recorded
+//! method, switching methods where the recording did), or driving another method to the
+//! recorded targets ([`replay_to_targets`]).
+
+use super::{Event, Session, SessionError};
+use crate::deform::{Deform, DeformError};
+use crate::geometry::Point;
+
+/// What a replay did.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Replay {
+    /// For every step, the handles' targets: position before the step plus velocity.
+    pub targets: Vec<Vec<Point>>,
+    /// For every step, the milliseconds the deformer's timings report (all stages).
+    pub frame_ms: Vec<f64>,
+    /// Mean distance of the handles from the targets of the last event, if it was a step.
+    pub handle_error: Option<f64>,
+}
+
+/// Replays the events as recorded, the velocities as given, on `deformer` (normally
+/// [`Session::recorded_deformer`]). An `options` event of another method replaces
+/// `deformer` with one of that method on the same mesh, with the pose and the handles
+/// carried over, as the widget does. With the recorded method and options this repeats the
+/// recording exactly.
+pub fn replay(session: &Session, deformer: &mut Box<dyn Deform>) -> Result<Replay, SessionError> {
+    run(session, Slot::Recorded(deformer), None)
+}
+
+/// Replays the events driving every handle to the recorded targets (see [`Replay::targets`]
+/// of a [`replay`] with the recorded deformer): each step's velocity is the target minus
+/// the handle's current position in `deformer`. `options` events are passed over: the
+/// method compared keeps its settings. `positions` events put it into the recorded pose.
+pub fn replay_to_targets(
+    session: &Session,
+    targets: &[Vec<Point>],
+    deformer: &mut dyn Deform,
+) -> Result<Replay, SessionError> {
+    run(session, Slot::Compared(deformer), Some(targets))
+}
+
+/// The deformer a replay drives: the recording's, which `options` events may replace, or
+/// a compared method's, which keeps its settings.
+enum Slot<'a> {
+    Recorded(&'a mut Box<dyn Deform>),
+    Compared(&'a mut dyn Deform),
+}
+
+impl Slot<'_> {
+    fn get(&mut self) -> &mut dyn Deform {
+        match self {
+            Self::Recorded(d) => d.as_mut(),
+            Self::Compared(d) => &mut **d,
+        }
+    }
+}
+
+fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) -> Result<Replay, SessionError> {
+    let mut replay = Replay::default();
+    let mut velocities = Vec::new();
+    // The handles in place, for a deformer of another method.
+    let mut handles: (Vec<u32>, Vec<[f64; 3]>) = (Vec::new(), Vec::new());
+    let mut last_was_step = false;
+    for (index, event) in session.events.iter().enumerate() {
+        let refused = |error| SessionError::Event { index, error };
+        last_was_step &= matches!(event, Event::Reset(false) | Event::Options(_));
+        match event {
+            Event::Handles { triangles, barycentric } => {
+                let (weights, rest) = barycentric.as_chunks::<3>();
+                if !rest.is_empty() || weights.len() != triangles.len() {
+                    return Err(refused(DeformError::Length {
+                        what: "barycentric",
+                        expected: 3 * triangles.len(),
+                        found: barycentric.len(),
+                        per: 3,
+                        items: "handles",
+                    }));
+                }
+                slot.get().set_handle_points(triangles, weights).map_err(refused)?;
+                handles = (triangles.clone(), weights.to_vec());
+            }
+            Event::Step(flat) => {
+                let deformer = slot.get();
+                let before = deformer.handle_positions();
+                let (pairs, rest) = flat.as_chunks::<2>();
+                if !rest.is_empty() {
+                    return Err(refused(DeformError::Length {
+                        what: "velocities",
+                        expected: 2 * before.len(),
+                        found: flat.len(),
+                        per: 2,
+                        items: "handles",
+                    }));
+                }
+                let goal: Vec<Point> = match targets {
+                    None => before.iter().zip(pairs).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect(),
+                    Some(all) => all.get(replay.targets.len()).ok_or(SessionError::MissingTargets { index })?.clone(),
+                };
+                velocities.clear();
+                match targets {
+                    None => velocities.extend_from_slice(pairs),
+                    Some(_) => {
+                        if goal.len() != before.len() {
+                            return Err(SessionError::MissingTargets { index });
+                        }
+                        velocities.extend(before.iter().zip(&goal).map(|(p, t)| [t[0] - p[0], t[1] - p[1]]));
+                    }
+                }
+                deformer.step(&velocities).map_err(refused)?;
+                let t = deformer.timings();
+                replay.frame_ms.push(t.assembly + t.factorisation + t.solve + t.integration);
+                replay.targets.push(goal);
+                last_was_step = true;
+            }
+            Event::Positions(flat) => {
+                let (pairs, rest) = flat.as_chunks::<2>();
+                let deformer = slot.get();
+                if !rest.is_empty() {
+                    return Err(refused(DeformError::Length {
+                        what: "positions",
+                        expected: 2 * deformer.mesh().vertex_count(),
+                        found: flat.len(),
+                        per: 2,
+                        items: "vertices",
+                    }));
+                }
+                deformer.set_positions(pairs).map_err(refused)?;
+            }
+            Event::Options(recorded) => {
+                let Slot::Recorded(deformer) = &mut slot else { continue };
+                let current = deformer.method_options();
+                let options = recorded.over(current, Some(index))?;
+                if options.method() == current.method() {
+                    deformer.set_method_options(options).map_err(refused)?;
+                } else {
+                    let mut next = options.build(deformer.mesh().clone()).map_err(refused)?;
+                    next.set_positions(deformer.positions()).map_err(refused)?;
+                    next.set_handle_points(&handles.0, &handles.1).map_err(refused)?;
+                    **deformer = next;
+                }
+            }
+            Event::Reset(true) => slot.get().reset(),
+            Event::Reset(false) => {}
+        }
+    }
+    if last_was_step {
+        let goal = replay.targets.last().expect("a step was replayed");
+        let handles = slot.get().handle_positions();
+        let total: f64 = handles.iter().zip(goal).map(|(p, t)| libm::hypot(p[0] - t[0], p[1] - t[1])).sum();
+        replay.handle_error = Some(if handles.is_empty() { 0.0 } else { total / handles.len() as f64 });
+    }
+    Ok(replay)
+}

@@ -1,0 +1,170 @@
+/**
+ * Sessions between the widget and the core, in Node through the real wasm: what the
+ * widget records is the core's JSON and reads back through the core's parser, replaying to
+ * the same pose bit for bit; version-1 files read as version 2; malformed sessions and
+ * events are refused with the core's messages, changing nothing.
+ */
+import { readFileSync } from "node:fs";
+import { beforeAll, describe, expect, it } from "vitest";
+import { builtinShape, init, type Timings } from "../../www/src/index.js";
+import { widgetSettings } from "../../www/src/widget/options.js";
+import { Posing } from "../../www/src/widget/posing.js";
+import { Recorder, parseSession, sessionMesh, type SessionEvent } from "../../www/src/widget/session.js";
+import { meshOutline } from "../../www/src/widget/shape.js";
+
+beforeAll(async () => {
+  await init();
+});
+
+const noTimings = (): Timings => ({
+  assembly: 0,
+  factorisation: 0,
+  dirichletFactorisation: 0,
+  solve: 0,
+  integration: 0,
+});
+
+function posing(): Posing {
+  const p = new Posing(widgetSettings({ vertices: 300 }), {
+    adopted: () => undefined,
+    methodChanged: () => undefined,
+    handlesChanged: () => undefined,
+    poseChanged: () => undefined,
+    historyChanged: () => undefined,
+    schedule: () => undefined,
+  });
+  p.install(meshOutline(builtinShape("gingerbread"), "gingerbread", 300, 28));
+  return p;
+}
+
+/** Drags handle `index` by (dx, dy) as the frame loop would, until it arrives. */
+function drag(p: Posing, index: number, dx: number, dy: number): void {
+  const h = p.deformer.handlePositions();
+  const [x, y] = [h[2 * index]!, h[2 * index + 1]!];
+  p.grab(index, 1, x, y, false);
+  p.drag(1, x + dx, y + dy);
+  for (let frame = 0; frame < 100 && p.advance(noTimings()) > 0; frame++);
+  p.release(1);
+}
+
+const bits = (values: ArrayLike<number>): string =>
+  Array.from(new Uint8Array(Float64Array.from(values).buffer), (b) => b.toString(16).padStart(2, "0")).join("");
+
+describe("sessions through the core", () => {
+  it("the widget's recording is the core's JSON, reads back through the core and replays to the same pose", () => {
+    const p = posing();
+    const triangles = p.shape.mesh.triangles;
+    p.addHandle({ triangle: 0, barycentric: [1, 0, 0] });
+    drag(p, 0, 0.05, 0); // a pose before the recording: it starts with a positions event
+    p.startRecording();
+    p.addHandle({ triangle: Math.floor(triangles.length / 6), barycentric: [0.2, 0.3, 0.5] });
+    drag(p, 1, -0.2, 0.3);
+    p.setMethod("arap", 100);
+    drag(p, 1, 0.1, -0.1);
+    p.setMethod("akap-linear", 50);
+    p.reset();
+    drag(p, 1, 0.15, 0.05);
+    const pose = p.deformer.positions();
+    const session = p.stopRecording()!;
+
+    const kinds = session.data.events.map((e) => Object.keys(e)[0]);
+    expect(kinds.slice(0, 3)).toEqual(["positions", "handles", "handles"]);
+    for (const kind of ["step", "options", "reset"]) expect(kinds).toContain(kind);
+    expect(session.data.version).toBe(2);
+    expect(session.data.shape?.name).toBe("gingerbread");
+    // The core reads what the widget wrote, and writes it back the same.
+    const back = parseSession(session.json);
+    expect(back.json).toBe(session.json);
+    expect(sessionMesh(back).positions).toEqual(p.shape.mesh.positions);
+
+    // Replayed on a fresh posing of the same shape, event by event, as the widget does.
+    const q = posing();
+    q.replaying = true;
+    q.applyOptions(back.data.options);
+    for (const event of back.data.events) q.apply(event);
+    expect(bits(q.deformer.positions())).toBe(bits(pose));
+    expect(q.settings.method).toBe("akap-linear");
+    expect(q.settings.lambda).toBe(50);
+  });
+
+  it("keeps negative zeros and subnormals of the recorded numbers", () => {
+    const p = posing();
+    const r = new Recorder();
+    r.start({ shape: p.shape.spec, mesh: p.shape.mesh, options: { method: "akap" } }, [{ reset: true }]);
+    r.record({ handles: { triangles: [0], barycentric: [1, 0, 0] } });
+    r.record({ step: [-0, 5e-324] });
+    const session = r.stop()!;
+    expect(r.recording).toBe(false);
+    const step = (session.data.events[2] as { step: number[] }).step;
+    expect(Object.is(step[0], -0)).toBe(true);
+    expect(step[1]).toBe(5e-324);
+    expect(parseSession(session.json).json).toBe(session.json);
+  });
+
+  it("refuses an event the session cannot hold, keeping the events before it", () => {
+    const p = posing();
+    const r = new Recorder();
+    r.start({ shape: undefined, mesh: p.shape.mesh, options: {} }, [{ reset: true }]);
+    const bad: SessionEvent[] = [
+      { step: [0.1, 0.2] }, // no handles yet
+      { handles: { triangles: [0, 1], barycentric: [1, 0, 0] } },
+      { positions: [0, 0] },
+      { options: { iterations: 5 } },
+      { step: [] as number[] },
+    ];
+    expect(() => r.record(bad[0]!)).toThrow("velocities has 2 numbers; 0 handles need 2 each");
+    expect(() => r.record(bad[1]!)).toThrow("barycentric has 3 numbers; 2 handles need 3 each");
+    expect(() => r.record(bad[2]!)).toThrow(/positions has 2 numbers; \d+ vertices need 2 each/);
+    expect(() => r.record(bad[3]!)).toThrow('option iterations applies to method "arap" only');
+    expect(() => r.record({ step: [NaN] })).toThrow("velocities[0] is NaN, not a finite number");
+    r.record(bad[4]!); // a step of no handles is fine
+    const session = r.stop()!;
+    expect(session.data.events).toEqual([{ reset: true }, { step: [] }]);
+    // Without a shape the session carries the mesh.
+    expect(session.data.shape).toBeUndefined();
+    expect(session.data.mesh.positions).toEqual(Array.from(p.shape.mesh.positions));
+  });
+
+  it("reads version-1 files as version 2, with every option of the method", () => {
+    const text = readFileSync(new URL("../sessions/gingerbread-fast.json", import.meta.url), "utf8");
+    expect(text).toContain('"version": 1,');
+    const session = parseSession(text);
+    expect(session.data.version).toBe(2);
+    expect(session.data.options).toEqual({ method: "akap", lambda: 100, dirichlet: true, integrator: "spiral" });
+    expect(session.data.events.length).toBe((JSON.parse(text) as { events: unknown[] }).events.length);
+  });
+
+  it("refuses malformed sessions with the core's messages", () => {
+    const good = {
+      format: "akap-session",
+      version: 2,
+      shape: { name: "gingerbread", targetEdgeLength: 0.1 },
+      mesh: { vertexCount: 10, triangleCount: 12 },
+      events: [{ handles: { triangles: [1], barycentric: [1, 0, 0] } }, { step: [1, 2] }],
+    };
+    const bad = (patch: object) => JSON.stringify({ ...good, ...patch });
+    expect(parseSession(bad({})).data.options).toEqual({
+      method: "akap",
+      lambda: 100,
+      dirichlet: true,
+      integrator: "spiral",
+    });
+    expect(() => parseSession("{")).toThrow(/^not a valid session: EOF while parsing an object at line 1 column 1$/);
+    expect(() => parseSession(bad({ format: "x" }))).toThrow('format is "x", expected "akap-session"');
+    expect(() => parseSession(bad({ version: 3 }))).toThrow("session version 3 is not supported (only 1 to 2)");
+    expect(() => parseSession(bad({ events: [{ jump: 1 }] }))).toThrow(/unknown variant `jump`/);
+    expect(() => parseSession(bad({ events: [{ step: [1, "2"] }] }))).toThrow(/invalid type: string "2"/);
+    expect(() => parseSession(bad({ events: [{ step: [1], reset: true }] }))).toThrow(/not a valid session/);
+    expect(() => parseSession(bad({ shape: undefined }))).toThrow(/must name a built-in shape or carry its mesh/);
+    expect(() => parseSession(bad({ mesh: { vertexCount: -1, triangleCount: 1 } }))).toThrow(
+      /invalid value: integer `-1`/,
+    );
+    expect(() => parseSession(bad({ options: { method: "arap", lambda: 5 } }))).toThrow(
+      "option lambda does not apply to method arap",
+    );
+    expect(() => parseSession(bad({ events: [...good.events, { step: [1] }] }))).toThrow(
+      "event 2: velocities has 1 numbers, expected 2 (2 for each of the 1 handles)",
+    );
+    expect(() => parseSession(42 as unknown as string)).toThrow("the session must be a string, not the number 42");
+  });
+});
