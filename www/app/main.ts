@@ -11,7 +11,7 @@ import {
   init,
   mount,
   type GalleryItem,
-  type Method,
+  type MethodPreset,
   type Widget,
   type WidgetOptions,
 } from "../src/index.js";
@@ -60,7 +60,7 @@ function optionsFromUrl(params: URLSearchParams): { options: WidgetOptions; prob
   }
   const method = params.get("method");
   if (method !== null) {
-    if (Object.hasOwn(METHODS, method)) options.method = method as Method;
+    if (Object.hasOwn(METHODS, method)) options.method = method as MethodPreset;
     else problems.push(`?method=${method} is not a method (${Object.keys(METHODS).join(", ")})`);
   }
   const hud = params.get("hud");

@@ -11,7 +11,7 @@
  * ```
  *
  */
-import { toFloat64, toUint32 } from "./internal/arrays.js";
+import { toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
 import { readMesh } from "./internal/mesh.js";
 import { assertLoaded, load, raw, wasmMemory, wasmModule, type rawTypes } from "./internal/wasm.js";
 
@@ -59,8 +59,7 @@ export function isAkapError(error: unknown): error is AkapError {
   return error instanceof Error && (ERROR_CODES as readonly unknown[]).includes(code);
 }
 
-/** A list of points, x and y interleaved: `[x0, y0, x1, y1, ...]`. */
-export type Coordinates = Float64Array | readonly number[];
+export type { Coordinates, Indices } from "./internal/arrays.js";
 
 /** A shape: an outer boundary and optional holes, each a closed ring in either direction. */
 export interface Outline {
@@ -164,9 +163,6 @@ export function meshFromArrays(positions: Coordinates, triangles: Indices): Mesh
   assertLoaded();
   return copyOut(new raw.Mesh(toFloat64(positions, "positions"), toUint32(triangles, "triangles")));
 }
-
-/** Vertex or triangle indices. */
-export type Indices = Uint32Array | readonly number[];
 
 /**
  * Options of the {@link Deformer}. `method` is chosen when the deformer is created;

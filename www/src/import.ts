@@ -13,7 +13,7 @@
  *
  * @module
  */
-import { coded, type IndexList, type NumberList, toFloat64, toUint32 } from "./internal/arrays.js";
+import { coded, type Indices, type Coordinates, toFloat64, toUint32 } from "./internal/arrays.js";
 import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
 import type { MeshData } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
@@ -87,7 +87,7 @@ export function importSvgPaths(text: string, options: SvgImportOptions = {}): Ve
  */
 export function pathData(
   path: Pick<VectorPath, "commands" | "points">,
-  points: NumberList = path.points,
+  points: Coordinates = path.points,
   options: { flipY?: boolean } = {},
 ): string {
   // Read as the bindings read their options (Rust's `read::Options`): a misspelt key or a
@@ -158,7 +158,7 @@ export function traceImage(
  * (0.5 / width, 1 - 0.5 / height)). Throws for a size that is not a finite number above 0,
  * a position that is not finite, and a coordinate that would overflow.
  */
-export function textureCoordinates(positions: NumberList, width: number, height: number): Float64Array {
+export function textureCoordinates(positions: Coordinates, width: number, height: number): Float64Array {
   assertLoaded();
   return raw.texture_coordinates(toFloat64(positions, "positions"), width, height);
 }
@@ -208,9 +208,9 @@ export function meshFromJson(text: string): MeshFileData {
  * back as a mesh refuses them, as every rest mesh's are.)
  */
 export interface MeshToWrite {
-  positions: NumberList;
-  triangles: IndexList;
-  uvs?: NumberList;
+  positions: Coordinates;
+  triangles: Indices;
+  uvs?: Coordinates;
 }
 
 function writeArgs(mesh: MeshToWrite): [Float64Array, Uint32Array, Float64Array | undefined] {
@@ -238,7 +238,7 @@ export function meshToJson(mesh: MeshToWrite): string {
 export class PointMapper {
   #inner: rawTypes.PointMapper | undefined;
 
-  constructor(restPositions: NumberList, triangles: IndexList, points: NumberList) {
+  constructor(restPositions: Coordinates, triangles: Indices, points: Coordinates) {
     assertLoaded();
     this.#inner = new raw.PointMapper(
       toFloat64(restPositions, "restPositions"),
@@ -254,7 +254,7 @@ export class PointMapper {
   }
 
   /** The points in the pose `deformedPositions` (one xy pair per rest vertex). */
-  map(deformedPositions: NumberList): Float64Array {
+  map(deformedPositions: Coordinates): Float64Array {
     return this.#raw.map(toFloat64(deformedPositions, "deformedPositions"));
   }
 
@@ -272,10 +272,10 @@ export class PointMapper {
 
 /** Carries `points` from the rest mesh to the deformed positions in one call. */
 export function mapPoints(
-  restPositions: NumberList,
-  triangles: IndexList,
-  deformedPositions: NumberList,
-  points: NumberList,
+  restPositions: Coordinates,
+  triangles: Indices,
+  deformedPositions: Coordinates,
+  points: Coordinates,
 ): Float64Array {
   const mapper = new PointMapper(restPositions, triangles, points);
   try {

@@ -24,7 +24,7 @@ export {
   Widget,
   mount,
   type GalleryItem,
-  type Method,
+  type MethodPreset,
   type PoseDetail,
   type WidgetOptions,
 } from "./widget/widget.js";

@@ -6,19 +6,22 @@ export function coded<E extends Error>(error: E, code: ErrorCode): E & AkapError
   return Object.assign(error, { code });
 }
 
-/** A list of numbers: a Float64Array or a plain array. */
-export type NumberList = Float64Array | readonly number[];
+/**
+ * A list of numbers, as the API takes them: a Float64Array or a plain array. Points are x
+ * and y interleaved: `[x0, y0, x1, y1, ...]`. (Public through `core.ts`.)
+ */
+export type Coordinates = Float64Array | readonly number[];
 
-/** Index triples or other indices: a Uint32Array or a plain array. */
-export type IndexList = Uint32Array | readonly number[];
+/** Vertex or triangle indices: a Uint32Array or a plain array. (Public through `core.ts`.) */
+export type Indices = Uint32Array | readonly number[];
 
-export function toFloat64(values: NumberList, what: string): Float64Array {
+export function toFloat64(values: Coordinates, what: string): Float64Array {
   if (values instanceof Float64Array) return values;
   if (Array.isArray(values)) return Float64Array.from(values, Number);
   throw coded(new TypeError(`${what} must be a Float64Array or an array of numbers`), "invalid-argument");
 }
 
-export function toUint32(values: IndexList, what: string): Uint32Array {
+export function toUint32(values: Indices, what: string): Uint32Array {
   if (values instanceof Uint32Array) return values;
   if (!Array.isArray(values)) {
     throw coded(new TypeError(`${what} must be a Uint32Array or an array of numbers`), "invalid-argument");

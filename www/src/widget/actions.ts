@@ -3,7 +3,7 @@
  * fails says why (a cancelled one says so as information) with every field back to the
  * settings in force.
  */
-import type { GalleryItem, Method } from "./options.js";
+import type { GalleryItem, MethodPreset } from "./options.js";
 import { Cancelled } from "./setup.js";
 import { download } from "./export.js";
 import type { ToolbarActions } from "./toolbar.js";
@@ -54,7 +54,7 @@ export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions
     open: guard((file: File) => widget.loadFile(file)),
     part: guard((index: number) => widget.choosePart(index)),
     method: guard((method: string, lambda: number) => {
-      widget.setMethod(method as Method, lambda);
+      widget.setMethod(method as MethodPreset, lambda);
       host.succeeded();
     }),
     display: guard((options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }) =>

@@ -14,7 +14,7 @@
  * a default-on feature off). The element fires the widget's events (`akap-ready`,
  * `akap-pose`, `akap-handles`, `akap-error`); `element.widget` is the {@link Widget}.
  */
-import { mount, type Method, type Widget, type WidgetOptions } from "./widget.js";
+import { mount, type MethodPreset, type Widget, type WidgetOptions } from "./widget.js";
 
 /** What `document.querySelector("akap-deformer")` gives after {@link defineElement}. */
 export interface AkapDeformerElement extends HTMLElement {
@@ -92,7 +92,7 @@ function elementOptions(element: HTMLElement): WidgetOptions {
   assign("texture", text("texture"));
   assign("src", text("src"));
   assign("vertices", num("vertices"));
-  assign("method", text("method") as Method | undefined);
+  assign("method", text("method") as MethodPreset | undefined);
   assign("lambda", num("lambda"));
   assign("controls", flag("controls"));
   assign("hud", flag("hud"));

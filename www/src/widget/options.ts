@@ -22,7 +22,11 @@ export const METHODS = {
   arap: { label: "ARAP (10 iterations per step)", options: { method: "arap", iterations: 10 } },
 } as const satisfies Record<string, { label: string; options: DeformerOptions }>;
 
-export type Method = keyof typeof METHODS;
+/**
+ * A preset of the widget: a deformation method (`"akap"` or `"arap"`, the core's
+ * `DeformerOptions.method`) with settings, named by its key in {@link METHODS}.
+ */
+export type MethodPreset = keyof typeof METHODS;
 
 export interface WidgetOptions {
   /**
@@ -48,7 +52,7 @@ export interface WidgetOptions {
   vertices?: number;
   /** Smallest triangle angle in degrees (default 28). */
   minAngle?: number;
-  method?: Method;
+  method?: MethodPreset;
   /** Weight of the soft handle constraints (default 100). */
   lambda?: number;
   /** Velocities from raw pointer displacement, as in the paper, instead of target tracking. */
@@ -100,7 +104,7 @@ export interface PoseDetail {
 export const DEFAULTS = {
   vertices: 1500,
   minAngle: 28,
-  method: "akap" as Method,
+  method: "akap" as MethodPreset,
   lambda: 100,
   maxStep: 0.02,
   maxSubsteps: 8,
@@ -132,18 +136,18 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
 }
 
 /** Deformer options of a widget method; lambda applies to the AKAP variants only. */
-export function methodOptions(method: Method, lambda: number): DeformerOptions {
+export function methodOptions(method: MethodPreset, lambda: number): DeformerOptions {
   const options: DeformerOptions = { ...METHODS[method].options };
   if (options.method === "akap") options.lambda = lambda;
   return options;
 }
 
 /** The widget method (and lambda) that deformer options describe, e.g. a session's. */
-export function widgetMethod(options: DeformerOptions, lambda: number): { method: Method; lambda: number } {
+export function widgetMethod(options: DeformerOptions, lambda: number): { method: MethodPreset; lambda: number } {
   if (options.method === "arap") return { method: "arap", lambda };
   const dirichlet = options.dirichlet ?? true;
   const integrator = options.integrator ?? "spiral";
-  const found = (Object.keys(METHODS) as Method[]).find((key) => {
+  const found = (Object.keys(METHODS) as MethodPreset[]).find((key) => {
     const m: DeformerOptions = METHODS[key].options;
     return m.method === "akap" && m.dirichlet === dirichlet && m.integrator === integrator;
   });

@@ -13,7 +13,7 @@ import { Deformer, type DeformerOptions, type Timings } from "../core.js";
 import { PointMapper } from "../import.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
 import { History } from "./history.js";
-import { METHODS, methodOptions, widgetMethod, type Method, type WidgetSettings } from "./options.js";
+import { METHODS, methodOptions, widgetMethod, type MethodPreset, type WidgetSettings } from "./options.js";
 import { locate, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, type Session, type SessionEvent } from "./session.js";
 import type { Shape } from "./shape.js";
@@ -41,7 +41,7 @@ export interface Parts {
 export interface Snapshot {
   shape: Shape;
   parts: Parts | undefined;
-  method: Method;
+  method: MethodPreset;
   lambda: number;
   positions: Float64Array;
   atRest: boolean;
@@ -53,7 +53,7 @@ export interface PosingHost {
   /** A new shape or deformer is in place; `refit` when the view should fit it afresh. */
   adopted(shape: Shape, deformer: Deformer, refit: boolean): void;
   /** The method in use changed (lists and HUD show it). */
-  methodChanged(method: Method, lambda: number): void;
+  methodChanged(method: MethodPreset, lambda: number): void;
   /** The handle set changed. */
   handlesChanged(count: number): void;
   /** The pose changed outside the frame loop (undo, reset, a load). */
@@ -140,7 +140,7 @@ export class Posing {
   }
 
   /** Changes the method and/or lambda (recorded). */
-  setMethod(method: Method, lambda: number): void {
+  setMethod(method: MethodPreset, lambda: number): void {
     if (!Object.hasOwn(METHODS, method)) throw new Error(`unknown method "${method}"`);
     const options = methodOptions(method, lambda);
     this.useOptions(options); // throws (and changes nothing) for a bad lambda
@@ -155,7 +155,7 @@ export class Posing {
     this.showMethod(method, lambda);
   }
 
-  showMethod(method: Method, lambda: number): void {
+  showMethod(method: MethodPreset, lambda: number): void {
     this.settings.method = method;
     this.settings.lambda = lambda;
     this.#host.methodChanged(method, lambda);

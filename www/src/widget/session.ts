@@ -24,7 +24,7 @@
  * carries the mesh itself in `mesh.positions` and `mesh.triangles`.
  */
 import type { DeformerOptions, MeshData } from "../core.js";
-import { toFloat64, toUint32, type IndexList, type NumberList } from "../internal/arrays.js";
+import { toFloat64, toUint32, type Indices, type Coordinates } from "../internal/arrays.js";
 import { readMesh } from "../internal/mesh.js";
 import { assertLoaded, raw, type rawTypes } from "../internal/wasm.js";
 
@@ -53,9 +53,9 @@ export interface SessionMesh {
 
 /** One recorded call; arrays as typed arrays while recording, plain arrays once read. */
 export type SessionEvent =
-  | { handles: { triangles: IndexList; barycentric: NumberList } }
-  | { step: NumberList }
-  | { positions: NumberList }
+  | { handles: { triangles: Indices; barycentric: Coordinates } }
+  | { step: Coordinates }
+  | { positions: Coordinates }
   | { options: DeformerOptions }
   | { reset: true };
 

@@ -28,7 +28,7 @@ import {
   METHODS,
   widgetSettings,
   type GalleryItem,
-  type Method,
+  type MethodPreset,
   type PoseDetail,
   type WidgetOptions,
   type WidgetSettings,
@@ -48,7 +48,7 @@ import { defaultTexture } from "./texture.js";
 import { buildToolbar, type Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
 
-export { METHODS, type GalleryItem, type Method, type PoseDetail, type WidgetOptions } from "./options.js";
+export { METHODS, type GalleryItem, type MethodPreset, type PoseDetail, type WidgetOptions } from "./options.js";
 
 /** Frames without input after which the loop stops even if pins have not settled. */
 const SETTLE_FRAMES = 240;
@@ -203,7 +203,7 @@ export class Widget {
   }
 
   /** The method in use and lambda. */
-  get method(): { method: Method; lambda: number } {
+  get method(): { method: MethodPreset; lambda: number } {
     return { method: this.#settings.method, lambda: this.#settings.lambda };
   }
 
@@ -287,7 +287,7 @@ export class Widget {
   }
 
   /** Changes the method and/or lambda. */
-  setMethod(method: Method, lambda = this.#settings.lambda): void {
+  setMethod(method: MethodPreset, lambda = this.#settings.lambda): void {
     this.#posing.setMethod(method, lambda);
   }
 
@@ -634,7 +634,13 @@ export class Widget {
       Object.assign(this.#settings, settings);
       this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
       posing.install(shape);
-      posing.restore({ ...saved, shape, parts: undefined, method: settings.method as Method, lambda: settings.lambda });
+      posing.restore({
+        ...saved,
+        shape,
+        parts: undefined,
+        method: settings.method as MethodPreset,
+        lambda: settings.lambda,
+      });
     } catch (error) {
       posing.restore(before);
       throw error;
