@@ -51,7 +51,7 @@ const bits = (values: ArrayLike<number>): string =>
   Array.from(new Uint8Array(Float64Array.from(values).buffer), (b) => b.toString(16).padStart(2, "0")).join("");
 
 describe("sessions through the core", () => {
-  it("the widget's recording is the core's JSON, reads back through the core and replays to the same pose", () => {
+  it("the widget's recording is the core's JSON, reads back through the core and replays to the same pose", async () => {
     const p = posing();
     const triangles = p.shape.mesh.triangles;
     p.addHandle({ triangle: 0, barycentric: [1, 0, 0] });
@@ -77,14 +77,29 @@ describe("sessions through the core", () => {
     expect(back.json).toBe(session.json);
     expect(sessionMesh(back).positions).toEqual(p.shape.mesh.positions);
 
-    // Replayed on a fresh posing of the same shape, event by event, as the widget does.
+    // Replayed on a fresh posing of the same shape, as the widget replays (Posing.replay).
     const q = posing();
-    q.replaying = true;
-    q.applyOptions(back.data.options);
-    for (const event of back.data.events) q.apply(event);
+    let steps = 0;
+    await q.replay(back, q.shape, async (n) => ((steps = n), true));
     expect(bits(q.deformer.positions())).toBe(bits(pose));
+    expect(steps).toBe(kinds.filter((k) => k === "step").length);
     expect(q.settings.method).toBe("akap-linear");
     expect(q.settings.lambda).toBe(50);
+    // One undoable step, back to where the replay began.
+    expect(q.travel(false)).toBe(true);
+    expect(bits(q.deformer.positions())).toBe(bits(p.shape.mesh.positions));
+
+    // A replay stopped by its host keeps what it did so far; one that fails leaves nothing.
+    const r = posing();
+    await r.replay(back, r.shape, async () => false);
+    expect(r.replaying).toBe(false);
+    // A step the format holds but the deformer refuses: it would carry vertices past 1e300.
+    const broken = parseSession(session.json.replace(/"step": ?\[[^\]]*\]/, '"step":[1e300,0,1e300,0]'));
+    const t = posing();
+    const before = t.deformer.positions();
+    await expect(t.replay(broken, t.shape, async () => true)).rejects.toThrow(/1e300/);
+    expect(bits(t.deformer.positions())).toBe(bits(before));
+    expect(t.replaying).toBe(false);
   });
 
   it("keeps negative zeros and subnormals of the recorded numbers", () => {

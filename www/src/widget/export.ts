@@ -1,8 +1,8 @@
 /**
- * Exports of the current pose: the outline as SVG, and a file download helper for pages.
- * (The mesh as JSON or Wavefront OBJ is written by the core's `meshToJson`/`meshToObj`.)
+ * Exports of the current pose: the mesh as JSON or Wavefront OBJ (the core's writers), the
+ * outline or vector art as SVG, and a file download helper for pages.
  */
-import { PointMapper, pathData, type VectorPath } from "../import.js";
+import { PointMapper, meshToJson, meshToObj, pathData, type VectorPath } from "../import.js";
 import { boundaryLoops } from "./geometry.js";
 import { bounds } from "./view.js";
 
@@ -75,6 +75,19 @@ function fillAttributes(colour: string): string {
 
 function escapeAttribute(text: string): string {
   return text.replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/"/g, "&quot;");
+}
+
+/**
+ * A shape in a pose (`positions`, a copy: the writer allocates in the memory a view of it
+ * would see) as JSON or OBJ text, with its texture coordinates: the core's writers.
+ */
+export function posedMesh(
+  shape: { mesh: { triangles: Uint32Array }; uvs: ArrayLike<number> },
+  positions: Float64Array,
+  format: "json" | "obj",
+): string {
+  const pose = { positions, triangles: shape.mesh.triangles, uvs: Float64Array.from(shape.uvs) };
+  return format === "json" ? meshToJson(pose) : meshToObj(pose);
 }
 
 /**

@@ -82,6 +82,12 @@ export class Posing {
   #gestureBefore: Snapshot | undefined;
   #gestureChanged = false;
 
+  /** How many parts the shape's file has, and which one is shown (1 and 0 for a single shape). */
+  get partsInfo(): { count: number; index: number } {
+    const parts = this.parts;
+    return parts ? { count: parts.loaded.parts.length, index: parts.index } : { count: 1, index: 0 };
+  }
+
   constructor(settings: WidgetSettings, host: PosingHost) {
     this.settings = settings;
     this.#host = host;
@@ -459,6 +465,42 @@ export class Posing {
     const session = this.recorder.stop();
     this.#host.historyChanged();
     return session;
+  }
+
+  /**
+   * Replays `session` on `shape` as the core's `session::replay` does: from the rest pose
+   * without handles and with the session's header options (every one of them, as
+   * `sessionJson` writes them), each event carried out in order. `paused` is awaited after
+   * each step with the count so far (the widget draws then) and stops the replay by
+   * returning false. The whole replay is one undoable step; one that fails partway leaves
+   * everything as it was.
+   */
+  async replay(session: Session, shape: Shape, paused: (steps: number) => Promise<boolean>): Promise<void> {
+    if (this.replaying) throw new Error("a replay is already running");
+    this.releasePointers();
+    const before = this.snapshot();
+    this.replaying = true;
+    try {
+      if (shape !== this.shape) {
+        this.parts = undefined;
+        this.install(shape);
+      }
+      this.applyOptions(session.data.options);
+      this.apply({ reset: true });
+      this.apply({ handles: { triangles: [], barycentric: [] } });
+      let steps = 0;
+      for (const event of session.data.events) {
+        this.apply(event);
+        if ("step" in event && !(await paused(++steps))) return;
+      }
+    } catch (error) {
+      this.restore(before);
+      throw error;
+    } finally {
+      this.replaying = false;
+    }
+    this.pinHandlesWhereTheyAre();
+    this.history.push(before);
   }
 
   /** Carries out one recorded event. */

@@ -76,8 +76,24 @@ export function shapeFromMesh(
   };
 }
 
-/** The shape a session needs: `current` if it is that shape, else rebuilt by the core from the session. */
+/**
+ * The shape a session needs: `current` if it is that shape, else rebuilt by the core from
+ * the session. Throws if its mesh is not the size the session recorded.
+ */
 export function sessionShape(session: Session, current: Shape): Shape {
+  const shape = sessionShapeOf(session, current);
+  const recorded = session.data.mesh;
+  const { vertexCount, triangleCount } = shape.mesh;
+  if (vertexCount !== recorded.vertexCount || triangleCount !== recorded.triangleCount) {
+    throw new Error(
+      `the session's mesh has ${recorded.vertexCount} vertices and ${recorded.triangleCount} triangles, ` +
+        `but rebuilding it gave ${vertexCount} and ${triangleCount}`,
+    );
+  }
+  return shape;
+}
+
+function sessionShapeOf(session: Session, current: Shape): Shape {
   const { shape: spec, mesh } = session.data;
   const now = current.spec;
   if (spec) {

@@ -153,3 +153,14 @@ export function paintVector(document: Document, shape: Shape, vector: VectorPath
   shape.vector = vector;
   shape.texture = vectorTexture(document, vector, bounds(shape.mesh.positions)).canvas;
 }
+
+/** An image by URL (a texture), loaded for drawing across origins where the server allows it. */
+export function loadImage(url: string): Promise<HTMLImageElement> {
+  return new Promise((resolve, reject) => {
+    const image = new Image();
+    image.crossOrigin = "anonymous";
+    image.onload = () => resolve(image);
+    image.onerror = () => reject(new Error(`the image ${url} could not be loaded`));
+    image.src = url;
+  });
+}

@@ -121,3 +121,8 @@ export class BusyIndicator {
     this.element.classList.add("hidden");
   }
 }
+
+/** What an error says: its message, or the thrown value as text. */
+export function messageOf(error: unknown): string {
+  return error instanceof Error ? error.message : String(error);
+}

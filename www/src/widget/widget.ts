@@ -20,8 +20,7 @@ import {
   type Outline,
   type Timings,
 } from "../core.js";
-import { meshToJson, meshToObj } from "../import.js";
-import { posedSvg } from "./export.js";
+import { posedMesh, posedSvg } from "./export.js";
 
 import {
   DEFAULTS,
@@ -41,7 +40,8 @@ import { parseSession, type Session } from "./session.js";
 import { toolbarActions } from "./actions.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
-import { fileKind, fileLimits, paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
+import { fileKind, fileLimits, loadImage, paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
+import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage } from "./stage.js";
 import { WIDGET_CSS } from "./style.js";
 import { defaultTexture } from "./texture.js";
@@ -451,46 +451,19 @@ export class Widget {
     const s = typeof session === "string" ? parseSession(session) : session;
     const posing = this.#posing;
     if (posing.replaying) throw new Error("a replay is already running");
-    posing.releasePointers();
     const shape = sessionShape(s, posing.shape);
-    const recorded = s.data.mesh;
-    if (shape.mesh.vertexCount !== recorded.vertexCount || shape.mesh.triangleCount !== recorded.triangleCount) {
-      throw new Error(
-        `the session's mesh has ${recorded.vertexCount} vertices and ${recorded.triangleCount} triangles, ` +
-          `but rebuilding it gave ${shape.mesh.vertexCount} and ${shape.mesh.triangleCount}`,
-      );
-    }
-    const before = posing.snapshot();
-    posing.replaying = true;
     this.#root.dataset.replaying = "true";
     try {
-      if (shape !== posing.shape) {
-        posing.parts = undefined;
-        posing.install(shape);
-      }
-      // The state the core's replay starts from: the header's options (every one of them,
-      // as `sessionJson` writes them), the rest pose, no handles.
-      posing.applyOptions(s.data.options);
-      posing.apply({ reset: true });
-      posing.apply({ handles: { triangles: [], barycentric: [] } });
-      let steps = 0;
-      for (const event of s.data.events) {
-        if (this.#destroyed) break;
-        posing.apply(event);
-        if ("step" in event && ++steps % stepsPerFrame === 0) {
+      await posing.replay(s, shape, async (steps) => {
+        if (steps % stepsPerFrame === 0) {
           this.#render();
           await nextFrame();
         }
-      }
-    } catch (error) {
-      if (!this.#destroyed) posing.restore(before);
-      throw error;
+        return !this.#destroyed;
+      });
     } finally {
-      posing.replaying = false;
       delete this.#root.dataset.replaying;
     }
-    posing.pinHandlesWhereTheyAre();
-    posing.history.push(before);
     this.#refreshButtons();
     this.#poseChanged();
     return posing.deformer.positions();
@@ -498,14 +471,7 @@ export class Widget {
 
   /** The current pose as JSON (`positions`, `triangles`, `uvs`) or OBJ text. */
   exportMesh(format: "json" | "obj"): string {
-    const { deformer, shape } = this.#posing;
-    // A copy, not a view: the writer allocates in the memory a view would see.
-    const pose = {
-      positions: deformer.positions(),
-      triangles: shape.mesh.triangles,
-      uvs: Float64Array.from(shape.uvs),
-    };
-    return format === "json" ? meshToJson(pose) : meshToObj(pose);
+    return posedMesh(this.#posing.shape, this.#posing.deformer.positions(), format);
   }
 
   /** The pose as an SVG document: an imported SVG's own paths moved with the mesh, else the outline. */
@@ -597,11 +563,6 @@ export class Widget {
     );
   }
 
-  #partsInfo(): { count: number; index: number } {
-    const parts = this.#posing.parts;
-    return parts ? { count: parts.loaded.parts.length, index: parts.index } : { count: 1, index: 0 };
-  }
-
   /** A new shape or deformer is in place: renderer, lists, HUD (and the view, if asked). */
   #adopted(shape: Shape, deformer: Deformer, refit: boolean): void {
     this.#lastField = undefined;
@@ -613,7 +574,7 @@ export class Widget {
     this.#toolbar?.showShape(
       shape.spec ? `builtin:${shape.spec.name}` : file >= 0 ? `file:${file}` : undefined,
       shape.mesh.vertexCount,
-      this.#partsInfo(),
+      this.#posing.partsInfo,
     );
     const label = METHODS[this.#settings.method].label;
     this.#stage.hud.showMesh(shape.mesh.vertexCount, shape.mesh.triangleCount, label, deformer.metrics());
@@ -792,7 +753,7 @@ export class Widget {
   /** Every field of the toolbar back to the settings in force. */
   #syncToolbar(): void {
     this.#toolbar?.sync(this.#settings);
-    this.#toolbar?.showShape(undefined, this.vertexCount, this.#partsInfo());
+    this.#toolbar?.showShape(undefined, this.vertexCount, this.#posing.partsInfo);
   }
 
   #showError(error: unknown): void {
@@ -831,20 +792,6 @@ export function mount(element: HTMLElement, options: WidgetOptions = {}): Promis
   return Widget.create(element, options);
 }
 
-function messageOf(error: unknown): string {
-  return error instanceof Error ? error.message : String(error);
-}
-
 function nextFrame(): Promise<void> {
   return new Promise((resolve) => requestAnimationFrame(() => resolve()));
-}
-
-function loadImage(url: string): Promise<HTMLImageElement> {
-  return new Promise((resolve, reject) => {
-    const image = new Image();
-    image.crossOrigin = "anonymous";
-    image.onload = () => resolve(image);
-    image.onerror = () => reject(new Error(`the image ${url} could not be loaded`));
-    image.src = url;
-  });
 }
