@@ -6,6 +6,7 @@
 import { beforeAll, describe, expect, it } from "vitest";
 import * as raw from "../../www/pkg/akap.js";
 import * as api from "../../www/src/index.js";
+import { grid } from "./fixtures.js";
 
 beforeAll(async () => {
   await api.init();
@@ -21,20 +22,6 @@ function thrown(call: () => unknown): Error & { code?: unknown } {
   }
   throw new Error("expected the call to throw");
 }
-
-/** A 2 x 2 grid of squares, each split in two: 9 vertices, 8 triangles. */
-const grid = (() => {
-  const positions: number[] = [];
-  for (let y = 0; y < 3; y++) for (let x = 0; x < 3; x++) positions.push(x, y);
-  const triangles: number[] = [];
-  for (let y = 0; y < 2; y++) {
-    for (let x = 0; x < 2; x++) {
-      const v = 3 * y + x;
-      triangles.push(v, v + 1, v + 4, v, v + 4, v + 3);
-    }
-  }
-  return { positions: Float64Array.from(positions), triangles: Uint32Array.from(triangles) };
-})();
 
 const square = { outer: [0, 0, 1, 0, 1, 1, 0, 1] };
 const svg = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"><rect width="8" height="6"/></svg>';

@@ -12,6 +12,7 @@ import fc from "fast-check";
 import { beforeAll, describe, expect, it } from "vitest";
 import * as raw from "../../www/pkg/akap.js";
 import * as api from "../../www/src/index.js";
+import { grid } from "./fixtures.js";
 
 const RUNS = Number(process.env.HOSTILE_RUNS ?? 60);
 const SEED = Number(process.env.HOSTILE_SEED ?? 20261201);
@@ -95,20 +96,6 @@ const hostile: fc.Arbitrary<unknown> = fc.oneof(
   trapping.map((make) => make()),
   fc.constantFrom(undefined, null, "", "gingerbread", true, 10n, Symbol("s"), () => 1),
 );
-
-/** A small valid mesh: a 2 x 2 grid of squares, each split in two. */
-const grid = (() => {
-  const positions: number[] = [];
-  for (let y = 0; y < 3; y++) for (let x = 0; x < 3; x++) positions.push(x, y);
-  const triangles: number[] = [];
-  for (let y = 0; y < 2; y++) {
-    for (let x = 0; x < 2; x++) {
-      const v = 3 * y + x;
-      triangles.push(v, v + 1, v + 4, v, v + 4, v + 3);
-    }
-  }
-  return { positions: Float64Array.from(positions), triangles: Uint32Array.from(triangles) };
-})();
 
 /** What a healthy instance computes; compared after each property. */
 function canary(): number[] {

@@ -4,22 +4,15 @@
  * the next ones work, and re-meshing carries handles and pose over.
  */
 import { beforeAll, describe, expect, it } from "vitest";
-import { builtinShape, init, type Timings } from "../../www/src/index.js";
+import { builtinShape, init } from "../../www/src/index.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
 import { Posing } from "../../www/src/widget/posing.js";
 import { meshOutline } from "../../www/src/widget/shape.js";
 import { locate, pointPosition } from "../../www/src/widget/picking.js";
+import { noTimings } from "./fixtures.js";
 
 beforeAll(async () => {
   await init();
-});
-
-const noTimings = (): Timings => ({
-  assembly: 0,
-  factorisation: 0,
-  dirichletFactorisation: 0,
-  solve: 0,
-  integration: 0,
 });
 
 /** A posing of the default figure with a pin at its lowest vertex and a handle at its rightmost. */

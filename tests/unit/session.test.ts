@@ -6,22 +6,15 @@
  */
 import { readFileSync } from "node:fs";
 import { beforeAll, describe, expect, it } from "vitest";
-import { builtinShape, init, type Timings } from "../../www/src/index.js";
+import { builtinShape, init } from "../../www/src/index.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
 import { Posing } from "../../www/src/widget/posing.js";
 import { Recorder, parseSession, sessionMesh, type SessionEvent } from "../../www/src/widget/session.js";
 import { meshOutline } from "../../www/src/widget/shape.js";
+import { noTimings } from "./fixtures.js";
 
 beforeAll(async () => {
   await init();
-});
-
-const noTimings = (): Timings => ({
-  assembly: 0,
-  factorisation: 0,
-  dirichletFactorisation: 0,
-  solve: 0,
-  integration: 0,
 });
 
 function posing(): Posing {
