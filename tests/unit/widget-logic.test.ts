@@ -8,6 +8,7 @@ import { History } from "../../www/src/widget/history.js";
 import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
 import { fileKind } from "../../www/src/widget/sources.js";
 import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
+import { WIDGET_OPTIONS, widgetSettings } from "../../www/src/widget/options.js";
 
 beforeAll(async () => {
   await init(); // boxUvs goes through the core's textureCoordinates
@@ -219,5 +220,21 @@ describe("user files", () => {
     expect(fileKind("model.obj")).toBe("obj");
     expect(fileKind("pose.json")).toBe("json");
     expect(fileKind("notes.txt", "text/plain")).toBeUndefined();
+  });
+});
+
+describe("widget options", () => {
+  it("refuses a misspelt option by name, listing the options, and takes every listed one", () => {
+    let error: (Error & { code?: string }) | undefined;
+    try {
+      widgetSettings({ vertexes: 2000 } as never);
+    } catch (e) {
+      error = e as Error & { code?: string };
+    }
+    expect(error?.message).toBe(`unknown widget option \`vertexes\`; the options are ${WIDGET_OPTIONS.join(", ")}`);
+    expect(error?.code).toBe("invalid-option");
+    expect(WIDGET_OPTIONS).toContain("vertices");
+    const all = Object.fromEntries(WIDGET_OPTIONS.map((name) => [name, undefined]));
+    expect(widgetSettings(all).vertices).toBe(1500);
   });
 });

@@ -3,6 +3,7 @@
  * what pages (and the custom element) see of the widget's configuration.
  */
 import type { DeformerOptions, Metrics, Outline, Timings, WasmSource } from "../core.js";
+import { coded } from "../internal/arrays.js";
 
 /** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
 export const METHODS = {
@@ -110,8 +111,44 @@ export const DEFAULTS = {
   maxSubsteps: 8,
 };
 
-/** The settings of `options`, defaults filled in; throws for a method or step limits that cannot be. */
+/** The names of the widget's options: a misspelt one is refused, not ignored. */
+export const WIDGET_OPTIONS = [
+  "wasm",
+  "shape",
+  "outline",
+  "texture",
+  "src",
+  "gallery",
+  "vertices",
+  "minAngle",
+  "method",
+  "lambda",
+  "paperMode",
+  "controls",
+  "hud",
+  "wireframe",
+  "field",
+  "flipped",
+  "maxStep",
+  "maxSubsteps",
+  "storageKey",
+] as const satisfies readonly (keyof WidgetOptions)[];
+// Every option of the interface is in the list (a compile-time check).
+const everyOption: Record<Exclude<keyof WidgetOptions, (typeof WIDGET_OPTIONS)[number]>, never> = {};
+void everyOption;
+
+/**
+ * The settings of `options`, defaults filled in; throws (code `invalid-option`) for an
+ * unknown option, a method or step limits that cannot be.
+ */
 export function widgetSettings(options: WidgetOptions): WidgetSettings {
+  const unknown = Object.keys(options).find((key) => !(WIDGET_OPTIONS as readonly string[]).includes(key));
+  if (unknown !== undefined) {
+    throw coded(
+      new Error(`unknown widget option \`${unknown}\`; the options are ${WIDGET_OPTIONS.join(", ")}`),
+      "invalid-option",
+    );
+  }
   const settings: WidgetSettings = {
     vertices: options.vertices ?? DEFAULTS.vertices,
     minAngle: options.minAngle ?? DEFAULTS.minAngle,
