@@ -1,4 +1,4 @@
-/** The pure TypeScript parts of the widget: drag velocities, picking, history. */
+/** The widget's logic apart from the page: drag velocities, picking, history, geometry, texture maps, keys, options. */
 import { beforeAll, describe, expect, it } from "vitest";
 import { init } from "../../www/src/index.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
