@@ -16,7 +16,7 @@ use std::fs;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use akap::deform::{ArapOptions, DeformerOptions, MethodOptions, Metrics};
+use akap::deform::{Method, MethodOptions, Metrics, SettingValue};
 use akap::geometry::{bounding_box, Point};
 use akap::import::mesh_file::{read_obj, write_obj_pose};
 use akap::import::Limits;
@@ -35,7 +35,10 @@ usage: pose_obj [IN.obj|-] OUT.obj [--pin I]... [--move I:DX,DY]... [options]
   --move I:DX,DY  move vertex I by (DX, DY), in the mesh's units
   --steps N       deformer steps (default: each moves a handle at most 2% of the mesh's size)
   --method M      akap (default) or arap
-  --lambda L      AKAP's handle weight, 1e-6 to 1e10 (default 100)
+  --set NAME=V    a setting of the method, as the JavaScript API names them:
+                  akap: lambda=L (1e-6 to 1e10, default 100), dirichlet=true|false,
+                        integrator=spiral|linear; arap: iterations=N (1 to 1000, default 10)
+  --lambda L      the same as --set lambda=L
   -h, --help      this text
 
 With the built-in figure and no handles, its feet are pinned and its raised hand moved.
@@ -161,6 +164,15 @@ fn figure(pose: &Pose) -> Result<(Mesh, Option<Vec<Point>>, Pose), String> {
     Ok((mesh, None, pose))
 }
 
+/// A setting's value as written on the command line: `true`, `false`, a number or a word.
+fn setting_value(text: &str) -> SettingValue {
+    match text {
+        "true" => SettingValue::Bool(true),
+        "false" => SettingValue::Bool(false),
+        _ => text.parse().map_or_else(|_| SettingValue::Word(text.into()), SettingValue::Number),
+    }
+}
+
 /// What to read (`None`: the built-in figure), where to write and how to pose; `None` for help.
 type Command = Option<(Option<PathBuf>, PathBuf, Pose)>;
 
@@ -170,7 +182,7 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
         Ok(x) if x.is_finite() => Ok(x),
         _ => Err(format!("`{s}` is not a finite number")),
     };
-    let (mut files, mut pose, mut method, mut lambda) = (Vec::new(), Pose::default(), "akap", None);
+    let (mut files, mut pose, mut method, mut settings) = (Vec::new(), Pose::default(), None, Vec::new());
     let mut args = args.iter();
     while let Some(arg) = args.next() {
         let mut value = || args.next().map(String::as_str).ok_or_else(|| format!("{arg} needs a value"));
@@ -188,20 +200,21 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
                 let text = value()?;
                 pose.steps = Some(text.parse().map_err(|_| format!("--steps takes a whole number, not `{text}`"))?);
             }
-            "--method" => method = value()?,
-            "--lambda" => lambda = Some(number(value()?)?),
+            "--method" => method = Some(Method::from_name(value()?).map_err(|e| e.to_string())?),
+            "--set" => {
+                let text = value()?;
+                let (name, v) = text.split_once('=').ok_or_else(|| format!("--set takes NAME=VALUE, not `{text}`"))?;
+                settings.push((name.to_owned(), setting_value(v)));
+            }
+            "--lambda" => settings.push(("lambda".into(), SettingValue::Number(number(value()?)?))),
             flag if flag.starts_with('-') && flag != "-" => {
                 return Err(format!("unknown option `{flag}` (see --help)"))
             }
             file => files.push(file),
         }
     }
-    pose.method = match (method, lambda) {
-        ("akap", lambda) => MethodOptions::Akap(DeformerOptions::default().with_lambda(lambda.unwrap_or(100.0))),
-        ("arap", None) => MethodOptions::Arap(ArapOptions::default()),
-        ("arap", Some(_)) => return Err("--lambda is AKAP's; ARAP has no such weight".into()),
-        (other, _) => return Err(format!("unknown method `{other}`: akap or arap")),
-    };
+    let values = settings.iter().map(|(name, value)| (name.as_str(), value));
+    pose.method = MethodOptions::over(MethodOptions::default(), method, values).map_err(|e| e.to_string())?;
     let (input, output) = match files[..] {
         [output] => (None, output),
         [input, output] => ((input != "-").then(|| input.into()), output),
@@ -225,10 +238,9 @@ pub(crate) fn run(args: &[String]) -> Result<String, String> {
     })?;
     fs::write(&output, &posed.obj).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
 
-    let method = match posed.pose.method {
-        MethodOptions::Akap(o) => format!("akap, lambda {}", o.lambda),
-        MethodOptions::Arap(o) => format!("arap, {} iterations per step", o.iterations),
-    };
+    let settings: Vec<String> =
+        posed.pose.method.values().iter().map(|(name, value)| format!("{name} {value}")).collect();
+    let method = format!("{}, {}", posed.pose.method.method(), settings.join(", "));
     let Metrics { area_distortion, angle_distortion, flipped } = posed.metrics;
     let source = input.map_or("the built-in gingerbread figure".into(), |p| p.display().to_string());
     let uvs = if posed.has_uvs { ", texture coordinates kept" } else { "" };

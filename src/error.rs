@@ -77,6 +77,16 @@ impl fmt::Display for Number {
     }
 }
 
+/// `"a", "b" or "c"`.
+pub(crate) fn one_of(words: &[&str]) -> String {
+    let quoted: Vec<String> = words.iter().map(|w| format!("\"{w}\"")).collect();
+    match quoted.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => "nothing".into(),
+    }
+}
+
 impl From<MeshError> for Error {
     fn from(e: MeshError) -> Self {
         Self::Mesh(e)

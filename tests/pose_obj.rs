@@ -191,7 +191,11 @@ fn bad_input_is_an_error_not_a_panic() {
         (vec!["-", o, "--pin"], "--pin needs a value"),
         (vec!["-", o, "--steps", "-3"], "--steps takes a whole number"),
         (vec!["-", o, "--method", "linear"], "unknown method"),
-        (vec!["-", o, "--method", "arap", "--lambda", "5"], "AKAP's"),
+        (vec!["-", o, "--method", "arap", "--lambda", "5"], "option lambda applies to method \"akap\" only"),
+        (vec!["-", o, "--set", "integrator=euler"], "must be \"spiral\" or \"linear\", not \"euler\""),
+        (vec!["-", o, "--set", "lamda=5"], "unknown option lamda; method akap has lambda, dirichlet, integrator"),
+        (vec!["-", o, "--set", "lambda"], "--set takes NAME=VALUE"),
+        (vec!["-", o, "--method", "arap", "--set", "iterations=0"], "option iterations is 0"),
         (vec!["-", o, "--frobnicate"], "unknown option"),
         (vec!["a.obj", "b.obj", "c.obj"], "3 files"),
     ] {

@@ -7,11 +7,10 @@ use std::f64::consts::PI;
 
 use akap::deform::{
     ArapDeformer, ArapOptions, Deform, DeformError, Deformer, DeformerOptions, Integrator, Method, MethodOptions,
+    SettingValue,
 };
 use akap::geometry::Point;
-use akap::session::{
-    replay, replay_to_targets, Event, MeshCounts, MethodName, RecordedOptions, Session, SessionError, ShapeSpec,
-};
+use akap::session::{replay, replay_to_targets, Event, MeshCounts, RecordedOptions, Session, SessionError, ShapeSpec};
 use akap::shapes::{self, BAR_SIZE};
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -195,7 +194,12 @@ fn bad_sessions_are_refused() {
     assert!(matches!(edit("\"version\": 2", "\"version\": 0"), Err(SessionError::Version { found: 0 })));
     assert!(matches!(edit("\"targetEdgeLength\"", "\"targetEdgeLen\""), Err(SessionError::Json(_))));
     assert!(matches!(edit("{\"reset\":true}", "{\"jump\":true}"), Err(SessionError::Json(_))));
-    assert!(matches!(edit("\"lambda\":100.0", "\"lambda\":\"big\""), Err(SessionError::Json(_))));
+    assert!(matches!(
+        edit("\"lambda\":100.0", "\"lambda\":\"big\""),
+        Err(SessionError::Options(DeformError::OptionValue { name: "lambda", .. }))
+    ));
+    assert!(matches!(edit("\"lambda\":100.0", "\"lambda\":[1]"), Err(SessionError::Json(_))));
+    assert!(matches!(edit("\"method\":\"akap\"", "\"method\":\"mls\""), Err(SessionError::Json(_))));
     assert!(matches!(edit("\"lambda\":100.0", "\"lambda\":-1.0"), Err(SessionError::Options(_))));
 
     let mut s = good.clone();
@@ -205,7 +209,7 @@ fn bad_sessions_are_refused() {
     s.mesh.vertex_count += 1;
     assert!(matches!(s.mesh(), Err(SessionError::MeshMismatch { .. })));
     let mut s = good.clone();
-    s.options.lambda = Some(-1.0);
+    s.options.values = vec![("lambda".into(), SettingValue::Number(-1.0))];
     assert!(matches!(s.recorded_deformer(), Err(SessionError::Options(DeformError::InvalidOption { .. }))));
 
     let replay_with = |events: Vec<Event>| {
@@ -277,21 +281,19 @@ fn positions_and_options_events_replay_as_the_calls_they_record() {
     let (mesh, pose) = bar_and_shear();
     let handles = (vec![0u32, 5], vec![[1.0, 0.0, 0.0], [0.2, 0.3, 0.5]]);
     let v = |k: f64| vec![0.0, 0.0, 0.01 * k, 0.02];
-    let akap = |lambda: Option<f64>, integrator| RecordedOptions { lambda, integrator, ..Default::default() };
+    let setting = |name: &str, value| (name.to_owned(), value);
+    let recorded = |method, values| RecordedOptions { method, values };
     let mut s = small_session();
     s.events = vec![
         Event::Handles { triangles: handles.0.clone(), barycentric: handles.1.concat() },
         Event::Step(v(1.0)),
-        Event::Options(akap(Some(10.0), None)),
+        Event::Options(recorded(None, vec![setting("lambda", SettingValue::Number(10.0))])),
         Event::Step(v(2.0)),
         Event::Positions(pose.clone()),
         Event::Step(v(3.0)),
-        Event::Options(RecordedOptions { method: Some(MethodName::Arap), iterations: Some(3), ..Default::default() }),
+        Event::Options(recorded(Some(Method::Arap), vec![setting("iterations", SettingValue::Number(3.0))])),
         Event::Step(v(4.0)),
-        Event::Options(RecordedOptions {
-            method: Some(MethodName::Akap),
-            ..akap(None, Some(akap::session::IntegratorName::Linear))
-        }),
+        Event::Options(recorded(Some(Method::Akap), vec![setting("integrator", SettingValue::Word("linear".into()))])),
         Event::Step(v(5.0)),
     ];
     let s = Session::from_json(&s.to_json()).unwrap();
@@ -399,17 +401,31 @@ fn options_of_the_other_method_and_bad_lengths_are_refused_on_reading() {
     let arap_lambda = "\"options\": {\"method\":\"arap\",\"lambda\":5}";
     assert_eq!(
         with(arap_lambda, ""),
-        Err(SessionError::ForeignOption { index: None, option: "lambda", method: Method::Arap })
+        Err(SessionError::Options(DeformError::ForeignOption {
+            name: "lambda".into(),
+            method: Method::Arap,
+            owner: Method::Akap
+        }))
     );
     assert_eq!(
         with(akap, "{\"options\":{\"method\":\"arap\"}},{\"options\":{\"integrator\":\"linear\"}}"),
-        Err(SessionError::ForeignOption { index: Some(1), option: "integrator", method: Method::Arap })
+        Err(SessionError::Event {
+            index: 1,
+            error: DeformError::ForeignOption { name: "integrator".into(), method: Method::Arap, owner: Method::Akap }
+        })
     );
     assert!(matches!(
         with(akap, "{\"options\":{\"method\":\"arap\",\"iterations\":0}}"),
         Err(SessionError::Event { index: 0, error: DeformError::InvalidOption { name: "iterations", .. } })
     ));
-    assert!(matches!(with(akap, "{\"options\":{\"iterations\":1e3}}"), Err(SessionError::Json(_))));
+    assert!(matches!(
+        with(akap, "{\"options\":{\"method\":\"arap\",\"iterations\":2.5}}"),
+        Err(SessionError::Event { index: 0, error: DeformError::OptionValue { name: "iterations", .. } })
+    ));
+    assert!(matches!(
+        with(akap, "{\"options\":{\"iterations\":1e3}}"),
+        Err(SessionError::Event { index: 0, error: DeformError::ForeignOption { .. } })
+    ));
     // Two velocity components per handle of the handles in place.
     let handles = "{\"handles\":{\"triangles\":[0,5],\"barycentric\":[1,0,0,0,1,0]}}";
     assert!(with(akap, &format!("{handles},{{\"step\":[0,0,1,1]}}")).is_ok());
@@ -422,7 +438,10 @@ fn options_of_the_other_method_and_bad_lengths_are_refused_on_reading() {
         Err(SessionError::Event { index: 0, error: DeformError::Length { what: "positions", .. } })
     ));
     let message = with(arap_lambda, "").unwrap_err().to_string();
-    assert_eq!(message, "option lambda does not apply to method arap");
+    assert_eq!(
+        message,
+        "the session's options are invalid: option lambda applies to method \"akap\" only, not to \"arap\""
+    );
 }
 
 /// A session recorded in the app by `tests/browser/session.spec.ts` (two drags, a change
@@ -516,7 +535,7 @@ mod bindings {
         let bad_step = r.step(Float64Array::from(&[0.0, 0.0][..]).into());
         assert_eq!(message(bad_step), "velocities has 2 numbers; 2 handles need 2 each");
         let foreign = r.options(js("return { lambda: 5 }"));
-        assert_eq!(message(foreign), "option lambda applies to method \"akap\" only");
+        assert_eq!(message(foreign), "option lambda applies to method \"akap\" only, not to \"arap\"");
         r.options(js("return { method: 'akap', lambda: 5 }")).unwrap();
         r.reset();
         assert_eq!(r.event_count(), 4);

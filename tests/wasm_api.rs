@@ -142,7 +142,7 @@ fn deformer_methods_and_their_options() {
         (r#"{"iterations": 5}"#, "applies to method \"arap\""),
         (r#"{"method": "arap", "iterations": 0}"#, "whole number"),
         (r#"{"method": "arap", "iterations": 2.5}"#, "whole number"),
-        (r#"{"method": "arap", "iterations": 1001}"#, "from 1 to 1000 (iterations per step"),
+        (r#"{"method": "arap", "iterations": 1001}"#, "from 1 to 1000 per step"),
         (r#"{"itterations": 5}"#, "unknown deformer option"),
     ];
     for (json, expected) in cases {
@@ -151,8 +151,10 @@ fn deformer_methods_and_their_options() {
     }
     let mut deformer = JsDeformer::new(f64s(&positions), u32s(&triangles), options(r#"{"method": "arap"}"#)).unwrap();
     deformer.set_options(options(r#"{"iterations": 3}"#)).unwrap();
-    assert!(message(deformer.set_options(options(r#"{"method": "akap"}"#))).contains("chosen when the deformer"));
-    assert_eq!(deformer.method(), "arap");
+    assert!(message(deformer.set_options(options(r#"{"method": "akap", "lambda": "big"}"#))).contains("lambda"));
+    assert_eq!(deformer.method(), "arap", "a refused switch changes nothing");
+    deformer.set_options(options(r#"{"method": "akap"}"#)).unwrap();
+    assert_eq!(deformer.method(), "akap");
 }
 
 #[test]

@@ -600,6 +600,9 @@ impl Deform for ArapDeformer {
     fn handle_count(&self) -> usize {
         ArapDeformer::handle_count(self)
     }
+    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
+        handles::as_points(self.handles.iter().map(|h| &h.point))
+    }
     fn handle_positions(&self) -> Vec<Point> {
         ArapDeformer::handle_positions(self)
     }

@@ -6,7 +6,7 @@
 use std::fmt;
 
 use super::options::Method;
-use crate::error::Number;
+use crate::error::{one_of, Number};
 use crate::geometry::MAX_COORDINATE;
 use crate::sparse::FactorError;
 
@@ -101,6 +101,37 @@ pub enum DeformError {
         /// Bytes that could not be allocated.
         bytes: usize,
     },
+    /// A method name that is not one of [`Method::all`].
+    UnknownMethod {
+        /// The name given.
+        name: String,
+    },
+    /// A setting that no method has.
+    UnknownOption {
+        /// The name given.
+        name: String,
+        /// The method the options are for.
+        method: Method,
+    },
+    /// A setting of another method than the one the options are for.
+    ForeignOption {
+        /// The setting's name.
+        name: String,
+        /// The method the options are for.
+        method: Method,
+        /// The method that has this setting.
+        owner: Method,
+    },
+    /// A setting given a value of the wrong kind (a word for a number, say) or a whole
+    /// number out of its range.
+    OptionValue {
+        /// The setting's name.
+        name: &'static str,
+        /// The value given, described.
+        found: String,
+        /// What would be accepted.
+        expected: String,
+    },
     /// Options of another method were given; the method is chosen when the deformer is made.
     WrongMethod {
         /// The deformer's method.
@@ -158,6 +189,19 @@ impl fmt::Display for DeformError {
                  (free()) or use a coarser mesh",
                 (*bytes as f64 / 1e6).ceil()
             ),
+            Self::UnknownMethod { name } => {
+                let names: Vec<&str> = Method::all().iter().map(|m| m.name()).collect();
+                let name = if name.len() <= 40 { format!("{name:?}") } else { "given".into() };
+                write!(f, "unknown method {name}; the methods are {}", one_of(&names))
+            }
+            Self::UnknownOption { name, method } => {
+                let name = if name.len() <= 40 { name.as_str() } else { "given" };
+                write!(f, "unknown option {name}; method {method} has {}", method.setting_names().join(", "))
+            }
+            Self::ForeignOption { name, method, owner } => {
+                write!(f, "option {name} applies to method \"{owner}\" only, not to \"{method}\"")
+            }
+            Self::OptionValue { name, found, expected } => write!(f, "option {name} must be {expected}, not {found}"),
             Self::WrongMethod { current, given } => write!(
                 f,
                 "the deformer uses method {current}, options for {given} were given; \

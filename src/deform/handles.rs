@@ -28,6 +28,11 @@ impl HandlePoint {
     }
 }
 
+/// Handle points as [`super::Deform::handle_points`] gives them: triangles and weights.
+pub(crate) fn as_points<'a>(points: impl Iterator<Item = &'a HandlePoint>) -> (Vec<u32>, Vec<[f64; 3]>) {
+    points.map(|p| (p.triangle as u32, p.weights)).unzip()
+}
+
 /// One handle on each vertex (weight 1 at that corner of a triangle using it).
 pub(crate) fn at_vertices(mesh: &Mesh, vertices: &[u32]) -> Result<Vec<HandlePoint>, DeformError> {
     let n = mesh.vertex_count();

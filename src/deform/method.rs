@@ -68,6 +68,25 @@ impl MethodOptions {
     }
 }
 
+impl MethodOptions {
+    /// Puts these options into effect on `deformer`, as the bindings' `setOptions`, the
+    /// widget's method list and session replay do: options of its method change its
+    /// settings; another method's replace it with a deformer of that method on the same
+    /// mesh (its set-up runs), with the pose and the handles carried over and the clock
+    /// reset to the default. On error `deformer` is unchanged.
+    pub fn apply(self, deformer: &mut Box<dyn Deform>) -> Result<(), DeformError> {
+        if self.method() == deformer.method_options().method() {
+            return deformer.set_method_options(self);
+        }
+        let mut next = self.build(deformer.mesh().clone())?;
+        next.set_positions(deformer.positions())?;
+        let (triangles, barycentric) = deformer.handle_points();
+        next.set_handle_points(&triangles, &barycentric)?;
+        *deformer = next;
+        Ok(())
+    }
+}
+
 /// The fill-reducing vertex orders a deformer's linear systems are factored in: the bulk
 /// of its set-up (ordering the mesh's vertex graph). [`MethodOptions::orders`] computes them
 /// for a mesh, possibly elsewhere (a worker), and [`MethodOptions::build_with_orders`] makes
@@ -118,6 +137,10 @@ pub trait Deform: fmt::Debug {
     fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError>;
     /// Number of handles.
     fn handle_count(&self) -> usize;
+    /// Where the handles are on the mesh, as [`Deform::set_handle_points`] takes them: a
+    /// triangle and barycentric coordinates each (a handle set on a vertex is weight 1 at
+    /// that corner of a triangle using it).
+    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>);
     /// Current positions of the handle points.
     fn handle_positions(&self) -> Vec<Point>;
     /// One step with a velocity per handle, in handle order.

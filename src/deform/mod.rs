@@ -5,6 +5,8 @@
 //! - [`options`]: the list of methods, [`Method`], [`MethodOptions`] and each method's
 //!   options (plain data);
 //! - `error`: [`DeformError`];
+//! - [`settings`]: every method's settings by name ([`MethodOptions::over`]), read and
+//!   written alike by the bindings, sessions and the command line;
 //! - [`metrics`]: area and angle distortion and flipped triangles (Table 1);
 //! - [`method`]: the [`Deform`] trait every deformer implements, [`MethodOptions::build`],
 //!   [`Orders`], [`Timings`] and [`Clock`];
@@ -27,10 +29,14 @@ pub mod method;
 pub mod metrics;
 pub mod options;
 mod pattern;
+pub mod settings;
 
 pub use akap::Deformer;
 pub use arap::{ArapDeformer, IterationReport};
 pub use error::DeformError;
 pub use method::{Clock, Deform, Orders, Timings};
 pub use metrics::Metrics;
-pub use options::{ArapOptions, DeformerOptions, Integrator, Method, MethodOptions, LAMBDA_RANGE};
+pub use options::{
+    Access, ArapOptions, DeformerOptions, Integrator, Method, MethodOptions, Setting, Settings, LAMBDA_RANGE,
+};
+pub use settings::SettingValue;

@@ -1,6 +1,7 @@
 //! The deformation methods and their settings: the list of methods (`methods!`, one line
 //! each), the [`Method`] and [`MethodOptions`] enums made from it, and each method's options
-//! with their ranges. Plain data: nothing here knows a deformer, so every file of
+//! with their ranges and their settings by name ([`Settings`], which every reader of
+//! options goes through). Plain data: nothing here knows a deformer, so every file of
 //! `deform` can use it (the `Deform` trait returns [`MethodOptions`]; the deformers implement
 //! that trait).
 
@@ -9,9 +10,10 @@ use std::ops::RangeInclusive;
 
 /// The list of methods, one line each: `Variant("name", Options)`, after the documentation
 /// of the [`Method`] variant. `methods!(callback)` hands the list to `callback!`, which
-/// writes whatever needs a case per method: the enums below, and
+/// writes whatever needs a case per method: the enums below,
 /// [`MethodOptions::build_with_orders`]'s dispatch in `method.rs` (through the `Build`
-/// trait each options type implements beside its deformer).
+/// trait each options type implements beside its deformer) and the settings by name in
+/// `settings.rs` (through [`Settings`], implemented beside each options type here).
 macro_rules! methods {
     ($callback:ident) => {
         $callback! {
@@ -73,6 +75,34 @@ impl Default for MethodOptions {
     }
 }
 
+/// How one setting reads and writes a method's options `O`.
+pub enum Access<O: 'static> {
+    /// A number: getter and setter.
+    Number(fn(&O) -> f64, fn(&mut O, f64)),
+    /// A whole number: getter and setter.
+    Whole(fn(&O) -> usize, fn(&mut O, usize)),
+    /// `true` or `false`: getter and setter.
+    Bool(fn(&O) -> bool, fn(&mut O, bool)),
+    /// One of the words: getter and setter of the word's index.
+    Word(&'static [&'static str], fn(&O) -> usize, fn(&mut O, usize)),
+}
+
+/// One setting of a method: its name (as the JavaScript API and sessions spell it) and how
+/// to read and write it.
+pub struct Setting<O: 'static> {
+    /// The name, e.g. `"lambda"`.
+    pub name: &'static str,
+    /// Reading and writing it.
+    pub access: Access<O>,
+}
+
+/// A method's options type, with its settings by name. Ranges beyond a setting's kind (a
+/// number's bounds, say) are the method's `check`, run after the settings are set.
+pub trait Settings: Sized + 'static {
+    /// Every setting a caller may name, in the order they are written.
+    const SETTINGS: &'static [Setting<Self>];
+}
+
 /// How AKAP's vertices follow the velocity field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Integrator {
@@ -118,6 +148,21 @@ impl Default for DeformerOptions {
     fn default() -> Self {
         Self { lambda: 100.0, dirichlet: true, integrator: Integrator::Spiral }
     }
+}
+
+impl Settings for DeformerOptions {
+    const SETTINGS: &'static [Setting<Self>] = &[
+        Setting { name: "lambda", access: Access::Number(|o| o.lambda, |o, x| o.lambda = x) },
+        Setting { name: "dirichlet", access: Access::Bool(|o| o.dirichlet, |o, b| o.dirichlet = b) },
+        Setting {
+            name: "integrator",
+            access: Access::Word(
+                &["spiral", "linear"],
+                |o| o.integrator as usize,
+                |o, i| o.integrator = [Integrator::Spiral, Integrator::Linear][i],
+            ),
+        },
+    ];
 }
 
 impl DeformerOptions {
@@ -170,6 +215,13 @@ impl Default for ArapOptions {
     fn default() -> Self {
         Self { iterations: 10, tolerance: 0.0 }
     }
+}
+
+impl Settings for ArapOptions {
+    /// `tolerance` (convergence runs, for tests and `examples/compare`) is not a setting:
+    /// the JavaScript API and sessions run a fixed count, up to [`MAX_ITERATIONS`].
+    const SETTINGS: &'static [Setting<Self>] =
+        &[Setting { name: "iterations", access: Access::Whole(|o| o.iterations, |o, n| o.iterations = n) }];
 }
 
 impl ArapOptions {

@@ -167,7 +167,12 @@ impl DeformError {
     pub fn code(&self) -> ErrorCode {
         match self {
             Self::Disconnected { .. } => ErrorCode::InvalidMesh,
-            Self::InvalidOption { .. } | Self::WrongMethod { .. } => ErrorCode::InvalidOption,
+            Self::InvalidOption { .. }
+            | Self::WrongMethod { .. }
+            | Self::UnknownMethod { .. }
+            | Self::UnknownOption { .. }
+            | Self::ForeignOption { .. }
+            | Self::OptionValue { .. } => ErrorCode::InvalidOption,
             Self::VertexOutOfRange { .. }
             | Self::TriangleOutOfRange { .. }
             | Self::InvalidBarycentric { .. }
@@ -206,7 +211,6 @@ impl SessionError {
             Self::Triangulation(e) => e.code(),
             Self::Mesh(e) => e.code(),
             Self::Options(e) | Self::Setup(e) | Self::Event { error: e, .. } => e.code(),
-            Self::ForeignOption { .. } => ErrorCode::InvalidOption,
             Self::MissingTargets { .. } => ErrorCode::InvalidArgument,
             Self::Json(_)
             | Self::Format { .. }

@@ -50,7 +50,8 @@ use serde::{Deserialize, Serialize};
 
 pub use replay::{replay, replay_to_targets, Replay};
 
-use crate::deform::{ArapOptions, Deform, DeformError, DeformerOptions, Integrator, Method, MethodOptions};
+use crate::deform::settings::is_whole;
+use crate::deform::{Deform, DeformError, DeformerOptions, Method, MethodOptions, SettingValue};
 use crate::mesh::{Mesh, MeshError};
 use crate::shapes;
 use crate::triangulate::{triangulate, TriangulationError, TriangulationOptions};
@@ -177,134 +178,101 @@ impl SessionMesh {
     }
 }
 
-/// The deformation method as sessions name it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum MethodName {
-    /// AKAP.
-    Akap,
-    /// ARAP.
-    Arap,
-}
-
-impl From<MethodName> for Method {
-    fn from(m: MethodName) -> Self {
-        match m {
-            MethodName::Akap => Method::Akap,
-            MethodName::Arap => Method::Arap,
-        }
-    }
-}
-
-impl From<Method> for MethodName {
-    fn from(m: Method) -> Self {
-        match m {
-            Method::Akap => MethodName::Akap,
-            Method::Arap => MethodName::Arap,
-        }
-    }
-}
-
-/// The integrator as sessions name it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum IntegratorName {
-    /// Log-spiral steps.
-    Spiral,
-    /// Linear steps.
-    Linear,
-}
-
-/// A method and some of its options, as the header's `options` and `options` events
-/// record them; what is left out keeps its value (see [`Self::over`]).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// A method and some of its settings, as the header's `options` and `options` events
+/// record them: `{ "method"?: name, setting: value, ... }` with the settings by the names
+/// of [`crate::deform::Settings`]; what is left out keeps its value (see [`Self::over`]).
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct RecordedOptions {
-    /// `"akap"` or `"arap"`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub method: Option<MethodName>,
-    /// AKAP: weight of the soft handle constraints.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lambda: Option<f64>,
-    /// AKAP: whether the Dirichlet step runs.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub dirichlet: Option<bool>,
-    /// AKAP: `"spiral"` or `"linear"`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub integrator: Option<IntegratorName>,
-    /// ARAP: local/global iterations per step.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub iterations: Option<usize>,
+    /// The method, if named.
+    pub method: Option<Method>,
+    /// The settings given, by name, in order.
+    pub values: Vec<(String, SettingValue)>,
 }
 
 impl RecordedOptions {
-    /// Every option of a method. ARAP's `tolerance` (convergence runs, which the JavaScript
-    /// API does not offer) is not part of the format.
+    /// Every option of a method (its settings: ARAP's `tolerance`, for convergence runs,
+    /// is not one).
     pub fn of(options: MethodOptions) -> Self {
-        match options {
-            MethodOptions::Akap(o) => Self {
-                method: Some(MethodName::Akap),
-                lambda: Some(o.lambda),
-                dirichlet: Some(o.dirichlet),
-                integrator: Some(match o.integrator {
-                    Integrator::Spiral => IntegratorName::Spiral,
-                    Integrator::Linear => IntegratorName::Linear,
-                }),
-                iterations: None,
-            },
-            MethodOptions::Arap(o) => {
-                Self { method: Some(MethodName::Arap), iterations: Some(o.iterations), ..Self::default() }
-            }
-        }
+        let values = options.values().into_iter().map(|(name, value)| (name.to_owned(), value)).collect();
+        Self { method: Some(options.method()), values }
     }
 
-    /// The options these make over `base`: `base` with the options given changed when they
-    /// name its method (or none), else the other method's defaults with them; ranges
-    /// checked. `index` is the event's, for errors (`None`: the header).
+    /// The options these make over `base` ([`MethodOptions::over`]: `base` with the
+    /// settings given changed when they name its method or none, else the other method's
+    /// defaults with them; ranges checked). `index` is the event's, for errors (`None`: the
+    /// header).
     pub fn over(&self, base: MethodOptions, index: Option<usize>) -> Result<MethodOptions, SessionError> {
-        let method = self.method.map_or(base.method(), Method::from);
-        let mut options = if method == base.method() {
-            base
-        } else {
-            match method {
-                Method::Akap => MethodOptions::Akap(DeformerOptions::default()),
-                Method::Arap => MethodOptions::Arap(ArapOptions::default()),
-            }
-        };
-        let foreign = |option: &'static str| SessionError::ForeignOption { index, option, method };
-        match &mut options {
-            MethodOptions::Akap(o) => {
-                if self.iterations.is_some() {
-                    return Err(foreign("iterations"));
-                }
-                o.lambda = self.lambda.unwrap_or(o.lambda);
-                o.dirichlet = self.dirichlet.unwrap_or(o.dirichlet);
-                if let Some(integrator) = self.integrator {
-                    o.integrator = match integrator {
-                        IntegratorName::Spiral => Integrator::Spiral,
-                        IntegratorName::Linear => Integrator::Linear,
-                    };
-                }
-            }
-            MethodOptions::Arap(o) => {
-                let given = [("lambda", self.lambda.is_some()), ("dirichlet", self.dirichlet.is_some())];
-                let given = given.into_iter().chain([("integrator", self.integrator.is_some())]);
-                if let Some((option, _)) = given.into_iter().find(|(_, set)| *set) {
-                    return Err(foreign(option));
-                }
-                o.iterations = self.iterations.unwrap_or(o.iterations);
-            }
-        }
-        options.check().map_err(|error| match index {
+        let values = self.values.iter().map(|(name, value)| (name.as_str(), value));
+        MethodOptions::over(base, self.method, values).map_err(|error| match index {
             None => SessionError::Options(error),
             Some(index) => SessionError::Event { index, error },
-        })?;
-        Ok(options)
+        })
     }
 
-    /// Whether these use what version 1 did not have (`method`, `iterations`).
+    /// Whether these use what version 1 did not have (`method`, settings other than AKAP's).
     fn beyond_version_1(&self) -> bool {
-        self.method.is_some() || self.iterations.is_some()
+        let version_1 = ["lambda", "dirichlet", "integrator"];
+        self.method.is_some() || self.values.iter().any(|(name, _)| !version_1.contains(&name.as_str()))
+    }
+}
+
+impl Serialize for RecordedOptions {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(Some(self.values.len() + usize::from(self.method.is_some())))?;
+        if let Some(method) = self.method {
+            map.serialize_entry("method", method.name())?;
+        }
+        for (name, value) in &self.values {
+            match value {
+                // A whole-number setting is written as one (`"iterations": 10`).
+                SettingValue::Number(x) if is_whole(name) && x.fract() == 0.0 && x.abs() < 9e15 => {
+                    map.serialize_entry(name, &(*x as i64))?
+                }
+                SettingValue::Number(x) => map.serialize_entry(name, x)?,
+                SettingValue::Bool(b) => map.serialize_entry(name, b)?,
+                SettingValue::Word(w) => map.serialize_entry(name, w)?,
+            }
+        }
+        map.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for RecordedOptions {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_map(OptionsVisitor)
+    }
+}
+
+/// Reads `{ "method"?: name, setting: value, ... }` in the file's order.
+struct OptionsVisitor;
+
+impl<'de> serde::de::Visitor<'de> for OptionsVisitor {
+    type Value = RecordedOptions;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("an object of options")
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<RecordedOptions, A::Error> {
+        use serde::de::Error;
+        use serde_json::Value;
+        let mut options = RecordedOptions::default();
+        while let Some((name, value)) = map.next_entry::<String, Value>()? {
+            if name == "method" {
+                let method = value.as_str().ok_or_else(|| A::Error::custom("options.method must be a string"))?;
+                options.method = Some(Method::from_name(method).map_err(A::Error::custom)?);
+                continue;
+            }
+            let value = match value {
+                Value::Number(n) => SettingValue::Number(n.as_f64().expect("JSON numbers are doubles")),
+                Value::Bool(b) => SettingValue::Bool(b),
+                Value::String(w) => SettingValue::Word(w),
+                _ => return Err(A::Error::custom(format!("option {name} must be a number, true, false or a word"))),
+            };
+            options.values.push((name, value));
+        }
+        Ok(options)
     }
 }
 
@@ -379,15 +347,6 @@ pub enum SessionError {
     Options(DeformError),
     /// No deformer can be made on the session's mesh (it is not connected, say).
     Setup(DeformError),
-    /// An option of another method than the one in use (or named beside it).
-    ForeignOption {
-        /// Index of the event in `events` (`None`: the header's options).
-        index: Option<usize>,
-        /// The option's name.
-        option: &'static str,
-        /// The method the options are for.
-        method: Method,
-    },
     /// An event was refused.
     Event {
         /// Index of the event in `events`.
@@ -429,12 +388,6 @@ impl fmt::Display for SessionError {
             ),
             Self::Options(e) => write!(f, "the session's options are invalid: {e}"),
             Self::Setup(e) => write!(f, "the session's mesh cannot be deformed: {e}"),
-            Self::ForeignOption { index, option, method } => {
-                if let Some(index) = index {
-                    write!(f, "event {index}: ")?;
-                }
-                write!(f, "option {option} does not apply to method {method}")
-            }
             Self::Event { index, error } => write!(f, "event {index}: {error}"),
             Self::MissingTargets { index } => write!(f, "event {index} is a step without targets"),
         }

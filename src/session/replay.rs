@@ -18,9 +18,9 @@ pub struct Replay {
 }
 
 /// Replays the events as recorded, the velocities as given, on `deformer` (normally
-/// [`Session::recorded_deformer`]). An `options` event of another method replaces
-/// `deformer` with one of that method on the same mesh, with the pose and the handles
-/// carried over, as the widget does. With the recorded method and options this repeats the
+/// [`Session::recorded_deformer`]). An `options` event is put into effect by
+/// [`crate::deform::MethodOptions::apply`], as the widget does: one of another method
+/// replaces `deformer` with one of that method, the pose and the handles carried over. With the recorded method and options this repeats the
 /// recording exactly.
 pub fn replay(session: &Session, deformer: &mut Box<dyn Deform>) -> Result<Replay, SessionError> {
     run(session, Slot::Recorded(deformer), None)
@@ -57,8 +57,6 @@ impl Slot<'_> {
 fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) -> Result<Replay, SessionError> {
     let mut replay = Replay::default();
     let mut velocities = Vec::new();
-    // The handles in place, for a deformer of another method.
-    let mut handles: (Vec<u32>, Vec<[f64; 3]>) = (Vec::new(), Vec::new());
     let mut last_was_step = false;
     for (index, event) in session.events.iter().enumerate() {
         let refused = |error| SessionError::Event { index, error };
@@ -76,7 +74,6 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
                     }));
                 }
                 slot.get().set_handle_points(triangles, weights).map_err(refused)?;
-                handles = (triangles.clone(), weights.to_vec());
             }
             Event::Step(flat) => {
                 let deformer = slot.get();
@@ -127,16 +124,8 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
             }
             Event::Options(recorded) => {
                 let Slot::Recorded(deformer) = &mut slot else { continue };
-                let current = deformer.method_options();
-                let options = recorded.over(current, Some(index))?;
-                if options.method() == current.method() {
-                    deformer.set_method_options(options).map_err(refused)?;
-                } else {
-                    let mut next = options.build(deformer.mesh().clone()).map_err(refused)?;
-                    next.set_positions(deformer.positions()).map_err(refused)?;
-                    next.set_handle_points(&handles.0, &handles.1).map_err(refused)?;
-                    **deformer = next;
-                }
+                let options = recorded.over(deformer.method_options(), Some(index))?;
+                options.apply(deformer).map_err(refused)?;
             }
             Event::Reset(true) => slot.get().reset(),
             Event::Reset(false) => {}

@@ -1,5 +1,7 @@
 //! The deformers (AKAP or ARAP behind one class) and their options.
 
+use std::sync::OnceLock;
+
 use js_sys::{Array, Function, Object, Reflect, Uint32Array};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
@@ -8,8 +10,7 @@ use super::error::BindingError;
 use super::mesh::read_mesh;
 use super::read::{self, Options};
 use super::{limits, max_coordinates, object, pairs};
-use crate::deform::arap::MAX_ITERATIONS;
-use crate::deform::{ArapOptions, Deform, DeformerOptions, Integrator, Method, MethodOptions, Orders};
+use crate::deform::{Deform, Method, MethodOptions, Orders, SettingValue};
 
 /// A deformer for one mesh: AKAP (`crate::deform::Deformer`) or ARAP
 /// (`crate::deform::ArapDeformer`), chosen by the `method` option.
@@ -77,11 +78,15 @@ impl JsDeformer {
         Ok(Self { inner })
     }
 
-    /// Changes some options; the others keep their values. The method cannot change.
+    /// Changes some options; the others keep their values. A different `method` switches
+    /// to that method (its defaults, with the options given) on the same mesh, keeping the
+    /// pose and the handles: a new solver is set up (`MethodOptions::apply`).
     #[wasm_bindgen(js_name = setOptions)]
     pub fn set_options(&mut self, options: JsValue) -> Result<(), BindingError> {
         let options = deformer_options(&options, self.inner.method_options())?;
-        Ok(self.inner.set_method_options(options)?)
+        options.apply(&mut self.inner)?;
+        self.inner.set_clock(performance_now);
+        Ok(())
     }
 
     /// `"akap"` or `"arap"`.
@@ -204,54 +209,34 @@ impl JsDeformer {
     }
 }
 
-/// The deformer options' names: `method`, then AKAP's, then ARAP's.
-const NAMES: [&str; 5] = ["method", "lambda", "dirichlet", "integrator", "iterations"];
-/// The options of AKAP only.
-const AKAP_ONLY: [&str; 3] = ["lambda", "dirichlet", "integrator"];
+/// The deformer options' names: `method`, then every method's settings.
+fn names() -> &'static [&'static str] {
+    static NAMES: OnceLock<Vec<&'static str>> = OnceLock::new();
+    NAMES.get_or_init(|| std::iter::once("method").chain(MethodOptions::all_setting_names()).collect())
+}
 
-/// Reads `{ method?, lambda?, dirichlet?, integrator?, iterations? }` over `base`, refusing
-/// unknown keys and options of the other method. A different `method` starts from that
-/// method's defaults.
+/// Reads `{ method?, ...settings }` over `base` as [`MethodOptions::over`] makes them: a
+/// different `method` starts from that method's defaults; an unknown key, a setting of
+/// another method and a value of the wrong type are refused.
 pub(super) fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, BindingError> {
-    let given = Options::read(value, "deformer", &NAMES)?;
-    let mut options = base;
-    if let Some(method) = given.choice("method", &[("akap", Method::Akap), ("arap", Method::Arap)])? {
-        if method != base.method() {
-            options = match method {
-                Method::Akap => MethodOptions::Akap(DeformerOptions::default()),
-                Method::Arap => MethodOptions::Arap(ArapOptions::default()),
-            };
-        }
+    let given = Options::read(value, "deformer", names())?;
+    let methods: Vec<(&str, Method)> = Method::all().iter().map(|&m| (m.name(), m)).collect();
+    let method = given.choice("method", &methods)?;
+    let mut values = Vec::new();
+    for name in given.names().filter(|&name| name != "method") {
+        let value = given.get(name).expect("a name given has a value");
+        let value = if let Some(x) = value.as_f64() {
+            SettingValue::Number(x)
+        } else if let Some(b) = value.as_bool() {
+            SettingValue::Bool(b)
+        } else if let Some(w) = value.as_string() {
+            SettingValue::Word(w)
+        } else {
+            return Err(given.wrong_type(name, "a number, true, false or a string", value));
+        };
+        values.push((name, value));
     }
-    let method = options.method();
-    if let Some(name) =
-        given.names().find(|&name| (method == Method::Akap) != AKAP_ONLY.contains(&name) && name != "method")
-    {
-        let other = if method == Method::Akap { "arap" } else { "akap" };
-        return Err(BindingError::option(format!("option {name} applies to method \"{other}\" only")));
-    }
-    match &mut options {
-        MethodOptions::Akap(o) => {
-            o.lambda = given.number("lambda")?.unwrap_or(o.lambda);
-            o.dirichlet = given.boolean("dirichlet")?.unwrap_or(o.dirichlet);
-            let integrators = [("spiral", Integrator::Spiral), ("linear", Integrator::Linear)];
-            o.integrator = given.choice("integrator", &integrators)?.unwrap_or(o.integrator);
-        }
-        MethodOptions::Arap(o) => {
-            // The core's bound (`arap::MAX_ITERATIONS`), checked here on the caller's number
-            // so that the message names it (1e300 as usize would not).
-            if let Some(n) = given.number("iterations")? {
-                if !(n.fract() == 0.0 && (1.0..=MAX_ITERATIONS as f64).contains(&n)) {
-                    return Err(BindingError::option(format!(
-                        "option iterations must be a whole number from 1 to {MAX_ITERATIONS} (iterations per step: a \
-                         step's work grows with them, and {MAX_ITERATIONS} is far more than a frame needs)"
-                    )));
-                }
-                o.iterations = n as usize;
-            }
-        }
-    }
-    Ok(options)
+    Ok(MethodOptions::over(base, method, values.iter().map(|(name, value)| (*name, value)))?)
 }
 
 thread_local! {

@@ -214,7 +214,7 @@ impl Options {
     }
 
     /// The value of option `name`, if given.
-    fn get(&self, name: &str) -> Option<&JsValue> {
+    pub(super) fn get(&self, name: &str) -> Option<&JsValue> {
         debug_assert!(self.names.contains(&name), "{name} is not a {} option", self.what);
         self.given.iter().find(|(n, _)| n == name).map(|(_, v)| v)
     }
@@ -236,11 +236,6 @@ impl Options {
         Ok(Some(n as usize))
     }
 
-    /// Option `name` as `true` or `false`, if given.
-    pub(super) fn boolean(&self, name: &str) -> Result<Option<bool>, BindingError> {
-        self.get(name).map(|v| v.as_bool().ok_or_else(|| self.wrong_type(name, "true or false", v))).transpose()
-    }
-
     /// Option `name` as one of the strings of `choices`, if given.
     pub(super) fn choice<T: Copy>(&self, name: &str, choices: &[(&str, T)]) -> Result<Option<T>, BindingError> {
         let Some(value) = self.get(name) else { return Ok(None) };
@@ -248,12 +243,8 @@ impl Options {
         if let Some(&(_, chosen)) = choices.iter().find(|(word, _)| text.as_deref() == Some(*word)) {
             return Ok(Some(chosen));
         }
-        let words: Vec<String> = choices.iter().map(|(word, _)| format!("\"{word}\"")).collect();
-        let expected = match words.split_last() {
-            Some((last, [])) => last.clone(),
-            Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
-            None => "nothing".into(),
-        };
+        let words: Vec<&str> = choices.iter().map(|(word, _)| *word).collect();
+        let expected = crate::error::one_of(&words);
         Err(match text {
             Some(text) if text.len() <= 40 => {
                 BindingError::option(format!("option {name} is {text:?}, expected {expected}"))
@@ -263,7 +254,7 @@ impl Options {
     }
 
     /// Option `name` has a value of the wrong type.
-    fn wrong_type(&self, name: &str, expected: &str, value: &JsValue) -> BindingError {
+    pub(super) fn wrong_type(&self, name: &str, expected: &str, value: &JsValue) -> BindingError {
         BindingError::option(format!("option {name} must be {expected}, not {}", describe(value)))
     }
 }

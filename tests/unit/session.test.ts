@@ -168,7 +168,7 @@ describe("sessions through the core", () => {
       /invalid value: integer `-1`/,
     );
     expect(() => parseSession(bad({ options: { method: "arap", lambda: 5 } }))).toThrow(
-      "option lambda does not apply to method arap",
+      'option lambda applies to method "akap" only, not to "arap"',
     );
     expect(() => parseSession(bad({ events: [...good.events, { step: [1] }] }))).toThrow(
       "event 2: velocities has 1 numbers, expected 2 (2 for each of the 1 handles)",

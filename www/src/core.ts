@@ -165,9 +165,9 @@ export function meshFromArrays(positions: Coordinates, triangles: Indices): Mesh
 }
 
 /**
- * Options of the {@link Deformer}. `method` is chosen when the deformer is created;
- * `lambda`, `dirichlet` and `integrator` apply to AKAP only, `iterations` to ARAP only
- * (giving one to the other method throws).
+ * Options of the {@link Deformer}: a `method` and its settings. `lambda`, `dirichlet` and
+ * `integrator` apply to AKAP only, `iterations` to ARAP only (giving one to the other
+ * method throws, code `invalid-option`).
  */
 export interface DeformerOptions {
   /**
@@ -265,12 +265,17 @@ export class Deformer {
     return this.#inner;
   }
 
-  /** Changes some options; the others keep their values. The method cannot change. */
+  /**
+   * Changes some options; the others keep their values. A different `method` switches the
+   * deformer to that method (its defaults, with the settings given) on the same mesh,
+   * keeping the pose and the handles; that sets up a new solver, as the constructor does.
+   * On error nothing changes.
+   */
   setOptions(options: DeformerOptions): void {
     this.#raw.setOptions(options);
   }
 
-  /** The method chosen at construction. */
+  /** The method in use. */
   get method(): "akap" | "arap" {
     return this.#raw.method as "akap" | "arap";
   }

@@ -465,6 +465,9 @@ impl Deform for Deformer {
     fn handle_count(&self) -> usize {
         Deformer::handle_count(self)
     }
+    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
+        handles::as_points(self.handles.iter())
+    }
     fn handle_positions(&self) -> Vec<Point> {
         Deformer::handle_positions(self)
     }

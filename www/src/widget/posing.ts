@@ -121,42 +121,20 @@ export class Posing {
     return methodOptions(this.settings.method, this.settings.lambda);
   }
 
-  /**
-   * Applies deformer options. The same method only changes settings; another method (AKAP
-   * and ARAP are different solvers) gets a new deformer with the current pose and handles.
-   */
-  useOptions(options: DeformerOptions): void {
-    const { method = "akap", ...settings } = options;
-    if (method === this.deformer.method) {
-      this.deformer.setOptions(settings);
-      return;
-    }
-    const { positions, triangles } = this.shape.mesh;
-    const next = new Deformer(positions, triangles, options);
-    try {
-      next.setPositions(this.deformer.positionsView());
-      const event = this.handlesEvent();
-      next.setHandlePoints(event.handles.triangles, event.handles.barycentric);
-    } catch (error) {
-      next.free();
-      throw error;
-    }
-    this.deformer.free();
-    this.deformer = next;
-  }
-
   /** Changes the method and/or lambda (recorded). */
   setMethod(method: MethodPreset, lambda: number): void {
     if (!Object.hasOwn(METHODS, method)) throw new Error(`unknown method "${method}"`);
     const options = methodOptions(method, lambda);
-    this.useOptions(options); // throws (and changes nothing) for a bad lambda
+    // Another method is set up with the pose and handles (the core's MethodOptions::apply);
+    // throws, changing nothing, for a bad lambda.
+    this.deformer.setOptions(options);
     this.record({ options });
     this.showMethod(method, lambda);
   }
 
   /** Deformer options from a session: applied, and shown as the widget's method. */
   applyOptions(options: DeformerOptions): void {
-    this.useOptions(options);
+    this.deformer.setOptions(options);
     const { method, lambda } = widgetMethod(options, this.settings.lambda);
     this.showMethod(method, lambda);
   }
@@ -308,7 +286,7 @@ export class Posing {
     if (snapshot.method !== this.settings.method || snapshot.lambda !== this.settings.lambda) {
       this.settings.method = snapshot.method;
       this.settings.lambda = snapshot.lambda;
-      if (snapshot.shape === this.shape) this.useOptions(this.deformerOptions());
+      if (snapshot.shape === this.shape) this.deformer.setOptions(this.deformerOptions());
       this.showMethod(snapshot.method, snapshot.lambda);
     }
     if (snapshot.shape !== this.shape) {
