@@ -13,36 +13,8 @@ use akap::deform::{ArapDeformer, ArapOptions, Deformer, DeformerOptions};
 use akap::geometry::Point;
 use akap::import::svg::{import_svg, SvgOptions};
 use akap::import::warp::PointMapper;
-use akap::{triangulate, Mesh, Outline, TriangulationOptions};
-
-/// A grid mesh of `columns x rows` squares over `[0, columns] x [0, rows]`, two triangles each.
-fn grid_mesh(columns: usize, rows: usize) -> Mesh {
-    let index = |i: usize, j: usize| (j * (columns + 1) + i) as u32;
-    let positions = (0..=rows).flat_map(|j| (0..=columns).map(move |i| [i as f64, j as f64])).collect();
-    let mut triangles = Vec::new();
-    for j in 0..rows {
-        for i in 0..columns {
-            let (a, b, c, d) = (index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
-            triangles.extend([[a, b, c], [a, c, d]]);
-        }
-    }
-    Mesh::new(positions, triangles).expect("a grid is a valid mesh")
-}
-
-/// A comb: a spine on the left and `teeth` teeth of length `length` to the right, each
-/// tooth and gap one unit high; `4 teeth` points, counter-clockwise. Its long edges all
-/// overlap in x, the worst case of a sweep that compares segments overlapping in x.
-fn comb(teeth: usize, length: f64) -> Vec<Point> {
-    let mut ring = Vec::with_capacity(4 * teeth);
-    for i in 0..teeth {
-        let y = 2.0 * i as f64;
-        ring.push([if i == 0 { -1.0 } else { 0.0 }, y]);
-        ring.push([length, y]);
-        ring.push([length, y + 1.0]);
-        ring.push([if i + 1 == teeth { -1.0 } else { 0.0 }, y + 1.0]);
-    }
-    ring
-}
+use akap::shapes::{comb, grid_mesh};
+use akap::{triangulate, Outline, TriangulationOptions};
 
 /// A circle of `n` points.
 fn circle(n: usize, radius: f64) -> Vec<Point> {

@@ -8,8 +8,12 @@
 //! - `bar`: the paper's synthetic model for its comparison (Table 1, Figure 9), a long bar
 //!   whose long sides carry small teeth, so that bending it shows how boundary detail is
 //!   kept.
+//!
+//! Beside them, shapes for tests and benchmarks: [`comb`], the worst case of a sweep, and
+//! [`grid_mesh`].
 
 use crate::geometry::{distance, Point};
+use crate::mesh::Mesh;
 use crate::outline::Outline;
 
 /// Control points of the figure's outline, counter-clockwise with y pointing up, from the
@@ -187,6 +191,44 @@ pub fn by_name(name: &str) -> Option<Outline> {
         "bar" => Some(toothed_bar()),
         _ => None,
     }
+}
+
+/// A comb: a spine one unit wide on the left and `teeth` teeth of `length` to the right,
+/// each tooth and gap one unit high; `4 teeth` points, counter-clockwise, of area
+/// `teeth length + 2 teeth - 1`. Its long edges all overlap in x, the worst case of a
+/// sweep that compares segments overlapping in x (the adversarial benchmark, the hostile
+/// tests).
+pub fn comb(teeth: usize, length: f64) -> Vec<Point> {
+    let mut ring = Vec::with_capacity(4 * teeth);
+    for i in 0..teeth {
+        let y = 2.0 * i as f64;
+        ring.push([if i == 0 { -1.0 } else { 0.0 }, y]);
+        ring.push([length, y]);
+        ring.push([length, y + 1.0]);
+        ring.push([if i + 1 == teeth { -1.0 } else { 0.0 }, y + 1.0]);
+    }
+    ring
+}
+
+/// A grid of `columns x rows` unit squares over `[0, columns] x [0, rows]`, two
+/// counter-clockwise triangles each, vertices numbered row by row from the origin.
+///
+/// ```
+/// let mesh = akap::shapes::grid_mesh(3, 2);
+/// assert_eq!((mesh.vertex_count(), mesh.triangle_count()), (12, 12));
+/// assert_eq!(mesh.positions()[4], [0.0, 1.0]);
+/// ```
+pub fn grid_mesh(columns: usize, rows: usize) -> Mesh {
+    let index = |i: usize, j: usize| (j * (columns + 1) + i) as u32;
+    let positions = (0..=rows).flat_map(|j| (0..=columns).map(move |i| [i as f64, j as f64])).collect();
+    let mut triangles = Vec::with_capacity(2 * columns * rows);
+    for j in 0..rows {
+        for i in 0..columns {
+            let (a, b, c, d) = (index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
+            triangles.extend([[a, b, c], [a, c, d]]);
+        }
+    }
+    Mesh::new(positions, triangles).expect("a grid of at least one square is a valid mesh")
 }
 
 /// An axis-aligned ellipse as a counter-clockwise polygon of `n` points.

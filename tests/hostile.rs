@@ -11,7 +11,8 @@ use akap::import::svg::{import_svg, parse_path_data, SvgOptions};
 use akap::import::vector::Verb;
 use akap::import::warp::PointMapper;
 use akap::import::{ImportError, Limits};
-use akap::{triangulate, Mesh, Outline, OutlineError, Ring, TriangulationError, TriangulationOptions};
+use akap::shapes::{comb, grid_mesh as grid};
+use akap::{triangulate, Outline, OutlineError, Ring, TriangulationError, TriangulationOptions};
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
@@ -19,35 +20,6 @@ use crate::common::Rng;
 
 fn svg(view_box: &str, body: &str) -> String {
     format!(r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="{view_box}">{body}</svg>"#)
-}
-
-/// A grid of `columns x rows` unit squares, two triangles each.
-fn grid(columns: usize, rows: usize) -> Mesh {
-    let index = |i: usize, j: usize| (j * (columns + 1) + i) as u32;
-    let positions = (0..=rows).flat_map(|j| (0..=columns).map(move |i| [i as f64, j as f64])).collect();
-    let mut triangles = Vec::new();
-    for j in 0..rows {
-        for i in 0..columns {
-            let (a, b, c, d) = (index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
-            triangles.extend([[a, b, c], [a, c, d]]);
-        }
-    }
-    Mesh::new(positions, triangles).unwrap()
-}
-
-/// A comb of `teeth` teeth of `length` (each tooth and gap one unit high) on a spine one
-/// unit wide: `4 teeth` points, counter-clockwise, area `teeth length + 2 teeth - 1`.
-/// Its long edges all overlap in x.
-fn comb(teeth: usize, length: f64) -> Vec<Point> {
-    let mut ring = Vec::with_capacity(4 * teeth);
-    for i in 0..teeth {
-        let y = 2.0 * i as f64;
-        ring.push([if i == 0 { -1.0 } else { 0.0 }, y]);
-        ring.push([length, y]);
-        ring.push([length, y + 1.0]);
-        ring.push([if i + 1 == teeth { -1.0 } else { 0.0 }, y + 1.0]);
-    }
-    ring
 }
 
 fn path_data(points: &[Point]) -> String {

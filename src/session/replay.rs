@@ -78,16 +78,7 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
             Event::Step(flat) => {
                 let deformer = slot.get();
                 let before = deformer.handle_positions();
-                let (pairs, rest) = flat.as_chunks::<2>();
-                if !rest.is_empty() {
-                    return Err(refused(DeformError::Length {
-                        what: "velocities",
-                        expected: 2 * before.len(),
-                        found: flat.len(),
-                        per: 2,
-                        items: "handles",
-                    }));
-                }
+                let pairs = pairs(flat, "velocities", before.len(), "handles").map_err(refused)?;
                 let goal: Vec<Point> = match targets {
                     None => before.iter().zip(pairs).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect(),
                     Some(all) => all.get(replay.targets.len()).ok_or(SessionError::MissingTargets { index })?.clone(),
@@ -109,17 +100,8 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
                 last_was_step = true;
             }
             Event::Positions(flat) => {
-                let (pairs, rest) = flat.as_chunks::<2>();
                 let deformer = slot.get();
-                if !rest.is_empty() {
-                    return Err(refused(DeformError::Length {
-                        what: "positions",
-                        expected: 2 * deformer.mesh().vertex_count(),
-                        found: flat.len(),
-                        per: 2,
-                        items: "vertices",
-                    }));
-                }
+                let pairs = pairs(flat, "positions", deformer.mesh().vertex_count(), "vertices").map_err(refused)?;
                 deformer.set_positions(pairs).map_err(refused)?;
             }
             Event::Options(recorded) => {
@@ -138,4 +120,18 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
         replay.handle_error = Some(if handles.is_empty() { 0.0 } else { total / handles.len() as f64 });
     }
     Ok(replay)
+}
+
+/// `flat` as pairs (an x and a y each), or the error a deformer gives for an odd count:
+/// `expected` pairs, one per item.
+fn pairs<'a>(
+    flat: &'a [f64],
+    what: &'static str,
+    expected: usize,
+    items: &'static str,
+) -> Result<&'a [[f64; 2]], DeformError> {
+    match flat.as_chunks::<2>() {
+        (pairs, []) => Ok(pairs),
+        _ => Err(DeformError::Length { what, expected: 2 * expected, found: flat.len(), per: 2, items }),
+    }
 }

@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::geometry::{point_in_polygon, polygon_area};
+use crate::shapes::comb;
 
 struct Rng(u64);
 
@@ -124,26 +125,13 @@ fn containment_matches_point_in_polygon() {
     assert!(checked > 400, "{checked} valid sets");
 }
 
-/// `teeth` teeth of length 1000 from a spine: every long segment overlaps every other in x.
-fn comb(teeth: usize) -> Vec<Point> {
-    let mut ring = Vec::new();
-    for i in 0..teeth {
-        let y = 2.0 * i as f64;
-        ring.push([if i == 0 { -1.0 } else { 0.0 }, y]);
-        ring.push([1000.0, y]);
-        ring.push([1000.0, y + 1.0]);
-        ring.push([if i + 1 == teeth { -1.0 } else { 0.0 }, y + 1.0]);
-    }
-    ring
-}
-
 #[test]
 fn a_comb_takes_n_log_n_comparisons() {
     // 8000 segments, 4000 of them spanning the comb: a sweep by x ranges compares about
     // 8 million pairs; this one may compare at most 50 per segment.
     let teeth = 2000;
     let n = 4 * teeth;
-    let mut rings = vec![comb(teeth)];
+    let mut rings = vec![comb(teeth, 1000.0)];
     let found = sweep(&rings, Find::First, 50 * n).expect("within n log n");
     assert!(found.meetings.is_empty());
     // No two vertices straight above one another within rounding: swept once.
@@ -191,7 +179,7 @@ fn deep_nesting_and_shared_points() {
     let signed_zero = [vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[-0.0, 0.0], [-1.0, 0.0], [0.0, -1.0]]];
     assert_eq!(sweep(&signed_zero, Find::First, usize::MAX).unwrap().meetings.len(), 1);
     // The budget runs out.
-    assert!(sweep(&[comb(100)], Find::First, 100).is_none());
+    assert!(sweep(&[comb(100, 1000.0)], Find::First, 100).is_none());
 }
 
 #[test]
