@@ -19,16 +19,19 @@
 //! Module map (see ARCHITECTURE.md): [`geometry`] (planar helpers), [`outline`] (input
 //! shapes and their validation), [`triangulate`](mod@triangulate) (the only user of spade),
 //! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes),
-//! [`sparse`] (our sparse Cholesky), [`deform`] (AKAP and ARAP), [`session`] (recorded
-//! interaction sessions and their replay), [`import`] (SVG documents, images and mesh
-//! files in), and `wasm` (the JavaScript bindings, compiled for wasm32 only).
+//! [`sparse`] (our sparse Cholesky), [`random`] (a seeded generator), [`deform`] (AKAP
+//! and ARAP), [`session`] (recorded interaction sessions and their replay), [`import`]
+//! (SVG documents, images and mesh files in), and `wasm` (the JavaScript bindings,
+//! compiled for wasm32 only).
 
+pub mod defop;
 pub mod deform;
 pub mod error;
 pub mod geometry;
 pub mod import;
 pub mod mesh;
 pub mod outline;
+pub mod random;
 pub mod session;
 pub mod shapes;
 pub mod sparse;

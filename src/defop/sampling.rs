@@ -1,0 +1,298 @@
+//! Training samples for a deformation operator: handle targets `Q` drawn around the
+//! handles' rest positions `P`, seeded and reproducible (the paper's Section 3.3 and Fig. 1).
+//!
+//! - [`Sampling::Disc`]: each target uniform (by area) in the disc of radius `r` around
+//!   its handle's rest position, independently per handle.
+//! - [`Sampling::Voronoi`]: each target uniform in its handle's Voronoi cell among the rest
+//!   positions, clipped to the shape's bounding box grown by `r` (notes, section 2.2).
+//! - [`Sampling::Mixed`]: each sample, all its targets from discs or all from cells, with
+//!   probability one half each (Fig. 1).
+//!
+//! The rest pose `Q = P` is not drawn: training always adds it as its first sample (its
+//! ground truth is the rest mesh, exactly).
+
+use crate::geometry::Point;
+use crate::random::Rng;
+
+/// Where targets are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Sampling {
+    /// In discs around the handles.
+    #[default]
+    Disc,
+    /// In the handles' Voronoi cells (clipped to the grown bounding box).
+    Voronoi,
+    /// Disc or Voronoi, one half each, per sample.
+    Mixed,
+}
+
+/// The default disc radius as a fraction of the shape's bounding-box diagonal.
+pub const DEFAULT_RADIUS_FRACTION: f64 = 0.15;
+
+/// Why a sampler cannot be made.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum SamplingError {
+    /// There are no handles.
+    NoHandles,
+    /// A rest position or the box is not finite.
+    NotFinite,
+    /// The radius is not a positive finite number.
+    Radius(f64),
+    /// Two handles share a rest position: their Voronoi cells are not defined.
+    CoincidentHandles {
+        /// The first handle.
+        first: usize,
+        /// The second.
+        second: usize,
+    },
+}
+
+impl std::fmt::Display for SamplingError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::NoHandles => f.write_str("there are no handles to sample targets for"),
+            Self::NotFinite => f.write_str("a handle's rest position or the shape's box is not finite"),
+            Self::Radius(r) => write!(f, "the sampling radius is {r}, expected a positive finite number"),
+            Self::CoincidentHandles { first, second } => {
+                write!(f, "handles {first} and {second} are at the same rest position")
+            }
+        }
+    }
+}
+
+impl std::error::Error for SamplingError {}
+
+/// Draws handle targets around rest positions.
+#[derive(Debug, Clone)]
+pub struct Sampler {
+    rest: Vec<Point>,
+    radius: f64,
+    sampling: Sampling,
+    /// Each handle's Voronoi cell clipped to the grown box, as a fan of triangles with
+    /// cumulative areas (for [`Sampling::Voronoi`] and [`Sampling::Mixed`]).
+    cells: Vec<Fan>,
+    rng: Rng,
+}
+
+impl Sampler {
+    /// A sampler for handles at `rest` in a shape whose bounding box is `bbox` (min, max),
+    /// drawing targets within `radius` (discs) or in the cells of the box grown by `radius`.
+    pub fn new(
+        rest: &[Point],
+        bbox: [Point; 2],
+        radius: f64,
+        sampling: Sampling,
+        seed: u64,
+    ) -> Result<Self, SamplingError> {
+        if rest.is_empty() {
+            return Err(SamplingError::NoHandles);
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(SamplingError::Radius(radius));
+        }
+        let finite = |p: &Point| p[0].is_finite() && p[1].is_finite();
+        if !rest.iter().chain(&bbox).all(finite) {
+            return Err(SamplingError::NotFinite);
+        }
+        for (i, p) in rest.iter().enumerate() {
+            if let Some(j) = rest[..i].iter().position(|q| q == p) {
+                return Err(SamplingError::CoincidentHandles { first: j, second: i });
+            }
+        }
+        let cells = if sampling == Sampling::Disc {
+            Vec::new()
+        } else {
+            let lo = [bbox[0][0].min(bbox[1][0]) - radius, bbox[0][1].min(bbox[1][1]) - radius];
+            let hi = [bbox[0][0].max(bbox[1][0]) + radius, bbox[0][1].max(bbox[1][1]) + radius];
+            // The box must hold every handle for each cell to be non-empty.
+            let lo = rest.iter().fold(lo, |l, p| [l[0].min(p[0]), l[1].min(p[1])]);
+            let hi = rest.iter().fold(hi, |h, p| [h[0].max(p[0]), h[1].max(p[1])]);
+            (0..rest.len()).map(|i| Fan::of(&voronoi_cell(rest, i, lo, hi))).collect()
+        };
+        Ok(Self { rest: rest.to_vec(), radius, sampling, cells, rng: Rng::new(seed) })
+    }
+
+    /// The number of handles.
+    pub fn handle_count(&self) -> usize {
+        self.rest.len()
+    }
+
+    /// The next sample: two coordinates per handle into `out` (`2 n` numbers).
+    pub fn next_into(&mut self, out: &mut [f64]) {
+        assert_eq!(out.len(), 2 * self.rest.len(), "two coordinates per handle");
+        let voronoi = match self.sampling {
+            Sampling::Disc => false,
+            Sampling::Voronoi => true,
+            Sampling::Mixed => self.rng.uniform() < 0.5,
+        };
+        for (l, p) in self.rest.iter().enumerate() {
+            let q = if voronoi {
+                self.cells[l].sample(&mut self.rng)
+            } else {
+                let r = self.radius * self.rng.uniform().sqrt();
+                let angle = std::f64::consts::TAU * self.rng.uniform();
+                [p[0] + r * libm::cos(angle), p[1] + r * libm::sin(angle)]
+            };
+            out[2 * l] = q[0];
+            out[2 * l + 1] = q[1];
+        }
+    }
+
+    /// The next `count` samples, one after the other (`2 n count` numbers).
+    pub fn take(&mut self, count: usize) -> Vec<f64> {
+        let mut out = vec![0.0; 2 * self.rest.len() * count];
+        for sample in out.chunks_exact_mut(2 * self.rest.len()) {
+            self.next_into(sample);
+        }
+        out
+    }
+}
+
+/// The cell of handle `i`: the box `[lo, hi]` cut by the half-planes nearer to `rest[i]` than
+/// to each other handle (a convex polygon, counter-clockwise).
+fn voronoi_cell(rest: &[Point], i: usize, lo: Point, hi: Point) -> Vec<Point> {
+    let mut cell = vec![lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]];
+    let p = rest[i];
+    for (j, q) in rest.iter().enumerate() {
+        if j == i {
+            continue;
+        }
+        // Keep x with (x - m) . (q - p) <= 0, m the midpoint.
+        let n = [q[0] - p[0], q[1] - p[1]];
+        let m = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
+        let side = |x: &Point| (x[0] - m[0]) * n[0] + (x[1] - m[1]) * n[1];
+        let mut clipped = Vec::with_capacity(cell.len() + 1);
+        for (k, a) in cell.iter().enumerate() {
+            let b = cell[(k + 1) % cell.len()];
+            let (sa, sb) = (side(a), side(&b));
+            if sa <= 0.0 {
+                clipped.push(*a);
+            }
+            if (sa < 0.0 && sb > 0.0) || (sa > 0.0 && sb < 0.0) {
+                let t = sa / (sa - sb);
+                clipped.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+            }
+        }
+        cell = clipped;
+    }
+    cell
+}
+
+/// A convex polygon as a fan of triangles from its first corner, with cumulative areas.
+#[derive(Debug, Clone)]
+struct Fan {
+    triangles: Vec<[Point; 3]>,
+    cumulative: Vec<f64>,
+}
+
+impl Fan {
+    fn of(polygon: &[Point]) -> Self {
+        let mut fan = Self { triangles: Vec::new(), cumulative: Vec::new() };
+        let mut total = 0.0;
+        for k in 1..polygon.len().saturating_sub(1) {
+            let t = [polygon[0], polygon[k], polygon[k + 1]];
+            let area =
+                0.5 * ((t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[2][0] - t[0][0]) * (t[1][1] - t[0][1])).abs();
+            total += area;
+            fan.triangles.push(t);
+            fan.cumulative.push(total);
+        }
+        fan
+    }
+
+    /// A point uniform in the polygon.
+    fn sample(&self, rng: &mut Rng) -> Point {
+        let total = *self.cumulative.last().expect("a cell holds its handle, so it has area");
+        let pick = rng.uniform() * total;
+        let k = self.cumulative.partition_point(|&c| c <= pick).min(self.triangles.len() - 1);
+        let [a, b, c] = self.triangles[k];
+        // Uniform in a triangle: fold the unit square's upper half onto the lower.
+        let (mut u, mut v) = (rng.uniform(), rng.uniform());
+        if u + v > 1.0 {
+            (u, v) = (1.0 - u, 1.0 - v);
+        }
+        [a[0] + u * (b[0] - a[0]) + v * (c[0] - a[0]), a[1] + u * (b[1] - a[1]) + v * (c[1] - a[1])]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const REST: [Point; 3] = [[0.0, 0.0], [1.0, 0.0], [0.3, 0.8]];
+    const BOX: [Point; 2] = [[-0.5, -0.5], [1.5, 1.5]];
+
+    #[test]
+    fn disc_samples_fill_the_discs_uniformly_and_repeat_with_the_seed() {
+        let mut s = Sampler::new(&REST, BOX, 0.2, Sampling::Disc, 42).unwrap();
+        let draws = s.take(20_000);
+        let mut inner = 0;
+        for q in draws.chunks_exact(6) {
+            for (l, p) in REST.iter().enumerate() {
+                let d = (q[2 * l] - p[0]).hypot(q[2 * l + 1] - p[1]);
+                assert!(d <= 0.2 * (1.0 + 1e-12));
+                inner += usize::from(l == 0 && d < 0.1);
+            }
+        }
+        // Area-uniform: the inner disc of half the radius holds a quarter (sd ~0.003).
+        let share = inner as f64 / 20_000.0;
+        assert!((share - 0.25).abs() < 0.015, "{share}");
+        let again = Sampler::new(&REST, BOX, 0.2, Sampling::Disc, 42).unwrap().take(20_000);
+        assert_eq!(again, draws, "the same seed gives the same samples");
+        let other = Sampler::new(&REST, BOX, 0.2, Sampling::Disc, 43).unwrap().take(1);
+        assert_ne!(other[..], draws[..6]);
+    }
+
+    #[test]
+    fn voronoi_samples_are_nearest_their_handle_and_cover_the_cells_by_area() {
+        let mut s = Sampler::new(&REST, BOX, 0.25, Sampling::Voronoi, 1).unwrap();
+        let n = 30_000;
+        let mut left_half = 0;
+        for q in s.take(n).chunks_exact(6) {
+            for l in 0..3 {
+                let x = [q[2 * l], q[2 * l + 1]];
+                let dist = |p: &Point| (x[0] - p[0]).hypot(x[1] - p[1]);
+                assert!(REST.iter().all(|p| dist(&REST[l]) <= dist(p) + 1e-12), "{x:?} is not in cell {l}");
+                assert!((-0.75..=1.75).contains(&x[0]) && (-0.75..=1.75).contains(&x[1]), "{x:?}");
+                left_half += usize::from(l == 0 && x[0] < -0.25);
+            }
+        }
+        // Cell 0 within [-0.75, 1.75]^2 is bounded by the bisectors x = 0.5 and
+        // 0.3 x + 0.8 y = 0.365; its part with x < -0.25 is that strip below the second
+        // bisector. Both areas by exact polygon clipping of the box here, independently:
+        let area = |poly: &[Point]| {
+            (0..poly.len())
+                .map(|k| {
+                    let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+                    a[0] * b[1] - b[0] * a[1]
+                })
+                .sum::<f64>()
+                / 2.0
+        };
+        // y <= (0.365 - 0.3 x) / 0.8 and x <= 0.5 and the box.
+        let bisector = |x: f64| (0.365 - 0.3 * x) / 0.8;
+        let cell = [[-0.75, -0.75], [0.5, -0.75], [0.5, bisector(0.5)], [-0.75, bisector(-0.75)]];
+        let strip = [[-0.75, -0.75], [-0.25, -0.75], [-0.25, bisector(-0.25)], [-0.75, bisector(-0.75)]];
+        let expected = area(&strip) / area(&cell);
+        let share = left_half as f64 / n as f64;
+        assert!((share - expected).abs() < 0.015, "{share} vs {expected}");
+    }
+
+    #[test]
+    fn mixed_draws_both_kinds_and_bad_input_is_refused() {
+        let mut s = Sampler::new(&REST, BOX, 0.05, Sampling::Mixed, 3).unwrap();
+        let far = s.take(2000).chunks_exact(6).filter(|q| (q[0] - REST[0][0]).hypot(q[1] - REST[0][1]) > 0.05).count();
+        // Half from cells, whose points lie beyond the small disc almost always.
+        assert!((800..1200).contains(&far), "{far}");
+        assert_eq!(Sampler::new(&[], BOX, 0.1, Sampling::Disc, 0).unwrap_err(), SamplingError::NoHandles);
+        assert_eq!(Sampler::new(&REST, BOX, 0.0, Sampling::Disc, 0).unwrap_err(), SamplingError::Radius(0.0));
+        let twice = [REST[0], REST[1], REST[0]];
+        assert_eq!(
+            Sampler::new(&twice, BOX, 0.1, Sampling::Voronoi, 0).unwrap_err(),
+            SamplingError::CoincidentHandles { first: 0, second: 2 }
+        );
+        let nan = [[f64::NAN, 0.0]];
+        assert_eq!(Sampler::new(&nan, BOX, 0.1, Sampling::Disc, 0).unwrap_err(), SamplingError::NotFinite);
+    }
+}
