@@ -15,12 +15,16 @@
 //! 3. [`Numeric::solve_in_place`]: the two triangular solves with the permutation applied,
 //!    in place and without allocating.
 //!
+//! Beside it, [`eigen::smallest_eigenpairs`]: the smallest eigenpairs of a sparse symmetric
+//! generalised problem by shift-invert subspace iteration on this factorisation.
+//!
 //! The module knows nothing about meshes: matrices are sprs [`CsMatView`]s in compressed
 //! sparse column form, of which only the lower triangle (row >= column) is read, so either
 //! a full symmetric matrix or its lower half can be passed.
 
 mod amd;
 mod dense;
+pub mod eigen;
 mod graph;
 mod nested_dissection;
 mod numeric;
