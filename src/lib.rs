@@ -23,6 +23,7 @@
 //! interaction sessions and their replay), [`import`] (SVG documents, images and mesh
 //! files in), and `wasm` (the JavaScript bindings, compiled for wasm32 only).
 
+pub mod defop;
 pub mod deform;
 pub mod error;
 pub mod geometry;
