@@ -164,6 +164,10 @@ pub fn fit(
     if options.kind.is_polynomial() && lambda == 0.0 && m < len {
         return Err(FitError::TooFewSamples { samples: m, basis_size: len });
     }
+    // The ridge acts on the non-linear coefficients only: the linear ones need the samples.
+    if m < basis.linear_len() {
+        return Err(FitError::TooFewSamples { samples: m, basis_size: basis.linear_len() });
+    }
 
     // Ψ_s (|Ψ| × m) and a_0 = Ψ(P).
     let mut psi_s = DMatrix::zeros(len, m);
@@ -403,3 +407,7 @@ fn well_conditioned(r: &DMatrix<f64>) -> bool {
     let largest = diagonal.amax();
     largest > 0.0 && diagonal.iter().all(|x| x.abs() > 1e-12 * largest)
 }
+
+#[cfg(test)]
+#[path = "fit_tests.rs"]
+mod tests;
