@@ -265,8 +265,8 @@ fn tps_interpolation(basis: &HandleBasis, g_hat: &[DMatrix<f64>; 2]) -> Result<[
     }
     let phi_len = g_hat[0].nrows();
     let mut rhs = DMatrix::zeros(size, 2 * phi_len);
-    for nu in 0..2 {
-        rhs.view_mut((0, nu * phi_len), (m, phi_len)).copy_from(&g_hat[nu].transpose());
+    for (nu, g) in g_hat.iter().enumerate() {
+        rhs.view_mut((0, nu * phi_len), (m, phi_len)).copy_from(&g.transpose());
     }
     let lu = system.lu();
     let solution = lu.solve(&rhs).filter(|s| s.iter().all(|x| x.is_finite()));
@@ -283,7 +283,7 @@ fn tps_interpolation(basis: &HandleBasis, g_hat: &[DMatrix<f64>; 2]) -> Result<[
 /// The metric M of the spatial basis: the consistent mass for hat functions (sparse
 /// Cholesky), the identity for a reduced basis (M-orthonormal by construction).
 enum Metric {
-    Mass(Numeric),
+    Mass(Box<Numeric>),
     Identity,
 }
 
@@ -312,7 +312,7 @@ fn structured(
     let mut metric = match spatial.reduction() {
         None => {
             let symbolic = Symbolic::analyse(mass.view(), &Ordering::Amd)?;
-            Metric::Mass(Numeric::factor(Arc::new(symbolic), mass.view())?)
+            Metric::Mass(Box::new(Numeric::factor(Arc::new(symbolic), mass.view())?))
         }
         Some(_) => Metric::Identity,
     };

@@ -231,7 +231,7 @@ impl SpatialBasis {
             }
             csc_times(&a, &v, &mut av);
             let norm = dot(&v, &av).sqrt();
-            if !(norm > 1e-10 * original) {
+            if norm.is_nan() || norm <= 1e-10 * original {
                 return Err(FitError::InvalidSpatialBasis { reason: "the vectors are linearly dependent" });
             }
             v.iter_mut().for_each(|x| *x /= norm);
@@ -347,9 +347,9 @@ mod tests {
         let q: Vec<f64> = mesh.positions().iter().map(|p| p[0] * p[0]).collect();
         let mut out = vec![0.0; q.len()];
         csc_times(&k, &q, &mut out);
-        for v in 0..q.len() {
+        for (v, value) in out.iter().enumerate() {
             if !mesh.is_boundary_vertex(v) {
-                assert!((out[v] - 2.0).abs() < 1e-12, "vertex {v}: {}", out[v]);
+                assert!((value - 2.0).abs() < 1e-12, "vertex {v}: {value}");
             }
         }
     }
