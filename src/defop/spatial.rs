@@ -386,6 +386,20 @@ mod tests {
         let d = basis.reduction().unwrap().clone();
         // `reduced` checks D A Dᵀ = I and 1, x, y in the span.
         assert!(SpatialBasis::reduced(&mesh, d.clone()).is_ok());
+        // The first three functions span 1, x, y: the first is 1/√area, the next two are
+        // affine (least-squares residual against 1, x, y is zero).
+        let first = 1.0 / mesh.area().sqrt();
+        assert!(d.row(0).iter().all(|x| (x - first).abs() < 1e-12));
+        let affine =
+            DMatrix::from_fn(mesh.vertex_count(), 3, |v, c| [1.0, mesh.positions()[v][0], mesh.positions()[v][1]][c]);
+        for r in 1..3 {
+            let row = d.row(r).transpose();
+            let c = affine.clone().svd(true, true).solve(&row, 1e-12).unwrap();
+            assert!((&affine * c - row).amax() < 1e-10, "row {r} is not affine");
+        }
+        let row = d.row(3).transpose();
+        let c = affine.clone().svd(true, true).solve(&row, 1e-12).unwrap();
+        assert!((&affine * c - row).amax() > 1e-3, "row 3 is affine");
         let dependent = vec![vec![2.0; mesh.vertex_count()]];
         assert!(matches!(SpatialBasis::orthonormalised(&mesh, &dependent), Err(FitError::InvalidSpatialBasis { .. })));
         let mut scaled = d;
