@@ -416,3 +416,35 @@ fn bad_input_is_a_typed_error() {
     assert_eq!(operator.evaluate(&nan), Err(FitError::NonFinite { what: "targets", index: 3 }));
     assert_eq!(operator.evaluate(&rest[..4]), Err(FitError::Length { what: "targets", expected: 6, found: 4 }));
 }
+
+/// The ridge (notes §2.6) makes a polynomial fit with fewer samples than functions unique
+/// and smooths a TPS; the rest pose and the handles stay exact (they are constraints).
+#[test]
+fn regularised_fits_keep_the_constraints() {
+    let (mesh, handles) = grid();
+    let rest = rest_of(&mesh, &handles);
+    let size = diagonal(&mesh);
+    let mut rng = Rng::new(10);
+    let targets = disc_targets(&mut rng, &rest, 0.5, 15);
+    let positions: Vec<Vec<f64>> = targets.iter().map(|t| shepard(&mesh, &handles, t)).collect();
+    let samples = samples_of(&targets, &positions);
+    let far = disc_targets(&mut rng, &rest, 5.0, 50);
+    let identity: Vec<f64> = mesh.positions().iter().flatten().copied().collect();
+    let hat = SpatialBasis::hat(&mesh);
+    for kind in [BasisKind::Quadratic, BasisKind::Tps] {
+        // 16 samples (with the rest pose) for 28 quadratic functions.
+        let options = FitOptions::default().with_kind(kind).with_regularisation(1e-2);
+        let mut operator = fit(&mesh, &hat, &vertex_handles(&handles), &samples, &options).unwrap();
+        assert_eq!(operator.solver(), Solver::Structured);
+        assert!(max_difference(&operator.evaluate(&rest).unwrap(), &identity) <= 1e-10 * size);
+        for q in &far {
+            let out = operator.evaluate(q).unwrap();
+            for (l, &v) in handles.iter().enumerate() {
+                assert!(max_difference(&out[2 * v..2 * v + 2], &q[2 * l..2 * l + 2]) <= 1e-9 * size, "{kind:?}");
+            }
+        }
+        // Smoothing: the samples are no longer interpolated, but approximated.
+        let error = max_over(&predictions(&mut operator, &targets), &positions);
+        assert!(error > 1e-8 && error < 0.1 * size, "{kind:?}: samples off by {error}");
+    }
+}

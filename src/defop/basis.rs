@@ -10,6 +10,10 @@
 
 use super::fit_error::{check_finite, check_length, FitError};
 
+/// The largest handle basis accepted: 2^20 functions (a cubic basis of 50 handles has
+/// 176,851; one coefficient row of 2^20 doubles is 8 MB).
+pub const MAX_BASIS_SIZE: usize = 1 << 20;
+
 /// Which functions of the handle targets a deformation operator combines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BasisKind {
@@ -25,15 +29,17 @@ pub enum BasisKind {
 
 impl BasisKind {
     /// The number of functions |Ψ| with `handles` handles and `samples` training samples
-    /// (the samples count only for [`BasisKind::Tps`]).
+    /// (the samples count only for [`BasisKind::Tps`]); `usize::MAX` if it does not fit.
     pub fn size(self, handles: usize, samples: usize) -> usize {
-        let d = 2 * handles;
-        match self {
+        // Handle counts beyond 2^40 saturate before the products can overflow u128.
+        let d = (handles as u128).min(1 << 40) * 2;
+        let size = match self {
             Self::Linear => d + 1,
             Self::Quadratic => d + 1 + d * (d + 1) / 2,
             Self::Cubic => (d + 3) * (d + 2) * (d + 1) / 6,
-            Self::Tps => d + 1 + samples,
-        }
+            Self::Tps => d + 1 + samples as u128,
+        };
+        usize::try_from(size).unwrap_or(usize::MAX)
     }
 
     /// Whether the basis is a polynomial one (its size does not depend on the samples).
@@ -115,6 +121,13 @@ impl HandleBasis {
         }
         let n = rest.len() / 2;
         let len = kind.size(n, centres.len() / rest.len());
+        if len > MAX_BASIS_SIZE {
+            return Err(FitError::InvalidOption {
+                name: "handles",
+                value: n as f64,
+                expected: "few enough handles (and samples) for at most 2^20 handle basis functions",
+            });
+        }
         Ok(Self { kind, rest: rest.to_vec(), scale, centres, len })
     }
 
@@ -321,5 +334,12 @@ mod tests {
         assert!(HandleBasis::polynomial(BasisKind::Tps, &[0.0, 0.0], 1.0).is_err());
         assert!(HandleBasis::tps(&[0.0, 0.0], 1.0, &[0.0, 0.0, 1.0]).is_err());
         assert_eq!(HandleBasis::tps(&[0.0, 0.0], 1.0, &[]), Err(FitError::NoSamples));
+        // 200 handles: a cubic basis of C(403, 3) = 10,827,401 functions is refused.
+        assert_eq!(BasisKind::Cubic.size(200, 0), 10_827_401);
+        assert!(matches!(
+            HandleBasis::polynomial(BasisKind::Cubic, &[0.0; 400], 1.0),
+            Err(FitError::InvalidOption { name: "handles", .. })
+        ));
+        assert_eq!(BasisKind::Cubic.size(usize::MAX, 0), usize::MAX);
     }
 }
