@@ -95,6 +95,26 @@ impl FitOptions {
 
 /// Fits a deformation operator for the handles `handles` of `mesh` in the spatial basis
 /// `spatial` to the ground truths `samples`.
+///
+/// ```
+/// use akap::defop::{fit, BasisKind, FitOptions, MeshPoint, Sample, SpatialBasis};
+///
+/// // One handle at vertex 4, (1, 1), of a 2 x 2 grid; the ground truth translates the
+/// // shape with it, which a linear operator reproduces exactly.
+/// let mesh = akap::shapes::grid_mesh(2, 2);
+/// let translate = |q: &[f64]| -> Vec<f64> {
+///     mesh.positions().iter().flat_map(|p| [p[0] + q[0] - 1.0, p[1] + q[1] - 1.0]).collect()
+/// };
+/// let targets = [vec![1.5, 1.0], vec![1.0, 0.5], vec![0.75, 1.25]];
+/// let truths: Vec<Vec<f64>> = targets.iter().map(|q| translate(q)).collect();
+/// let samples: Vec<Sample> =
+///     targets.iter().zip(&truths).map(|(t, p)| Sample { targets: t, positions: p }).collect();
+/// let options = FitOptions::default().with_kind(BasisKind::Linear);
+/// let mut operator = fit(&mesh, &SpatialBasis::hat(&mesh), &[MeshPoint::Vertex(4)], &samples, &options)?;
+/// let moved = operator.evaluate(&[3.0, -2.0])?;
+/// assert!(moved.iter().zip(translate(&[3.0, -2.0])).all(|(a, b)| (a - b).abs() < 1e-12));
+/// # Ok::<(), akap::defop::FitError>(())
+/// ```
 pub fn fit(
     mesh: &Mesh,
     spatial: &SpatialBasis,
