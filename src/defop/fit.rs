@@ -261,7 +261,7 @@ fn shortcut_applies(
     true
 }
 
-/// The TPS shortcut: [[K_ρ, T], [Tᵀ, 0]] [a; b] = [Ĝᵀ; 0], both coordinates with one LU.
+/// The TPS shortcut: `[[K_ρ, T], [Tᵀ, 0]] [a; b] = [Ĝᵀ; 0]`, both coordinates with one LU.
 fn tps_interpolation(basis: &HandleBasis, g_hat: &[DMatrix<f64>; 2]) -> Result<[DMatrix<f64>; 2], FitError> {
     let (lin, d) = (basis.linear_len(), basis.rest().len());
     let centres = basis.scaled_centres();

@@ -3,7 +3,7 @@
 //!
 //! [`basis`] holds the handle bases Ψ (linear, quadratic, cubic, thin-plate spline),
 //! [`spatial`] the spatial basis Φ (hat functions or a reduced M-orthonormal basis) with the
-//! mass matrices and the linearly precise Laplacian, [`fit`] the structured least-squares fit
+//! mass matrices and the linearly precise Laplacian, [`fit`](mod@fit) the structured least-squares fit
 //! of eq. (8) and [`operator`] the trained operator and its allocation-free evaluation.
 
 pub mod basis;

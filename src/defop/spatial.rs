@@ -1,7 +1,7 @@
 //! The spatial basis Φ of a deformation operator (paper §3.1; notes §1) and the matrices it
 //! needs: the hat functions φ̃_i of the mesh (|Φ| = N), or a reduced basis Φ = D Φ̃ given by
 //! nodal values D (|Φ| × N, M-orthonormal: D A Dᵀ = I, with 1, x, y in its span); the
-//! consistent mass matrix A_ii' = ∫ φ̃_i φ̃_i' (per triangle A_t/12 · [[2,1,1],[1,2,1],[1,1,2]],
+//! consistent mass matrix A_ii' = ∫ φ̃_i φ̃_i' (per triangle A_t/12 · `[[2,1,1],[1,2,1],[1,1,2]]`,
 //! App. A), the lumped mass, and the linearly precise Laplacian K = L + N_b of Wang,
 //! Jacobson, Barbič and Kavan (2015), which annihilates 1, x and y, whose bilaplacian
 //! Kᵀ M_l⁻¹ K yields the reduced basis. Handles are [`MeshPoint`]s: a vertex, or a point of a
@@ -83,7 +83,7 @@ pub(crate) fn resolve_points(mesh: &Mesh, points: &[MeshPoint]) -> Result<Vec<Ha
 }
 
 /// The consistent mass matrix A of the hat functions (N × N, symmetric, compressed sparse
-/// column): per triangle A_t/12 · [[2,1,1],[1,2,1],[1,1,2]].
+/// column): per triangle A_t/12 · `[[2,1,1],[1,2,1],[1,1,2]]`.
 pub fn consistent_mass(mesh: &Mesh) -> CsMat<f64> {
     let n = mesh.vertex_count();
     let mut tri = TriMat::with_capacity((n, n), 9 * mesh.triangle_count());
