@@ -19,8 +19,9 @@ pub enum Solver {
 }
 
 /// A trained deformation operator: rest handles, handle basis, coefficients X^x, X^y
-/// (|Φ| × |Ψ|) and, for a reduced spatial basis, its nodal values D (|Φ| × N).
-#[derive(Debug, Clone, PartialEq)]
+/// (|Φ| × |Ψ|) and, for a reduced spatial basis, its nodal values D (|Φ| × N). Not
+/// `PartialEq`: it holds scratch buffers whose contents depend on the last evaluation.
+#[derive(Debug, Clone)]
 pub struct Operator {
     handles: Vec<MeshPoint>,
     basis: HandleBasis,
