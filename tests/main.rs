@@ -2,6 +2,7 @@
 
 mod arap;
 mod common;
+mod defop_fit;
 mod deformer;
 mod errors;
 mod gallery;

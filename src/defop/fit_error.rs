@@ -1,0 +1,167 @@
+//! `FitError`: why a deformation operator could not be fitted or evaluated. Lengths are
+//! counted in numbers (two per point), as the flat arrays of the JavaScript API hold them.
+
+use std::fmt;
+
+use crate::error::Number;
+use crate::sparse::FactorError;
+
+/// Why a deformation operator could not be fitted, or an operator refused an input.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum FitError {
+    /// The number of values does not match, counted in numbers.
+    Length {
+        /// What was given, e.g. "targets".
+        what: &'static str,
+        /// How many numbers are expected.
+        expected: usize,
+        /// How many numbers were given.
+        found: usize,
+    },
+    /// A value is NaN or infinite.
+    NonFinite {
+        /// What holds it, e.g. "targets" or "ground truth".
+        what: &'static str,
+        /// Its index in that array (in numbers).
+        index: usize,
+    },
+    /// There is no handle.
+    NoHandles,
+    /// There is no training sample.
+    NoSamples,
+    /// A handle names a vertex that does not exist.
+    VertexOutOfRange {
+        /// Which handle.
+        handle: usize,
+        /// The vertex given.
+        vertex: u32,
+        /// The number of vertices.
+        vertex_count: usize,
+    },
+    /// A handle names a triangle that does not exist.
+    TriangleOutOfRange {
+        /// Which handle.
+        handle: usize,
+        /// The triangle given.
+        triangle: u32,
+        /// The number of triangles.
+        triangle_count: usize,
+    },
+    /// A handle's barycentric coordinates are not finite, negative, or do not sum to 1.
+    InvalidBarycentric {
+        /// Which handle.
+        handle: usize,
+        /// The coordinates given.
+        coordinates: [f64; 3],
+    },
+    /// Two handles have the same rest position.
+    CoincidentHandles {
+        /// The first handle.
+        first: usize,
+        /// The second handle.
+        second: usize,
+    },
+    /// A polynomial handle basis has more functions than there are samples and no
+    /// regularisation was asked for, or there are fewer samples than the 2n + 1 linear
+    /// functions (which the regularisation does not act on): the fit is not unique.
+    TooFewSamples {
+        /// The number of samples.
+        samples: usize,
+        /// The number of handle basis functions |Ψ|.
+        basis_size: usize,
+    },
+    /// A system of the fit is singular: the samples do not determine the handle basis
+    /// (they lie on a polynomial hypersurface, or repeat), or the spatial basis cannot
+    /// interpolate at the handles.
+    Singular {
+        /// Which system, e.g. "samples" or "handles".
+        what: &'static str,
+    },
+    /// The reduced spatial basis is not valid: not M-orthonormal, or 1, x, y not in its span.
+    InvalidSpatialBasis {
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// An option is out of range.
+    InvalidOption {
+        /// The option's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What would be accepted.
+        expected: &'static str,
+    },
+    /// A sparse factorisation failed.
+    Factor(FactorError),
+}
+
+impl fmt::Display for FitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Length { what, expected, found } => write!(f, "{what}: expected {expected} numbers, got {found}"),
+            Self::NonFinite { what, index } => write!(f, "{what}: value {index} is not a finite number"),
+            Self::NoHandles => write!(f, "a deformation operator needs at least one handle"),
+            Self::NoSamples => write!(f, "a deformation operator needs at least one training sample"),
+            Self::VertexOutOfRange { handle, vertex, vertex_count } => {
+                write!(f, "handle {handle} names vertex {vertex}, but the mesh has {vertex_count} vertices")
+            }
+            Self::TriangleOutOfRange { handle, triangle, triangle_count } => {
+                write!(f, "handle {handle} names triangle {triangle}, but the mesh has {triangle_count} triangles")
+            }
+            Self::InvalidBarycentric { handle, coordinates } => write!(
+                f,
+                "handle {handle}: barycentric coordinates ({}, {}, {}) must be non-negative and sum to 1",
+                Number(coordinates[0]),
+                Number(coordinates[1]),
+                Number(coordinates[2])
+            ),
+            Self::CoincidentHandles { first, second } => {
+                write!(f, "handles {first} and {second} have the same rest position")
+            }
+            Self::TooFewSamples { samples, basis_size } => write!(
+                f,
+                "{samples} samples cannot determine a handle basis of {basis_size} functions: \
+                 give at least {basis_size} samples, or a regularisation"
+            ),
+            Self::Singular { what } => write!(f, "the fit's system for the {what} is singular"),
+            Self::InvalidSpatialBasis { reason } => write!(f, "invalid reduced spatial basis: {reason}"),
+            Self::InvalidOption { name, value, expected } => {
+                write!(f, "option {name} = {} is out of range: expected {expected}", Number(*value))
+            }
+            Self::Factor(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for FitError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Self::Factor(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+impl From<FactorError> for FitError {
+    fn from(e: FactorError) -> Self {
+        Self::Factor(e)
+    }
+}
+
+/// `Err(NonFinite)` naming the first value of `values` that is NaN or infinite.
+pub(crate) fn check_finite(what: &'static str, values: &[f64]) -> Result<(), FitError> {
+    match values.iter().position(|x| !x.is_finite()) {
+        Some(index) => Err(FitError::NonFinite { what, index }),
+        None => Ok(()),
+    }
+}
+
+/// `Err(Length)` unless `values` has `expected` numbers.
+pub(crate) fn check_length(what: &'static str, values: &[f64], expected: usize) -> Result<(), FitError> {
+    if values.len() == expected {
+        Ok(())
+    } else {
+        Err(FitError::Length { what, expected, found: values.len() })
+    }
+}

@@ -1,0 +1,183 @@
+//! A trained deformation operator and its evaluation per frame (paper eq. 3 and §4):
+//! V^ν(Q) = Dᵀ (X^ν Ψ(Q)) for ν ∈ {x, y}, "evaluate Ψ at Q, then a matrix–vector product".
+//! The evaluation allocates nothing: Ψ(Q) and, for a reduced spatial basis, the |Φ|
+//! coefficients go to scratch buffers the operator owns.
+
+use nalgebra::DMatrix;
+
+use super::basis::HandleBasis;
+use super::fit_error::{check_finite, check_length, FitError};
+use super::spatial::MeshPoint;
+
+/// How a fit solved its least-squares problem.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Solver {
+    /// The structured solver of the strong-constraint problem (notes §2.5).
+    Structured,
+    /// The TPS shortcut: the operator interpolates every sample (notes §2.5).
+    TpsInterpolation,
+}
+
+/// A trained deformation operator: rest handles, handle basis, coefficients X^x, X^y
+/// (|Φ| × |Ψ|) and, for a reduced spatial basis, its nodal values D (|Φ| × N). Not
+/// `PartialEq`: it holds scratch buffers whose contents depend on the last evaluation.
+#[derive(Debug, Clone)]
+pub struct Operator {
+    handles: Vec<MeshPoint>,
+    basis: HandleBasis,
+    solver: Solver,
+    spatial_len: usize,
+    vertex_count: usize,
+    /// Row i of X^x then row i of X^y, for every i: `[(2i + ν)|Ψ| + j]`.
+    coefficients: Vec<f64>,
+    /// D by vertex: `[v |Φ| + i] = D_iv`; empty for the hat basis.
+    reduction: Vec<f64>,
+    /// Scratch: Ψ(Q).
+    psi: Vec<f64>,
+    /// Scratch for a reduced basis: X^x Ψ then X^y Ψ.
+    nodal: Vec<f64>,
+}
+
+impl Operator {
+    pub(crate) fn new(
+        handles: Vec<MeshPoint>,
+        basis: HandleBasis,
+        solver: Solver,
+        x: [DMatrix<f64>; 2],
+        reduction: Option<&DMatrix<f64>>,
+        vertex_count: usize,
+    ) -> Self {
+        let (rows, len) = x[0].shape();
+        let mut coefficients = Vec::with_capacity(2 * rows * len);
+        for i in 0..rows {
+            for xv in &x {
+                coefficients.extend(xv.row(i).iter());
+            }
+        }
+        let reduction = reduction.map_or_else(Vec::new, |d| d.as_slice().to_vec());
+        let nodal = if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * rows] };
+        Self {
+            handles,
+            solver,
+            spatial_len: rows,
+            vertex_count,
+            coefficients,
+            reduction,
+            psi: vec![0.0; basis.len()],
+            nodal,
+            basis,
+        }
+    }
+
+    /// The handles' rest positions, as given to the fit.
+    pub fn handles(&self) -> &[MeshPoint] {
+        &self.handles
+    }
+
+    /// The handle basis Ψ (kind, rest handles, scale, TPS centres).
+    pub fn handle_basis(&self) -> &HandleBasis {
+        &self.basis
+    }
+
+    /// How the fit was solved.
+    pub fn solver(&self) -> Solver {
+        self.solver
+    }
+
+    /// The number of spatial basis functions |Φ|.
+    pub fn spatial_len(&self) -> usize {
+        self.spatial_len
+    }
+
+    /// The number of mesh vertices N.
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+
+    /// The coefficient X^ν_ij of spatial function i and handle function j for coordinate
+    /// ν (0 for x, 1 for y); `None` if an index is out of range.
+    pub fn coefficient(&self, coordinate: usize, i: usize, j: usize) -> Option<f64> {
+        (coordinate < 2 && i < self.spatial_len && j < self.psi.len())
+            .then(|| self.coefficients[(2 * i + coordinate) * self.psi.len() + j])
+    }
+
+    /// Writes the vertex positions D(v, Q) (2N numbers, x and y interleaved) for the handle
+    /// targets Q (2n numbers) to `out`. Allocates nothing. Refuses wrong lengths and NaN or
+    /// infinite targets.
+    pub fn evaluate_into(&mut self, targets: &[f64], out: &mut [f64]) -> Result<(), FitError> {
+        self.check(targets, out.len())?;
+        self.evaluate_with(targets, |v, x, y| {
+            out[2 * v] = x;
+            out[2 * v + 1] = y;
+        });
+        Ok(())
+    }
+
+    /// [`Operator::evaluate_into`] writing single-precision positions (for a GPU buffer);
+    /// computed in double precision.
+    pub fn evaluate_into_f32(&mut self, targets: &[f64], out: &mut [f32]) -> Result<(), FitError> {
+        self.check(targets, out.len())?;
+        self.evaluate_with(targets, |v, x, y| {
+            out[2 * v] = x as f32;
+            out[2 * v + 1] = y as f32;
+        });
+        Ok(())
+    }
+
+    /// The vertex positions for the handle targets Q, in a new vector (2N numbers).
+    pub fn evaluate(&mut self, targets: &[f64]) -> Result<Vec<f64>, FitError> {
+        let mut out = vec![0.0; 2 * self.vertex_count];
+        self.evaluate_into(targets, &mut out)?;
+        Ok(out)
+    }
+
+    fn check(&self, targets: &[f64], out_len: usize) -> Result<(), FitError> {
+        check_length("targets", targets, 2 * self.handles.len())?;
+        check_finite("targets", targets)?;
+        if out_len != 2 * self.vertex_count {
+            return Err(FitError::Length { what: "output", expected: 2 * self.vertex_count, found: out_len });
+        }
+        Ok(())
+    }
+
+    fn evaluate_with(&mut self, targets: &[f64], mut write: impl FnMut(usize, f64, f64)) {
+        self.basis.evaluate_unchecked(targets, &mut self.psi);
+        let len = self.psi.len();
+        let rows = self.coefficients.chunks_exact(2 * len);
+        if self.reduction.is_empty() {
+            for (v, pair) in rows.enumerate() {
+                let (x, y) = dot2(&pair[..len], &pair[len..], &self.psi);
+                write(v, x, y);
+            }
+        } else {
+            let phi = self.spatial_len;
+            let (nx, ny) = self.nodal.split_at_mut(phi);
+            for (i, pair) in rows.enumerate() {
+                (nx[i], ny[i]) = dot2(&pair[..len], &pair[len..], &self.psi);
+            }
+            for (v, column) in self.reduction.chunks_exact(phi).enumerate() {
+                let (x, y) = dot2(nx, ny, column);
+                write(v, x, y);
+            }
+        }
+    }
+}
+
+/// (a·w, b·w) with four partial sums each, so that the loop pipelines.
+fn dot2(a: &[f64], b: &[f64], w: &[f64]) -> (f64, f64) {
+    let (mut sa, mut sb) = ([0.0f64; 4], [0.0f64; 4]);
+    let (ca, cb, cw) = (a.chunks_exact(4), b.chunks_exact(4), w.chunks_exact(4));
+    let (ra, rb, rw) = (ca.remainder(), cb.remainder(), cw.remainder());
+    for ((x, y), z) in ca.zip(cb).zip(cw) {
+        for k in 0..4 {
+            sa[k] += x[k] * z[k];
+            sb[k] += y[k] * z[k];
+        }
+    }
+    let (mut ta, mut tb) = ((sa[0] + sa[1]) + (sa[2] + sa[3]), (sb[0] + sb[1]) + (sb[2] + sb[3]));
+    for ((x, y), z) in ra.iter().zip(rb).zip(rw) {
+        ta += x * z;
+        tb += y * z;
+    }
+    (ta, tb)
+}
