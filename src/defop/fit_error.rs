@@ -94,6 +94,8 @@ pub enum FitError {
     },
     /// A sparse factorisation failed.
     Factor(FactorError),
+    /// The eigenproblem of a reduced spatial basis failed.
+    Eigen(crate::sparse::eigen::EigenError),
 }
 
 impl fmt::Display for FitError {
@@ -130,6 +132,7 @@ impl fmt::Display for FitError {
                 write!(f, "option {name} = {} is out of range: expected {expected}", Number(*value))
             }
             Self::Factor(e) => e.fmt(f),
+            Self::Eigen(e) => write!(f, "the reduced basis could not be computed: {e}"),
         }
     }
 }
@@ -138,6 +141,7 @@ impl std::error::Error for FitError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             Self::Factor(e) => Some(e),
+            Self::Eigen(e) => Some(e),
             _ => None,
         }
     }

@@ -4,6 +4,7 @@
 //! [`sampling`] draws the training targets Q, [`basis`] holds the handle bases Ψ (linear,
 //! quadratic, cubic, thin-plate spline), [`spatial`] the spatial basis Φ (hat functions or a
 //! reduced M-orthonormal basis) with the mass matrices and the linearly precise Laplacian,
+//! [`reduced`] the reduced basis of Fig. 2 (the bilaplacian's lowest eigenfunctions),
 //! [`fit`](mod@fit) the structured least-squares fit of eq. (8) and [`operator`] the trained
 //! operator and its allocation-free evaluation.
 
@@ -11,6 +12,7 @@ pub mod basis;
 pub mod fit;
 pub mod fit_error;
 pub mod operator;
+pub mod reduced;
 pub mod sampling;
 pub mod spatial;
 
@@ -18,4 +20,5 @@ pub use basis::{BasisKind, HandleBasis};
 pub use fit::{fit, FitOptions, Sample};
 pub use fit_error::FitError;
 pub use operator::Operator;
+pub use reduced::reduced_basis;
 pub use spatial::{MeshPoint, SpatialBasis};

@@ -280,7 +280,7 @@ impl SpatialBasis {
 }
 
 /// The nodal vectors of 1, x and y.
-fn linear_functions(mesh: &Mesh) -> Vec<Vec<f64>> {
+pub fn linear_functions(mesh: &Mesh) -> Vec<Vec<f64>> {
     let p = mesh.positions();
     vec![vec![1.0; p.len()], p.iter().map(|q| q[0]).collect(), p.iter().map(|q| q[1]).collect()]
 }

@@ -24,15 +24,14 @@ use crate::random::Rng;
 /// Settings of [`smallest_eigenpairs`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EigenOptions {
-    /// A pair has converged when its residual `|A v - lambda M v|` is at most `tolerance`
-    /// times `|A v| + |lambda| |M v|` (default 1e-10).
+    /// A pair has converged when `(A + sigma M)^-1 M v` is within `tolerance` (relative) of
+    /// `v / (lambda + sigma)`, as it is for an eigenpair (default 1e-10).
     pub tolerance: f64,
     /// Most iterations (default 500).
     pub max_iterations: usize,
     /// Vectors beyond the `count` wanted in the block (0: `max(8, count / 2)`).
     pub extra: usize,
-    /// The shift `sigma` (0: `1e-6 trace(A) / trace(M)`, well below the low end of the
-    /// spectra of discrete operators on meshes, which grows with resolution).
+    /// The shift `sigma` (0: chosen, see [`smallest_eigenpairs`]).
     pub shift: f64,
     /// Seed of the random starting block.
     pub seed: u64,
@@ -116,6 +115,14 @@ impl std::error::Error for EigenError {
 /// The `count` smallest eigenpairs of `A u = lambda M u` whose vectors are M-orthogonal
 /// to `deflate`. `A` and `M` are symmetric and stored in full (both triangles) in
 /// compressed sparse column form.
+///
+/// Unless [`EigenOptions::shift`] gives one, the shift starts at `1e-6 trace(A) /
+/// trace(M)` (a millionth of the mean eigenvalue: positive definite whatever A's null
+/// space) and, once the first Ritz values are in, moves to a twentieth of the largest
+/// wanted eigenvalue: the spectra of mesh operators span many orders of magnitude (a
+/// bilaplacian's, `N^2`), and a shift far above the wanted eigenvalues would not separate
+/// them from the rest, while one far below them would make `A + sigma M` ill-conditioned
+/// along A's null space.
 pub fn smallest_eigenpairs(
     a: CsMatView<'_>,
     m: CsMatView<'_>,
@@ -139,36 +146,60 @@ pub fn smallest_eigenpairs(
     let block = (count + extra).min(available);
 
     let trace = |x: CsMatView<'_>| (0..n).map(|j| x.get(j, j).copied().unwrap_or(0.0)).sum::<f64>();
-    let shift = if options.shift > 0.0 { options.shift } else { 1e-6 * trace(a) / trace(m) };
-    let shifted = (&a.to_owned() + &m.map(|x| shift * x)).to_csc();
-    let symbolic = Arc::new(Symbolic::analyse(shifted.view(), &Ordering::Amd).map_err(EigenError::Factor)?);
-    let mut factor = Numeric::factor(symbolic, shifted.view()).map_err(EigenError::Factor)?;
+    let mut shift = if options.shift > 0.0 { options.shift } else { 1e-6 * trace(a) / trace(m) };
+    let mut adapt = options.shift <= 0.0;
+    let shifted = |shift: f64| (&a.to_owned() + &m.map(|x| shift * x)).to_csc();
+    let first = shifted(shift);
+    let symbolic = Arc::new(Symbolic::analyse(first.view(), &Ordering::Amd).map_err(EigenError::Factor)?);
+    let mut factor = Numeric::factor(symbolic, first.view()).map_err(EigenError::Factor)?;
 
     let mut rng = Rng::new(options.seed);
     let mut w = DMatrix::from_fn(n, block, |_, _| rng.uniform() - 0.5);
     let mut column = vec![0.0; n];
     let mut residual = f64::INFINITY;
+    deflate_block(m, &z, &mut w);
     for iteration in 1..=options.max_iterations {
-        deflate_block(m, &z, &mut w);
         let (values, v) = rayleigh_ritz(a, m, &w).ok_or(EigenError::Deflation)?;
-        // Convergence of the wanted pairs.
+        // After three iterations the Ritz values bound the wanted eigenvalues from above
+        // closely enough to place the shift a twentieth of the way to the largest wanted one:
+        // low enough to separate the wanted pairs from the rest, high enough to keep
+        // A + sigma M well conditioned along A's null space (its condition number is about
+        // lambda_max / sigma).
+        if adapt && iteration == 4 {
+            adapt = false;
+            let target = 0.05 * values[count - 1];
+            if target.is_finite() && target > 0.0 {
+                shift = target;
+                factor.refactor(shifted(shift).view()).map_err(EigenError::Factor)?;
+            }
+        }
+        // The next block: (A + sigma M)^-1 M V, kept M-orthogonal to the deflated vectors.
+        for k in 0..block {
+            column.copy_from_slice(&mul(m, v.column(k).as_slice()));
+            factor.solve_in_place(&mut column).map_err(EigenError::Factor)?;
+            w.column_mut(k).copy_from_slice(&column);
+        }
+        deflate_block(m, &z, &mut w);
+        // Convergence, measured on the inverted operator, whose largest values are the
+        // wanted ones: an eigenpair has (A + sigma M)^-1 M v = v / (lambda + sigma).
+        // (The residual A v - lambda M v cannot show it for eigenvalues far below the
+        // norm of A, where rounding in A v alone exceeds lambda M v.)
         residual = 0.0;
         for (k, value) in values.iter().enumerate().take(count) {
-            let x = v.column(k);
-            let (ax, mx) = (mul(a, x.as_slice()), mul(m, x.as_slice()));
-            let r: f64 = ax.iter().zip(&mx).map(|(p, q)| (p - value * q).powi(2)).sum::<f64>().sqrt();
-            let scale = norm(&ax) + value.abs() * norm(&mx);
-            residual = residual.max(if scale > 0.0 { r / scale } else { r });
+            let (wk, vk) = (w.column(k), v.column(k));
+            let theta = 1.0 / (value + shift);
+            let r = wk.iter().zip(vk.iter()).map(|(x, y)| (x - theta * y).powi(2)).sum::<f64>().sqrt();
+            residual = residual.max(r / wk.norm());
         }
         if residual <= options.tolerance {
             let vectors = (0..count).map(|k| v.column(k).iter().copied().collect()).collect();
             return Ok(Eigenpairs { values: values[..count].to_vec(), vectors, iterations: iteration });
         }
-        // The next block: (A + sigma M)^-1 M V.
-        for k in 0..block {
-            column.copy_from_slice(&mul(m, v.column(k).as_slice()));
-            factor.solve_in_place(&mut column).map_err(EigenError::Factor)?;
-            w.column_mut(k).copy_from_slice(&column);
+        // Unit columns: the solve scales each by about 1 / (lambda_k + sigma), which would
+        // otherwise make the projected mass matrix needlessly ill-conditioned.
+        for mut column in w.column_iter_mut() {
+            let length = column.norm();
+            column /= length;
         }
     }
     Err(EigenError::NotConverged { iterations: options.max_iterations, residual })
@@ -183,10 +214,6 @@ fn mul(a: CsMatView<'_>, x: &[f64]) -> Vec<f64> {
         }
     }
     y
-}
-
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
 }
 
 /// The vectors made M-orthonormal (Gram-Schmidt, twice); `None` if they are dependent.
@@ -297,7 +324,7 @@ mod tests {
         for (k, v) in found.vectors.iter().enumerate() {
             let mode: Vec<f64> =
                 (0..n).map(|i| (std::f64::consts::PI * (k + 1) as f64 * (i as f64 + 0.5) / n as f64).cos()).collect();
-            let scale = norm(&mode);
+            let scale = dot(&mode, &mode).sqrt();
             let c = dot(v, &mode) / scale;
             assert!((c.abs() - 1.0).abs() < 1e-9, "{k}: |cos| {c}");
         }
