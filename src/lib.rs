@@ -19,10 +19,12 @@
 //! Module map (see ARCHITECTURE.md): [`geometry`] (planar helpers), [`outline`] (input
 //! shapes and their validation), [`triangulate`](mod@triangulate) (the only user of spade),
 //! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes),
-//! [`sparse`] (our sparse Cholesky), [`deform`] (AKAP and ARAP), [`session`] (recorded
+//! [`sparse`] (our sparse Cholesky), [`deform`] (AKAP and ARAP), [`defop`] (the deformation
+//! operators of the DefOp paper: ground truth), [`session`] (recorded
 //! interaction sessions and their replay), [`import`] (SVG documents, images and mesh
 //! files in), and `wasm` (the JavaScript bindings, compiled for wasm32 only).
 
+pub mod defop;
 pub mod deform;
 pub mod error;
 pub mod geometry;
