@@ -2,6 +2,7 @@
 
 mod arap;
 mod common;
+mod defop_ground_truth;
 mod deformer;
 mod errors;
 mod gallery;

@@ -85,7 +85,10 @@ impl Energy {
         let s = &modes.svd;
         let twist = if s.q > 0.0 { modes.twist } else { 0.0 };
         let flip = modes.flip_gradient;
-        Some([[twist * s.e + flip * s.f, -twist * s.h + flip * s.g], [twist * s.h + flip * s.g, twist * s.e - flip * s.f]])
+        Some([
+            [twist * s.e + flip * s.f, -twist * s.h + flip * s.g],
+            [twist * s.h + flip * s.g, twist * s.e - flip * s.f],
+        ])
     }
 
     /// The four eigenpairs of the Hessian `∂²ψ/∂J²` (eigenvalue, unit eigenvector as
@@ -132,6 +135,34 @@ impl Energy {
             }
         }
         Some(out)
+    }
+}
+
+impl Energy {
+    /// The S-ARAP kink at conformal Jacobians: `(κ / (2R), ŵ)`, the curvature of the cone
+    /// `κ |w|` (capped at [`KINK_CAP`]) and the unit anti-similarity direction, when
+    /// `κ = 2(Q - 1)(1 - Q^-3) > 0`; `None` for ARAP (smooth) and at `κ = 0`.
+    ///
+    /// The cone's Hessian `κ/(2R) (I - ŵŵ^T)` on the anti-similarity plane is in the flip
+    /// eigenvalue already; `κ/(2R) ŵŵ^T` completes it to the quadratic majoriser of `κ|w|`
+    /// (curvature `κ/(2R)` in every direction of the plane), which a Newton solver can add
+    /// so that its steps do not jump across the kink (see `ground_truth`).
+    pub fn kink(self, j: &Jacobian) -> Option<(f64, [f64; 4])> {
+        if self == Self::Arap {
+            return None;
+        }
+        let s = SignedSvd::new(j);
+        let kappa = 2.0 * (s.q - 1.0) * (1.0 - 1.0 / s.q.powi(3));
+        if !(kappa > 0.0) || !(s.sigma_2 > 0.0) {
+            return None;
+        }
+        let r2 = std::f64::consts::FRAC_1_SQRT_2;
+        if s.r > 0.0 {
+            let (cf, cg) = (s.f / s.r, s.g / s.r);
+            Some(((kappa / (2.0 * s.r)).min(KINK_CAP), [cf * r2, cg * r2, cg * r2, -cf * r2]))
+        } else {
+            Some((KINK_CAP, [r2, 0.0, 0.0, -r2]))
+        }
     }
 }
 

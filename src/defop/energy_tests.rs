@@ -178,7 +178,8 @@ fn hessian_by_differences(energy: Energy, j: &Jacobian) -> [[f64; 4]; 4] {
         let (mut plus, mut minus) = (x, x);
         plus[k] += 1e-6;
         minus[k] -= 1e-6;
-        let (gp, gm) = (flat(&energy.gradient(&unflat(plus)).unwrap()), flat(&energy.gradient(&unflat(minus)).unwrap()));
+        let (gp, gm) =
+            (flat(&energy.gradient(&unflat(plus)).unwrap()), flat(&energy.gradient(&unflat(minus)).unwrap()));
         for (l, entry) in row.iter_mut().enumerate() {
             *entry = (gp[l] - gm[l]) / 2e-6;
         }
@@ -270,8 +271,10 @@ fn vertex_gradient_and_hessian_match_differences_of_the_triangle_energy() {
             assert_close(&g, &fd, 1e-6, &format!("{energy} gradient at {j:?}"));
             let h = t.hessian(energy, p, false).unwrap();
             for k in 0..6 {
-                let (gp, gm) =
-                    (t.gradient(energy, perturbed(p, k, 1e-6)).unwrap(), t.gradient(energy, perturbed(p, k, -1e-6)).unwrap());
+                let (gp, gm) = (
+                    t.gradient(energy, perturbed(p, k, 1e-6)).unwrap(),
+                    t.gradient(energy, perturbed(p, k, -1e-6)).unwrap(),
+                );
                 let column: Vec<f64> = (0..6).map(|l| (gp[l] - gm[l]) / 2e-6).collect();
                 let found: Vec<f64> = (0..6).map(|l| h[l][k]).collect();
                 assert_close(&found, &column, 1e-6, &format!("{energy} Hessian column {k}"));

@@ -122,10 +122,9 @@ impl fmt::Display for DefOpError {
             Self::Length { what, expected, found } => {
                 write!(f, "{what} has {found} points, expected {expected}")
             }
-            Self::InvalidPoint { what, index } => write!(
-                f,
-                "point {index} of the {what} is not a finite number within ±{MAX_COORDINATE:e}"
-            ),
+            Self::InvalidPoint { what, index } => {
+                write!(f, "point {index} of the {what} is not a finite number within ±{MAX_COORDINATE:e}")
+            }
             Self::CoincidentTargets { first, second } => write!(
                 f,
                 "handles {first} and {second} have the same target; S-ARAP cannot collapse the shape between them"

@@ -23,13 +23,25 @@
 //! `α` where some `det J_t(α) = 0` (a quadratic in `α` per triangle; the cap is 0.9 of
 //! it), so no iterate ever flips or collapses a triangle.
 //!
+//! **The S-ARAP kink.** Eq. (11) is not differentiable where `J` is conformal (`R = 0`) but
+//! not a rotation: there it behaves like the cone `κ|w|` in the anti-similarity part `w`
+//! (notes §4 item 2), and a minimiser can sit exactly on the kink. Newton with the
+//! projected Hessian then jumps across the apex back and forth and the gradient never
+//! vanishes. Where the cone's curvature `κ/(2R)` exceeds 1 (so only near the kink), the
+//! solver adds `κ/(2R) ŵŵ^T` to the triangle's Hessian ([`Energy::kink`]), making the
+//! model a majoriser of the cone: steps approach the apex without crossing it, and the
+//! Newton decrement (below) goes to 0.
+//!
 //! **Stopping**: when the handles are on their targets and the constrained gradient
 //! (`∇E + C^T μ`, `μ` the least-squares multipliers, on the free unknowns) has an
 //! infinity norm at most `tolerance` times the rest shape's bounding-box diagonal
 //! (default 1e-9: scale-invariant, since the gradient scales like lengths), or when the
 //! Newton decrement `-∇E·d` falls below `(tolerance · size)^2` (the S-ARAP density has a
-//! convex kink at conformal Jacobians where the gradient jumps, notes §4 item 2). More
-//! than `max_iterations` Newton iterations (default 1000) is
+//! convex kink at conformal Jacobians where the gradient jumps, notes §4 item 2), or when
+//! the energy has stopped decreasing: three steps in a row lowering it by less than 1e-14
+//! of itself, the floor of double precision (reached at the S-ARAP kink, where the
+//! gradient does not vanish: [`SolveReport::gradient`] is then the size of its jump, not
+//! 0). More than `max_iterations` Newton iterations (default 1000) is
 //! [`DefOpError::NoConvergence`].
 //!
 //! **Homotopy**: the targets are reached through stages `q(s) = y + s (q - y)` from the
@@ -46,6 +58,8 @@
 
 use std::sync::Arc;
 
+#[cfg(doc)]
+use super::energy::KINK_CAP;
 use super::energy::{Energy, RestTriangle};
 pub use super::error::DefOpError;
 use super::linear::{cholesky, cholesky_solve, first_root};
@@ -64,6 +78,12 @@ const FLIP_MARGIN: f64 = 0.9;
 const ARMIJO: f64 = 1e-4;
 const SMALLEST_STAGE: f64 = 1.0 / 65536.0;
 const STAGE_TOLERANCE: f64 = 1e-6;
+/// A step lowering the energy by less than this fraction of it is flat; after
+/// `FLAT_STEPS` flat steps in a row the energy has converged to what doubles resolve.
+const FLAT: f64 = 1e-14;
+const FLAT_STEPS: usize = 3;
+/// The S-ARAP kink curvature `κ/(2R)` from which the solver adds the cone's majoriser.
+const KINK_MAJORISER: f64 = 1.0;
 /// Handles within this fraction of the shape's size are coincident; handles are on their
 /// targets within it.
 const NEAR: f64 = 1e-12;
@@ -438,8 +458,7 @@ impl GroundTruth {
             for ((t, f), g) in self.stage_targets.iter_mut().zip(&self.from).zip(&self.goal) {
                 *t = if last { *g } else { [f[0] + s * (g[0] - f[0]), f[1] + s * (g[1] - f[1])] };
             }
-            let tolerance =
-                if last { self.options.tolerance } else { self.options.tolerance.max(STAGE_TOLERANCE) };
+            let tolerance = if last { self.options.tolerance } else { self.options.tolerance.max(STAGE_TOLERANCE) };
             match self.newton(tolerance, iterations)? {
                 Some(gradient) => {
                     stages += 1;
@@ -465,6 +484,8 @@ impl GroundTruth {
     /// when the first step onto the targets would flip a triangle (S-ARAP).
     fn newton(&mut self, tolerance: f64, iterations: &mut usize) -> Result<Option<f64>, DefOpError> {
         let mut gradient = f64::INFINITY;
+        // Consecutive steps that lowered the energy by less than `FLAT` of itself.
+        let mut flat = 0;
         loop {
             let feasible = self.residuals() <= NEAR * self.size;
             let energy = self.assemble();
@@ -483,6 +504,9 @@ impl GroundTruth {
             self.newton_step()?;
             let slope: f64 = self.grad.iter().zip(&self.step).map(|(g, d)| g * d).sum();
             if feasible && -slope <= (tolerance * self.size).powi(2) {
+                return Ok(Some(gradient));
+            }
+            if feasible && flat >= FLAT_STEPS {
                 return Ok(Some(gradient));
             }
             let cap = if self.energy.blocks_flips() { FLIP_MARGIN * self.first_flip() } else { f64::INFINITY };
@@ -507,6 +531,7 @@ impl GroundTruth {
                     self.move_to_trial(alpha);
                     let e = self.total_energy(&self.trial);
                     if e <= energy + ARMIJO * alpha * slope || (!resolvable && e <= energy + 1e-12 * energy.abs()) {
+                        flat = if energy - e <= FLAT * energy.abs() { flat + 1 } else { 0 };
                         break;
                     }
                     alpha /= 2.0;
@@ -557,10 +582,18 @@ impl GroundTruth {
             let p = el.vertices.map(|v| self.x[v]);
             let j = el.rest.jacobian(p);
             energy += el.rest.area * self.energy.density(&j);
-            let (Some(dpsi), Some(hj)) = (self.energy.gradient(&j), self.energy.hessian(&j, true)) else {
+            let (Some(dpsi), Some(mut hj)) = (self.energy.gradient(&j), self.energy.hessian(&j, true)) else {
                 // Infinite energy: never an iterate (the line search keeps S-ARAP finite).
                 continue;
             };
+            // Near the S-ARAP kink the cone's majoriser (module documentation).
+            if let Some((curvature, w)) = self.energy.kink(&j).filter(|(c, _)| *c > KINK_MAJORISER) {
+                for (row, wr) in hj.iter_mut().zip(w) {
+                    for (x, wc) in row.iter_mut().zip(w) {
+                        *x += curvature * wr * wc;
+                    }
+                }
+            }
             let w = el.rest.weights();
             let h6 = el.rest.expand(&hj);
             for a in 0..6 {
