@@ -97,72 +97,52 @@ impl Energy {
     /// module documentation (`Q = 0`: twist `-∞`; S-ARAP kink: flip capped at
     /// [`KINK_CAP`]).
     pub fn eigensystem(self, j: &Jacobian) -> Option<[(f64, [f64; 4]); 4]> {
-        let m = Modes::new(self, j)?;
-        let s = &m.svd;
-        // Unit directions of the similarity part (u) and the anti-similarity part (w), and
-        // their rotations in their planes (t, l), as 4-vectors; arbitrary where a part is 0.
-        let (ce, ch) = if s.q > 0.0 { (s.e / s.q, s.h / s.q) } else { (1.0, 0.0) };
-        let (cf, cg) = if s.r > 0.0 { (s.f / s.r, s.g / s.r) } else { (1.0, 0.0) };
-        let r2 = std::f64::consts::FRAC_1_SQRT_2;
-        let u = [ce * r2, -ch * r2, ch * r2, ce * r2];
-        let w = [cf * r2, cg * r2, cg * r2, -cf * r2];
-        let t = [-ch * r2, -ce * r2, ce * r2, -ch * r2];
-        let l = [-cg * r2, cf * r2, cf * r2, cg * r2];
-        let big: [f64; 4] = std::array::from_fn(|k| (u[k] + w[k]) * r2);
-        let small: [f64; 4] = std::array::from_fn(|k| (u[k] - w[k]) * r2);
-        let twist = if s.q > 0.0 { m.twist } else { f64::NEG_INFINITY };
-        Some([(2.0, big), (m.h2, small), (twist, t), (m.flip, l)])
+        Some(Modes::new(self, j)?.eigensystem())
     }
 
     /// The Hessian `∂²ψ/∂J²` as a 4 x 4 matrix in `(a, b, c, d)`, or with `projected` its
     /// positive semidefinite projection (negative eigenvalues set to 0); `None` where the
     /// density is infinite, and (not projected) at `Q = 0`, where it does not exist.
     pub fn hessian(self, j: &Jacobian, projected: bool) -> Option<[[f64; 4]; 4]> {
-        let modes = self.eigensystem(j)?;
-        let mut out = [[0.0; 4]; 4];
-        for (lambda, v) in modes {
-            let lambda = if projected { lambda.max(0.0) } else { lambda };
-            if lambda == 0.0 {
-                continue;
-            }
-            if !lambda.is_finite() {
-                return None;
-            }
-            for (row, vr) in out.iter_mut().zip(v) {
-                for (x, vc) in row.iter_mut().zip(v) {
-                    *x += lambda * vr * vc;
-                }
-            }
-        }
-        Some(out)
+        hessian_of(&self.eigensystem(j)?, projected)
     }
 }
 
 impl Energy {
-    /// The S-ARAP kink at conformal Jacobians: `(κ / (2R), ŵ)`, the curvature of the cone
-    /// `κ |w|` (capped at [`KINK_CAP`]) and the unit anti-similarity direction, when
-    /// `κ = 2(Q - 1)(1 - Q^-3) > 0`; `None` for ARAP (smooth) and at `κ = 0`.
-    ///
-    /// The cone's Hessian `κ/(2R) (I - ŵŵ^T)` on the anti-similarity plane is in the flip
-    /// eigenvalue already; `κ/(2R) ŵŵ^T` completes it to the quadratic majoriser of `κ|w|`
-    /// (curvature `κ/(2R)` in every direction of the plane), which a Newton solver can add
-    /// so that its steps do not jump across the kink (see `ground_truth`).
-    pub fn kink(self, j: &Jacobian) -> Option<(f64, [f64; 4])> {
+    /// The S-ARAP kink at conformal Jacobians: `(κ, R)` with `κ = 2(Q - 1)(1 - Q^-3)` the
+    /// slope of the cone `ψ ≈ ψ(Q, 0) + κ R` at `R = 0`, when `κ > 0`; `None` for ARAP
+    /// (smooth) and where the density is infinite.
+    pub fn kink(self, j: &Jacobian) -> Option<(f64, f64)> {
         if self == Self::Arap {
             return None;
         }
         let s = SignedSvd::new(j);
         let kappa = 2.0 * (s.q - 1.0) * (1.0 - 1.0 / s.q.powi(3));
-        if !(kappa > 0.0) || !(s.sigma_2 > 0.0) {
-            return None;
+        (kappa > 0.0 && s.sigma_2 > 0.0).then_some((kappa, s.r))
+    }
+
+    /// S-ARAP with a triangle held at its kink: the cone `κ R` replaced by the penalty
+    /// `K R^2` (`K` = [`KINK_CAP`], so the anti-similarity part `w`, `|w| = √2 R`, is held
+    /// near 0 by the force `K w`): the density `ψ - κR + K R^2`, its gradient and its
+    /// projected Hessian (flip eigenvalue `ψ_R/(2R) - κ/(2R) + K`, plus `K ŵŵ^T`, so the
+    /// whole anti-similarity plane has curvature `K` more). The `Q`-derivatives of `κ(Q) R`
+    /// are left out (`R` is about `κ/K` there). `None` where [`Self::kink`] is.
+    pub fn held(self, j: &Jacobian) -> Option<(f64, Jacobian, [[f64; 4]; 4])> {
+        let (kappa, r) = self.kink(j)?;
+        let mut m = Modes::new(self, j)?;
+        let density = self.density(j) - kappa * r + KINK_CAP * r * r;
+        m.flip = m.flip_smooth + KINK_CAP;
+        m.flip_gradient = m.flip_smooth + KINK_CAP;
+        let gradient = m.gradient();
+        let modes = m.eigensystem();
+        let mut hessian = hessian_of(&modes, true)?;
+        let w = m.anti_similarity_direction();
+        for (row, wr) in hessian.iter_mut().zip(w) {
+            for (x, wc) in row.iter_mut().zip(w) {
+                *x += KINK_CAP * wr * wc;
+            }
         }
-        let r2 = std::f64::consts::FRAC_1_SQRT_2;
-        if s.r > 0.0 {
-            let (cf, cg) = (s.f / s.r, s.g / s.r);
-            Some(((kappa / (2.0 * s.r)).min(KINK_CAP), [cf * r2, cg * r2, cg * r2, -cf * r2]))
-        } else {
-            Some((KINK_CAP, [r2, 0.0, 0.0, -r2]))
-        }
+        Some((density, gradient, hessian))
     }
 }
 
@@ -216,6 +196,27 @@ impl SignedSvd {
     }
 }
 
+/// `sum_k λ_k v_k v_k^T` over eigenpairs, with `projected` negative `λ_k` set to 0; `None`
+/// if an eigenvalue kept is not finite.
+fn hessian_of(modes: &[(f64, [f64; 4]); 4], projected: bool) -> Option<[[f64; 4]; 4]> {
+    let mut out = [[0.0; 4]; 4];
+    for &(lambda, v) in modes {
+        let lambda = if projected { lambda.max(0.0) } else { lambda };
+        if lambda == 0.0 {
+            continue;
+        }
+        if !lambda.is_finite() {
+            return None;
+        }
+        for (row, vr) in out.iter_mut().zip(v) {
+            for (x, vc) in row.iter_mut().zip(v) {
+                *x += lambda * vr * vc;
+            }
+        }
+    }
+    Some(out)
+}
+
 /// The signed SVD with the eigenvalues of the twist, the flip and the `σ` scaling.
 struct Modes {
     svd: SignedSvd,
@@ -224,6 +225,8 @@ struct Modes {
     flip: f64,
     /// `ψ_R / (2R)` uncapped (the gradient's coefficient; any finite value at `R = 0`).
     flip_gradient: f64,
+    /// `(ψ_R - κ)/(2R)`: the flip eigenvalue without the kink's cone.
+    flip_smooth: f64,
     h2: f64,
 }
 
@@ -233,7 +236,9 @@ impl Modes {
         let (q, r, big, small) = (svd.q, svd.r, svd.sigma_1, svd.sigma_2);
         match energy {
             // ψ = 2 (Q - 1)^2 + 2 R^2: ψ_Q = 4 (Q - 1), ψ_R = 4 R.
-            Energy::Arap => Some(Self { svd, twist: 2.0 - 2.0 / q, flip: 2.0, flip_gradient: 2.0, h2: 2.0 }),
+            Energy::Arap => {
+                Some(Self { svd, twist: 2.0 - 2.0 / q, flip: 2.0, flip_gradient: 2.0, flip_smooth: 2.0, h2: 2.0 })
+            }
             Energy::SArap => {
                 if small <= 0.0 || !small.is_finite() {
                     return None;
@@ -253,9 +258,44 @@ impl Modes {
                 };
                 let qs = q * small;
                 let rest = 1.0 + (q * q + qs + small * small) / (qs * qs * qs) - (q + small) / (qs * qs);
-                Some(Self { svd, twist, flip: capped + rest, flip_gradient: kink + rest, h2 })
+                Some(Self { svd, twist, flip: capped + rest, flip_gradient: kink + rest, flip_smooth: rest, h2 })
             }
         }
+    }
+}
+
+impl Modes {
+    /// `λ_twist [[E, -H], [H, E]] + λ_flip [[F, G], [G, -F]]` (module documentation).
+    fn gradient(&self) -> Jacobian {
+        let s = &self.svd;
+        let twist = if s.q > 0.0 { self.twist } else { 0.0 };
+        let flip = self.flip_gradient;
+        [[twist * s.e + flip * s.f, -twist * s.h + flip * s.g], [twist * s.h + flip * s.g, twist * s.e - flip * s.f]]
+    }
+
+    /// The unit anti-similarity direction `ŵ` as a 4-vector (arbitrary at `R = 0`).
+    fn anti_similarity_direction(&self) -> [f64; 4] {
+        let s = &self.svd;
+        let (cf, cg) = if s.r > 0.0 { (s.f / s.r, s.g / s.r) } else { (1.0, 0.0) };
+        let r2 = std::f64::consts::FRAC_1_SQRT_2;
+        [cf * r2, cg * r2, cg * r2, -cf * r2]
+    }
+
+    /// The eigenpairs: scaling in `Σ`, scaling in `σ`, twist, flip.
+    fn eigensystem(&self) -> [(f64, [f64; 4]); 4] {
+        let s = &self.svd;
+        // Unit directions of the similarity part (u) and the anti-similarity part (w), and
+        // their rotations in their planes (t, l), as 4-vectors; arbitrary where a part is 0.
+        let (ce, ch) = if s.q > 0.0 { (s.e / s.q, s.h / s.q) } else { (1.0, 0.0) };
+        let r2 = std::f64::consts::FRAC_1_SQRT_2;
+        let u = [ce * r2, -ch * r2, ch * r2, ce * r2];
+        let w = self.anti_similarity_direction();
+        let t = [-ch * r2, -ce * r2, ce * r2, -ch * r2];
+        let l = [-w[1], w[0], w[0], w[1]];
+        let big: [f64; 4] = std::array::from_fn(|k| (u[k] + w[k]) * r2);
+        let small: [f64; 4] = std::array::from_fn(|k| (u[k] - w[k]) * r2);
+        let twist = if s.q > 0.0 { self.twist } else { f64::NEG_INFINITY };
+        [(2.0, big), (self.h2, small), (twist, t), (self.flip, l)]
     }
 }
 

@@ -24,13 +24,20 @@
 //! it), so no iterate ever flips or collapses a triangle.
 //!
 //! **The S-ARAP kink.** Eq. (11) is not differentiable where `J` is conformal (`R = 0`) but
-//! not a rotation: there it behaves like the cone `κ|w|` in the anti-similarity part `w`
-//! (notes §4 item 2), and a minimiser can sit exactly on the kink. Newton with the
-//! projected Hessian then jumps across the apex back and forth and the gradient never
-//! vanishes. Where the cone's curvature `κ/(2R)` exceeds 1 (so only near the kink), the
-//! solver adds `κ/(2R) ŵŵ^T` to the triangle's Hessian ([`Energy::kink`]), making the
-//! model a majoriser of the cone: steps approach the apex without crossing it, and the
-//! Newton decrement (below) goes to 0.
+//! not a rotation: there it is the cone `ψ(Q, 0) + κ R` in the anti-similarity part
+//! (`κ = 2(Q - 1)(1 - Q^-3) > 0`, notes §4 item 2), and minimisers often sit exactly on it
+//! (the rest of the mesh pulls on the triangle's anisotropy with less than `κ`). Plain
+//! projected Newton then jumps across the apex, the gradient never vanishes, and
+//! convergence is linear at best (hundreds of iterations on the gingerbread figure). The
+//! solver therefore runs a small active set: a triangle whose `R` falls below `κ/2` (where
+//! the cone dominates; at the first iteration of a stage, only one within `κ/K` of the
+//! kink, so that a warm start from a solution is one) is *held*: its cone is replaced by the penalty `K R^2`
+//! (`K` = [`KINK_CAP`], [`Energy::held`]), which pins it within about `κ/K` of the kink
+//! and is smooth, so Newton converges quadratically. If, after a step, a held triangle has
+//! `R > κ/K` (the force holding it exceeds the cone's largest subgradient `κ`), the kink
+//! is not where its minimum is: it is *released* and treated exactly for the rest of the
+//! stage. The energy reported is always the true one; the gradient reported is the
+//! model's (held triangles within `κ/K` of their kink).
 //!
 //! **Stopping**: when the handles are on their targets and the constrained gradient
 //! (`∇E + C^T μ`, `μ` the least-squares multipliers, on the free unknowns) has an
@@ -58,7 +65,6 @@
 
 use std::sync::Arc;
 
-#[cfg(doc)]
 use super::energy::KINK_CAP;
 use super::energy::{Energy, RestTriangle};
 pub use super::error::DefOpError;
@@ -82,8 +88,11 @@ const STAGE_TOLERANCE: f64 = 1e-6;
 /// `FLAT_STEPS` flat steps in a row the energy has converged to what doubles resolve.
 const FLAT: f64 = 1e-14;
 const FLAT_STEPS: usize = 3;
-/// The S-ARAP kink curvature `κ/(2R)` from which the solver adds the cone's majoriser.
-const KINK_MAJORISER: f64 = 1.0;
+/// Per triangle, how the solver treats the S-ARAP kink: as the energy is (free), held at
+/// the kink (held), or as it is again for the rest of the stage (released).
+const FREE: u8 = 0;
+const HELD: u8 = 1;
+const RELEASED: u8 = 2;
 /// Handles within this fraction of the shape's size are coincident; handles are on their
 /// targets within it.
 const NEAR: f64 = 1e-12;
@@ -221,6 +230,8 @@ pub struct GroundTruth {
     /// Cholesky factor of `B B^T` (`B` the weights of the handles inside triangles on free
     /// vertices), for the least-squares multipliers.
     gram: Vec<f64>,
+    /// Per triangle, [`FREE`], [`HELD`] or [`RELEASED`].
+    state: Vec<u8>,
     // Buffers, sized once.
     x: Vec<Point>,
     trial: Vec<Point>,
@@ -346,6 +357,7 @@ impl GroundTruth {
             values: vec![0.0; nnz],
             numeric,
             gram,
+            state: vec![FREE; mesh.triangle_count()],
             grad: vec![0.0; 2 * n],
             rhs: vec![0.0; 2 * n],
             step: vec![0.0; 2 * n],
@@ -399,7 +411,7 @@ impl GroundTruth {
     pub fn energy_of(&self, positions: &[Point]) -> Result<f64, DefOpError> {
         check_points("start", positions, self.rest.len())?;
         let scaled: Vec<Point> = positions.iter().map(|p| p.map(|c| scale_by_power_of_two(c, self.unit))).collect();
-        Ok(scale_by_power_of_two(self.total_energy(&scaled), -2 * self.unit))
+        Ok(scale_by_power_of_two(self.total_energy(&scaled, false), -2 * self.unit))
     }
 
     /// Solves eq. (6) for one set of targets (one per handle, in handle order) from a start.
@@ -423,7 +435,7 @@ impl GroundTruth {
                 for (x, p) in self.x.iter_mut().zip(pose) {
                     *x = into(p);
                 }
-                if self.energy.blocks_flips() && !self.total_energy(&self.x).is_finite() {
+                if self.energy.blocks_flips() && !self.total_energy(&self.x, false).is_finite() {
                     self.x.copy_from_slice(&self.rest);
                     fallback = true;
                 }
@@ -439,7 +451,7 @@ impl GroundTruth {
         let back = |p: &Point| p.map(|c| scale_by_power_of_two(c, -self.unit));
         Ok(SolveReport {
             positions: self.x.iter().map(back).collect(),
-            energy: scale_by_power_of_two(self.total_energy(&self.x), -2 * self.unit),
+            energy: scale_by_power_of_two(self.total_energy(&self.x, false), -2 * self.unit),
             iterations,
             fallback,
             stages,
@@ -486,9 +498,11 @@ impl GroundTruth {
         let mut gradient = f64::INFINITY;
         // Consecutive steps that lowered the energy by less than `FLAT` of itself.
         let mut flat = 0;
+        self.state.fill(FREE);
+        let start = *iterations;
         loop {
             let feasible = self.residuals() <= NEAR * self.size;
-            let energy = self.assemble();
+            let energy = self.assemble(*iterations == start);
             if feasible {
                 gradient = self.constrained_gradient() / self.size;
                 if gradient <= tolerance {
@@ -520,7 +534,7 @@ impl GroundTruth {
                         self.trial[v] = self.stage_targets[k];
                     }
                 }
-                if !self.total_energy(&self.trial).is_finite() {
+                if !self.total_energy(&self.trial, true).is_finite() {
                     return Ok(None);
                 }
             } else {
@@ -529,7 +543,7 @@ impl GroundTruth {
                 let resolvable = -slope > 1e-12 * energy.abs();
                 loop {
                     self.move_to_trial(alpha);
-                    let e = self.total_energy(&self.trial);
+                    let e = self.total_energy(&self.trial, true);
                     if e <= energy + ARMIJO * alpha * slope || (!resolvable && e <= energy + 1e-12 * energy.abs()) {
                         flat = if energy - e <= FLAT * energy.abs() { flat + 1 } else { 0 };
                         break;
@@ -573,27 +587,36 @@ impl GroundTruth {
 
     /// Energy, gradient, the regularised projected Hessian on the free unknowns (identity
     /// on fixed ones) and the right-hand side `-g - H_uf d_f` (`d_f` on fixed unknowns).
-    fn assemble(&mut self) -> f64 {
+    fn assemble(&mut self, restart: bool) -> f64 {
+        // A triangle is held once its cone dominates, or, at the first iteration of a stage,
+        // only if it is at the kink already (a warm start from a solution stays one).
+        let hold_below = if restart { 1.0 / KINK_CAP } else { 0.5 };
         self.grad.fill(0.0);
         self.values.fill(0.0);
         self.rhs.fill(0.0);
         let mut energy = 0.0;
-        for el in &self.elements {
+        for (el, state) in self.elements.iter().zip(self.state.iter_mut()) {
             let p = el.vertices.map(|v| self.x[v]);
             let j = el.rest.jacobian(p);
-            energy += el.rest.area * self.energy.density(&j);
-            let (Some(dpsi), Some(mut hj)) = (self.energy.gradient(&j), self.energy.hessian(&j, true)) else {
-                // Infinite energy: never an iterate (the line search keeps S-ARAP finite).
-                continue;
+            *state = match (self.energy.kink(&j), *state) {
+                (Some((kappa, r)), FREE) if r <= kappa * hold_below => HELD,
+                (Some((kappa, r)), HELD) if r > kappa / KINK_CAP => RELEASED,
+                (None, HELD) => RELEASED,
+                (_, state) => state,
             };
-            // Near the S-ARAP kink the cone's majoriser (module documentation).
-            if let Some((curvature, w)) = self.energy.kink(&j).filter(|(c, _)| *c > KINK_MAJORISER) {
-                for (row, wr) in hj.iter_mut().zip(w) {
-                    for (x, wc) in row.iter_mut().zip(w) {
-                        *x += curvature * wr * wc;
+            let held = if *state == HELD { self.energy.held(&j) } else { None };
+            let (density, dpsi, hj) = match held {
+                Some(model) => model,
+                None => match (self.energy.gradient(&j), self.energy.hessian(&j, true)) {
+                    (Some(g), Some(h)) => (self.energy.density(&j), g, h),
+                    // Infinite energy: never an iterate (the line search keeps S-ARAP finite).
+                    _ => {
+                        energy = f64::INFINITY;
+                        continue;
                     }
-                }
-            }
+                },
+            };
+            energy += el.rest.area * density;
             let w = el.rest.weights();
             let h6 = el.rest.expand(&hj);
             for a in 0..6 {
@@ -740,8 +763,16 @@ impl GroundTruth {
         }
     }
 
-    fn total_energy(&self, positions: &[Point]) -> f64 {
-        self.elements.iter().map(|el| el.rest.energy(self.energy, el.vertices.map(|v| positions[v]))).sum()
+    /// The energy of a pose: with `model`, held triangles count their model density
+    /// ([`Energy::held`]), as the Newton iterations see them.
+    fn total_energy(&self, positions: &[Point], model: bool) -> f64 {
+        let mut energy = 0.0;
+        for (el, &state) in self.elements.iter().zip(&self.state) {
+            let j = el.rest.jacobian(el.vertices.map(|v| positions[v]));
+            let held = if model && state == HELD { self.energy.held(&j) } else { None };
+            energy += el.rest.area * held.map_or_else(|| self.energy.density(&j), |(d, _, _)| d);
+        }
+        energy
     }
 }
 
