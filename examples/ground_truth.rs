@@ -75,8 +75,9 @@ fn main() {
     let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     let at = |fx: f64, fy: f64| [lo[0] + fx * (hi[0] - lo[0]), lo[1] + fy * (hi[1] - lo[1])];
     // Head, hands, feet.
-    let handles: Vec<u32> =
-        [at(0.5, 0.93), at(0.04, 0.62), at(0.96, 0.62), at(0.25, 0.04), at(0.75, 0.04)].map(|p| nearest(&mesh, p)).to_vec();
+    let handles: Vec<u32> = [at(0.5, 0.93), at(0.04, 0.62), at(0.96, 0.62), at(0.25, 0.04), at(0.75, 0.04)]
+        .map(|p| nearest(&mesh, p))
+        .to_vec();
     let rest: Vec<Point> = handles.iter().map(|&v| mesh.positions()[v as usize]).collect();
     let mut rng = Rng(2024);
     let samples = 20;
@@ -143,10 +144,13 @@ fn main() {
         }
     }
     let tolerance = 1e-9;
-    let mut arap = ArapDeformer::new(mesh.clone(), ArapOptions::default().until_converged(tolerance, 1_000_000)).unwrap();
+    let mut arap =
+        ArapDeformer::new(mesh.clone(), ArapOptions::default().until_converged(tolerance, 1_000_000)).unwrap();
     arap.set_handle_vertices(&handles).unwrap();
     let mut local_global = Row::default();
     let mut difference: f64 = 0.0;
+    let mut minima = Vec::new();
+    let checker = GroundTruth::new(&mesh, Handles::Vertices(&handles), Energy::Arap, options).unwrap();
     for (target, solution) in targets.iter().zip(&arap_solutions) {
         arap.reset();
         let velocities: Vec<Point> = rest.iter().zip(target).map(|(p, q)| [q[0] - p[0], q[1] - p[1]]).collect();
@@ -154,12 +158,26 @@ fn main() {
         arap.step(&velocities).unwrap();
         local_global.ms.push(t.elapsed().as_secs_f64() * 1e3);
         local_global.iterations.push(arap.report().iterations);
-        difference = difference.max(max_distance(arap.positions(), solution));
+        let apart = max_distance(arap.positions(), solution);
+        if apart <= 1e-5 * size {
+            difference = difference.max(apart);
+        } else {
+            // Another local minimum: say which is lower.
+            minima.push((checker.energy_of(arap.positions()).unwrap(), checker.energy_of(solution).unwrap(), apart));
+        }
     }
     local_global.print(&format!("local/global ARAP cold, until moves <= {tolerance:e} size"));
     println!(
-        "\nlocal/global over Newton ARAP (cold, mean ms): {:.1}x; largest vertex difference {:.1e} of the size",
+        "\nlocal/global over Newton ARAP (cold, mean ms): {:.1}x; {} of {samples} targets reach the same pose \
+         (largest vertex difference {:.1e} of the size)",
         local_global.mean_ms() / ground_truth_cold,
+        samples - minima.len(),
         difference / size
     );
+    for (theirs, ours, apart) in minima {
+        println!(
+            "  another local minimum: local/global energy {theirs:.6e}, Newton {ours:.6e}, {:.3} of the size apart",
+            apart / size
+        );
+    }
 }

@@ -125,15 +125,21 @@ impl Energy {
     /// `K R^2` (`K` = [`KINK_CAP`], so the anti-similarity part `w`, `|w| = √2 R`, is held
     /// near 0 by the force `K w`): the density `ψ - κR + K R^2`, its gradient and its
     /// projected Hessian (flip eigenvalue `ψ_R/(2R) - κ/(2R) + K`, plus `K ŵŵ^T`, so the
-    /// whole anti-similarity plane has curvature `K` more). The `Q`-derivatives of `κ(Q) R`
-    /// are left out (`R` is about `κ/K` there). `None` where [`Self::kink`] is.
+    /// whole anti-similarity plane has curvature `K` more). The Hessian leaves out the
+    /// second derivatives of `κ(Q) R` that involve `Q` (small once `R` is about `κ/K`); the
+    /// gradient is exact. `None` where [`Self::kink`] is.
     pub fn held(self, j: &Jacobian) -> Option<(f64, Jacobian, [[f64; 4]; 4])> {
         let (kappa, r) = self.kink(j)?;
         let mut m = Modes::new(self, j)?;
         let density = self.density(j) - kappa * r + KINK_CAP * r * r;
         m.flip = m.flip_smooth + KINK_CAP;
         m.flip_gradient = m.flip_smooth + KINK_CAP;
+        // d(κ(Q) R)/dQ = κ'(Q) R, κ' = 2 (1 + 2 Q^-3 - 3 Q^-4), through ∂Q/∂J = S / (2Q).
+        let q = m.svd.q;
+        let twist = m.twist;
+        m.twist -= 2.0 * (1.0 + 2.0 / q.powi(3) - 3.0 / q.powi(4)) * r / (2.0 * q);
         let gradient = m.gradient();
+        m.twist = twist;
         let modes = m.eigensystem();
         let mut hessian = hessian_of(&modes, true)?;
         let w = m.anti_similarity_direction();

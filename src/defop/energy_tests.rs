@@ -298,3 +298,22 @@ fn vertex_gradient_and_hessian_match_differences_of_the_triangle_energy() {
     }
     assert!(RestTriangle::new([[0.0, 0.0], [0.3, 0.9], [1.0, 0.2]]).is_none(), "clockwise");
 }
+
+#[test]
+fn the_held_model_has_the_gradient_of_its_density() {
+    let mut rng = Rng(8);
+    let mut checked = 0;
+    while checked < 200 {
+        let j = rng.jacobian();
+        let Some((kappa, r)) = Energy::SArap.kink(&j) else { continue };
+        // Near the kink, where the solver holds triangles, but not so near that the penalty's
+        // curvature K swamps the differences.
+        if r > kappa / 2.0 || r < 1e-3 || SignedSvd::new(&j).sigma_2 < 0.2 {
+            continue;
+        }
+        let (_, g, _) = Energy::SArap.held(&j).unwrap();
+        let fd = central(|v| Energy::SArap.held(&unflat(*v)).unwrap().0, flat(&j), 1e-7);
+        assert_close(&flat(&g), &fd, 1e-6, &format!("held at {j:?}"));
+        checked += 1;
+    }
+}

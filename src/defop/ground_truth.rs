@@ -34,9 +34,12 @@
 //! kink, so that a warm start from a solution is one) is *held*: its cone is replaced by the penalty `K R^2`
 //! (`K` = [`KINK_CAP`], [`Energy::held`]), which pins it within about `κ/K` of the kink
 //! and is smooth, so Newton converges quadratically. If, after a step, a held triangle has
-//! `R > κ/K` (the force holding it exceeds the cone's largest subgradient `κ`), the kink
+//! `R > κ/K` after a full Newton step (the force holding it exceeds the cone's largest
+//! subgradient `κ`), the kink
 //! is not where its minimum is: it is *released* and treated exactly for the rest of the
-//! stage. The energy reported is always the true one; the gradient reported is the
+//! stage, unless it comes back within `κ/K` of the kink. Triangles are held only once the
+//! handles are on their targets, and only where `κ > 1e-10` (near rotations the kink is
+//! negligible). The energy reported is always the true one; the gradient reported is the
 //! model's (held triangles within `κ/K` of their kink).
 //!
 //! **Stopping**: when the handles are on their targets and the constrained gradient
@@ -91,6 +94,8 @@ const FLAT_STEPS: usize = 3;
 /// Per triangle, how the solver treats the S-ARAP kink: as the energy is (free), held at
 /// the kink (held), or as it is again for the rest of the stage (released).
 const FREE: u8 = 0;
+/// Kinks with a smaller slope `κ` (near rotations, `κ ≈ 6 (Q - 1)^2`) are left alone.
+const KINK_MIN: f64 = 1e-10;
 const HELD: u8 = 1;
 const RELEASED: u8 = 2;
 /// Handles within this fraction of the shape's size are coincident; handles are on their
@@ -236,7 +241,10 @@ pub struct GroundTruth {
     x: Vec<Point>,
     trial: Vec<Point>,
     saved: Vec<Point>,
+    /// The gradient of the Newton model (held triangles' penalties instead of their cones).
     grad: Vec<f64>,
+    /// The gradient of the energy.
+    true_grad: Vec<f64>,
     rhs: Vec<f64>,
     step: Vec<f64>,
     fixed_step: Vec<f64>,
@@ -359,6 +367,7 @@ impl GroundTruth {
             gram,
             state: vec![FREE; mesh.triangle_count()],
             grad: vec![0.0; 2 * n],
+            true_grad: vec![0.0; 2 * n],
             rhs: vec![0.0; 2 * n],
             step: vec![0.0; 2 * n],
             fixed_step: vec![0.0; 2 * n],
@@ -411,7 +420,7 @@ impl GroundTruth {
     pub fn energy_of(&self, positions: &[Point]) -> Result<f64, DefOpError> {
         check_points("start", positions, self.rest.len())?;
         let scaled: Vec<Point> = positions.iter().map(|p| p.map(|c| scale_by_power_of_two(c, self.unit))).collect();
-        Ok(scale_by_power_of_two(self.total_energy(&scaled, false), -2 * self.unit))
+        Ok(scale_by_power_of_two(self.total_energy(&scaled), -2 * self.unit))
     }
 
     /// Solves eq. (6) for one set of targets (one per handle, in handle order) from a start.
@@ -435,7 +444,7 @@ impl GroundTruth {
                 for (x, p) in self.x.iter_mut().zip(pose) {
                     *x = into(p);
                 }
-                if self.energy.blocks_flips() && !self.total_energy(&self.x, false).is_finite() {
+                if self.energy.blocks_flips() && !self.total_energy(&self.x).is_finite() {
                     self.x.copy_from_slice(&self.rest);
                     fallback = true;
                 }
@@ -451,7 +460,7 @@ impl GroundTruth {
         let back = |p: &Point| p.map(|c| scale_by_power_of_two(c, -self.unit));
         Ok(SolveReport {
             positions: self.x.iter().map(back).collect(),
-            energy: scale_by_power_of_two(self.total_energy(&self.x, false), -2 * self.unit),
+            energy: scale_by_power_of_two(self.total_energy(&self.x), -2 * self.unit),
             iterations,
             fallback,
             stages,
@@ -500,9 +509,16 @@ impl GroundTruth {
         let mut flat = 0;
         self.state.fill(FREE);
         let start = *iterations;
+        // Whether the last step was a full Newton step (only then is a held triangle that
+        // has not reached its kink released).
+        let mut full_step = true;
         loop {
             let feasible = self.residuals() <= NEAR * self.size;
-            let energy = self.assemble(*iterations == start);
+            let restart = *iterations == start;
+            // The exact Hessian where it is positive definite (quadratic convergence), else
+            // the projected one.
+            let mut exact = feasible;
+            let energy = self.assemble(restart, full_step, feasible, exact);
             if feasible {
                 gradient = self.constrained_gradient() / self.size;
                 if gradient <= tolerance {
@@ -514,9 +530,18 @@ impl GroundTruth {
             if *iterations >= self.options.max_iterations {
                 return Err(stalled);
             }
-            self.factor()?;
+            if exact && self.numeric.refactor_values(&self.values).is_err() {
+                exact = false;
+                self.assemble(restart, full_step, feasible, exact);
+            }
+            if !exact {
+                self.factor()?;
+            }
             self.newton_step()?;
             let slope: f64 = self.grad.iter().zip(&self.step).map(|(g, d)| g * d).sum();
+            // The line search is on the true energy, with its true slope (held triangles'
+            // cones included).
+            let true_slope: f64 = self.true_grad.iter().zip(&self.step).map(|(g, d)| g * d).sum();
             if feasible && -slope <= (tolerance * self.size).powi(2) {
                 return Ok(Some(gradient));
             }
@@ -524,6 +549,7 @@ impl GroundTruth {
                 return Ok(Some(gradient));
             }
             let cap = if self.energy.blocks_flips() { FLIP_MARGIN * self.first_flip() } else { f64::INFINITY };
+            full_step = true;
             if !feasible {
                 if cap < 1.0 {
                     return Ok(None);
@@ -534,21 +560,24 @@ impl GroundTruth {
                         self.trial[v] = self.stage_targets[k];
                     }
                 }
-                if !self.total_energy(&self.trial, true).is_finite() {
+                if !self.total_energy(&self.trial).is_finite() {
                     return Ok(None);
                 }
             } else {
                 let mut alpha = cap.min(1.0);
+                full_step = alpha == 1.0;
                 // Below what the energy can resolve, a full step is taken as it comes.
-                let resolvable = -slope > 1e-12 * energy.abs();
+                let resolvable = -true_slope > 1e-12 * energy.abs();
                 loop {
                     self.move_to_trial(alpha);
-                    let e = self.total_energy(&self.trial, true);
-                    if e <= energy + ARMIJO * alpha * slope || (!resolvable && e <= energy + 1e-12 * energy.abs()) {
+                    let e = self.total_energy(&self.trial);
+                    let armijo = true_slope < 0.0 && e <= energy + ARMIJO * alpha * true_slope;
+                    if armijo || (!resolvable && e <= energy + 1e-12 * energy.abs()) {
                         flat = if energy - e <= FLAT * energy.abs() { flat + 1 } else { 0 };
                         break;
                     }
                     alpha /= 2.0;
+                    full_step = false;
                     if alpha < 1e-12 {
                         return Err(stalled);
                     }
@@ -587,11 +616,12 @@ impl GroundTruth {
 
     /// Energy, gradient, the regularised projected Hessian on the free unknowns (identity
     /// on fixed ones) and the right-hand side `-g - H_uf d_f` (`d_f` on fixed unknowns).
-    fn assemble(&mut self, restart: bool) -> f64 {
+    fn assemble(&mut self, restart: bool, full_step: bool, feasible: bool, exact: bool) -> f64 {
         // A triangle is held once its cone dominates, or, at the first iteration of a stage,
         // only if it is at the kink already (a warm start from a solution stays one).
         let hold_below = if restart { 1.0 / KINK_CAP } else { 0.5 };
         self.grad.fill(0.0);
+        self.true_grad.fill(0.0);
         self.values.fill(0.0);
         self.rhs.fill(0.0);
         let mut energy = 0.0;
@@ -599,30 +629,31 @@ impl GroundTruth {
             let p = el.vertices.map(|v| self.x[v]);
             let j = el.rest.jacobian(p);
             *state = match (self.energy.kink(&j), *state) {
-                (Some((kappa, r)), FREE) if r <= kappa * hold_below => HELD,
-                (Some((kappa, r)), HELD) if r > kappa / KINK_CAP => RELEASED,
+                (Some((kappa, r)), FREE) if feasible && kappa > KINK_MIN && r <= kappa * hold_below => HELD,
+                (Some((kappa, r)), RELEASED) if feasible && kappa > KINK_MIN && r <= kappa / KINK_CAP => HELD,
+                (Some((kappa, r)), HELD) if full_step && r > kappa / KINK_CAP => RELEASED,
                 (None, HELD) => RELEASED,
                 (_, state) => state,
             };
-            let held = if *state == HELD { self.energy.held(&j) } else { None };
-            let (density, dpsi, hj) = match held {
-                Some(model) => model,
-                None => match (self.energy.gradient(&j), self.energy.hessian(&j, true)) {
-                    (Some(g), Some(h)) => (self.energy.density(&j), g, h),
-                    // Infinite energy: never an iterate (the line search keeps S-ARAP finite).
-                    _ => {
-                        energy = f64::INFINITY;
-                        continue;
-                    }
-                },
+            let (Some(true_dpsi), Some(projected)) = (self.energy.gradient(&j), self.energy.hessian(&j, true)) else {
+                // Infinite energy: never an iterate (the line search keeps S-ARAP finite).
+                energy = f64::INFINITY;
+                continue;
             };
-            energy += el.rest.area * density;
+            energy += el.rest.area * self.energy.density(&j);
+            let held = if *state == HELD { self.energy.held(&j) } else { None };
+            let (dpsi, hj) = match held {
+                Some((_, g, h)) => (g, h),
+                None if exact => (true_dpsi, self.energy.hessian(&j, false).unwrap_or(projected)),
+                None => (true_dpsi, projected),
+            };
             let w = el.rest.weights();
             let h6 = el.rest.expand(&hj);
             for a in 0..6 {
                 let (v, i) = (el.vertices[a / 2], a % 2);
                 let row = 2 * v + i;
                 self.grad[row] += el.rest.area * (dpsi[i][0] * w[a / 2][0] + dpsi[i][1] * w[a / 2][1]);
+                self.true_grad[row] += el.rest.area * (true_dpsi[i][0] * w[a / 2][0] + true_dpsi[i][1] * w[a / 2][1]);
                 if self.fixed[v] {
                     continue;
                 }
@@ -763,16 +794,8 @@ impl GroundTruth {
         }
     }
 
-    /// The energy of a pose: with `model`, held triangles count their model density
-    /// ([`Energy::held`]), as the Newton iterations see them.
-    fn total_energy(&self, positions: &[Point], model: bool) -> f64 {
-        let mut energy = 0.0;
-        for (el, &state) in self.elements.iter().zip(&self.state) {
-            let j = el.rest.jacobian(el.vertices.map(|v| positions[v]));
-            let held = if model && state == HELD { self.energy.held(&j) } else { None };
-            energy += el.rest.area * held.map_or_else(|| self.energy.density(&j), |(d, _, _)| d);
-        }
-        energy
+    fn total_energy(&self, positions: &[Point]) -> f64 {
+        self.elements.iter().map(|el| el.rest.energy(self.energy, el.vertices.map(|v| positions[v]))).sum()
     }
 }
 
