@@ -270,14 +270,14 @@ fn vertex_gradient_and_hessian_match_differences_of_the_triangle_energy() {
                 .collect();
             assert_close(&g, &fd, 1e-6, &format!("{energy} gradient at {j:?}"));
             let h = t.hessian(energy, p, false).unwrap();
-            for k in 0..6 {
+            // Row k of the (symmetric) Hessian against differences of the gradient along k.
+            for (k, row) in h.iter().enumerate() {
                 let (gp, gm) = (
                     t.gradient(energy, perturbed(p, k, 1e-6)).unwrap(),
                     t.gradient(energy, perturbed(p, k, -1e-6)).unwrap(),
                 );
                 let column: Vec<f64> = (0..6).map(|l| (gp[l] - gm[l]) / 2e-6).collect();
-                let found: Vec<f64> = (0..6).map(|l| h[l][k]).collect();
-                assert_close(&found, &column, 1e-6, &format!("{energy} Hessian column {k}"));
+                assert_close(row, &column, 1e-6, &format!("{energy} Hessian row {k}"));
             }
             // Translations are in the kernel of the projected vertex Hessian.
             let hp = t.hessian(energy, p, true).unwrap();

@@ -606,8 +606,8 @@ impl GroundTruth {
         }
         for (j, &k) in self.points.iter().enumerate() {
             let p = self.handles[k].position(&self.x);
-            for c in 0..2 {
-                self.residual[2 * j + c] = self.stage_targets[k][c] - p[c];
+            for (c, pc) in p.iter().enumerate() {
+                self.residual[2 * j + c] = self.stage_targets[k][c] - pc;
                 largest = largest.max(self.residual[2 * j + c].abs());
             }
         }
@@ -657,11 +657,11 @@ impl GroundTruth {
                 if self.fixed[v] {
                     continue;
                 }
-                for b in 0..6 {
+                for (b, hab) in h6[a].iter().enumerate() {
                     let col = 2 * el.vertices[b / 2] + b % 2;
-                    self.rhs[row] -= h6[a][b] * self.fixed_step[col];
+                    self.rhs[row] -= hab * self.fixed_step[col];
                     if el.slots[6 * a + b] != NONE {
-                        self.values[el.slots[6 * a + b]] += h6[a][b];
+                        self.values[el.slots[6 * a + b]] += hab;
                     }
                 }
             }

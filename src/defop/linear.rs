@@ -12,7 +12,8 @@ pub(super) fn cholesky(a: &mut [f64], n: usize) -> Result<(), usize> {
         for k in 0..j {
             d -= a[j * n + k] * a[j * n + k];
         }
-        if !(d > 1e-12 * original.abs()) || !d.is_finite() {
+        let positive = d > 1e-12 * original.abs() && d.is_finite();
+        if !positive {
             return Err(j);
         }
         let d = d.sqrt();
@@ -44,7 +45,7 @@ pub(super) fn cholesky_solve(l: &[f64], n: usize, b: &mut [f64]) {
 /// `c0 <= 0` (the start is already flipped or collapsed). Roots by the cancellation-free
 /// pair `q / c2`, `c0 / q`.
 pub(super) fn first_root(c0: f64, c1: f64, c2: f64) -> f64 {
-    if !(c0 > 0.0) {
+    if c0.is_nan() || c0 <= 0.0 {
         return 0.0;
     }
     if c2 == 0.0 {
