@@ -4,13 +4,15 @@
 //! [`super::energy`].
 //!
 //! **Solver** ([`GroundTruth`], built once per mesh and handle set, then
-//! [`GroundTruth::solve`] for many target sets): projected Newton. Each iteration assembles
-//! the gradient and `H = sum_t` (per-triangle Hessian projected to positive semidefinite
-//! through its analytic eigensystem) `+ ε D`, with `D` the diagonal of the rest pose's
-//! ARAP Hessian and `ε = 1e-8` (raised a thousandfold, at most three times, if a
-//! factorisation still fails), so `H` is positive definite; factors it with the crate's
-//! sparse Cholesky (pattern analysed once, 2 x 2 blocks per vertex); and solves the
-//! equality-constrained Newton system:
+//! [`GroundTruth::solve`] for many target sets): Newton's method. Each iteration assembles
+//! the gradient and `H = sum_t H_t + ε D`, with `D` the diagonal of the rest pose's ARAP
+//! Hessian and `ε = 1e-8`, and factors it with the crate's sparse Cholesky (pattern
+//! analysed once, 2 x 2 blocks per vertex). `H_t` is first the exact per-triangle Hessian
+//! (quadratic convergence near a minimum); if that `H` is not positive definite (the
+//! factorisation finds a non-positive pivot), every `H_t` is projected to positive
+//! semidefinite through its analytic eigensystem ([`Energy::hessian`]) and `ε` raised a
+//! thousandfold (at most three times) if a factorisation still fails. The
+//! equality-constrained Newton system is then solved:
 //! - handles at vertices fix those vertices: their unknowns are eliminated (identity rows
 //!   and columns, prescribed step `q - x` moved to the right-hand side);
 //! - handles inside triangles give two rows each of `C x = q` on the free unknowns,
@@ -19,40 +21,36 @@
 //!
 //! The step also removes any constraint residual `r`, so one full step puts every handle
 //! on its target (to rounding; vertex handles exactly). Once there, a backtracking
-//! (Armijo) line search on `E` follows the step; for S-ARAP it starts below the first
-//! `α` where some `det J_t(α) = 0` (a quadratic in `α` per triangle; the cap is 0.9 of
-//! it), so no iterate ever flips or collapses a triangle.
+//! (Armijo) line search on the true energy `E` follows the step; for S-ARAP it starts
+//! below the first `α` where some `det J_t(α) = 0` (a quadratic in `α` per triangle; the
+//! cap is 0.9 of it), so no iterate ever flips or collapses a triangle.
 //!
 //! **The S-ARAP kink.** Eq. (11) is not differentiable where `J` is conformal (`R = 0`) but
 //! not a rotation: there it is the cone `ψ(Q, 0) + κ R` in the anti-similarity part
 //! (`κ = 2(Q - 1)(1 - Q^-3) > 0`, notes §4 item 2), and minimisers often sit exactly on it
-//! (the rest of the mesh pulls on the triangle's anisotropy with less than `κ`). Plain
-//! projected Newton then jumps across the apex, the gradient never vanishes, and
-//! convergence is linear at best (hundreds of iterations on the gingerbread figure). The
-//! solver therefore runs a small active set: a triangle whose `R` falls below `κ/2` (where
-//! the cone dominates; at the first iteration of a stage, only one within `κ/K` of the
-//! kink, so that a warm start from a solution is one) is *held*: its cone is replaced by the penalty `K R^2`
-//! (`K` = [`KINK_CAP`], [`Energy::held`]), which pins it within about `κ/K` of the kink
-//! and is smooth, so Newton converges quadratically. If, after a step, a held triangle has
-//! `R > κ/K` after a full Newton step (the force holding it exceeds the cone's largest
-//! subgradient `κ`), the kink
-//! is not where its minimum is: it is *released* and treated exactly for the rest of the
-//! stage, unless it comes back within `κ/K` of the kink. Triangles are held only once the
-//! handles are on their targets, and only where `κ > 1e-10` (near rotations the kink is
-//! negligible). The energy reported is always the true one; the gradient reported is the
-//! model's (held triangles within `κ/K` of their kink).
+//! (the rest of the mesh pulls on the triangle's anisotropy with less than `κ`). Newton
+//! then jumps across the apex, the gradient never vanishes, and convergence is linear at
+//! best (hundreds of iterations on the gingerbread figure). The solver therefore runs a
+//! small active set. A triangle whose `R` falls below `κ/2` (where the cone dominates) is
+//! *held*: in the Newton model its cone is replaced by the penalty `K R^2` (`K` =
+//! [`KINK_CAP`], [`Energy::held`]), smooth and pinning it within about `κ/K` of the kink,
+//! so Newton converges quadratically (the line search still uses the true energy and its
+//! true slope). If after a full Newton step a held triangle has `R > κ/K` (the force
+//! holding it exceeds the cone's largest subgradient `κ`), its minimum is not at the kink:
+//! it is *released* and treated exactly for the rest of the stage, unless it comes back
+//! within `κ/K` of the kink. Triangles are held only once the handles are on their
+//! targets, at the first iteration of a stage only if already within `κ/K` of the kink (so
+//! that a warm start from a solution is one), and only where `κ > 1e-10` (near rotations
+//! the kink is negligible). [`SolveReport::gradient`] is the model's.
 //!
 //! **Stopping**: when the handles are on their targets and the constrained gradient
 //! (`∇E + C^T μ`, `μ` the least-squares multipliers, on the free unknowns) has an
 //! infinity norm at most `tolerance` times the rest shape's bounding-box diagonal
 //! (default 1e-9: scale-invariant, since the gradient scales like lengths), or when the
-//! Newton decrement `-∇E·d` falls below `(tolerance · size)^2` (the S-ARAP density has a
-//! convex kink at conformal Jacobians where the gradient jumps, notes §4 item 2), or when
-//! the energy has stopped decreasing: three steps in a row lowering it by less than 1e-14
-//! of itself, the floor of double precision (reached at the S-ARAP kink, where the
-//! gradient does not vanish: [`SolveReport::gradient`] is then the size of its jump, not
-//! 0). More than `max_iterations` Newton iterations (default 1000) is
-//! [`DefOpError::NoConvergence`].
+//! Newton decrement `-∇E·d` falls below `(tolerance · size)^2`, or (a safety net) when
+//! three steps in a row lowered the energy by less than 1e-14 of itself, the floor of
+//! double precision. More than `max_iterations` Newton iterations (default 1000), or a
+//! line search that finds no decrease, is [`DefOpError::NoConvergence`].
 //!
 //! **Homotopy**: the targets are reached through stages `q(s) = y + s (q - y)` from the
 //! start's handle positions `y`. A stage begins with the full step onto its targets; when
@@ -68,10 +66,10 @@
 
 use std::sync::Arc;
 
-use super::energy::KINK_CAP;
-use super::energy::{Energy, RestTriangle};
+use super::energy::{Energy, RestTriangle, KINK_CAP};
 pub use super::error::DefOpError;
 use super::linear::{cholesky, cholesky_solve, first_root};
+pub use super::problem::{GroundTruthOptions, Handles, SolveReport, Start, MAX_POINT_HANDLES};
 use crate::deform::handles::{at_vertices, check_connected, diagonal, in_triangles, HandlePoint};
 use crate::deform::pattern::BlockPattern;
 use crate::deform::DeformError;
@@ -101,102 +99,6 @@ const RELEASED: u8 = 2;
 /// Handles within this fraction of the shape's size are coincident; handles are on their
 /// targets within it.
 const NEAR: f64 = 1e-12;
-
-/// The most handles inside triangles (the dense constraint solve is `2n x 2n`, and each
-/// takes two sparse solves per iteration).
-pub const MAX_POINT_HANDLES: usize = 128;
-
-/// The solver's settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GroundTruthOptions {
-    /// Convergence when the constrained gradient's infinity norm is at most this fraction
-    /// of the rest shape's bounding-box diagonal; in `(0, 1]`, default 1e-9.
-    pub tolerance: f64,
-    /// Newton iterations allowed per solve, all homotopy stages together; from 1 to
-    /// 1,000,000, default 1000.
-    pub max_iterations: usize,
-}
-
-impl Default for GroundTruthOptions {
-    fn default() -> Self {
-        Self { tolerance: 1e-9, max_iterations: 1000 }
-    }
-}
-
-impl GroundTruthOptions {
-    /// Sets the tolerance.
-    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
-        self.tolerance = tolerance;
-        self
-    }
-
-    /// Sets the iteration limit.
-    pub fn with_max_iterations(mut self, max_iterations: usize) -> Self {
-        self.max_iterations = max_iterations;
-        self
-    }
-
-    fn check(&self) -> Result<(), DefOpError> {
-        if !(self.tolerance > 0.0 && self.tolerance <= 1.0) {
-            return Err(DefOpError::InvalidOption {
-                name: "tolerance",
-                value: self.tolerance,
-                expected: "a number above 0, at most 1 (a fraction of the shape's size)",
-            });
-        }
-        if !(1..=1_000_000).contains(&self.max_iterations) {
-            return Err(DefOpError::InvalidOption {
-                name: "max_iterations",
-                value: self.max_iterations as f64,
-                expected: "a whole number from 1 to 1000000",
-            });
-        }
-        Ok(())
-    }
-}
-
-/// Where the handles are on the rest mesh.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Handles<'a> {
-    /// One handle on each of these vertices.
-    Vertices(&'a [u32]),
-    /// Handles at points inside triangles: a triangle index and barycentric coordinates
-    /// each (checked as the deformers check them; a weight of 1 at a corner is a vertex
-    /// handle).
-    Points {
-        /// The triangle of each handle.
-        triangles: &'a [u32],
-        /// The barycentric coordinates of each handle in its triangle.
-        barycentric: &'a [[f64; 3]],
-    },
-}
-
-/// Where a solve starts.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Start<'a> {
-    /// The rest pose.
-    Rest,
-    /// A given pose (a warm start), one position per vertex.
-    Pose(&'a [Point]),
-}
-
-/// A solution and how it was found.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SolveReport {
-    /// The vertex positions.
-    pub positions: Vec<Point>,
-    /// The energy `E = sum_t A_t ψ(J_t)`.
-    pub energy: f64,
-    /// Newton iterations, all stages together.
-    pub iterations: usize,
-    /// Whether the warm start had a flipped or collapsed triangle (S-ARAP) and the solve
-    /// restarted from the rest pose.
-    pub fallback: bool,
-    /// Homotopy stages solved (1 when the targets were reached in one stage).
-    pub stages: usize,
-    /// The final constrained gradient norm, relative to the shape's size.
-    pub gradient: f64,
-}
 
 /// One triangle: its rest shape, vertices and the slots of its 6 x 6 Hessian entries.
 #[derive(Debug, Clone)]

@@ -5,13 +5,15 @@
 //!   signed SVD, gradients and projected Hessians;
 //! - `error`: [`DefOpError`];
 //! - [`ground_truth`]: the variational problem (eq. 6), minimised with hard handle
-//!   constraints by projected Newton ([`GroundTruth`]);
-//! - `linear`: small dense helpers of the solver.
+//!   constraints by Newton's method ([`GroundTruth`]);
+//! - `linear`: small dense helpers of the solver;
+//! - `problem`: the solver's options, handles, starts and reports.
 
 pub mod energy;
 mod error;
 pub mod ground_truth;
 mod linear;
+mod problem;
 
 pub use energy::{Energy, RestTriangle, SignedSvd};
 pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, SolveReport, Start};
