@@ -160,9 +160,15 @@ fn handles_land_on_their_targets_and_s_arap_never_flips() {
         }
     }
     // A large pull: the right end pushed past the fixed left end and up.
-    let (mesh, _, _, report) = pulled_bar(Energy::SArap, [-2.6, 0.8]);
+    let (mesh, mut gt, _, report) = pulled_bar(Energy::SArap, [-2.6, 0.8]);
     assert_eq!(flipped(&mesh, &report.positions), 0);
     assert!(report.stages > 1, "a pull this large needs the homotopy: {report:?}");
+    // Back to the rest targets from that pose: the homotopy runs from the warm start (no
+    // fallback), and the only pose of zero energy with these handles is the rest pose.
+    let back = gt.solve(&gt.rest_handle_positions(), Start::Pose(&report.positions)).unwrap();
+    let scale = size(&mesh);
+    assert!(!back.fallback && back.energy <= 1e-12 * scale * scale, "{:?}", (back.fallback, back.stages, back.energy));
+    assert!(max_distance(&back.positions, mesh.positions()) <= 1e-8 * scale);
 }
 
 #[test]

@@ -38,7 +38,9 @@
 //! true slope). If after a full Newton step a held triangle has `R > κ/K` (the force
 //! holding it exceeds the cone's largest subgradient `κ`), its minimum is not at the kink:
 //! it is *released* and treated exactly for the rest of the stage, unless it comes back
-//! within `κ/K` of the kink. Triangles are held only once the handles are on their
+//! within `κ/K` of the kink; and if a step of the model is not a descent direction of the
+//! true energy (a triangle held far from its kink), every held triangle is released and the
+//! step computed again. Triangles are held only once the handles are on their
 //! targets, at the first iteration of a stage only if already within `κ/K` of the kink (so
 //! that a warm start from a solution is one), and only where `κ > 1e-10` (near rotations
 //! the kink is negligible). [`SolveReport::gradient`] is the model's.
@@ -417,73 +419,83 @@ impl GroundTruth {
         loop {
             let feasible = self.residuals() <= NEAR * self.size;
             let restart = *iterations == start;
-            // The exact Hessian where it is positive definite (quadratic convergence), else
-            // the projected one.
-            let mut exact = feasible;
-            let energy = self.assemble(restart, full_step, feasible, exact);
-            if feasible {
-                gradient = self.constrained_gradient() / self.size;
-                if gradient <= tolerance {
-                    return Ok(Some(gradient));
-                }
-            }
-            let stalled =
-                DefOpError::NoConvergence { iterations: *iterations, gradient, tolerance: self.options.tolerance };
-            if *iterations >= self.options.max_iterations {
-                return Err(stalled);
-            }
-            if exact && self.numeric.refactor_values(&self.values).is_err() {
-                exact = false;
-                self.assemble(restart, full_step, feasible, exact);
-            }
-            if !exact {
-                self.factor()?;
-            }
-            self.newton_step()?;
-            let slope: f64 = self.grad.iter().zip(&self.step).map(|(g, d)| g * d).sum();
-            // The line search is on the true energy, with its true slope (held triangles'
-            // cones included).
-            let true_slope: f64 = self.true_grad.iter().zip(&self.step).map(|(g, d)| g * d).sum();
-            if feasible && -slope <= (tolerance * self.size).powi(2) {
-                return Ok(Some(gradient));
-            }
-            if feasible && flat >= FLAT_STEPS {
-                return Ok(Some(gradient));
-            }
-            let cap = if self.energy.blocks_flips() { FLIP_MARGIN * self.first_flip() } else { f64::INFINITY };
-            full_step = true;
-            if !feasible {
-                if cap < 1.0 {
-                    return Ok(None);
-                }
-                self.move_to_trial(1.0);
-                for (k, &v) in self.pinned.iter().enumerate() {
-                    if v != NONE {
-                        self.trial[v] = self.stage_targets[k];
+            // A step that is not a descent direction of the true energy (a held triangle far
+            // from its kink) is computed again with every triangle released.
+            let mut hold = true;
+            loop {
+                // The exact Hessian where it is positive definite (quadratic convergence),
+                // else the projected one.
+                let mut exact = feasible;
+                let energy = self.assemble(restart, full_step, feasible, exact, hold);
+                if feasible {
+                    gradient = self.constrained_gradient() / self.size;
+                    if gradient <= tolerance {
+                        return Ok(Some(gradient));
                     }
                 }
-                if !self.total_energy(&self.trial).is_finite() {
-                    return Ok(None);
+                let stalled =
+                    DefOpError::NoConvergence { iterations: *iterations, gradient, tolerance: self.options.tolerance };
+                if *iterations >= self.options.max_iterations {
+                    return Err(stalled);
                 }
-            } else {
+                if exact && self.numeric.refactor_values(&self.values).is_err() {
+                    exact = false;
+                    self.assemble(restart, full_step, feasible, exact, hold);
+                }
+                if !exact {
+                    self.factor()?;
+                }
+                self.newton_step()?;
+                let slope: f64 = self.grad.iter().zip(&self.step).map(|(g, d)| g * d).sum();
+                // The line search is on the true energy, with its true slope (held triangles'
+                // cones included).
+                let true_slope: f64 = self.true_grad.iter().zip(&self.step).map(|(g, d)| g * d).sum();
+                if feasible && (-slope <= (tolerance * self.size).powi(2) || flat >= FLAT_STEPS) {
+                    return Ok(Some(gradient));
+                }
+                let cap = if self.energy.blocks_flips() { FLIP_MARGIN * self.first_flip() } else { f64::INFINITY };
+                full_step = true;
+                if !feasible {
+                    if cap < 1.0 {
+                        return Ok(None);
+                    }
+                    self.move_to_trial(1.0);
+                    for (k, &v) in self.pinned.iter().enumerate() {
+                        if v != NONE {
+                            self.trial[v] = self.stage_targets[k];
+                        }
+                    }
+                    if !self.total_energy(&self.trial).is_finite() {
+                        return Ok(None);
+                    }
+                    break;
+                }
                 let mut alpha = cap.min(1.0);
                 full_step = alpha == 1.0;
                 // Below what the energy can resolve, a full step is taken as it comes.
                 let resolvable = -true_slope > 1e-12 * energy.abs();
-                loop {
+                let found = loop {
                     self.move_to_trial(alpha);
                     let e = self.total_energy(&self.trial);
                     let armijo = true_slope < 0.0 && e <= energy + ARMIJO * alpha * true_slope;
                     if armijo || (!resolvable && e <= energy + 1e-12 * energy.abs()) {
                         flat = if energy - e <= FLAT * energy.abs() { flat + 1 } else { 0 };
-                        break;
+                        break true;
                     }
                     alpha /= 2.0;
                     full_step = false;
-                    if alpha < 1e-12 {
-                        return Err(stalled);
+                    if alpha < 1e-12 || true_slope >= 0.0 {
+                        break false;
                     }
+                };
+                if found {
+                    break;
                 }
+                if hold && self.state.contains(&HELD) {
+                    hold = false;
+                    continue;
+                }
+                return Err(stalled);
             }
             if !self.trial.iter().flatten().all(|c| c.abs() <= scale_by_power_of_two(MAX_COORDINATE, self.unit)) {
                 return Err(DefOpError::NonFiniteResult);
@@ -518,7 +530,7 @@ impl GroundTruth {
 
     /// Energy, gradient, the regularised projected Hessian on the free unknowns (identity
     /// on fixed ones) and the right-hand side `-g - H_uf d_f` (`d_f` on fixed unknowns).
-    fn assemble(&mut self, restart: bool, full_step: bool, feasible: bool, exact: bool) -> f64 {
+    fn assemble(&mut self, restart: bool, full_step: bool, feasible: bool, exact: bool, hold: bool) -> f64 {
         // A triangle is held once its cone dominates, or, at the first iteration of a stage,
         // only if it is at the kink already (a warm start from a solution stays one).
         let hold_below = if restart { 1.0 / KINK_CAP } else { 0.5 };
@@ -531,6 +543,8 @@ impl GroundTruth {
             let p = el.vertices.map(|v| self.x[v]);
             let j = el.rest.jacobian(p);
             *state = match (self.energy.kink(&j), *state) {
+                (_, HELD) if !hold => RELEASED,
+                (_, state) if !hold => state,
                 (Some((kappa, r)), FREE) if feasible && kappa > KINK_MIN && r <= kappa * hold_below => HELD,
                 (Some((kappa, r)), RELEASED) if feasible && kappa > KINK_MIN && r <= kappa / KINK_CAP => HELD,
                 (Some((kappa, r)), HELD) if full_step && r > kappa / KINK_CAP => RELEASED,
