@@ -484,7 +484,7 @@ impl GroundTruth {
                     }
                     alpha /= 2.0;
                     full_step = false;
-                    if alpha < 1e-12 || true_slope >= 0.0 {
+                    if alpha < 1e-12 {
                         break false;
                     }
                 };
