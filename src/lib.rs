@@ -19,10 +19,11 @@
 //! Module map (see ARCHITECTURE.md): [`geometry`] (planar helpers), [`outline`] (input
 //! shapes and their validation), [`triangulate`](mod@triangulate) (the only user of spade),
 //! [`mesh`] (the validated mesh shared by every solver), [`shapes`] (built-in shapes),
-//! [`sparse`] (our sparse Cholesky), [`random`] (a seeded generator), [`deform`] (AKAP
-//! and ARAP), [`session`] (recorded interaction sessions and their replay), [`import`]
-//! (SVG documents, images and mesh files in), and `wasm` (the JavaScript bindings,
-//! compiled for wasm32 only).
+//! [`sparse`] (our sparse Cholesky and eigensolver), [`random`] (a seeded generator),
+//! [`deform`] (AKAP and ARAP), [`defop`] (the deformation operators of the DefOp paper),
+//! [`session`] (recorded interaction sessions and their replay), [`import`] (SVG
+//! documents, images and mesh files in), and `wasm` (the JavaScript bindings, compiled for
+//! wasm32 only).
 
 pub mod defop;
 pub mod deform;

@@ -3,6 +3,7 @@
 mod arap;
 mod common;
 mod defop_fit;
+mod defop_ground_truth;
 mod deformer;
 mod errors;
 mod gallery;

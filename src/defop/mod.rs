@@ -1,24 +1,41 @@
-//! Deformation operators (DefOp): closed-form deformations `D(x, Q) = Σ_ij C_ij φ_i(x) ψ_j(Q)`
-//! trained on sampled energy minimisers (paper eq. 3; see `../shared/papers/defop-notes.md`).
+//! Deformation operators (DefOp, "Approximating deformation operators"): closed-form
+//! deformations `D(x, Q) = Σ_ij C_ij φ_i(x) ψ_j(Q)` (paper eq. 3) trained on ground-truth
+//! deformations (see `../shared/papers/defop-notes.md`). One file each:
 //!
-//! [`sampling`] draws the training targets Q, [`basis`] holds the handle bases Ψ (linear,
-//! quadratic, cubic, thin-plate spline), [`spatial`] the spatial basis Φ (hat functions or a
-//! reduced M-orthonormal basis) with the mass matrices and the linearly precise Laplacian,
-//! [`reduced`] the reduced basis of Fig. 2 (the bilaplacian's lowest eigenfunctions),
-//! [`fit`](mod@fit) the structured least-squares fit of eq. (8) and [`operator`] the trained
-//! operator and its allocation-free evaluation.
+//! - [`energy`]: the ground-truth energy densities ARAP (eq. 10) and S-ARAP (eq. 11), their
+//!   signed SVD, gradients and projected Hessians;
+//! - `error`: [`DefOpError`], the ground truth's errors;
+//! - [`ground_truth`]: the variational problem (eq. 6), minimised with hard handle
+//!   constraints by Newton's method ([`GroundTruth`]);
+//! - `linear`: small dense helpers of the solver;
+//! - `problem`: the solver's options, handles, starts and reports;
+//! - [`sampling`]: the training targets Q (discs, Voronoi cells, both);
+//! - [`basis`]: the handle bases Ψ (linear, quadratic, cubic, thin-plate spline);
+//! - [`spatial`]: the spatial basis Φ (hat functions or a reduced M-orthonormal basis), the
+//!   mass matrices and the linearly precise Laplacian;
+//! - [`reduced`]: the reduced basis of Fig. 2 (the bilaplacian's lowest eigenfunctions);
+//! - [`fit`](mod@fit): the structured least-squares fit of eq. (8), with `fit_error`'s
+//!   [`FitError`];
+//! - [`operator`]: the trained operator and its allocation-free evaluation.
 
 pub mod basis;
+pub mod energy;
+mod error;
 pub mod fit;
 pub mod fit_error;
+pub mod ground_truth;
+mod linear;
 pub mod operator;
+mod problem;
 pub mod reduced;
 pub mod sampling;
 pub mod spatial;
 
 pub use basis::{BasisKind, HandleBasis};
+pub use energy::{Energy, RestTriangle, SignedSvd};
 pub use fit::{fit, FitOptions, Sample};
 pub use fit_error::FitError;
+pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, SolveReport, Start};
 pub use operator::Operator;
 pub use reduced::reduced_basis;
 pub use spatial::{MeshPoint, SpatialBasis};

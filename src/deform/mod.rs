@@ -24,11 +24,11 @@
 pub mod akap;
 pub mod arap;
 mod error;
-mod handles;
+pub(crate) mod handles;
 pub mod method;
 pub mod metrics;
 pub mod options;
-mod pattern;
+pub(crate) mod pattern;
 pub mod settings;
 
 pub use akap::Deformer;
