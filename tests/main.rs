@@ -4,6 +4,7 @@ mod arap;
 mod common;
 mod defop_fit;
 mod defop_ground_truth;
+mod defop_train;
 mod deformer;
 mod errors;
 mod gallery;

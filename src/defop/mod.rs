@@ -16,7 +16,9 @@
 //! - [`reduced`]: the reduced basis of Fig. 2 (the bilaplacian's lowest eigenfunctions);
 //! - [`fit`](mod@fit): the structured least-squares fit of eq. (8), with `fit_error`'s
 //!   [`FitError`];
-//! - [`operator`]: the trained operator and its allocation-free evaluation.
+//! - [`operator`]: the trained operator and its allocation-free evaluation;
+//! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
+//!   refits), resumable in time slices or spread over workers as jobs.
 
 pub mod basis;
 pub mod energy;
@@ -30,6 +32,7 @@ mod problem;
 pub mod reduced;
 pub mod sampling;
 pub mod spatial;
+pub mod train;
 
 pub use basis::{BasisKind, HandleBasis};
 pub use energy::{Energy, RestTriangle, SignedSvd};
@@ -39,3 +42,4 @@ pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, Sol
 pub use operator::Operator;
 pub use reduced::reduced_basis;
 pub use spatial::{MeshPoint, SpatialBasis};
+pub use train::{Job, Progress, TrainError, TrainOptions, TrainStats, Trainer};

@@ -73,6 +73,7 @@ pub struct Sampler {
     /// cumulative areas (for [`Sampling::Voronoi`] and [`Sampling::Mixed`]).
     cells: Vec<Fan>,
     rng: Rng,
+    seed: u64,
 }
 
 impl Sampler {
@@ -110,7 +111,7 @@ impl Sampler {
             let hi = rest.iter().fold(hi, |h, p| [h[0].max(p[0]), h[1].max(p[1])]);
             (0..rest.len()).map(|i| Fan::of(&voronoi_cell(rest, i, lo, hi))).collect()
         };
-        Ok(Self { rest: rest.to_vec(), radius, sampling, cells, rng: Rng::new(seed) })
+        Ok(Self { rest: rest.to_vec(), radius, sampling, cells, rng: Rng::new(seed), seed })
     }
 
     /// The number of handles.
@@ -120,18 +121,33 @@ impl Sampler {
 
     /// The next sample: two coordinates per handle into `out` (`2 n` numbers).
     pub fn next_into(&mut self, out: &mut [f64]) {
+        let mut rng = self.rng.clone();
+        self.draw(&mut rng, out);
+        self.rng = rng;
+    }
+
+    /// The sample named by `key`, whatever was drawn before: its own stream, seeded by the
+    /// sampler's seed and the key, so that sample k of a training (key k, or a redraw's
+    /// key) is the same whoever draws it and in whatever order.
+    pub fn keyed_into(&self, key: u64, out: &mut [f64]) {
+        let mut mix = Rng::new(self.seed ^ key.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let mut rng = Rng::new(mix.next_u64());
+        self.draw(&mut rng, out);
+    }
+
+    fn draw(&self, rng: &mut Rng, out: &mut [f64]) {
         assert_eq!(out.len(), 2 * self.rest.len(), "two coordinates per handle");
         let voronoi = match self.sampling {
             Sampling::Disc => false,
             Sampling::Voronoi => true,
-            Sampling::Mixed => self.rng.uniform() < 0.5,
+            Sampling::Mixed => rng.uniform() < 0.5,
         };
         for (l, p) in self.rest.iter().enumerate() {
             let q = if voronoi {
-                self.cells[l].sample(&mut self.rng)
+                self.cells[l].sample(rng)
             } else {
-                let r = self.radius * self.rng.uniform().sqrt();
-                let angle = std::f64::consts::TAU * self.rng.uniform();
+                let r = self.radius * rng.uniform().sqrt();
+                let angle = std::f64::consts::TAU * rng.uniform();
                 [p[0] + r * libm::cos(angle), p[1] + r * libm::sin(angle)]
             };
             out[2 * l] = q[0];
@@ -242,6 +258,22 @@ mod tests {
         assert_eq!(again, draws, "the same seed gives the same samples");
         let other = Sampler::new(&REST, BOX, 0.2, Sampling::Disc, 43).unwrap().take(1);
         assert_ne!(other[..], draws[..6]);
+        // Keyed samples do not depend on what was drawn before, nor on the order.
+        let (mut a, mut b, mut c) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+        s.keyed_into(5, &mut a);
+        let fresh = Sampler::new(&REST, BOX, 0.2, Sampling::Disc, 42).unwrap();
+        fresh.keyed_into(4, &mut c);
+        fresh.keyed_into(5, &mut b);
+        assert_eq!(a, b);
+        assert_ne!(a, c);
+        // And they fill the discs uniformly too.
+        let inner = (0..20_000u64)
+            .filter(|&k| {
+                fresh.keyed_into(k, &mut a);
+                (a[2] - REST[1][0]).hypot(a[3] - REST[1][1]) < 0.1
+            })
+            .count();
+        assert!((inner as f64 / 20_000.0 - 0.25).abs() < 0.015, "{inner}");
     }
 
     #[test]
