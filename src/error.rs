@@ -4,6 +4,7 @@
 
 use std::fmt;
 
+use crate::defop::TrainError;
 use crate::deform::DeformError;
 use crate::import::ImportError;
 use crate::mesh::MeshError;
@@ -32,6 +33,8 @@ pub enum Error {
     Deform(DeformError),
     /// A sparse factorisation failed (used directly, not through a deformer).
     Factor(FactorError),
+    /// A deformation operator could not be trained, fitted or solved for.
+    DefOp(TrainError),
 }
 
 impl fmt::Display for Error {
@@ -43,6 +46,7 @@ impl fmt::Display for Error {
             Self::Import(e) => e.fmt(f),
             Self::Deform(e) => e.fmt(f),
             Self::Factor(e) => e.fmt(f),
+            Self::DefOp(e) => e.fmt(f),
         }
     }
 }
@@ -56,6 +60,7 @@ impl std::error::Error for Error {
             Self::Import(e) => Some(e),
             Self::Deform(e) => Some(e),
             Self::Factor(e) => Some(e),
+            Self::DefOp(e) => Some(e),
         }
     }
 }
@@ -84,6 +89,12 @@ pub(crate) fn one_of(words: &[&str]) -> String {
         Some((last, [])) => last.clone(),
         Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
         None => "nothing".into(),
+    }
+}
+
+impl From<TrainError> for Error {
+    fn from(e: TrainError) -> Self {
+        Self::DefOp(e)
     }
 }
 

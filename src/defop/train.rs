@@ -64,6 +64,10 @@ impl Default for TrainOptions {
 /// The most samples a training may ask for (a TPS operator holds one function per sample).
 pub const MAX_SAMPLES: usize = 100_000;
 
+/// The most memory a training may need for its samples' ground truths and its operator's
+/// coefficients (1 GB; WebAssembly has 4 GB at most).
+pub const MAX_TRAINING_BYTES: usize = 1_000_000_000;
+
 /// The most times one sample is drawn again when its targets are unreachable.
 pub const MAX_REDRAWS: u32 = 20;
 
@@ -91,6 +95,11 @@ pub enum TrainError {
         /// Units in all.
         total: usize,
     },
+    /// The training would need more memory than [`MAX_TRAINING_BYTES`].
+    TooLarge {
+        /// Bytes needed (the samples' ground truths and the operator's coefficients).
+        bytes: f64,
+    },
     /// A result for a job that was not handed out, or was already submitted, or of the
     /// wrong length.
     UnknownJob {
@@ -106,6 +115,13 @@ impl std::fmt::Display for TrainError {
             Self::GroundTruth(e) => write!(f, "ground truth: {e}"),
             Self::Fit(e) => write!(f, "fit: {e}"),
             Self::Sampling(e) => write!(f, "sampling: {e}"),
+            Self::TooLarge { bytes } => write!(
+                f,
+                "training would need {:.0} MB (samples' ground truths and coefficients), more than the {} MB allowed; \
+                 use fewer samples or a reduced spatial basis",
+                bytes / 1e6,
+                MAX_TRAINING_BYTES / 1_000_000
+            ),
             Self::NotDone { done, total } => write!(f, "training is not done: {done} of {total}"),
             Self::UnknownJob { index } => {
                 write!(f, "no pending job {index} takes this result (not handed out, already in, or the wrong size)")
@@ -226,6 +242,13 @@ impl Trainer {
         let (lo, hi) = bounding_box(mesh.positions().iter().copied()).expect("a mesh has vertices");
         let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
         let radius = options.radius.unwrap_or(DEFAULT_RADIUS_FRACTION * diagonal);
+        let n = handles.len();
+        let spatial_len = if options.spatial == 0 { mesh.vertex_count() } else { options.spatial };
+        let coefficients = spatial_len as f64 * options.basis.size(n, options.samples) as f64;
+        let bytes = 16.0 * (coefficients + (options.samples * mesh.vertex_count()) as f64);
+        if bytes > MAX_TRAINING_BYTES as f64 {
+            return Err(TrainError::TooLarge { bytes });
+        }
         let solver = Self::make_solver(mesh, handles, &options)?;
         let rest = solver.rest_handle_positions();
         let sampler =

@@ -5,11 +5,13 @@
 use std::fmt;
 
 use super::Error;
+use crate::defop::{DefOpError, FitError, TrainError};
 use crate::deform::DeformError;
 use crate::import::ImportError;
 use crate::mesh::MeshError;
 use crate::outline::OutlineError;
 use crate::session::SessionError;
+use crate::sparse::eigen::EigenError;
 use crate::sparse::FactorError;
 use crate::triangulate::TriangulationError;
 
@@ -42,6 +44,9 @@ pub enum ErrorCode {
     /// A result would not be finite or would lie beyond ±1e300: a velocity too large for
     /// the mesh, a point mapped far outside, a texture coordinate of a huge position.
     Overflow,
+    /// An iterative solve did not converge within its iterations (a DefOp ground truth, the
+    /// eigenproblem of a reduced basis).
+    NoConvergence,
     /// Memory ran short (a solver's factor).
     OutOfMemory,
     /// A bug in akap (please report it).
@@ -50,7 +55,7 @@ pub enum ErrorCode {
 
 impl ErrorCode {
     /// Every code, in the order of the README's table.
-    pub const ALL: [ErrorCode; 10] = [
+    pub const ALL: [ErrorCode; 11] = [
         Self::InvalidArgument,
         Self::InvalidOption,
         Self::InvalidOutline,
@@ -59,6 +64,7 @@ impl ErrorCode {
         Self::Import,
         Self::NotPositiveDefinite,
         Self::Overflow,
+        Self::NoConvergence,
         Self::OutOfMemory,
         Self::Internal,
     ];
@@ -74,6 +80,7 @@ impl ErrorCode {
             Self::Import => "import",
             Self::NotPositiveDefinite => "not-positive-definite",
             Self::Overflow => "overflow",
+            Self::NoConvergence => "no-convergence",
             Self::OutOfMemory => "out-of-memory",
             Self::Internal => "internal",
         }
@@ -96,6 +103,57 @@ impl Error {
             Self::Import(e) => e.code(),
             Self::Deform(e) => e.code(),
             Self::Factor(e) => e.code(),
+            Self::DefOp(e) => e.code(),
+        }
+    }
+}
+
+impl TrainError {
+    /// The kind of error: that of the ground truth's or the fit's error it holds,
+    /// [`ErrorCode::InvalidOption`] for options, otherwise [`ErrorCode::InvalidArgument`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
+            Self::TooLarge { .. } => ErrorCode::Limit,
+            Self::GroundTruth(e) => e.code(),
+            Self::Fit(e) => e.code(),
+            _ => ErrorCode::InvalidArgument,
+        }
+    }
+}
+
+impl DefOpError {
+    /// The kind of error: [`ErrorCode::NoConvergence`] when Newton's method ran out of
+    /// iterations, [`ErrorCode::InvalidMesh`] for a mesh in pieces, the handle check's or
+    /// the factorisation's own, [`ErrorCode::Overflow`] for a result beyond the
+    /// coordinates' range, [`ErrorCode::InvalidOption`] for options, otherwise
+    /// [`ErrorCode::InvalidArgument`] (handles, targets, and targets no flip-free pose
+    /// reaches).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
+            Self::Disconnected { .. } => ErrorCode::InvalidMesh,
+            Self::InvalidHandle(e) => e.code(),
+            Self::NoConvergence { .. } => ErrorCode::NoConvergence,
+            Self::Factor(e) => e.code(),
+            Self::NonFiniteResult => ErrorCode::Overflow,
+            _ => ErrorCode::InvalidArgument,
+        }
+    }
+}
+
+impl FitError {
+    /// The kind of error: [`ErrorCode::InvalidOption`] for options and too few samples for
+    /// the basis, the factorisation's own, [`ErrorCode::NoConvergence`] for a reduced
+    /// basis's eigenproblem that did not converge, otherwise
+    /// [`ErrorCode::InvalidArgument`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::InvalidOption { .. } | Self::TooFewSamples { .. } => ErrorCode::InvalidOption,
+            Self::Factor(e) => e.code(),
+            Self::Eigen(EigenError::NotConverged { .. }) => ErrorCode::NoConvergence,
+            Self::Eigen(EigenError::Factor(e)) => e.code(),
+            _ => ErrorCode::InvalidArgument,
         }
     }
 }

@@ -250,7 +250,7 @@ thread_local! {
 }
 
 /// `performance.now()` in milliseconds, or 0 where there is no `performance`.
-fn performance_now() -> f64 {
+pub(super) fn performance_now() -> f64 {
     PERFORMANCE
         .with(|p| p.as_ref().and_then(|(this, now)| now.call0(this).ok()).and_then(|v| v.as_f64()).unwrap_or(0.0))
 }

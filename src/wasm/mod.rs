@@ -11,8 +11,10 @@
 //!
 //! `mesh`: meshes, triangulation, built-in shapes; `deformer`: the deformers and their
 //! options; `import`: shapes from SVG, images and mesh files, and `PointMapper`; `session`:
-//! recorded sessions read, checked and written by `crate::session`.
+//! recorded sessions read, checked and written by `crate::session`; `defop`: training and
+//! evaluating deformation operators (`crate::defop`).
 
+mod defop;
 mod deformer;
 mod error;
 mod import;
@@ -20,6 +22,7 @@ mod mesh;
 mod read;
 mod session;
 
+pub use defop::{ground_truth, JsDefOp, JsDefOpTrainer};
 pub use deformer::{deformer_orders, JsDeformer};
 pub use error::BindingError;
 pub use import::{

@@ -37,6 +37,7 @@ export const ERROR_CODES = [
   "import",
   "not-positive-definite",
   "overflow",
+  "no-convergence",
   "out-of-memory",
   "internal",
 ] as const;

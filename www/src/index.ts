@@ -3,6 +3,8 @@
  *
  * - The core, in a page or in Node: {@link init}, {@link triangulate}, {@link meshFromArrays},
  *   the built-in shapes and the {@link Deformer}.
+ * - Deformation operators: {@link DefOpTrainer} trains a {@link DefOp}, which poses a mesh in
+ *   closed form; {@link groundTruth} is the deformation it approximates.
  * - The posing widget for pages: {@link mount} it into an element, or register the
  *   `<akap-deformer>` custom element with {@link defineElement}.
  *
@@ -19,6 +21,7 @@
  * @packageDocumentation
  */
 export * from "./core.js";
+export * from "./defop.js";
 export {
   METHODS,
   Widget,

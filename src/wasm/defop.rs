@@ -1,0 +1,246 @@
+//! Deformation operators (DefOp) for JavaScript: `DefOpTrainer` trains one in time slices
+//! (`advance(budgetMs)`), `DefOp` evaluates it, `groundTruth` solves the variational
+//! deformation it approximates. Everything goes through `crate::defop`; options are read by
+//! the one options reader.
+
+use wasm_bindgen::prelude::*;
+
+use super::error::BindingError;
+use super::mesh::read_mesh;
+use super::read::{self, Options};
+use super::{limits, object, pairs};
+use crate::defop::sampling::Sampling;
+use crate::defop::{
+    BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator, Progress, Start, TrainError,
+    TrainOptions, Trainer,
+};
+use crate::mesh::Mesh;
+
+/// The trainer's option names.
+const TRAINER_OPTIONS: [&str; 7] = ["energy", "basis", "samples", "radius", "sampling", "spatial", "seed"];
+const ENERGIES: [(&str, Energy); 2] = [("sarap", Energy::SArap), ("arap", Energy::Arap)];
+const BASES: [(&str, BasisKind); 4] = [
+    ("linear", BasisKind::Linear),
+    ("quadratic", BasisKind::Quadratic),
+    ("cubic", BasisKind::Cubic),
+    ("tps", BasisKind::Tps),
+];
+const SAMPLINGS: [(&str, Sampling); 3] =
+    [("disc", Sampling::Disc), ("voronoi", Sampling::Voronoi), ("mixed", Sampling::Mixed)];
+
+/// Reads `{ energy?, basis?, samples?, radius?, sampling?, spatial?, seed? }`.
+fn train_options(value: &JsValue) -> Result<TrainOptions, BindingError> {
+    let given = Options::read(value, "DefOp training", &TRAINER_OPTIONS)?;
+    let mut options = TrainOptions::default();
+    options.energy = given.choice("energy", &ENERGIES)?.unwrap_or(options.energy);
+    options.basis = given.choice("basis", &BASES)?.unwrap_or(options.basis);
+    options.sampling = given.choice("sampling", &SAMPLINGS)?.unwrap_or(options.sampling);
+    options.samples = given.count("samples", crate::defop::train::MAX_SAMPLES)?.unwrap_or(options.samples);
+    options.spatial = given.count("spatial", limits().max_vertices)?.unwrap_or(options.spatial);
+    options.seed = given.count("seed", u32::MAX as usize)?.map_or(options.seed, |s| s as u64);
+    if let Some(radius) = given.number("radius")? {
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(BindingError::option(format!("option radius is {radius}, expected a positive length")));
+        }
+        options.radius = Some(radius);
+    }
+    Ok(options)
+}
+
+/// Handles at vertices (a `Uint32Array`), as mesh points.
+fn vertex_handles(value: &JsValue) -> Result<Vec<MeshPoint>, BindingError> {
+    Ok(read::uint32s(value, "handles", limits().max_vertices)?.into_iter().map(MeshPoint::Vertex).collect())
+}
+
+/// Handles in triangles: indices (`Uint32Array`) and 3 barycentric coordinates each.
+fn point_handles(triangles: &JsValue, barycentric: &JsValue) -> Result<Vec<MeshPoint>, BindingError> {
+    let most = limits().max_vertices;
+    let triangles = read::uint32s(triangles, "triangles", most)?;
+    let weights = read::float64s(barycentric, "barycentric", 3 * most)?;
+    let (weights, rest) = weights.as_chunks::<3>();
+    if !rest.is_empty() || weights.len() != triangles.len() {
+        return Err(BindingError::argument(format!(
+            "barycentric has {} numbers; {} triangles need 3 each",
+            3 * weights.len() + rest.len(),
+            triangles.len()
+        )));
+    }
+    Ok(triangles
+        .iter()
+        .zip(weights)
+        .map(|(&triangle, &barycentric)| MeshPoint::Inside { triangle, barycentric })
+        .collect())
+}
+
+/// `{ done, total, stage }`.
+fn progress_object(p: Progress) -> Result<JsValue, BindingError> {
+    Ok(object(&[
+        ("done", (p.done as f64).into()),
+        ("total", (p.total as f64).into()),
+        ("stage", JsValue::from_str(p.stage)),
+    ])?
+    .into())
+}
+
+/// The milliseconds of `performance.now()` (0 where there is none).
+fn now() -> f64 {
+    super::deformer::performance_now()
+}
+
+/// A deformation operator being trained.
+#[wasm_bindgen(js_name = DefOpTrainer)]
+pub struct JsDefOpTrainer {
+    mesh: Mesh,
+    options: TrainOptions,
+    trainer: Option<Trainer>,
+}
+
+#[wasm_bindgen(js_class = DefOpTrainer)]
+impl JsDefOpTrainer {
+    /// A training for the mesh (`Float64Array` positions, `Uint32Array` triangles) with one
+    /// handle on each vertex of `handles` (`Uint32Array`). `options`: `{ energy?: "sarap" |
+    /// "arap", basis?: "linear" | "quadratic" | "cubic" | "tps", samples?, radius?, sampling?:
+    /// "disc" | "voronoi" | "mixed", spatial? (0: hat functions, else the size of the reduced
+    /// basis), seed? }`. Checks everything and computes the spatial basis.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        positions: JsValue,
+        triangles: JsValue,
+        handles: JsValue,
+        options: JsValue,
+    ) -> Result<JsDefOpTrainer, BindingError> {
+        let options = train_options(&options)?;
+        let mesh = read_mesh(&positions, &triangles)?;
+        let handles = vertex_handles(&handles)?;
+        let trainer = Trainer::new(&mesh, &handles, options.clone())?;
+        Ok(Self { mesh, options, trainer: Some(trainer) })
+    }
+
+    /// Handles at points in triangles instead (`Uint32Array` triangles, `Float64Array`
+    /// barycentric coordinates, 3 each): training starts again with them.
+    #[wasm_bindgen(js_name = setHandlePoints)]
+    pub fn set_handle_points(&mut self, triangles: JsValue, barycentric: JsValue) -> Result<(), BindingError> {
+        let handles = point_handles(&triangles, &barycentric)?;
+        self.trainer = Some(Trainer::new(&self.mesh, &handles, self.options.clone())?);
+        Ok(())
+    }
+
+    /// Trains for about `budgetMs` milliseconds (a sample's solve, once begun, is finished)
+    /// and returns `{ done, total, stage }`.
+    pub fn advance(&mut self, budget_ms: JsValue) -> Result<JsValue, BindingError> {
+        let budget = read::number(&budget_ms, "budgetMs")?;
+        let trainer = self.trainer_mut()?;
+        progress_object(trainer.advance(budget, now)?)
+    }
+
+    /// `{ done, total, stage }` without training.
+    pub fn progress(&self) -> Result<JsValue, BindingError> {
+        progress_object(self.trainer_ref()?.progress())
+    }
+
+    /// Solver iterations so far: `{ cold, coldIterations, warm, warmIterations, fallbacks,
+    /// neighbourStarts, redraws }`.
+    pub fn stats(&self) -> Result<JsValue, BindingError> {
+        let s = self.trainer_ref()?.stats();
+        Ok(object(&[
+            ("cold", (s.cold.0 as f64).into()),
+            ("coldIterations", (s.cold.1 as f64).into()),
+            ("warm", (s.warm.0 as f64).into()),
+            ("warmIterations", (s.warm.1 as f64).into()),
+            ("fallbacks", (s.fallbacks as f64).into()),
+            ("neighbourStarts", (s.neighbour_starts as f64).into()),
+            ("redraws", (s.redraws as f64).into()),
+        ])?
+        .into())
+    }
+
+    /// The trained operator, once `done === total`; the trainer cannot be used after.
+    pub fn finish(&mut self) -> Result<JsDefOp, BindingError> {
+        let trainer = self.trainer.take().ok_or_else(finished)?;
+        let progress = trainer.progress();
+        if progress.done < progress.total {
+            self.trainer = Some(trainer);
+            return Err(TrainError::NotDone { done: progress.done, total: progress.total }.into());
+        }
+        Ok(JsDefOp { operator: trainer.finish()? })
+    }
+
+    fn trainer_ref(&self) -> Result<&Trainer, BindingError> {
+        self.trainer.as_ref().ok_or_else(finished)
+    }
+
+    fn trainer_mut(&mut self) -> Result<&mut Trainer, BindingError> {
+        self.trainer.as_mut().ok_or_else(finished)
+    }
+}
+
+fn finished() -> BindingError {
+    BindingError::argument("this DefOpTrainer has finished; its operator was returned by finish()")
+}
+
+/// A trained deformation operator.
+#[wasm_bindgen(js_name = DefOp)]
+pub struct JsDefOp {
+    operator: Operator,
+}
+
+#[wasm_bindgen(js_class = DefOp)]
+impl JsDefOp {
+    /// The vertex positions (`Float64Array`, 2 per vertex) for handle targets (`Float64Array`,
+    /// 2 per handle).
+    pub fn evaluate(&mut self, targets: JsValue) -> Result<Vec<f64>, BindingError> {
+        let targets = read::float64s(&targets, "targets", 2 * limits().max_vertices)?;
+        Ok(self.operator.evaluate(&targets).map_err(TrainError::from)?)
+    }
+
+    /// [`Self::evaluate`] into `out` (`Float64Array` of 2 numbers per vertex).
+    #[wasm_bindgen(js_name = evaluateInto)]
+    pub fn evaluate_into(&mut self, targets: JsValue, out: &js_sys::Float64Array) -> Result<(), BindingError> {
+        let positions = self.evaluate(targets)?;
+        if out.length() as usize != positions.len() {
+            return Err(BindingError::argument(format!(
+                "out has {} numbers; the mesh's {} vertices need {}",
+                out.length(),
+                positions.len() / 2,
+                positions.len()
+            )));
+        }
+        out.copy_from(&positions);
+        Ok(())
+    }
+
+    /// The number of handles.
+    #[wasm_bindgen(getter, js_name = handleCount)]
+    pub fn handle_count(&self) -> usize {
+        self.operator.handles().len()
+    }
+
+    /// The number of mesh vertices.
+    #[wasm_bindgen(getter, js_name = vertexCount)]
+    pub fn vertex_count(&self) -> usize {
+        self.operator.vertex_count()
+    }
+}
+
+/// The variational deformation a DefOp approximates: the mesh's pose of least ARAP or
+/// S-ARAP energy with a handle on each vertex of `handles` (`Uint32Array`) exactly at
+/// `targets` (`Float64Array`, 2 per handle), from the rest pose. `options`: `{ energy?:
+/// "sarap" | "arap" }`. Returns the positions (`Float64Array`, 2 per vertex).
+#[wasm_bindgen(js_name = groundTruth)]
+pub fn ground_truth(
+    positions: JsValue,
+    triangles: JsValue,
+    handles: JsValue,
+    targets: JsValue,
+    options: JsValue,
+) -> Result<Vec<f64>, BindingError> {
+    let given = Options::read(&options, "ground truth", &["energy"])?;
+    let energy = given.choice("energy", &ENERGIES)?.unwrap_or(Energy::SArap);
+    let mesh = read_mesh(&positions, &triangles)?;
+    let handles = read::uint32s(&handles, "handles", limits().max_vertices)?;
+    let targets = pairs(&read::float64s(&targets, "targets", 2 * limits().max_vertices)?, "targets")?;
+    let mut solver = GroundTruth::new(&mesh, Handles::Vertices(&handles), energy, GroundTruthOptions::default())
+        .map_err(TrainError::from)?;
+    let report = solver.solve(&targets, Start::Rest).map_err(TrainError::from)?;
+    Ok(report.positions.iter().flatten().copied().collect())
+}

@@ -1,0 +1,88 @@
+/**
+ * Deformation operators through the real wasm package in Node: a trained operator is the
+ * identity at the rest targets and puts its handles exactly on any targets; the ground
+ * truth of a rigid motion of the handles is that rigid motion; bad input throws with a code.
+ */
+import { beforeAll, describe, expect, it } from "vitest";
+import { DefOp, DefOpTrainer, defaultShape, groundTruth, init, triangulate } from "../../www/src/index.js";
+
+beforeAll(async () => {
+  await init();
+});
+
+const mesh = () => triangulate(defaultShape(), { targetEdgeLength: 0.12 });
+
+/** Positions of the handle vertices, flat. */
+function at(positions: Float64Array, handles: number[]): number[] {
+  return handles.flatMap((v) => [positions[2 * v]!, positions[2 * v + 1]!]);
+}
+
+describe("DefOp", () => {
+  it("trains in time slices to an operator that keeps the rest pose and hits its handles", () => {
+    const m = mesh();
+    const handles = [0, Math.floor(m.vertexCount / 2), m.vertexCount - 1];
+    const trainer = new DefOpTrainer(m.positions, m.triangles, handles, { energy: "arap", samples: 10, seed: 3 });
+    expect(trainer.progress()).toEqual({ done: 0, total: 11, stage: "samples" });
+    expect(() => trainer.finish()).toThrow(/not done: 0 of 11/);
+    let slices = 0;
+    while (trainer.advance(5).stage !== "done") slices++;
+    expect(slices).toBeGreaterThan(0);
+    const stats = trainer.stats();
+    expect(stats.cold + stats.warm).toBe(10);
+    expect(stats.cold).toBe(7); // 2n + 1 from the rest pose, the rest warm
+    const op: DefOp = trainer.finish();
+    expect(() => trainer.progress()).toThrow(/freed or finished/);
+    expect([op.handleCount, op.vertexCount]).toEqual([3, m.vertexCount]);
+
+    const rest = at(m.positions, handles);
+    const identity = op.evaluate(rest);
+    identity.forEach((x, i) => expect(Math.abs(x - m.positions[i]!)).toBeLessThan(1e-9));
+    // Far outside the training discs, the handles still land on their targets.
+    const far = rest.map((x, i) => x + [0.5, -0.3, 0.2, 0.6, -0.4, 0.1][i]!);
+    const out = new Float64Array(2 * m.vertexCount);
+    op.evaluateInto(far, out);
+    at(out, handles).forEach((x, i) => expect(Math.abs(x - far[i]!)).toBeLessThan(1e-9));
+    expect(() => op.evaluateInto(far, new Float64Array(3))).toThrow(/out has 3 numbers/);
+    expect(() => op.evaluate([1, 2])).toThrow();
+    op.free();
+    expect(() => op.evaluate(far)).toThrow(/freed/);
+  });
+
+  it("solves the ground truth, which is the rigid motion for rigid targets", () => {
+    const m = mesh();
+    const handles = [3, m.vertexCount - 5];
+    const [c, s] = [Math.cos(0.4), Math.sin(0.4)];
+    const move = (x: number, y: number) => [c * x - s * y + 0.2, s * x + c * y - 0.1];
+    const targets = handles.flatMap((v) => move(m.positions[2 * v]!, m.positions[2 * v + 1]!));
+    for (const energy of ["arap", "sarap"] as const) {
+      const posed = groundTruth(m.positions, m.triangles, handles, targets, { energy });
+      for (let v = 0; v < m.vertexCount; v++) {
+        const [x, y] = move(m.positions[2 * v]!, m.positions[2 * v + 1]!);
+        expect(Math.abs(posed[2 * v]! - x!)).toBeLessThan(1e-8);
+        expect(Math.abs(posed[2 * v + 1]! - y!)).toBeLessThan(1e-8);
+      }
+    }
+  });
+
+  it("refuses bad input with codes", () => {
+    const m = mesh();
+    const code = (call: () => unknown) => {
+      try {
+        call();
+      } catch (error) {
+        return (error as { code?: string }).code;
+      }
+      return "no error";
+    };
+    expect(code(() => new DefOpTrainer(m.positions, m.triangles, [0, 1], { basis: "quartic" as "tps" }))).toBe(
+      "invalid-option",
+    );
+    expect(code(() => new DefOpTrainer(m.positions, m.triangles, [0, 1], { sampels: 5 } as object))).toBe(
+      "invalid-option",
+    );
+    expect(code(() => new DefOpTrainer(m.positions, m.triangles, [0, 0]))).toBe("invalid-argument");
+    expect(code(() => new DefOpTrainer(m.positions, m.triangles, [m.vertexCount]))).toBe("invalid-argument");
+    expect(code(() => new DefOpTrainer(m.positions, m.triangles, [0], { samples: 1e6 }))).toBe("invalid-option");
+    expect(code(() => groundTruth(m.positions, m.triangles, [0, 5], [0, 0, NaN, 1]))).toBe("invalid-argument");
+  });
+});

@@ -1,0 +1,187 @@
+/**
+ * Deformation operators (DefOp): a closed-form deformation trained once on sampled
+ * variational deformations (ARAP or the paper's symmetric S-ARAP), then evaluated per
+ * frame by a few matrix-vector products. Training runs in slices of a time budget, so a
+ * page stays responsive: call {@link DefOpTrainer.advance} from a timer or a worker until
+ * `done === total`, then {@link DefOpTrainer.finish}.
+ *
+ * @example
+ * ```ts
+ * import { init, defaultShape, triangulate, DefOpTrainer } from "akap";
+ * await init();
+ * const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.08 });
+ * const trainer = new DefOpTrainer(mesh.positions, mesh.triangles, [0, 42], { samples: 50 });
+ * while (trainer.advance(20).stage !== "done");
+ * const op = trainer.finish();
+ * const posed = op.evaluate([0, 0, 0.1, 0.3]); // two targets, x and y each
+ * ```
+ */
+import { toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
+import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
+
+/** Options of a {@link DefOpTrainer}. */
+export interface DefOpTrainerOptions {
+  /** The ground truth's energy: `"sarap"` (default, the paper's; never folds a triangle) or `"arap"`. */
+  energy?: "sarap" | "arap";
+  /** The handle basis: `"tps"` (default, one function per sample), `"linear"`, `"quadratic"` or `"cubic"`. */
+  basis?: "linear" | "quadratic" | "cubic" | "tps";
+  /** Samples beyond the rest pose, 1 to 100000 (default 200). */
+  samples?: number;
+  /** Radius of the sampling discs (default 0.15 of the shape's bounding-box diagonal). */
+  radius?: number;
+  /** Where targets are drawn: in discs around the handles (default), their Voronoi cells, or both. */
+  sampling?: "disc" | "voronoi" | "mixed";
+  /** 0 (default): the mesh's hat functions; else the size of the reduced spatial basis (at least 3). */
+  spatial?: number;
+  /** Seed of the samples, a whole number (default 1): the same seed gives the same operator. */
+  seed?: number;
+}
+
+/** How far training is: `done` of `total` units (one per sample, one for the final fit). */
+export interface DefOpProgress {
+  done: number;
+  total: number;
+  /** `"samples"`, `"fit"` (only the final fit left) or `"done"`. */
+  stage: "samples" | "fit" | "done";
+}
+
+/** Newton iterations of the training's ground-truth solves. */
+export interface DefOpStats {
+  /** Solves from the rest pose, and their iterations in all. */
+  cold: number;
+  coldIterations: number;
+  /** Solves from the operator's prediction (or the nearest solved sample), and their iterations. */
+  warm: number;
+  warmIterations: number;
+  /** Warm starts that fell back to the rest pose. */
+  fallbacks: number;
+  /** Warm starts from the nearest solved sample, the prediction having folded a triangle. */
+  neighbourStarts: number;
+  /** Samples drawn again because no flip-free pose reaches their targets. */
+  redraws: number;
+}
+
+/** The operator {@link DefOpTrainer.finish} hands to the {@link DefOp} it makes. */
+let adopting: rawTypes.DefOp | undefined;
+
+/** Trains a {@link DefOp} for a mesh and a set of handles. */
+export class DefOpTrainer {
+  #inner: rawTypes.DefOpTrainer | undefined;
+
+  /**
+   * @param positions xy-interleaved vertex positions
+   * @param triangles counter-clockwise index triples
+   * @param handles one handle on each of these vertices
+   */
+  constructor(positions: Coordinates, triangles: Indices, handles: Indices, options: DefOpTrainerOptions = {}) {
+    assertLoaded();
+    this.#inner = new raw.DefOpTrainer(
+      toFloat64(positions, "positions"),
+      toUint32(triangles, "triangles"),
+      toUint32(handles, "handles"),
+      options,
+    );
+  }
+
+  get #raw(): rawTypes.DefOpTrainer {
+    if (!this.#inner) throw new Error("this DefOpTrainer was freed or finished");
+    return this.#inner;
+  }
+
+  /** Handles at points in triangles (3 barycentric coordinates each) instead; training starts again. */
+  setHandlePoints(triangles: Indices, barycentric: Coordinates): void {
+    this.#raw.setHandlePoints(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
+  }
+
+  /** Trains for about `budgetMs` milliseconds (a sample, once begun, is finished). */
+  advance(budgetMs: number): DefOpProgress {
+    return this.#raw.advance(budgetMs) as DefOpProgress;
+  }
+
+  /** How far training is, without training. */
+  progress(): DefOpProgress {
+    return this.#raw.progress() as DefOpProgress;
+  }
+
+  /** Newton iterations so far, cold and warm. */
+  stats(): DefOpStats {
+    return this.#raw.stats() as DefOpStats;
+  }
+
+  /** The trained operator, once `done === total`; the trainer is freed. */
+  finish(): DefOp {
+    adopting = this.#raw.finish();
+    const op = new DefOp();
+    this.free();
+    return op;
+  }
+
+  /** Releases the WebAssembly memory. */
+  free(): void {
+    this.#inner?.free();
+    this.#inner = undefined;
+  }
+}
+
+/** A trained deformation operator: handle targets in, vertex positions out. */
+export class DefOp {
+  #inner: rawTypes.DefOp | undefined;
+
+  /** Made by {@link DefOpTrainer.finish}, not directly. */
+  constructor() {
+    if (!adopting) throw new Error("a DefOp is made by DefOpTrainer.finish()");
+    this.#inner = adopting;
+    adopting = undefined;
+  }
+
+  get #raw(): rawTypes.DefOp {
+    if (!this.#inner) throw new Error("this DefOp was freed");
+    return this.#inner;
+  }
+
+  /** The vertex positions (2 per vertex) for handle targets (2 per handle). */
+  evaluate(targets: Coordinates): Float64Array {
+    return this.#raw.evaluate(toFloat64(targets, "targets"));
+  }
+
+  /** {@link evaluate} into `out` (2 numbers per vertex), allocating nothing in JavaScript. */
+  evaluateInto(targets: Coordinates, out: Float64Array): void {
+    this.#raw.evaluateInto(toFloat64(targets, "targets"), out);
+  }
+
+  get handleCount(): number {
+    return this.#raw.handleCount;
+  }
+
+  get vertexCount(): number {
+    return this.#raw.vertexCount;
+  }
+
+  /** Releases the WebAssembly memory. */
+  free(): void {
+    this.#inner?.free();
+    this.#inner = undefined;
+  }
+}
+
+/**
+ * The deformation a DefOp approximates: the pose of least ARAP or S-ARAP energy (default)
+ * with a handle on each vertex of `handles` exactly at `targets` (2 per handle), solved
+ * from the rest pose by Newton's method. Returns the positions (2 per vertex).
+ */
+export function groundTruth(
+  positions: Coordinates,
+  triangles: Indices,
+  handles: Indices,
+  targets: Coordinates,
+  options: { energy?: "sarap" | "arap" } = {},
+): Float64Array {
+  assertLoaded();
+  return raw.groundTruth(
+    toFloat64(positions, "positions"),
+    toUint32(triangles, "triangles"),
+    toUint32(handles, "handles"),
+    toFloat64(targets, "targets"),
+    options,
+  );
+}
