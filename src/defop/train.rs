@@ -190,7 +190,7 @@ pub struct TrainStats {
     pub neighbour_starts: usize,
     /// Samples drawn again because no flip-free deformation reaches their targets (S-ARAP
     /// cannot turn a triangle over, and targets drawn independently per handle can ask
-    /// for it).
+    /// for it) or the solve did not converge.
     pub redraws: usize,
 }
 
@@ -370,14 +370,16 @@ impl Trainer {
     }
 
     /// Job `index` could not be solved (its targets are unreachable without a flip,
-    /// [`DefOpError::Unreachable`]): its sample is drawn again (from its own keyed stream,
+    /// [`DefOpError::Unreachable`], or Newton's method ran out of iterations,
+    /// [`DefOpError::NoConvergence`]): its sample is drawn again (from its own keyed stream,
     /// so the same whoever reports it) and the job waits to be handed out again. After
     /// [`MAX_REDRAWS`] draws of one sample, training fails with that error.
     pub fn reject(&mut self, index: usize, error: DefOpError) -> Result<(), TrainError> {
         if !self.out.get(index).copied().unwrap_or(false) {
             return Err(TrainError::UnknownJob { index });
         }
-        if !matches!(error, DefOpError::Unreachable { .. }) || self.redraws[index] >= MAX_REDRAWS {
+        let redrawable = matches!(error, DefOpError::Unreachable { .. } | DefOpError::NoConvergence { .. });
+        if !redrawable || self.redraws[index] >= MAX_REDRAWS {
             return Err(TrainError::GroundTruth(error));
         }
         self.out[index] = false;
