@@ -110,6 +110,27 @@ impl HandleBasis {
         Self::checked(BasisKind::Tps, rest, scale, scaled)
     }
 
+    /// A basis from its parts as [`HandleBasis::rest`], [`HandleBasis::scale`] and
+    /// [`HandleBasis::scaled_centres`] give them (an operator file), checked as the other
+    /// constructors check theirs.
+    pub(crate) fn from_parts(
+        kind: BasisKind,
+        rest: &[f64],
+        scale: f64,
+        scaled_centres: Vec<f64>,
+    ) -> Result<Self, FitError> {
+        check_finite("centres", &scaled_centres)?;
+        let tps = kind == BasisKind::Tps;
+        if tps == scaled_centres.is_empty() || !scaled_centres.len().is_multiple_of(rest.len().max(1)) {
+            return Err(FitError::InvalidOption {
+                name: "centres",
+                value: scaled_centres.len() as f64,
+                expected: "centres, 2n numbers each, for a TPS basis only",
+            });
+        }
+        Self::checked(kind, rest, scale, scaled_centres)
+    }
+
     fn checked(kind: BasisKind, rest: &[f64], scale: f64, centres: Vec<f64>) -> Result<Self, FitError> {
         if rest.is_empty() {
             return Err(FitError::NoHandles);

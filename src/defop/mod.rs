@@ -17,12 +17,14 @@
 //! - [`fit`](mod@fit): the structured least-squares fit of eq. (8), with `fit_error`'s
 //!   [`FitError`];
 //! - [`operator`]: the trained operator and its allocation-free evaluation;
+//! - [`file`]: operator files (the operator with its mesh, versioned, checksummed);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
 
 pub mod basis;
 pub mod energy;
 mod error;
+pub mod file;
 pub mod fit;
 pub mod fit_error;
 pub mod ground_truth;
@@ -36,6 +38,7 @@ pub mod train;
 
 pub use basis::{BasisKind, HandleBasis};
 pub use energy::{Energy, RestTriangle, SignedSvd};
+pub use file::{read_operator, write_operator, OperatorFileError};
 pub use fit::{fit, FitOptions, Sample};
 pub use fit_error::FitError;
 pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, SolveReport, Start};

@@ -69,6 +69,48 @@ impl Operator {
         }
     }
 
+    /// An operator from its parts as an operator file holds them, with every length checked
+    /// against the others (`coefficients`: row i of X^x then of X^y for each spatial
+    /// function; `reduction`: D by vertex, empty for the hat basis).
+    pub(crate) fn from_parts(
+        handles: Vec<MeshPoint>,
+        basis: HandleBasis,
+        solver: Solver,
+        spatial_len: usize,
+        vertex_count: usize,
+        coefficients: Vec<f64>,
+        reduction: Vec<f64>,
+    ) -> Result<Self, FitError> {
+        let expected = 2 * spatial_len * basis.len();
+        if coefficients.len() != expected {
+            return Err(FitError::Length { what: "coefficients", expected, found: coefficients.len() });
+        }
+        let hat = reduction.is_empty();
+        if (hat && spatial_len != vertex_count) || (!hat && reduction.len() != spatial_len * vertex_count) {
+            let expected = spatial_len * vertex_count;
+            return Err(FitError::Length { what: "reduced basis", expected, found: reduction.len() });
+        }
+        if 2 * handles.len() != basis.rest().len() {
+            let (expected, found) = (2 * handles.len(), basis.rest().len());
+            return Err(FitError::Length { what: "rest handles", expected, found });
+        }
+        check_finite("coefficients", &coefficients)?;
+        check_finite("reduced basis", &reduction)?;
+        let nodal = if hat { Vec::new() } else { vec![0.0; 2 * spatial_len] };
+        let psi = vec![0.0; basis.len()];
+        Ok(Self { handles, basis, solver, spatial_len, vertex_count, coefficients, reduction, psi, nodal })
+    }
+
+    /// The coefficients: row i of X^x then row i of X^y, for every spatial function i.
+    pub(crate) fn coefficients(&self) -> &[f64] {
+        &self.coefficients
+    }
+
+    /// D by vertex (`[v |Φ| + i] = D_iv`); empty for the hat basis.
+    pub(crate) fn reduction(&self) -> &[f64] {
+        &self.reduction
+    }
+
     /// The handles' rest positions, as given to the fit.
     pub fn handles(&self) -> &[MeshPoint] {
         &self.handles

@@ -88,6 +88,8 @@ pub enum TrainError {
     Fit(FitError),
     /// The sampler refused the handles.
     Sampling(SamplingError),
+    /// An operator file could not be read.
+    File(super::file::OperatorFileError),
     /// [`Trainer::finish`] before every job is done.
     NotDone {
         /// Units done.
@@ -115,6 +117,7 @@ impl std::fmt::Display for TrainError {
             Self::GroundTruth(e) => write!(f, "ground truth: {e}"),
             Self::Fit(e) => write!(f, "fit: {e}"),
             Self::Sampling(e) => write!(f, "sampling: {e}"),
+            Self::File(e) => e.fmt(f),
             Self::TooLarge { bytes } => write!(
                 f,
                 "training would need {:.0} MB (samples' ground truths and coefficients), more than the {} MB allowed; \
@@ -136,6 +139,7 @@ impl std::error::Error for TrainError {
             Self::GroundTruth(e) => Some(e),
             Self::Fit(e) => Some(e),
             Self::Sampling(e) => Some(e),
+            Self::File(e) => Some(e),
             _ => None,
         }
     }
@@ -144,6 +148,12 @@ impl std::error::Error for TrainError {
 impl From<DefOpError> for TrainError {
     fn from(e: DefOpError) -> Self {
         Self::GroundTruth(e)
+    }
+}
+
+impl From<super::file::OperatorFileError> for TrainError {
+    fn from(e: super::file::OperatorFileError) -> Self {
+        Self::File(e)
     }
 }
 

@@ -110,11 +110,13 @@ impl Error {
 
 impl TrainError {
     /// The kind of error: that of the ground truth's or the fit's error it holds,
-    /// [`ErrorCode::InvalidOption`] for options, otherwise [`ErrorCode::InvalidArgument`].
+    /// [`ErrorCode::InvalidOption`] for options, [`ErrorCode::Import`] for an operator file
+    /// that cannot be read, otherwise [`ErrorCode::InvalidArgument`].
     pub fn code(&self) -> ErrorCode {
         match self {
             Self::InvalidOption { .. } => ErrorCode::InvalidOption,
             Self::TooLarge { .. } => ErrorCode::Limit,
+            Self::File(_) => ErrorCode::Import,
             Self::GroundTruth(e) => e.code(),
             Self::Fit(e) => e.code(),
             _ => ErrorCode::InvalidArgument,

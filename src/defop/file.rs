@@ -1,0 +1,298 @@
+//! Operator files: a trained operator with its mesh, in a compact versioned binary, so that
+//! a rig trained once poses anywhere without training (the widget, other tools; the
+//! dependency-free TypeScript reader in `www/src/defop-file.ts` reads the same layout).
+//!
+//! All numbers little-endian; offsets in bytes.
+//!
+//! | offset | size | field |
+//! |---|---|---|
+//! | 0 | 8 | magic `AKAPDEFO` |
+//! | 8 | 4 | version, 1 |
+//! | 12 | 4 | N, vertices |
+//! | 16 | 4 | F, triangles |
+//! | 20 | 4 | n, handles |
+//! | 24 | 4 | m, TPS centres (0 for a polynomial basis) |
+//! | 28 | 4 | \|Φ\|, spatial functions (N for the hat functions) |
+//! | 32 | 1 | basis: 0 linear, 1 quadratic, 2 cubic, 3 TPS |
+//! | 33 | 1 | spatial: 0 hat functions, 1 reduced |
+//! | 34 | 1 | solver of the fit: 0 structured, 1 TPS interpolation |
+//! | 35 | 5 | zero |
+//! | 40 | 8 | scale r_s of the handle coordinates (f64) |
+//! | 48 | 16 N | vertex positions, x and y (f64) |
+//! | | 12 F | triangles, 3 vertex indices each (u32) |
+//! | | 32 n | handles: kind (u32: 0 vertex, 1 in a triangle), index (u32: vertex or triangle), 3 barycentric coordinates (f64; 1, 0, 0 for a vertex) |
+//! | | 16 n | the handles' rest positions, x and y (f64) |
+//! | | 16 n m | TPS centres in scaled coordinates (f64) |
+//! | | 16 \|Φ\| \|Ψ\| | coefficients: for each spatial function, its row of X^x then of X^y (f64) |
+//! | | 8 \|Φ\| N | reduced basis only: D by vertex, `[v |Φ| + i] = D_iv` (f64) |
+//! | end − 8 | 8 | FNV-1a 64 of every byte before it |
+//!
+//! Evaluation: u = (q − rest) / r_s (multiplied by 1/r_s); Ψ = 1, u, then the monomials
+//! u_a u_b (a ≤ b), u_a u_b u_c (a ≤ b ≤ c) in that nesting order, or for TPS `s log(s)
+//! / 2` (0 at 0) of the squared distances s from u to each centre; each spatial function's
+//! value is its row of X dotted with Ψ; a vertex's position is that value (hat functions)
+//! or D's column dotted with them (reduced).
+//!
+//! Reading checks everything before using it: the magic, the version, the counts against
+//! the limits and the length they imply, the checksum, every number finite, the mesh valid,
+//! the handles in range, and the operator's sizes consistent; a truncated or altered file
+//! is an error saying which.
+
+use super::basis::{BasisKind, HandleBasis};
+use super::fit_error::FitError;
+use super::operator::{Operator, Solver};
+use super::spatial::MeshPoint;
+use crate::mesh::{Mesh, DEFAULT_MAX_VERTICES};
+
+/// The first 8 bytes of an operator file.
+pub const MAGIC: [u8; 8] = *b"AKAPDEFO";
+/// The version this code writes and reads.
+pub const VERSION: u32 = 1;
+const HEADER: usize = 48;
+
+/// Why an operator file could not be read.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum OperatorFileError {
+    /// The bytes do not start with [`MAGIC`].
+    NotAnOperator,
+    /// A version this code does not read.
+    Version {
+        /// The version found.
+        found: u32,
+    },
+    /// The file is shorter or longer than its counts say.
+    Length {
+        /// Bytes the counts imply.
+        expected: u64,
+        /// Bytes given.
+        found: usize,
+    },
+    /// A count is beyond the limits (or zero where one is needed).
+    Count {
+        /// Which count.
+        what: &'static str,
+        /// The value.
+        value: u64,
+    },
+    /// The checksum does not match: the file was altered or damaged.
+    Checksum,
+    /// A field holds a value no writer writes.
+    Field {
+        /// Which field.
+        what: &'static str,
+    },
+    /// The mesh, the handles or the operator in the file are not consistent.
+    Invalid(String),
+}
+
+impl std::fmt::Display for OperatorFileError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::NotAnOperator => f.write_str("not an operator file (it does not start with AKAPDEFO)"),
+            Self::Version { found } => write!(f, "operator file version {found} is not supported (only {VERSION})"),
+            Self::Length { expected, found } => write!(
+                f,
+                "the operator file has {found} bytes but its counts need {expected}: it is truncated or altered"
+            ),
+            Self::Count { what, value } => write!(f, "the operator file's {what} is {value}, beyond the limits"),
+            Self::Checksum => f.write_str("the operator file's checksum does not match: it was altered or damaged"),
+            Self::Field { what } => write!(f, "the operator file's {what} holds a value no writer writes"),
+            Self::Invalid(why) => write!(f, "the operator file is not consistent: {why}"),
+        }
+    }
+}
+
+impl std::error::Error for OperatorFileError {}
+
+/// FNV-1a, 64 bits.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+}
+
+fn kind_code(kind: BasisKind) -> u8 {
+    match kind {
+        BasisKind::Linear => 0,
+        BasisKind::Quadratic => 1,
+        BasisKind::Cubic => 2,
+        BasisKind::Tps => 3,
+    }
+}
+
+/// The operator and its mesh as an operator file.
+pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitError> {
+    if mesh.vertex_count() != operator.vertex_count() {
+        let (expected, found) = (operator.vertex_count(), mesh.vertex_count());
+        return Err(FitError::Length { what: "mesh", expected, found });
+    }
+    let basis = operator.handle_basis();
+    let n = operator.handles().len();
+    let m = basis.scaled_centres().len() / (2 * n).max(1);
+    let mut out = Vec::new();
+    out.extend_from_slice(&MAGIC);
+    for count in [VERSION as usize, mesh.vertex_count(), mesh.triangle_count(), n, m, operator.spatial_len()] {
+        out.extend_from_slice(&(count as u32).to_le_bytes());
+    }
+    let reduced = !operator.reduction().is_empty();
+    let solver = u8::from(operator.solver() == Solver::TpsInterpolation);
+    out.extend_from_slice(&[kind_code(basis.kind()), u8::from(reduced), solver, 0, 0, 0, 0, 0]);
+    out.extend_from_slice(&basis.scale().to_le_bytes());
+    let f64s = |out: &mut Vec<u8>, values: &mut dyn Iterator<Item = f64>| {
+        values.for_each(|x| out.extend_from_slice(&x.to_le_bytes()))
+    };
+    f64s(&mut out, &mut mesh.positions().iter().flatten().copied());
+    mesh.triangles().iter().flatten().for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
+    for handle in operator.handles() {
+        let (kind, index, weights) = match *handle {
+            MeshPoint::Vertex(v) => (0u32, v, [1.0, 0.0, 0.0]),
+            MeshPoint::Inside { triangle, barycentric } => (1, triangle, barycentric),
+        };
+        out.extend_from_slice(&kind.to_le_bytes());
+        out.extend_from_slice(&index.to_le_bytes());
+        f64s(&mut out, &mut weights.into_iter());
+    }
+    f64s(&mut out, &mut basis.rest().iter().copied());
+    f64s(&mut out, &mut basis.scaled_centres().iter().copied());
+    f64s(&mut out, &mut operator.coefficients().iter().copied());
+    f64s(&mut out, &mut operator.reduction().iter().copied());
+    let checksum = fnv1a(&out);
+    out.extend_from_slice(&checksum.to_le_bytes());
+    Ok(out)
+}
+
+/// Reads an operator file: its mesh and its operator, everything checked.
+pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError> {
+    if bytes.len() < 8 || bytes[..8] != MAGIC {
+        return Err(OperatorFileError::NotAnOperator);
+    }
+    if bytes.len() < HEADER + 8 {
+        return Err(OperatorFileError::Length { expected: (HEADER + 8) as u64, found: bytes.len() });
+    }
+    let u32_at = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
+    let version = u32_at(8);
+    if version != VERSION {
+        return Err(OperatorFileError::Version { found: version });
+    }
+    let [nv, nt, n, m, phi] = [12, 16, 20, 24, 28].map(|at| u64::from(u32_at(at)));
+    let max_vertices = DEFAULT_MAX_VERTICES as u64;
+    let limits = [
+        ("vertex count", nv, 3, max_vertices),
+        ("triangle count", nt, 1, 2 * max_vertices),
+        ("handle count", n, 1, max_vertices),
+        ("TPS centre count", m, 0, super::train::MAX_SAMPLES as u64 + 1),
+        ("spatial basis size", phi, 3, max_vertices),
+    ];
+    for (what, value, low, high) in limits {
+        if !(low..=high).contains(&value) {
+            return Err(OperatorFileError::Count { what, value });
+        }
+    }
+    let kind = match bytes[32] {
+        0 => BasisKind::Linear,
+        1 => BasisKind::Quadratic,
+        2 => BasisKind::Cubic,
+        3 => BasisKind::Tps,
+        _ => return Err(OperatorFileError::Field { what: "basis" }),
+    };
+    let reduced = match bytes[33] {
+        0 => false,
+        1 => true,
+        _ => return Err(OperatorFileError::Field { what: "spatial basis kind" }),
+    };
+    let solver = match bytes[34] {
+        0 => Solver::Structured,
+        1 => Solver::TpsInterpolation,
+        _ => return Err(OperatorFileError::Field { what: "solver" }),
+    };
+    if bytes[35..40].iter().any(|&b| b != 0) {
+        return Err(OperatorFileError::Field { what: "reserved bytes" });
+    }
+    if (kind == BasisKind::Tps) != (m > 0) {
+        return Err(OperatorFileError::Field { what: "TPS centre count" });
+    }
+    let psi = kind.size(n as usize, m as usize) as u64;
+    let expected = HEADER as u64
+        + 16 * nv
+        + 12 * nt
+        + 32 * n
+        + 16 * n
+        + 16 * n * m
+        + 16 * phi * psi
+        + if reduced { 8 * phi * nv } else { 0 }
+        + 8;
+    if expected != bytes.len() as u64 {
+        return Err(OperatorFileError::Length { expected, found: bytes.len() });
+    }
+    let (body, tail) = bytes.split_at(bytes.len() - 8);
+    if fnv1a(body) != u64::from_le_bytes(tail.try_into().expect("8 bytes")) {
+        return Err(OperatorFileError::Checksum);
+    }
+    let scale = f64::from_le_bytes(bytes[40..48].try_into().expect("8 bytes"));
+    let mut cursor = Cursor { bytes: body, at: HEADER };
+    let positions = cursor.f64s(2 * nv);
+    let triangles = cursor.u32s(3 * nt);
+    let mut handles = Vec::with_capacity(n as usize);
+    for _ in 0..n {
+        let [kind, index] = [cursor.u32s(1)[0], cursor.u32s(1)[0]];
+        let w = cursor.f64s(3);
+        handles.push(match kind {
+            0 => MeshPoint::Vertex(index),
+            1 => MeshPoint::Inside { triangle: index, barycentric: [w[0], w[1], w[2]] },
+            _ => return Err(OperatorFileError::Field { what: "handle kind" }),
+        });
+    }
+    let rest = cursor.f64s(2 * n);
+    let centres = cursor.f64s(2 * n * m);
+    let coefficients = cursor.f64s(2 * phi * psi);
+    let reduction = if reduced { cursor.f64s(phi * nv) } else { Vec::new() };
+    debug_assert_eq!(cursor.at, body.len(), "the length check covered every field");
+    let finite = |values: &[f64]| values.iter().all(|x| x.is_finite());
+    let fields = [&positions, &rest, &centres, &coefficients, &reduction];
+    if !(scale.is_finite() && fields.iter().all(|values| finite(values))) {
+        return Err(OperatorFileError::Invalid("a number is not finite".into()));
+    }
+    let invalid = |e: &dyn std::fmt::Display| OperatorFileError::Invalid(e.to_string());
+    let mesh = Mesh::from_flat(&positions, &triangles).map_err(|e| invalid(&e))?;
+    for handle in &handles {
+        let fine = match *handle {
+            MeshPoint::Vertex(v) => (v as u64) < nv,
+            MeshPoint::Inside { triangle, barycentric } => {
+                (triangle as u64) < nt
+                    && barycentric.iter().all(|w| w.is_finite() && *w >= -1e-12)
+                    && (barycentric.iter().sum::<f64>() - 1.0).abs() <= 1e-9
+            }
+        };
+        if !fine {
+            return Err(OperatorFileError::Invalid(format!("handle {handle:?} is not a point of the mesh")));
+        }
+    }
+    if !reduced && phi != nv {
+        return Err(OperatorFileError::Field { what: "spatial basis size" });
+    }
+    let basis = HandleBasis::from_parts(kind, &rest, scale, centres).map_err(|e| invalid(&e))?;
+    let operator = Operator::from_parts(handles, basis, solver, phi as usize, nv as usize, coefficients, reduction)
+        .map_err(|e| invalid(&e))?;
+    Ok((mesh, operator))
+}
+
+/// Reads little-endian numbers in order (every length was checked beforehand).
+struct Cursor<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl Cursor<'_> {
+    fn take(&mut self, len: usize) -> &[u8] {
+        let taken = &self.bytes[self.at..self.at + len];
+        self.at += len;
+        taken
+    }
+
+    fn f64s(&mut self, count: u64) -> Vec<f64> {
+        self.take(8 * count as usize).chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().expect("8"))).collect()
+    }
+
+    fn u32s(&mut self, count: u64) -> Vec<u32> {
+        self.take(4 * count as usize).chunks_exact(4).map(|c| u32::from_le_bytes(c.try_into().expect("4"))).collect()
+    }
+}
