@@ -6,13 +6,13 @@
 use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;
-use super::mesh::read_mesh;
+use super::mesh::{read_mesh, JsMesh};
 use super::read::{self, Options};
 use super::{limits, object, pairs};
 use crate::defop::sampling::Sampling;
 use crate::defop::{
-    BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator, Progress, Start, TrainError,
-    TrainOptions, Trainer,
+    read_operator, write_operator, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
+    Progress, Start, TrainError, TrainOptions, Trainer,
 };
 use crate::mesh::Mesh;
 
@@ -162,7 +162,7 @@ impl JsDefOpTrainer {
             self.trainer = Some(trainer);
             return Err(TrainError::NotDone { done: progress.done, total: progress.total }.into());
         }
-        Ok(JsDefOp { operator: trainer.finish()? })
+        Ok(JsDefOp { mesh: self.mesh.clone(), operator: trainer.finish()? })
     }
 
     fn trainer_ref(&self) -> Result<&Trainer, BindingError> {
@@ -178,14 +178,38 @@ fn finished() -> BindingError {
     BindingError::argument("this DefOpTrainer has finished; its operator was returned by finish()")
 }
 
-/// A trained deformation operator.
+/// A trained deformation operator, with its mesh.
 #[wasm_bindgen(js_name = DefOp)]
 pub struct JsDefOp {
+    mesh: Mesh,
     operator: Operator,
 }
 
+/// The largest operator file read, in bytes (the most a training may make).
+const MAX_OPERATOR_BYTES: usize = crate::defop::train::MAX_TRAINING_BYTES;
+
 #[wasm_bindgen(js_class = DefOp)]
 impl JsDefOp {
+    /// An operator file (`Uint8Array`), as `toBytes` writes it: checked fully (a truncated
+    /// or altered file is an `Error` with code `import`).
+    #[wasm_bindgen(js_name = fromBytes)]
+    pub fn from_bytes(bytes: JsValue) -> Result<JsDefOp, BindingError> {
+        let bytes = read::bytes(&bytes, "bytes", MAX_OPERATOR_BYTES)?;
+        let (mesh, operator) = read_operator(&bytes).map_err(TrainError::from)?;
+        Ok(Self { mesh, operator })
+    }
+
+    /// The operator file: the operator and its mesh (`Uint8Array`).
+    #[wasm_bindgen(js_name = toBytes)]
+    pub fn to_bytes(&self) -> Result<Vec<u8>, BindingError> {
+        Ok(write_operator(&self.mesh, &self.operator).map_err(TrainError::from)?)
+    }
+
+    /// The operator's mesh at rest.
+    pub fn mesh(&self) -> JsMesh {
+        JsMesh { mesh: self.mesh.clone() }
+    }
+
     /// The vertex positions (`Float64Array`, 2 per vertex) for handle targets (`Float64Array`,
     /// 2 per handle).
     pub fn evaluate(&mut self, targets: JsValue) -> Result<Vec<f64>, BindingError> {

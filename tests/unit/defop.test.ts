@@ -4,7 +4,15 @@
  * truth of a rigid motion of the handles is that rigid motion; bad input throws with a code.
  */
 import { beforeAll, describe, expect, it } from "vitest";
-import { DefOp, DefOpTrainer, defaultShape, groundTruth, init, triangulate } from "../../www/src/index.js";
+import {
+  DefOp,
+  DefOpTrainer,
+  defaultShape,
+  groundTruth,
+  init,
+  readOperatorFile,
+  triangulate,
+} from "../../www/src/index.js";
 
 beforeAll(async () => {
   await init();
@@ -46,6 +54,42 @@ describe("DefOp", () => {
     expect(() => op.evaluate([1, 2])).toThrow();
     op.free();
     expect(() => op.evaluate(far)).toThrow(/freed/);
+  });
+
+  it("saves and loads operators, and the wasm-free reader poses as the wasm does", () => {
+    const m = mesh();
+    const handles = [2, m.vertexCount - 3];
+    for (const options of [
+      { basis: "tps" as const },
+      { basis: "quadratic" as const, samples: 20 },
+      { basis: "cubic" as const, samples: 40 },
+      { basis: "tps" as const, spatial: 20 },
+    ]) {
+      const trainer = new DefOpTrainer(m.positions, m.triangles, handles, { energy: "arap", samples: 8, ...options });
+      while (trainer.advance(50).stage !== "done");
+      const op = trainer.finish();
+      const bytes = op.toBytes();
+      const loaded = DefOp.fromBytes(bytes);
+      const plain = readOperatorFile(bytes);
+      expect(loaded.mesh().positions).toEqual(m.positions);
+      expect([...plain.triangles]).toEqual([...m.triangles]);
+      const out = new Float64Array(2 * m.vertexCount);
+      for (let k = 0; k < 4; k++) {
+        const q = [...plain.rest].map((x, i) => x + 0.1 * Math.sin(3 * k + i));
+        const expected = op.evaluate(q);
+        expect(loaded.evaluate(q)).toEqual(expected);
+        plain.evaluateInto(q, out);
+        out.forEach((x, i) => expect(Math.abs(x - expected[i]!)).toBeLessThan(1e-12));
+      }
+      // A damaged file: refused by both readers.
+      const damaged = bytes.slice();
+      damaged[100] = damaged[100]! ^ 1;
+      expect(() => DefOp.fromBytes(damaged)).toThrow(/checksum/);
+      expect(() => readOperatorFile(damaged)).toThrow(/checksum/);
+      expect(() => readOperatorFile(bytes.subarray(0, bytes.length - 1))).toThrow(/bytes where/);
+      op.free();
+      loaded.free();
+    }
   });
 
   it("solves the ground truth, which is the rigid motion for rigid targets", () => {

@@ -17,6 +17,8 @@
  * ```
  */
 import { toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
+import type { MeshData } from "./core.js";
+import { readMesh } from "./internal/mesh.js";
 import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
 
 /** Options of a {@link DefOpTrainer}. */
@@ -137,6 +139,31 @@ export class DefOp {
   get #raw(): rawTypes.DefOp {
     if (!this.#inner) throw new Error("this DefOp was freed");
     return this.#inner;
+  }
+
+  /**
+   * An operator file as {@link toBytes} writes it (the operator and its mesh), checked
+   * fully: a truncated or altered file throws with code `import`.
+   */
+  static fromBytes(bytes: Uint8Array): DefOp {
+    assertLoaded();
+    adopting = raw.DefOp.fromBytes(bytes);
+    return new DefOp();
+  }
+
+  /** The operator file: the operator and its mesh, to save and load with {@link fromBytes}. */
+  toBytes(): Uint8Array {
+    return this.#raw.toBytes();
+  }
+
+  /** The mesh at rest (the mesh it was trained for). */
+  mesh(): MeshData {
+    const mesh = this.#raw.mesh();
+    try {
+      return readMesh(mesh);
+    } finally {
+      mesh.free();
+    }
   }
 
   /** The vertex positions (2 per vertex) for handle targets (2 per handle). */
