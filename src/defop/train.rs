@@ -102,6 +102,11 @@ pub enum TrainError {
         /// Bytes needed (the samples' ground truths and the operator's coefficients).
         bytes: f64,
     },
+    /// One sample's solve failed [`MAX_REDRAWS`] times, each time drawn again.
+    TooManyRedraws {
+        /// The sample.
+        index: usize,
+    },
     /// A result for a job that was not handed out, or was already submitted, or of the
     /// wrong length.
     UnknownJob {
@@ -125,6 +130,9 @@ impl std::fmt::Display for TrainError {
                 bytes / 1e6,
                 MAX_TRAINING_BYTES / 1_000_000
             ),
+            Self::TooManyRedraws { index } => {
+                write!(f, "sample {index} could not be solved in {MAX_REDRAWS} draws; try a smaller radius")
+            }
             Self::NotDone { done, total } => write!(f, "training is not done: {done} of {total}"),
             Self::UnknownJob { index } => {
                 write!(f, "no pending job {index} takes this result (not handed out, already in, or the wrong size)")
@@ -306,6 +314,12 @@ impl Trainer {
         Self::make_solver(&self.mesh, &self.handles, &self.options)
     }
 
+    /// The solver a training of `mesh` with `handles` and `options` uses, made anywhere (a
+    /// worker with the same inputs gets the same solver, so the same ground truths).
+    pub fn solver_for(mesh: &Mesh, handles: &[MeshPoint], options: &TrainOptions) -> Result<GroundTruth, TrainError> {
+        Self::make_solver(mesh, handles, options)
+    }
+
     /// The number of samples drawn so far (solved or not).
     pub fn sample_count(&self) -> usize {
         self.targets.len()
@@ -391,6 +405,19 @@ impl Trainer {
         let redrawable = matches!(error, DefOpError::Unreachable { .. } | DefOpError::NoConvergence { .. });
         if !redrawable || self.redraws[index] >= MAX_REDRAWS {
             return Err(TrainError::GroundTruth(error));
+        }
+        self.redraw(index)
+    }
+
+    /// Draws job `index`'s sample again (its solve failed; see [`Trainer::reject`], which
+    /// checks why), and the job waits to be handed out again. Refused for a job that is not
+    /// out, and after [`MAX_REDRAWS`] draws of one sample.
+    pub fn redraw(&mut self, index: usize) -> Result<(), TrainError> {
+        if !self.out.get(index).copied().unwrap_or(false) {
+            return Err(TrainError::UnknownJob { index });
+        }
+        if self.redraws[index] >= MAX_REDRAWS {
+            return Err(TrainError::TooManyRedraws { index });
         }
         self.out[index] = false;
         self.redraws[index] += 1;

@@ -8,7 +8,7 @@ use wasm_bindgen::prelude::*;
 use super::error::BindingError;
 use super::mesh::{read_mesh, JsMesh};
 use super::read::{self, Options};
-use super::{limits, object, pairs};
+use super::{flat, limits, object, pairs};
 use crate::defop::sampling::Sampling;
 use crate::defop::{
     read_operator, write_operator, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
@@ -133,6 +133,60 @@ impl JsDefOpTrainer {
         progress_object(trainer.advance(budget, now)?)
     }
 
+    /// Up to `max` sample solves for workers: `[{ index, targets: Float64Array, start:
+    /// Float64Array | undefined }]` (none while a batch's results are outstanding). A worker
+    /// solves each with a `DefOpSolver` made from the same mesh, handles and energy and
+    /// hands the result to `submit`, or its failure to `reject`.
+    #[wasm_bindgen(js_name = nextJobs)]
+    pub fn next_jobs(&mut self, max: JsValue) -> Result<js_sys::Array, BindingError> {
+        let max = read::count(&max, "max", crate::defop::train::MAX_SAMPLES)?;
+        let jobs = self.trainer_mut()?.next_jobs(max)?;
+        let list = js_sys::Array::new();
+        for job in jobs {
+            let start = job.start.as_deref().map_or(JsValue::UNDEFINED, |s| flat(s).into());
+            let entry = object(&[
+                ("index", (job.index as f64).into()),
+                ("targets", flat(&job.targets).into()),
+                ("start", start),
+            ])?;
+            list.push(&entry);
+        }
+        Ok(list)
+    }
+
+    /// A worker's result for job `index`: the vertex positions (`Float64Array`), the Newton
+    /// iterations, whether it fell back to the rest pose, whether it started warm. Returns
+    /// `{ done, total, stage }`.
+    pub fn submit(
+        &mut self,
+        index: JsValue,
+        positions: JsValue,
+        iterations: JsValue,
+        fallback: JsValue,
+        warm: JsValue,
+    ) -> Result<JsValue, BindingError> {
+        let index = read::count(&index, "index", crate::defop::train::MAX_SAMPLES)?;
+        let positions = pairs(&read::float64s(&positions, "positions", 2 * limits().max_vertices)?, "positions")?;
+        let iterations = read::count(&iterations, "iterations", usize::MAX >> 11)?;
+        let progress =
+            self.trainer_mut()?.submit(index, &positions, iterations, fallback.is_truthy(), warm.is_truthy())?;
+        progress_object(progress)
+    }
+
+    /// Job `index`'s solve threw with this `code`: for `"no-convergence"` and
+    /// `"invalid-argument"` (targets no flip-free pose reaches) its sample is drawn again
+    /// and the job handed out again; any other code ends the training with an error.
+    pub fn reject(&mut self, index: JsValue, code: JsValue) -> Result<(), BindingError> {
+        let index = read::count(&index, "index", crate::defop::train::MAX_SAMPLES)?;
+        let code = read::string(&code, "code", 64)?;
+        if !matches!(code.as_str(), "no-convergence" | "invalid-argument") {
+            return Err(BindingError::argument(format!(
+                "a sample's solve failed with code {code:?}; training cannot go on"
+            )));
+        }
+        Ok(self.trainer_mut()?.redraw(index)?)
+    }
+
     /// `{ done, total, stage }` without training.
     pub fn progress(&self) -> Result<JsValue, BindingError> {
         progress_object(self.trainer_ref()?.progress())
@@ -243,6 +297,75 @@ impl JsDefOp {
     #[wasm_bindgen(getter, js_name = vertexCount)]
     pub fn vertex_count(&self) -> usize {
         self.operator.vertex_count()
+    }
+}
+
+/// A ground-truth solver for a worker of a `DefOpTrainer`: made from the same mesh, handles
+/// and energy, it gives the same ground truths as the trainer's own.
+#[wasm_bindgen(js_name = DefOpSolver)]
+pub struct JsDefOpSolver {
+    solver: GroundTruth,
+}
+
+#[wasm_bindgen(js_class = DefOpSolver)]
+impl JsDefOpSolver {
+    /// For the mesh with one handle on each vertex of `handles` (`Uint32Array`);
+    /// `options`: `{ energy?: "sarap" | "arap" }`, the trainer's.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        positions: JsValue,
+        triangles: JsValue,
+        handles: JsValue,
+        options: JsValue,
+    ) -> Result<JsDefOpSolver, BindingError> {
+        let handles = vertex_handles(&handles)?;
+        Self::made(&positions, &triangles, &handles, &options)
+    }
+
+    /// For handles at points in triangles (as `DefOpTrainer.setHandlePoints` takes them).
+    #[wasm_bindgen(js_name = withHandlePoints)]
+    pub fn with_handle_points(
+        positions: JsValue,
+        triangles: JsValue,
+        handle_triangles: JsValue,
+        barycentric: JsValue,
+        options: JsValue,
+    ) -> Result<JsDefOpSolver, BindingError> {
+        let handles = point_handles(&handle_triangles, &barycentric)?;
+        Self::made(&positions, &triangles, &handles, &options)
+    }
+
+    fn made(
+        positions: &JsValue,
+        triangles: &JsValue,
+        handles: &[MeshPoint],
+        options: &JsValue,
+    ) -> Result<JsDefOpSolver, BindingError> {
+        let given = Options::read(options, "DefOp solver", &["energy"])?;
+        let energy = given.choice("energy", &ENERGIES)?.unwrap_or(Energy::SArap);
+        let mesh = read_mesh(positions, triangles)?;
+        let options = TrainOptions { energy, ..TrainOptions::default() };
+        Ok(Self { solver: Trainer::solver_for(&mesh, handles, &options)? })
+    }
+
+    /// Solves for `targets` (`Float64Array`, 2 per handle) from `start` (`Float64Array`, 2 per
+    /// vertex; `undefined`: the rest pose): `{ positions, iterations, fallback }`.
+    pub fn solve(&mut self, targets: JsValue, start: JsValue) -> Result<JsValue, BindingError> {
+        let most = 2 * limits().max_vertices;
+        let targets = pairs(&read::float64s(&targets, "targets", most)?, "targets")?;
+        let start = if start.is_undefined() || start.is_null() {
+            None
+        } else {
+            Some(pairs(&read::float64s(&start, "start", most)?, "start")?)
+        };
+        let from = start.as_deref().map_or(Start::Rest, Start::Pose);
+        let report = self.solver.solve(&targets, from).map_err(TrainError::from)?;
+        Ok(object(&[
+            ("positions", flat(&report.positions).into()),
+            ("iterations", (report.iterations as f64).into()),
+            ("fallback", JsValue::from_bool(report.fallback)),
+        ])?
+        .into())
     }
 }
 

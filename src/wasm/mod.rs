@@ -22,7 +22,7 @@ mod mesh;
 mod read;
 mod session;
 
-pub use defop::{ground_truth, JsDefOp, JsDefOpTrainer};
+pub use defop::{ground_truth, JsDefOp, JsDefOpSolver, JsDefOpTrainer};
 pub use deformer::{deformer_orders, JsDeformer};
 pub use error::BindingError;
 pub use import::{

@@ -6,6 +6,7 @@
 import { beforeAll, describe, expect, it } from "vitest";
 import {
   DefOp,
+  DefOpSolver,
   DefOpTrainer,
   defaultShape,
   groundTruth,
@@ -90,6 +91,38 @@ describe("DefOp", () => {
       op.free();
       loaded.free();
     }
+  });
+
+  it("trains the same operator with jobs solved by workers' solvers, in any order", () => {
+    const m = mesh();
+    const handles = [2, 40, m.vertexCount - 3];
+    const options = { energy: "sarap" as const, samples: 12, seed: 5 };
+    const here = new DefOpTrainer(m.positions, m.triangles, handles, options);
+    while (here.advance(50).stage !== "done");
+    const expected = here.finish();
+
+    const trainer = new DefOpTrainer(m.positions, m.triangles, handles, options);
+    const workers = [0, 1].map(() => new DefOpSolver(m.positions, m.triangles, handles, { energy: "sarap" }));
+    let rounds = 0;
+    while (trainer.progress().stage !== "done" && rounds++ < 100) {
+      const jobs = trainer.nextJobs(4).reverse();
+      jobs.forEach((job, k) => {
+        // As a worker would get it: a structured clone.
+        const copy = structuredClone(job);
+        try {
+          trainer.submit(workers[k % 2]!.solve(copy));
+        } catch (error) {
+          trainer.reject(job.index, error);
+        }
+      });
+    }
+    expect(() => trainer.reject(0, new Error("x"))).toThrow(/training cannot go on/);
+    const op = trainer.finish();
+    for (let k = 0; k < 3; k++) {
+      const q = handles.flatMap((v, i) => [m.positions[2 * v]! + 0.05 * Math.sin(k + i), m.positions[2 * v + 1]!]);
+      expect(op.evaluate(q)).toEqual(expected.evaluate(q));
+    }
+    workers.forEach((w) => w.free());
   });
 
   it("solves the ground truth, which is the rigid motion for rigid targets", () => {

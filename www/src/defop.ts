@@ -63,6 +63,30 @@ export interface DefOpStats {
   redraws: number;
 }
 
+/**
+ * One sample's solve, for a worker: structured-clonable, so it can be posted as it is.
+ * `start` is the pose to start from (the operator fitted so far), or the rest pose.
+ */
+export interface DefOpJob {
+  index: number;
+  /** 2 numbers per handle. */
+  targets: Float64Array;
+  /** 2 numbers per vertex, or `undefined` for the rest pose. */
+  start: Float64Array | undefined;
+}
+
+/** A worker's solution of a {@link DefOpJob}, for {@link DefOpTrainer.submit}. */
+export interface DefOpJobResult {
+  index: number;
+  /** 2 numbers per vertex. */
+  positions: Float64Array;
+  iterations: number;
+  /** Whether a folded start made the solve start again from the rest pose. */
+  fallback: boolean;
+  /** Whether the job had a start. */
+  warm: boolean;
+}
+
 /** The operator {@link DefOpTrainer.finish} hands to the {@link DefOp} it makes. */
 let adopting: rawTypes.DefOp | undefined;
 
@@ -98,6 +122,32 @@ export class DefOpTrainer {
   /** Trains for about `budgetMs` milliseconds (a sample, once begun, is finished). */
   advance(budgetMs: number): DefOpProgress {
     return this.#raw.advance(budgetMs) as DefOpProgress;
+  }
+
+  /**
+   * Up to `max` sample solves to hand to workers (none while a batch's results are still
+   * out: the next batch starts from the operator fitted to it). Each worker solves with a
+   * {@link DefOpSolver} made from the same mesh, handles and energy, and its result goes to
+   * {@link submit}, its failure to {@link reject}.
+   */
+  nextJobs(max: number): DefOpJob[] {
+    return this.#raw.nextJobs(max) as DefOpJob[];
+  }
+
+  /** Takes a worker's result; refits and opens the next batch when a batch is complete. */
+  submit(result: DefOpJobResult): DefOpProgress {
+    const { index, positions, iterations, fallback, warm } = result;
+    return this.#raw.submit(index, positions, iterations, fallback, warm) as DefOpProgress;
+  }
+
+  /**
+   * A job's solve threw `error`: for codes `no-convergence` and `invalid-argument` (targets
+   * no flip-free pose reaches) its sample is drawn again and the job handed out again;
+   * anything else throws.
+   */
+  reject(index: number, error: unknown): void {
+    const code = (error as { code?: unknown } | undefined)?.code;
+    this.#raw.reject(index, typeof code === "string" ? code : "internal");
   }
 
   /** How far training is, without training. */
@@ -182,6 +232,58 @@ export class DefOp {
 
   get vertexCount(): number {
     return this.#raw.vertexCount;
+  }
+
+  /** Releases the WebAssembly memory. */
+  free(): void {
+    this.#inner?.free();
+    this.#inner = undefined;
+  }
+}
+
+/** A worker's ground-truth solver for the jobs of a {@link DefOpTrainer}. */
+export class DefOpSolver {
+  #inner: rawTypes.DefOpSolver | undefined;
+
+  /**
+   * For the trainer's mesh and handles (vertices, or `{ triangles, barycentric }` as given
+   * to {@link DefOpTrainer.setHandlePoints}) and its energy: the same solver as the
+   * trainer's own, so the same ground truths.
+   */
+  constructor(
+    positions: Coordinates,
+    triangles: Indices,
+    handles: Indices | { triangles: Indices; barycentric: Coordinates },
+    options: { energy?: "sarap" | "arap" } = {},
+  ) {
+    assertLoaded();
+    const p = toFloat64(positions, "positions");
+    const t = toUint32(triangles, "triangles");
+    this.#inner =
+      "barycentric" in handles
+        ? raw.DefOpSolver.withHandlePoints(
+            p,
+            t,
+            toUint32(handles.triangles, "handles.triangles"),
+            toFloat64(handles.barycentric, "handles.barycentric"),
+            options,
+          )
+        : new raw.DefOpSolver(p, t, toUint32(handles, "handles"), options);
+  }
+
+  get #raw(): rawTypes.DefOpSolver {
+    if (!this.#inner) throw new Error("this DefOpSolver was freed");
+    return this.#inner;
+  }
+
+  /** Solves a job; throws (with a code) when it cannot, for {@link DefOpTrainer.reject}. */
+  solve(job: DefOpJob): DefOpJobResult {
+    const r = this.#raw.solve(job.targets, job.start) as {
+      positions: Float64Array;
+      iterations: number;
+      fallback: boolean;
+    };
+    return { index: job.index, ...r, warm: job.start !== undefined };
   }
 
   /** Releases the WebAssembly memory. */
