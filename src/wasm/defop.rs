@@ -287,6 +287,25 @@ impl JsDefOp {
         Ok(())
     }
 
+    /// [`Self::evaluate_into`] in single precision (`Float32Array` out, for a GPU buffer),
+    /// computed in double.
+    #[wasm_bindgen(js_name = evaluateIntoF32)]
+    pub fn evaluate_into_f32(&mut self, targets: JsValue, out: &js_sys::Float32Array) -> Result<(), BindingError> {
+        let targets = read::float64s(&targets, "targets", 2 * limits().max_vertices)?;
+        let mut positions = vec![0.0f32; 2 * self.operator.vertex_count()];
+        if out.length() as usize != positions.len() {
+            return Err(BindingError::argument(format!(
+                "out has {} numbers; the mesh's {} vertices need {}",
+                out.length(),
+                positions.len() / 2,
+                positions.len()
+            )));
+        }
+        self.operator.evaluate_into_f32(&targets, &mut positions).map_err(TrainError::from)?;
+        out.copy_from(&positions);
+        Ok(())
+    }
+
     /// The number of handles.
     #[wasm_bindgen(getter, js_name = handleCount)]
     pub fn handle_count(&self) -> usize {

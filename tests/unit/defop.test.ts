@@ -52,6 +52,9 @@ describe("DefOp", () => {
     op.evaluateInto(far, out);
     at(out, handles).forEach((x, i) => expect(Math.abs(x - far[i]!)).toBeLessThan(1e-9));
     expect(() => op.evaluateInto(far, new Float64Array(3))).toThrow(/out has 3 numbers/);
+    const single = new Float32Array(2 * m.vertexCount);
+    op.evaluateIntoF32(far, single);
+    single.forEach((x, i) => expect(x).toBe(Math.fround(out[i]!)));
     expect(() => op.evaluate([1, 2])).toThrow();
     op.free();
     expect(() => op.evaluate(far)).toThrow(/freed/);

@@ -226,6 +226,11 @@ export class DefOp {
     this.#raw.evaluateInto(toFloat64(targets, "targets"), out);
   }
 
+  /** {@link evaluateInto} in single precision, for a GPU buffer (computed in double). */
+  evaluateIntoF32(targets: Coordinates, out: Float32Array): void {
+    this.#raw.evaluateIntoF32(toFloat64(targets, "targets"), out);
+  }
+
   get handleCount(): number {
     return this.#raw.handleCount;
   }
