@@ -45,6 +45,6 @@ pub mod wasm;
 mod wasm_bench;
 
 pub use error::{Error, ErrorCode};
-pub use mesh::{Mesh, MeshError};
+pub use mesh::{Mesh, MeshError, MeshPoint};
 pub use outline::{Outline, OutlineError, Ring};
 pub use triangulate::{triangulate, TriangulationError, TriangulationOptions};

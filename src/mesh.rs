@@ -182,6 +182,23 @@ impl fmt::Display for MeshError {
 
 impl std::error::Error for MeshError {}
 
+/// A point of a mesh, where a handle is: a vertex, or a point of a triangle by its
+/// barycentric coordinates (the deformers' and DefOp's handles, checked by
+/// `deform::handles::resolve`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MeshPoint {
+    /// A vertex.
+    Vertex(u32),
+    /// A point of a triangle, given by its barycentric coordinates (non-negative, sum 1) in
+    /// the order of the triangle's vertices.
+    Inside {
+        /// The triangle.
+        triangle: u32,
+        /// The barycentric coordinates.
+        barycentric: [f64; 3],
+    },
+}
+
 /// A validated triangle mesh in the plane.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mesh {

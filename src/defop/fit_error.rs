@@ -30,31 +30,8 @@ pub enum FitError {
     NoHandles,
     /// There is no training sample.
     NoSamples,
-    /// A handle names a vertex that does not exist.
-    VertexOutOfRange {
-        /// Which handle.
-        handle: usize,
-        /// The vertex given.
-        vertex: u32,
-        /// The number of vertices.
-        vertex_count: usize,
-    },
-    /// A handle names a triangle that does not exist.
-    TriangleOutOfRange {
-        /// Which handle.
-        handle: usize,
-        /// The triangle given.
-        triangle: u32,
-        /// The number of triangles.
-        triangle_count: usize,
-    },
-    /// A handle's barycentric coordinates are not finite, negative, or do not sum to 1.
-    InvalidBarycentric {
-        /// Which handle.
-        handle: usize,
-        /// The coordinates given.
-        coordinates: [f64; 3],
-    },
+    /// A handle is not a point of the mesh (the deformers' check).
+    InvalidHandle(crate::deform::DeformError),
     /// Two handles have the same rest position.
     CoincidentHandles {
         /// The first handle.
@@ -105,19 +82,7 @@ impl fmt::Display for FitError {
             Self::NonFinite { what, index } => write!(f, "{what}: value {index} is not a finite number"),
             Self::NoHandles => write!(f, "a deformation operator needs at least one handle"),
             Self::NoSamples => write!(f, "a deformation operator needs at least one training sample"),
-            Self::VertexOutOfRange { handle, vertex, vertex_count } => {
-                write!(f, "handle {handle} names vertex {vertex}, but the mesh has {vertex_count} vertices")
-            }
-            Self::TriangleOutOfRange { handle, triangle, triangle_count } => {
-                write!(f, "handle {handle} names triangle {triangle}, but the mesh has {triangle_count} triangles")
-            }
-            Self::InvalidBarycentric { handle, coordinates } => write!(
-                f,
-                "handle {handle}: barycentric coordinates ({}, {}, {}) must be non-negative and sum to 1",
-                Number(coordinates[0]),
-                Number(coordinates[1]),
-                Number(coordinates[2])
-            ),
+            Self::InvalidHandle(e) => e.fmt(f),
             Self::CoincidentHandles { first, second } => {
                 write!(f, "handles {first} and {second} have the same rest position")
             }
@@ -142,6 +107,7 @@ impl std::error::Error for FitError {
         match self {
             Self::Factor(e) => Some(e),
             Self::Eigen(e) => Some(e),
+            Self::InvalidHandle(e) => Some(e),
             _ => None,
         }
     }

@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::*;
 use crate::defop::spatial::resolve_points;
+use crate::deform::DeformError;
 use crate::shapes;
 
 /// A small deterministic generator (SplitMix64) of numbers in [-1, 1).
@@ -186,15 +187,15 @@ fn bad_inputs_are_typed_errors() {
     assert_eq!(fit_with(&[], &sample, &options), Err(FitError::NoHandles));
     assert_eq!(
         fit_with(&[MeshPoint::Vertex(16)], &sample, &options),
-        Err(FitError::VertexOutOfRange { handle: 0, vertex: 16, vertex_count: 16 })
+        Err(FitError::InvalidHandle(DeformError::VertexOutOfRange { handle: 0, vertex: 16, vertex_count: 16 }))
     );
     assert_eq!(
         fit_with(&[MeshPoint::Inside { triangle: 18, barycentric: [1.0, 0.0, 0.0] }], &sample, &options),
-        Err(FitError::TriangleOutOfRange { handle: 0, triangle: 18, triangle_count: 18 })
+        Err(FitError::InvalidHandle(DeformError::TriangleOutOfRange { handle: 0, triangle: 18, triangle_count: 18 }))
     );
     assert!(matches!(
         fit_with(&[MeshPoint::Inside { triangle: 0, barycentric: [0.5, 0.6, -0.1] }], &sample, &options),
-        Err(FitError::InvalidBarycentric { handle: 0, .. })
+        Err(FitError::InvalidHandle(DeformError::InvalidBarycentric { handle: 0, .. }))
     ));
     // Vertex 0 and a point of triangle 0 at its first vertex (0) coincide.
     let coincident = [MeshPoint::Vertex(0), MeshPoint::Inside { triangle: 0, barycentric: [1.0, 0.0, 0.0] }];

@@ -16,20 +16,7 @@ use super::fit_error::FitError;
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 
-/// A point of the mesh: a handle's rest position.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum MeshPoint {
-    /// A vertex.
-    Vertex(u32),
-    /// A point of a triangle, given by its barycentric coordinates (non-negative, sum 1) in
-    /// the order of the triangle's vertices.
-    Inside {
-        /// The triangle.
-        triangle: u32,
-        /// The barycentric coordinates.
-        barycentric: [f64; 3],
-    },
-}
+pub use crate::mesh::MeshPoint;
 
 /// A mesh point resolved to the hat functions that are not zero there.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,36 +37,11 @@ impl HatValues {
     }
 }
 
-/// Checks `points` against `mesh` and returns their hat values and rest positions.
+/// Checks `points` against `mesh` (as the deformers check handles: `deform::handles`)
+/// and returns their hat values.
 pub(crate) fn resolve_points(mesh: &Mesh, points: &[MeshPoint]) -> Result<Vec<HatValues>, FitError> {
-    points
-        .iter()
-        .enumerate()
-        .map(|(handle, point)| match *point {
-            MeshPoint::Vertex(vertex) => {
-                if vertex as usize >= mesh.vertex_count() {
-                    return Err(FitError::VertexOutOfRange { handle, vertex, vertex_count: mesh.vertex_count() });
-                }
-                Ok(HatValues { vertices: [vertex as usize; 3], weights: [1.0, 0.0, 0.0] })
-            }
-            MeshPoint::Inside { triangle, barycentric: w } => {
-                if triangle as usize >= mesh.triangle_count() {
-                    return Err(FitError::TriangleOutOfRange {
-                        handle,
-                        triangle,
-                        triangle_count: mesh.triangle_count(),
-                    });
-                }
-                let valid =
-                    w.iter().all(|x| x.is_finite() && *x >= -1e-12) && (w.iter().sum::<f64>() - 1.0).abs() <= 1e-9;
-                if !valid {
-                    return Err(FitError::InvalidBarycentric { handle, coordinates: w });
-                }
-                let t = mesh.triangles()[triangle as usize];
-                Ok(HatValues { vertices: t.map(|v| v as usize), weights: w })
-            }
-        })
-        .collect()
+    let resolved = crate::deform::handles::resolve(mesh, points).map_err(FitError::InvalidHandle)?;
+    Ok(resolved.iter().map(|p| HatValues { vertices: p.vertices.map(|v| v as usize), weights: p.weights }).collect())
 }
 
 /// The consistent mass matrix A of the hat functions (N × N, symmetric, compressed sparse

@@ -296,15 +296,10 @@ impl Trainer {
     }
 
     fn make_solver(mesh: &Mesh, handles: &[MeshPoint], options: &TrainOptions) -> Result<GroundTruth, TrainError> {
-        let points: Vec<(u32, [f64; 3])> = handles
-            .iter()
-            .enumerate()
-            .map(|(handle, h)| match *h {
-                MeshPoint::Vertex(v) => vertex_point(mesh, handle, v),
-                MeshPoint::Inside { triangle, barycentric } => Ok((triangle, barycentric)),
-            })
-            .collect::<Result<_, _>>()?;
-        let (triangles, barycentric): (Vec<u32>, Vec<[f64; 3]>) = points.into_iter().unzip();
+        // Vertices as points of a triangle using them (weight 1 at that corner), so that
+        // every handle is given the one way.
+        let points = crate::deform::handles::resolve(mesh, handles).map_err(FitError::InvalidHandle)?;
+        let (triangles, barycentric) = crate::deform::handles::as_points(points.iter());
         let handles = Handles::Points { triangles: &triangles, barycentric: &barycentric };
         Ok(GroundTruth::new(mesh, handles, options.energy, options.ground_truth)?)
     }
@@ -542,18 +537,6 @@ fn bootstrap_basis(wanted: BasisKind, handles: usize, samples: usize) -> BasisKi
         .into_iter()
         .find(|k| k.degree() < wanted.degree() && k.size(handles, 0) <= samples)
         .unwrap_or(BasisKind::Linear)
-}
-
-/// A vertex as a point of a triangle using it (weight 1 at that corner).
-fn vertex_point(mesh: &Mesh, handle: usize, vertex: u32) -> Result<(u32, [f64; 3]), TrainError> {
-    let found = mesh.triangles().iter().enumerate().find_map(|(t, tri)| {
-        tri.iter().position(|&v| v == vertex).map(|k| {
-            let mut w = [0.0; 3];
-            w[k] = 1.0;
-            (t as u32, w)
-        })
-    });
-    found.ok_or(TrainError::Fit(FitError::VertexOutOfRange { handle, vertex, vertex_count: mesh.vertex_count() }))
 }
 
 fn to_points(flat: &[f64]) -> Vec<Point> {

@@ -5,7 +5,7 @@
 
 use super::error::DeformError;
 use crate::geometry::{bounding_box, Point, MAX_COORDINATE};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, MeshPoint};
 
 /// A validated handle point: the triangle it lies in, its vertices and its barycentric
 /// weights (finite, at least -1e-12, summing to 1 within 1e-9).
@@ -33,27 +33,55 @@ pub(crate) fn as_points<'a>(points: impl Iterator<Item = &'a HandlePoint>) -> (V
     points.map(|p| (p.triangle as u32, p.weights)).unzip()
 }
 
-/// One handle on each vertex (weight 1 at that corner of a triangle using it).
-pub(crate) fn at_vertices(mesh: &Mesh, vertices: &[u32]) -> Result<Vec<HandlePoint>, DeformError> {
-    let n = mesh.vertex_count();
-    if let Some((handle, &vertex)) = vertices.iter().enumerate().find(|(_, &v)| v as usize >= n) {
-        return Err(DeformError::VertexOutOfRange { handle, vertex, vertex_count: n });
-    }
-    // A triangle using each vertex (the mesh has no unused vertex).
-    let mut triangle_of = vec![0; n];
-    for (t, tri) in mesh.triangles().iter().enumerate() {
-        for &v in tri {
-            triangle_of[v as usize] = t;
+/// Points of the mesh, checked: a vertex in range (placed at weight 1 at that corner of a
+/// triangle using it), or a triangle in range with barycentric coordinates that are finite,
+/// at least -1e-12 and sum to 1 within 1e-9. The one check of a handle's place, for the
+/// deformers and DefOp.
+pub(crate) fn resolve(mesh: &Mesh, points: &[MeshPoint]) -> Result<Vec<HandlePoint>, DeformError> {
+    let (n, m) = (mesh.vertex_count(), mesh.triangle_count());
+    // A triangle using each vertex (the mesh has no unused vertex), if a vertex is asked for.
+    let mut triangle_of = Vec::new();
+    if points.iter().any(|p| matches!(p, MeshPoint::Vertex(_))) {
+        triangle_of = vec![0; n];
+        for (t, tri) in mesh.triangles().iter().enumerate() {
+            for &v in tri {
+                triangle_of[v as usize] = t;
+            }
         }
     }
-    Ok(vertices
+    points
         .iter()
-        .map(|&vertex| {
-            let triangle = triangle_of[vertex as usize];
-            let corners = mesh.triangles()[triangle];
-            HandlePoint { triangle, vertices: corners, weights: corners.map(|v| if v == vertex { 1.0 } else { 0.0 }) }
+        .enumerate()
+        .map(|(handle, point)| match *point {
+            MeshPoint::Vertex(vertex) => {
+                if vertex as usize >= n {
+                    return Err(DeformError::VertexOutOfRange { handle, vertex, vertex_count: n });
+                }
+                let triangle = triangle_of[vertex as usize];
+                let corners = mesh.triangles()[triangle];
+                let weights = corners.map(|v| if v == vertex { 1.0 } else { 0.0 });
+                Ok(HandlePoint { triangle, vertices: corners, weights })
+            }
+            MeshPoint::Inside { triangle, barycentric: w } => {
+                if triangle as usize >= m {
+                    return Err(DeformError::TriangleOutOfRange { handle, triangle, triangle_count: m });
+                }
+                let valid =
+                    w.iter().all(|x| x.is_finite() && *x >= -1e-12) && (w.iter().sum::<f64>() - 1.0).abs() <= 1e-9;
+                if !valid {
+                    return Err(DeformError::InvalidBarycentric { handle, coordinates: w });
+                }
+                let triangle = triangle as usize;
+                Ok(HandlePoint { triangle, vertices: mesh.triangles()[triangle], weights: w })
+            }
         })
-        .collect())
+        .collect()
+}
+
+/// One handle on each vertex (weight 1 at that corner of a triangle using it).
+pub(crate) fn at_vertices(mesh: &Mesh, vertices: &[u32]) -> Result<Vec<HandlePoint>, DeformError> {
+    let points: Vec<MeshPoint> = vertices.iter().map(|&v| MeshPoint::Vertex(v)).collect();
+    resolve(mesh, &points)
 }
 
 /// Handles at points inside triangles: a triangle index and barycentric coordinates each.
@@ -71,23 +99,12 @@ pub(crate) fn in_triangles(
             items: "handles",
         });
     }
-    let m = mesh.triangle_count();
-    triangles
+    let points: Vec<MeshPoint> = triangles
         .iter()
         .zip(barycentric)
-        .enumerate()
-        .map(|(handle, (&triangle, &w))| {
-            if triangle as usize >= m {
-                return Err(DeformError::TriangleOutOfRange { handle, triangle, triangle_count: m });
-            }
-            let valid = w.iter().all(|x| x.is_finite() && *x >= -1e-12) && (w.iter().sum::<f64>() - 1.0).abs() <= 1e-9;
-            if !valid {
-                return Err(DeformError::InvalidBarycentric { handle, coordinates: w });
-            }
-            let triangle = triangle as usize;
-            Ok(HandlePoint { triangle, vertices: mesh.triangles()[triangle], weights: w })
-        })
-        .collect()
+        .map(|(&triangle, &barycentric)| MeshPoint::Inside { triangle, barycentric })
+        .collect();
+    resolve(mesh, &points)
 }
 
 /// How many of `points` are distinct, where a point that lies within `tolerance` of an

@@ -153,6 +153,7 @@ impl FitError {
         match self {
             Self::InvalidOption { .. } | Self::TooFewSamples { .. } => ErrorCode::InvalidOption,
             Self::Factor(e) => e.code(),
+            Self::InvalidHandle(e) => e.code(),
             Self::Eigen(EigenError::NotConverged { .. }) => ErrorCode::NoConvergence,
             Self::Eigen(EigenError::Factor(e)) => e.code(),
             _ => ErrorCode::InvalidArgument,
