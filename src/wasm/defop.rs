@@ -216,7 +216,7 @@ impl JsDefOpTrainer {
             self.trainer = Some(trainer);
             return Err(TrainError::NotDone { done: progress.done, total: progress.total }.into());
         }
-        Ok(JsDefOp { mesh: self.mesh.clone(), operator: trainer.finish()? })
+        Ok(JsDefOp::new(self.mesh.clone(), trainer.finish()?))
     }
 
     fn trainer_ref(&self) -> Result<&Trainer, BindingError> {
@@ -237,6 +237,30 @@ fn finished() -> BindingError {
 pub struct JsDefOp {
     mesh: Mesh,
     operator: Operator,
+    /// The last positions evaluated into a caller's array (2N numbers; sized once, so that
+    /// `evaluateInto` allocates nothing per frame beyond reading the targets).
+    scratch: Vec<f64>,
+    /// The same in single precision.
+    scratch32: Vec<f32>,
+}
+
+impl JsDefOp {
+    fn new(mesh: Mesh, operator: Operator) -> Self {
+        let n = 2 * operator.vertex_count();
+        Self { mesh, operator, scratch: vec![0.0; n], scratch32: vec![0.0; n] }
+    }
+
+    /// Refuses an output array of the wrong length.
+    fn check_out(&self, length: u32) -> Result<(), BindingError> {
+        let n = self.scratch.len();
+        if length as usize != n {
+            return Err(BindingError::argument(format!(
+                "out has {length} numbers; the mesh's {} vertices need {n}",
+                n / 2
+            )));
+        }
+        Ok(())
+    }
 }
 
 /// The largest operator file read, in bytes (the most a training may make).
@@ -250,7 +274,7 @@ impl JsDefOp {
     pub fn from_bytes(bytes: JsValue) -> Result<JsDefOp, BindingError> {
         let bytes = read::bytes(&bytes, "bytes", MAX_OPERATOR_BYTES)?;
         let (mesh, operator) = read_operator(&bytes).map_err(TrainError::from)?;
-        Ok(Self { mesh, operator })
+        Ok(Self::new(mesh, operator))
     }
 
     /// The operator file: the operator and its mesh (`Uint8Array`).
@@ -274,16 +298,10 @@ impl JsDefOp {
     /// [`Self::evaluate`] into `out` (`Float64Array` of 2 numbers per vertex).
     #[wasm_bindgen(js_name = evaluateInto)]
     pub fn evaluate_into(&mut self, targets: JsValue, out: &js_sys::Float64Array) -> Result<(), BindingError> {
-        let positions = self.evaluate(targets)?;
-        if out.length() as usize != positions.len() {
-            return Err(BindingError::argument(format!(
-                "out has {} numbers; the mesh's {} vertices need {}",
-                out.length(),
-                positions.len() / 2,
-                positions.len()
-            )));
-        }
-        out.copy_from(&positions);
+        self.check_out(out.length())?;
+        let targets = read::float64s(&targets, "targets", 2 * limits().max_vertices)?;
+        self.operator.evaluate_into(&targets, &mut self.scratch).map_err(TrainError::from)?;
+        out.copy_from(&self.scratch);
         Ok(())
     }
 
@@ -291,18 +309,10 @@ impl JsDefOp {
     /// computed in double.
     #[wasm_bindgen(js_name = evaluateIntoF32)]
     pub fn evaluate_into_f32(&mut self, targets: JsValue, out: &js_sys::Float32Array) -> Result<(), BindingError> {
+        self.check_out(out.length())?;
         let targets = read::float64s(&targets, "targets", 2 * limits().max_vertices)?;
-        let mut positions = vec![0.0f32; 2 * self.operator.vertex_count()];
-        if out.length() as usize != positions.len() {
-            return Err(BindingError::argument(format!(
-                "out has {} numbers; the mesh's {} vertices need {}",
-                out.length(),
-                positions.len() / 2,
-                positions.len()
-            )));
-        }
-        self.operator.evaluate_into_f32(&targets, &mut positions).map_err(TrainError::from)?;
-        out.copy_from(&positions);
+        self.operator.evaluate_into_f32(&targets, &mut self.scratch32).map_err(TrainError::from)?;
+        out.copy_from(&self.scratch32);
         Ok(())
     }
 
