@@ -68,7 +68,7 @@ mod tests {
         let n = mesh.vertex_count();
         for f in linear_functions(&mesh) {
             let mut out = vec![0.0; n];
-            super::super::spatial::csc_times(&a_s, &f, &mut out);
+            crate::sparse::mul_into(a_s.view(), &f, &mut out);
             assert!(out.iter().all(|x| x.abs() < 1e-11), "{out:?}");
         }
         for (j, column) in a_s.outer_iterator().enumerate() {

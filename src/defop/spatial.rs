@@ -15,6 +15,8 @@ use sprs::{CsMat, TriMat};
 use super::fit_error::FitError;
 use crate::geometry::Point;
 use crate::mesh::Mesh;
+use crate::sparse::eigen::m_orthonormal;
+use crate::sparse::mul_into;
 
 pub use crate::mesh::MeshPoint;
 
@@ -114,16 +116,6 @@ pub fn linearly_precise_laplacian(mesh: &Mesh) -> CsMat<f64> {
     tri.to_csc()
 }
 
-/// `out = A v` for a matrix in compressed sparse column form.
-pub(crate) fn csc_times(a: &CsMat<f64>, v: &[f64], out: &mut [f64]) {
-    out.iter_mut().for_each(|x| *x = 0.0);
-    for (j, column) in a.outer_iterator().enumerate() {
-        for (i, &value) in column.iter() {
-            out[i] += value * v[j];
-        }
-    }
-}
-
 /// The spatial basis Φ of a deformation operator.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpatialBasis {
@@ -179,26 +171,8 @@ impl SpatialBasis {
             }
             vectors.push(v.clone());
         }
-        let mut av = vec![0.0; n];
-        let mut done: Vec<Vec<f64>> = Vec::with_capacity(vectors.len());
-        for mut v in vectors {
-            csc_times(&a, &v, &mut av);
-            let original = dot(&v, &av).sqrt();
-            for _ in 0..2 {
-                for u in &done {
-                    csc_times(&a, u, &mut av);
-                    let c = dot(&v, &av);
-                    v.iter_mut().zip(u).for_each(|(x, y)| *x -= c * y);
-                }
-            }
-            csc_times(&a, &v, &mut av);
-            let norm = dot(&v, &av).sqrt();
-            if norm.is_nan() || norm <= 1e-10 * original {
-                return Err(FitError::InvalidSpatialBasis { reason: "the vectors are linearly dependent" });
-            }
-            v.iter_mut().for_each(|x| *x /= norm);
-            done.push(v);
-        }
+        let done = m_orthonormal(a.view(), &vectors)
+            .ok_or(FitError::InvalidSpatialBasis { reason: "the vectors are linearly dependent" })?;
         let d = DMatrix::from_fn(done.len(), n, |i, j| done[i][j]);
         Ok(Self { vertex_count: n, reduction: Some(d) })
     }
@@ -266,7 +240,7 @@ pub(crate) fn mass_times_rows(a: &CsMat<f64>, d: &DMatrix<f64>) -> DMatrix<f64> 
     let (mut row, mut product) = (vec![0.0; n], vec![0.0; n]);
     for i in 0..d.nrows() {
         row.iter_mut().enumerate().for_each(|(j, x)| *x = d[(i, j)]);
-        csc_times(a, &row, &mut product);
+        mul_into(a.view(), &row, &mut product);
         for (j, &x) in product.iter().enumerate() {
             out[(i, j)] = x;
         }
@@ -274,14 +248,15 @@ pub(crate) fn mass_times_rows(a: &CsMat<f64>, d: &DMatrix<f64>) -> DMatrix<f64> 
     out
 }
 
-pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::shapes;
+
+    fn dot(a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(x, y)| x * y).sum()
+    }
+
     use crate::triangulate::{triangulate, TriangulationOptions};
 
     fn bar() -> Mesh {
@@ -296,7 +271,7 @@ mod tests {
             let mut out = vec![0.0; mesh.vertex_count()];
             let scale: f64 = k.data().iter().map(|x| x.abs()).fold(0.0, f64::max);
             for f in linear_functions(&mesh) {
-                csc_times(&k, &f, &mut out);
+                mul_into(k.view(), &f, &mut out);
                 let worst = out.iter().map(|x| x.abs()).fold(0.0, f64::max);
                 assert!(worst <= 1e-12 * scale.max(1.0), "|K f| = {worst}");
             }
@@ -308,7 +283,7 @@ mod tests {
         let k = linearly_precise_laplacian(&mesh);
         let q: Vec<f64> = mesh.positions().iter().map(|p| p[0] * p[0]).collect();
         let mut out = vec![0.0; q.len()];
-        csc_times(&k, &q, &mut out);
+        mul_into(k.view(), &q, &mut out);
         for (v, value) in out.iter().enumerate() {
             if !mesh.is_boundary_vertex(v) {
                 assert!((value - 2.0).abs() < 1e-12, "vertex {v}: {value}");
@@ -322,7 +297,7 @@ mod tests {
         let a = consistent_mass(&mesh);
         let ones = vec![1.0; mesh.vertex_count()];
         let mut out = vec![0.0; mesh.vertex_count()];
-        csc_times(&a, &ones, &mut out);
+        mul_into(a.view(), &ones, &mut out);
         // 1ᵀ A 1 = ∫ 1 = area; and lumped = row sums of A.
         assert!((dot(&ones, &out) - mesh.area()).abs() <= 1e-12 * mesh.area());
         for (l, r) in lumped_mass(&mesh).iter().zip(&out) {
@@ -334,7 +309,7 @@ mod tests {
         let a = consistent_mass(&square);
         let x: Vec<f64> = square.positions().iter().map(|p| p[0] / 3.0).collect();
         let mut ax = vec![0.0; x.len()];
-        csc_times(&a, &x, &mut ax);
+        mul_into(a.view(), &x, &mut ax);
         assert!((dot(&x, &ax) / 9.0 - 1.0 / 3.0).abs() < 1e-14);
     }
 

@@ -207,19 +207,16 @@ pub fn smallest_eigenpairs(
     Err(EigenError::NotConverged { iterations: options.max_iterations, residual })
 }
 
-/// `A x` for `A` in compressed sparse column form.
+/// `A x` for `A` in compressed sparse column form, in a new vector.
 fn mul(a: CsMatView<'_>, x: &[f64]) -> Vec<f64> {
     let mut y = vec![0.0; a.rows()];
-    for (j, col) in a.outer_iterator().enumerate() {
-        for (i, v) in col.iter() {
-            y[i] += v * x[j];
-        }
-    }
+    super::mul_into(a, x, &mut y);
     y
 }
 
-/// The vectors made M-orthonormal (Gram-Schmidt, twice); `None` if they are dependent.
-fn m_orthonormal(m: CsMatView<'_>, vectors: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+/// The vectors made M-orthonormal (Gram-Schmidt in M's inner product, twice); `None` if
+/// one has the wrong length or they are (numerically) dependent.
+pub fn m_orthonormal(m: CsMatView<'_>, vectors: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
     let n = m.rows();
     let mut basis: Vec<Vec<f64>> = Vec::with_capacity(vectors.len());
     for v in vectors {

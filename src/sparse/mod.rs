@@ -47,6 +47,17 @@ pub use symbolic::Symbolic;
 /// A matrix view in compressed sparse column form with `usize` indices.
 pub type CsMatView<'a> = sprs::CsMatView<'a, f64>;
 
+/// `out = A x` for `A` in compressed sparse column form (all of it: both triangles of a
+/// symmetric matrix must be stored).
+pub fn mul_into(a: CsMatView<'_>, x: &[f64], out: &mut [f64]) {
+    out.iter_mut().for_each(|y| *y = 0.0);
+    for (j, column) in a.outer_iterator().enumerate() {
+        for (i, &value) in column.iter() {
+            out[i] += value * x[j];
+        }
+    }
+}
+
 /// Why a factorisation could not be computed.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
