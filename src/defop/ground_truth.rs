@@ -23,7 +23,12 @@
 //! on its target (to rounding; vertex handles exactly). Once there, a backtracking
 //! (Armijo) line search on the true energy `E` follows the step; for S-ARAP it starts
 //! below the first `α` where some `det J_t(α) = 0` (a quadratic in `α` per triangle; the
-//! cap is 0.9 of it), so no iterate ever flips or collapses a triangle.
+//! cap is 0.9 of it), so no iterate ever flips or collapses a triangle. When a full step
+//! of the projected model is accepted, steps twice, four times... as long (up to 64, below
+//! the cap) are tried while the energy keeps falling: the projection drops the energy's
+//! negative curvature, and near a saddle its full steps were far too short (ARAP solves
+//! on the gingerbread figure, 2,000 vertices: 28.5 iterations on average before, 18.4
+//! after).
 //!
 //! **The S-ARAP kink.** Eq. (11) is not differentiable where `J` is conformal (`R = 0`) but
 //! not a rotation: there it is the cone `ψ(Q, 0) + κ R` in the anti-similarity part
@@ -65,7 +70,10 @@
 //! start's handle positions `y`. A stage begins with the full step onto its targets; when
 //! that step would flip a triangle (S-ARAP: cap below 1) the stage is abandoned and the
 //! stage length halved, after a success it doubles. Intermediate stages stop at a
-//! tolerance of 1e-6; the last one at the requested tolerance. A warm start with a
+//! tolerance of 1e-2 (they only lead the way to the next: S-ARAP solves on the gingerbread
+//! figure took 101 iterations on average with 1e-6 and 58 with 1e-2); the last one at the
+//! requested tolerance. When a stage fails from a roughly converged one, whose left-over
+//! gradient is part of the first step, that one is first finished to 1e-6. A warm start with a
 //! flipped or collapsed triangle under S-ARAP restarts from the rest pose (a fallback,
 //! counted in [`SolveReport::fallback`] and [`GroundTruth::fallbacks`]).
 //!
@@ -92,8 +100,12 @@ const AT_VERTEX: f64 = 1e-12;
 const REGULARISATION: f64 = 1e-8;
 const FLIP_MARGIN: f64 = 0.9;
 const ARMIJO: f64 = 1e-4;
+/// The longest step tried beyond a full step of the projected model (see `extrapolate`).
+const MAX_EXTRAPOLATION: f64 = 64.0;
 const SMALLEST_STAGE: f64 = 1.0 / 65536.0;
-const STAGE_TOLERANCE: f64 = 1e-6;
+const STAGE_TOLERANCE: f64 = 1e-2;
+/// The tolerance a stage is finished to when the next one failed from its rough solution.
+const FINE_STAGE_TOLERANCE: f64 = 1e-6;
 /// A step lowering the energy by less than this fraction of it is flat; after
 /// `FLAT_STEPS` flat steps in a row the energy has converged to what doubles resolve.
 const FLAT: f64 = 1e-14;
@@ -391,13 +403,13 @@ impl GroundTruth {
     /// final gradient.
     fn homotopy(&mut self, iterations: &mut usize) -> Result<(usize, f64), DefOpError> {
         let (mut done, mut length, mut stages) = (0.0f64, 1.0f64, 0);
+        // Whether `saved` was converged only to `STAGE_TOLERANCE`.
+        let mut rough = false;
         self.saved.copy_from_slice(&self.x);
         loop {
             let s = (done + length).min(1.0);
             let last = s >= 1.0;
-            for ((t, f), g) in self.stage_targets.iter_mut().zip(&self.from).zip(&self.goal) {
-                *t = if last { *g } else { [f[0] + s * (g[0] - f[0]), f[1] + s * (g[1] - f[1])] };
-            }
+            self.set_stage_targets(s);
             let tolerance = if last { self.options.tolerance } else { self.options.tolerance.max(STAGE_TOLERANCE) };
             match self.newton(tolerance, iterations)? {
                 Some(gradient) => {
@@ -407,16 +419,36 @@ impl GroundTruth {
                     }
                     done = s;
                     length = (2.0 * length).min(1.0);
+                    rough = true;
                     self.saved.copy_from_slice(&self.x);
                 }
                 None => {
                     self.x.copy_from_slice(&self.saved);
+                    if rough {
+                        // A roughly converged stage's left-over gradient is part of the next
+                        // first step, and can flip a triangle however short the stage: the
+                        // stage is finished properly before any shorter one is tried.
+                        rough = false;
+                        self.set_stage_targets(done);
+                        if self.newton(self.options.tolerance.max(FINE_STAGE_TOLERANCE), iterations)?.is_some() {
+                            self.saved.copy_from_slice(&self.x);
+                            continue;
+                        }
+                        self.x.copy_from_slice(&self.saved);
+                    }
                     length /= 2.0;
                     if length < SMALLEST_STAGE {
                         return Err(DefOpError::Unreachable { reached: done });
                     }
                 }
             }
+        }
+    }
+
+    /// The handles' targets at stage `s`: `from + s (goal - from)`, the goal itself at 1.
+    fn set_stage_targets(&mut self, s: f64) {
+        for ((t, f), g) in self.stage_targets.iter_mut().zip(&self.from).zip(&self.goal) {
+            *t = if s >= 1.0 { *g } else { [f[0] + s * (g[0] - f[0]), f[1] + s * (g[1] - f[1])] };
         }
     }
 
@@ -521,6 +553,9 @@ impl GroundTruth {
                     }
                 };
                 if found {
+                    if !exact && alpha == 1.0 {
+                        self.extrapolate(cap);
+                    }
                     break;
                 }
                 if hold && self.state.contains(&HELD) {
@@ -795,6 +830,25 @@ impl GroundTruth {
             first = first.min(first_root(c0, c1, c2));
         }
         first
+    }
+
+    /// After a full step of the projected model was accepted: moves `trial` to that step
+    /// doubled while the energy keeps falling, at most [`MAX_EXTRAPOLATION`] times and below
+    /// `cap`. The projected Hessian drops the energy's negative curvature, so near a
+    /// saddle its steps are far too short: on the gingerbread figure, ARAP solves spent
+    /// dozens of full steps each lowering the energy by a millionth.
+    fn extrapolate(&mut self, cap: f64) {
+        let mut best = self.total_energy(&self.trial);
+        let mut alpha = 1.0;
+        while 2.0 * alpha <= cap.min(MAX_EXTRAPOLATION) {
+            self.move_to_trial(2.0 * alpha);
+            let e = self.total_energy(&self.trial);
+            if !(e < best) {
+                break;
+            }
+            (best, alpha) = (e, 2.0 * alpha);
+        }
+        self.move_to_trial(alpha);
     }
 
     fn move_to_trial(&mut self, alpha: f64) {
