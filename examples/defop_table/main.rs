@@ -7,10 +7,10 @@
 //! `benches/defop-energies.svg` (Fig. 6). Progress goes to stderr.
 //!
 //! ```text
-//! cargo run --release --example defop_table [-- --quick] [-- OUTPUT_DIR]
+//! cargo run --release --example defop_table [-- [--quick] [OUTPUT_DIR]]
 //! ```
 //!
-//! `--quick` trains on few samples and small meshes (about a minute); the default is the
+//! `--quick` trains on few samples and small meshes (under a minute); the default is the
 //! full run. The wasm columns come from `node scripts/bench-defop.mjs --operators DIR`,
 //! run by this example on the operator files it writes to `target/defop-table/` when
 //! `www/lib/` is built (`bash scripts/build.sh --package`) and `node` is on the path;
