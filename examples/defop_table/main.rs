@@ -11,8 +11,9 @@
 //! ```
 //!
 //! `--quick` trains on few samples and small meshes (under a minute); the default is the
-//! full run. The wasm columns come from `node scripts/bench-defop.mjs --operators DIR`,
-//! run by this example on the operator files it writes to `target/defop-table/` when
+//! full run. The wasm columns come from `node scripts/bench-defop.mjs --operators
+//! target/defop-table/manifest.json`, run by this example on the operator files it
+//! writes to `target/defop-table/` (the manifest lists them with targets to time) when
 //! `www/lib/` is built (`bash scripts/build.sh --package`) and `node` is on the path;
 //! otherwise they say so.
 //!
