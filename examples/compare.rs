@@ -198,30 +198,6 @@ fn main() {
     eprintln!("wrote {output_dir}/comparison.md and {output_dir}/comparison.svg");
 }
 
-/// Boundary loops of a mesh as vertex index lists (outer outline and holes).
-fn boundary_loops(mesh: &Mesh) -> Vec<Vec<u32>> {
-    let mut next = vec![u32::MAX; mesh.vertex_count()];
-    for &[a, b] in mesh.boundary_edges() {
-        next[a as usize] = b;
-    }
-    let mut seen = vec![false; mesh.vertex_count()];
-    let mut loops = Vec::new();
-    for &[start, _] in mesh.boundary_edges() {
-        if seen[start as usize] {
-            continue;
-        }
-        let mut ring = Vec::new();
-        let mut v = start;
-        while !seen[v as usize] {
-            seen[v as usize] = true;
-            ring.push(v);
-            v = next[v as usize];
-        }
-        loops.push(ring);
-    }
-    loops
-}
-
 /// The figure: one row per session, one column per method, each pose scaled to its cell.
 fn svg(rows: &[(String, Mesh, Vec<Outcome>)], labels: &[&str]) -> String {
     let (cell_w, cell_h, label_w, head_h) = (200.0, 170.0, 90.0, 24.0);
@@ -252,7 +228,7 @@ fn svg(rows: &[(String, Mesh, Vec<Outcome>)], labels: &[&str]) -> String {
             }
         }
         let scale = ((cell_w - 16.0) / (hi[0] - lo[0])).min((cell_h - 16.0) / (hi[1] - lo[1]));
-        let loops = boundary_loops(mesh);
+        let loops = mesh.boundary_loops();
         for (c, pose) in poses.iter().enumerate() {
             let x0 = label_w + cell_w * c as f64 + (cell_w - scale * (hi[0] - lo[0])) / 2.0;
             let top = y0 + (cell_h - scale * (hi[1] - lo[1])) / 2.0;

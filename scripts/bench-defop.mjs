@@ -3,11 +3,45 @@
 // octopus (the built-in figure at about 2,000 vertices, 9 handles, TPS on the samples,
 // the reduced spatial basis of 100 functions), for both energies.
 //   npm run build && node scripts/bench-defop.mjs [samples] [vertices]
+// With --operators MANIFEST (written by `cargo run --release --example defop_table`): times
+// evaluateInto on each operator file it lists (loaded with DefOp.fromBytes, its targets
+// from the manifest) and prints one JSON object, file name to milliseconds per evaluation.
+//   node scripts/bench-defop.mjs --operators target/defop-table/manifest.json
+import { readFileSync } from "node:fs";
 import process from "node:process";
 import { performance } from "node:perf_hooks";
-import { DefOpTrainer, defaultShape, init, triangulateToVertices } from "../www/lib/index.js";
+import { DefOp, DefOpTrainer, defaultShape, init, triangulateToVertices } from "../www/lib/index.js";
 
 await init();
+
+/** Milliseconds per `op.evaluateInto` over `queries`, for about a second after a warm-up. */
+function evaluationMs(op, queries, vertexCount) {
+  const out = new Float64Array(2 * vertexCount);
+  for (const q of queries) op.evaluateInto(q, out); // warm up
+  let calls = 0;
+  const t0 = performance.now();
+  while (performance.now() - t0 < 1000) {
+    for (const q of queries) op.evaluateInto(q, out);
+    calls += queries.length;
+  }
+  return (performance.now() - t0) / calls;
+}
+
+if (process.argv[2] === "--operators") {
+  const manifest = JSON.parse(readFileSync(process.argv[3], "utf8"));
+  const timings = {};
+  for (const { file, targets } of manifest) {
+    const op = DefOp.fromBytes(new Uint8Array(readFileSync(file)));
+    timings[file] = evaluationMs(
+      op,
+      targets.map((t) => Float64Array.from(t)),
+      op.vertexCount,
+    );
+    op.free();
+  }
+  console.log(JSON.stringify(timings));
+  process.exit(0);
+}
 const samples = Number(process.argv[2] ?? 1000);
 const vertices = Number(process.argv[3] ?? 2000);
 const { mesh } = triangulateToVertices(defaultShape(), vertices);
@@ -50,16 +84,8 @@ for (const energy of (process.env.ENERGIES ?? "sarap,arap").split(",")) {
   const seconds = (performance.now() - start) / 1000;
   const s = trainer.stats();
   const op = trainer.finish();
-  const out = new Float64Array(2 * mesh.vertexCount);
   const queries = Array.from({ length: 64 }, (_, k) => rest.map((x, i) => x + 0.05 * Math.sin(k + 1.7 * i)));
-  for (const q of queries) op.evaluateInto(q, out); // warm up
-  let calls = 0;
-  const t0 = performance.now();
-  while (performance.now() - t0 < 1000) {
-    for (const q of queries) op.evaluateInto(q, out);
-    calls += queries.length;
-  }
-  const ms = (performance.now() - t0) / calls;
+  const ms = evaluationMs(op, queries, mesh.vertexCount);
   const mean = (n, i) => (n ? (i / n).toFixed(1) : "-");
   console.log(
     `| ${energy} | ${seconds.toFixed(1)} | ${s.cold} (${mean(s.cold, s.coldIterations)}) | ${s.warm} (${mean(s.warm, s.warmIterations)}) | ${s.neighbourStarts} | ${s.redraws} | ${ms.toFixed(3)} | ${Math.round(1000 / ms)} |`,

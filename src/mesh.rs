@@ -343,6 +343,33 @@ impl Mesh {
         self.is_boundary.iter().enumerate().filter(|(_, &b)| b).map(|(v, _)| v as u32)
     }
 
+    /// The boundary as closed loops of vertices (the outer outline and each hole's), each
+    /// in the direction of its edges (the shape on the left), starting at the first vertex
+    /// of its first edge in [`Mesh::boundary_edges`]. Every boundary vertex has one
+    /// outgoing boundary edge (bow-ties are refused), so the loops are well defined.
+    pub fn boundary_loops(&self) -> Vec<Vec<u32>> {
+        let mut next = vec![u32::MAX; self.vertex_count()];
+        for &[a, b] in &self.boundary_edges {
+            next[a as usize] = b;
+        }
+        let mut seen = vec![false; self.vertex_count()];
+        let mut loops = Vec::new();
+        for &[start, _] in &self.boundary_edges {
+            if seen[start as usize] {
+                continue;
+            }
+            let mut ring = Vec::new();
+            let mut v = start;
+            while !seen[v as usize] {
+                seen[v as usize] = true;
+                ring.push(v);
+                v = next[v as usize];
+            }
+            loops.push(ring);
+        }
+        loops
+    }
+
     /// The vertices that share an edge with `v`, ascending.
     pub fn neighbors(&self, v: usize) -> &[u32] {
         &self.neighbors[self.neighbor_start[v] as usize..self.neighbor_start[v + 1] as usize]
@@ -546,6 +573,28 @@ mod tests {
         assert_eq!(mesh.edges().count(), 5);
         assert_eq!(mesh.connected_components(), 1);
         assert_eq!(mesh.boundary_vertices().count(), 4);
+    }
+
+    #[test]
+    fn boundary_loops_follow_the_outline_and_each_hole() {
+        // A 3 x 3 grid without its middle square: the outer loop of 12 vertices and the
+        // hole's 4, each a cycle of boundary edges.
+        let grid = crate::shapes::grid_mesh(3, 3);
+        let triangles: Vec<[u32; 3]> =
+            grid.triangles().iter().enumerate().filter(|(t, _)| *t / 2 != 4).map(|(_, t)| *t).collect();
+        let mesh = Mesh::new(grid.positions().to_vec(), triangles).unwrap();
+        let mut loops = mesh.boundary_loops();
+        loops.sort_by_key(Vec::len);
+        assert_eq!(loops.iter().map(Vec::len).collect::<Vec<_>>(), vec![4, 12]);
+        let mut hole = loops[0].clone();
+        hole.sort();
+        assert_eq!(hole, vec![5, 6, 9, 10]);
+        for ring in &loops {
+            for (k, &v) in ring.iter().enumerate() {
+                let w = ring[(k + 1) % ring.len()];
+                assert!(mesh.boundary_edges().contains(&[v, w]), "{v} -> {w}");
+            }
+        }
     }
 
     #[test]

@@ -136,6 +136,32 @@ impl Operator {
         self.vertex_count
     }
 
+    /// The bytes the operator's numbers take: its coefficients X^x, X^y and, for a reduced
+    /// spatial basis, its nodal values D (8 bytes each; scratch buffers not counted).
+    ///
+    /// ```
+    /// use akap::defop::{fit, BasisKind, FitOptions, MeshPoint, Sample, SpatialBasis};
+    ///
+    /// // A linear operator (|Ψ| = 2n + 1 = 3) on the hat functions of a 2 x 2 grid (|Φ| =
+    /// // 9 vertices): X^x and X^y are 9 x 3 each, and there is no reduced basis.
+    /// let mesh = akap::shapes::grid_mesh(2, 2);
+    /// let shift = |dx: f64, dy: f64| -> Vec<f64> {
+    ///     mesh.positions().iter().flat_map(|p| [p[0] + dx, p[1] + dy]).collect()
+    /// };
+    /// let (right, up) = (shift(0.5, 0.0), shift(0.0, 0.5));
+    /// let samples = [
+    ///     Sample { targets: &[1.5, 1.0], positions: &right },
+    ///     Sample { targets: &[1.0, 1.5], positions: &up },
+    /// ];
+    /// let options = FitOptions::default().with_kind(BasisKind::Linear);
+    /// let operator = fit(&mesh, &SpatialBasis::hat(&mesh), &[MeshPoint::Vertex(4)], &samples, &options)?;
+    /// assert_eq!(operator.stored_bytes(), 8 * 2 * 9 * 3);
+    /// # Ok::<(), akap::defop::FitError>(())
+    /// ```
+    pub fn stored_bytes(&self) -> usize {
+        8 * (self.coefficients.len() + self.reduction.len())
+    }
+
     /// The coefficient X^ν_ij of spatial function i and handle function j for coordinate
     /// ν (0 for x, 1 for y); `None` if an index is out of range.
     pub fn coefficient(&self, coordinate: usize, i: usize, j: usize) -> Option<f64> {
