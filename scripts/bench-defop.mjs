@@ -1,18 +1,60 @@
 // DefOp in wasm, in Node, on one thread: training time (ground-truth samples with
 // bootstrapped warm starts, fits) and evaluations per second, at the size of the paper's
 // octopus (the built-in figure at about 2,000 vertices, 9 handles, TPS on the samples,
-// the reduced spatial basis of 100 functions), for both energies.
-//   npm run build && node scripts/bench-defop.mjs [samples] [vertices]
+// the reduced spatial basis of 100 functions), for both energies. With WORKERS=k (k >= 1)
+// each training runs a second time with its sample solves spread over k worker threads
+// (scripts/defop-worker.mjs, each with its own wasm instance, jobs from
+// DefOpTrainer.nextJobs), and the speed-up over one thread is printed.
+//   npm run build && [WORKERS=2] node scripts/bench-defop.mjs [samples] [vertices]
 // With --operators MANIFEST (written by `cargo run --release --example defop_table`): times
 // evaluateInto on each operator file it lists (loaded with DefOp.fromBytes, its targets
 // from the manifest) and prints one JSON object, file name to milliseconds per evaluation.
 //   node scripts/bench-defop.mjs --operators target/defop-table/manifest.json
 import { readFileSync } from "node:fs";
 import process from "node:process";
+import { URL } from "node:url";
+import { Worker } from "node:worker_threads";
 import { performance } from "node:perf_hooks";
 import { DefOp, DefOpTrainer, defaultShape, init, triangulateToVertices } from "../www/lib/index.js";
 
 await init();
+
+/**
+ * Trains like `trainer.advance` does, but with every sample's solve on one of `count`
+ * workers; resolves to the trainer once it is done.
+ */
+async function trainWithWorkers(trainer, count, workerData) {
+  const url = new URL("./defop-worker.mjs", import.meta.url);
+  const workers = Array.from({ length: count }, () => new Worker(url, { workerData }));
+  await Promise.all(workers.map((w) => new Promise((ready) => w.once("message", ready))));
+  const idle = [...workers];
+  let outstanding = 0;
+  await new Promise((resolve, fail) => {
+    const dispatch = () => {
+      for (const job of trainer.nextJobs(idle.length)) {
+        const worker = idle.pop();
+        outstanding++;
+        worker.once("message", (reply) => {
+          outstanding--;
+          idle.push(worker);
+          try {
+            if (reply.result) trainer.submit(reply.result);
+            else trainer.reject(reply.index, { code: reply.code });
+            if (trainer.progress().stage === "done") resolve();
+            else dispatch();
+          } catch (error) {
+            fail(error);
+          }
+        });
+        worker.postMessage(job);
+      }
+      if (outstanding === 0 && trainer.progress().stage !== "done") fail(new Error("no jobs and none out"));
+    };
+    dispatch();
+  });
+  await Promise.all(workers.map((w) => w.terminate()));
+  return trainer;
+}
 
 /** Milliseconds per `op.evaluateInto` over `queries`, for about a second after a warm-up. */
 function evaluationMs(op, queries, vertexCount) {
@@ -74,9 +116,10 @@ console.log(
 );
 console.log("");
 console.log(
-  "| energy | training s | cold solves (mean iterations) | warm solves (mean iterations) | neighbour starts | redraws | evaluate ms | evaluations/s |",
+  "| energy | training s | cold solves (mean iterations) | warm solves (mean iterations) | neighbour starts | redraws | evaluate ms | evaluations/s | training s, workers | speed-up |",
 );
-console.log("|---|---|---|---|---|---|---|---|");
+console.log("|---|---|---|---|---|---|---|---|---|---|");
+const workerCount = Number(process.env.WORKERS ?? 0);
 for (const energy of (process.env.ENERGIES ?? "sarap,arap").split(",")) {
   const start = performance.now();
   const trainer = new DefOpTrainer(p, mesh.triangles, handles, { energy, samples, spatial: 100, seed: 1 });
@@ -87,8 +130,25 @@ for (const energy of (process.env.ENERGIES ?? "sarap,arap").split(",")) {
   const queries = Array.from({ length: 64 }, (_, k) => rest.map((x, i) => x + 0.05 * Math.sin(k + 1.7 * i)));
   const ms = evaluationMs(op, queries, mesh.vertexCount);
   const mean = (n, i) => (n ? (i / n).toFixed(1) : "-");
+  let parallel = "- | -";
+  if (workerCount > 0) {
+    const begin = performance.now();
+    const options = { energy, samples, spatial: 100, seed: 1 };
+    const trained = await trainWithWorkers(new DefOpTrainer(p, mesh.triangles, handles, options), workerCount, {
+      positions: p,
+      triangles: mesh.triangles,
+      handles: Uint32Array.from(handles),
+      energy,
+    });
+    const s2 = (performance.now() - begin) / 1000;
+    const same = trained
+      .finish()
+      .evaluate(queries[0])
+      .every((x, i) => x === op.evaluate(queries[0])[i]);
+    parallel = `${s2.toFixed(1)} (${workerCount}; ${same ? "same operator" : "OPERATOR DIFFERS"}) | ${(seconds / s2).toFixed(2)}x`;
+  }
   console.log(
-    `| ${energy} | ${seconds.toFixed(1)} | ${s.cold} (${mean(s.cold, s.coldIterations)}) | ${s.warm} (${mean(s.warm, s.warmIterations)}) | ${s.neighbourStarts} | ${s.redraws} | ${ms.toFixed(3)} | ${Math.round(1000 / ms)} |`,
+    `| ${energy} | ${seconds.toFixed(1)} | ${s.cold} (${mean(s.cold, s.coldIterations)}) | ${s.warm} (${mean(s.warm, s.warmIterations)}) | ${s.neighbourStarts} | ${s.redraws} | ${ms.toFixed(3)} | ${Math.round(1000 / ms)} | ${parallel} |`,
   );
   op.free();
 }
