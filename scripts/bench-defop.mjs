@@ -6,6 +6,7 @@
 // (scripts/defop-worker.mjs, each with its own wasm instance, jobs from
 // DefOpTrainer.nextJobs), and the speed-up over one thread is printed.
 //   npm run build && [WORKERS=2] node scripts/bench-defop.mjs [samples] [vertices]
+//   [WORKERS=2] node scripts/bench-defop.mjs --model octopus target/defop-table/manifest.json
 // With --operators MANIFEST (written by `cargo run --release --example defop_table`): times
 // evaluateInto on each operator file it lists (loaded with DefOp.fromBytes, its targets
 // from the manifest) and prints one JSON object, file name to milliseconds per evaluation.
@@ -84,35 +85,53 @@ if (process.argv[2] === "--operators") {
   console.log(JSON.stringify(timings));
   process.exit(0);
 }
-const samples = Number(process.argv[2] ?? 1000);
-const vertices = Number(process.argv[3] ?? 2000);
-const { mesh } = triangulateToVertices(defaultShape(), vertices);
-const p = mesh.positions;
-
-// Nine handles: the vertices nearest to points spread over the figure.
-const spots = [
-  [-0.48, 1.2],
-  [0.45, 0.95],
-  [0, 1.25],
-  [0, 0.7],
-  [-0.2, 0.05],
-  [0.2, 0.05],
-  [-0.3, 0.6],
-  [0.3, 0.6],
-  [0, 0.4],
-];
-const handles = spots.map(([x, y]) => {
-  let [best, at] = [Infinity, 0];
-  for (let v = 0; v < mesh.vertexCount; v++) {
-    const d = Math.hypot(p[2 * v] - x, p[2 * v + 1] - y);
-    if (d < best) [best, at] = [d, v];
-  }
-  return at;
-});
+// The model: by default the built-in figure with nine handles (the vertices nearest to
+// points spread over it); with --model NAME MANIFEST, the mesh, handles and training
+// options of a model of `cargo run --release --example defop_table` (its TPS operator file
+// holds the mesh; the manifest the handles and options).
+let model;
+if (process.argv[2] === "--model") {
+  const [name, path] = process.argv.slice(3, 5);
+  const entry = JSON.parse(readFileSync(path, "utf8")).find((e) => e.model === name && e.basis === "TPS");
+  if (!entry?.handles) throw new Error(`no TPS operator of a model ${name} with vertex handles in ${path}`);
+  const op = DefOp.fromBytes(new Uint8Array(readFileSync(entry.file)));
+  const { positions, triangles } = op.mesh();
+  op.free();
+  const { samples, spatial, radius } = entry.training;
+  model = { name, positions, triangles, handles: entry.handles, energies: [entry.training.energy] };
+  model.options = { samples, spatial, ...(radius === null ? {} : { radius }), seed: 1 };
+} else {
+  const samples = Number(process.argv[2] ?? 1000);
+  const { mesh } = triangulateToVertices(defaultShape(), Number(process.argv[3] ?? 2000));
+  const spots = [
+    [-0.48, 1.2],
+    [0.45, 0.95],
+    [0, 1.25],
+    [0, 0.7],
+    [-0.2, 0.05],
+    [0.2, 0.05],
+    [-0.3, 0.6],
+    [0.3, 0.6],
+    [0, 0.4],
+  ];
+  const p = mesh.positions;
+  const handles = spots.map(([x, y]) => {
+    let [best, at] = [Infinity, 0];
+    for (let v = 0; v < mesh.vertexCount; v++) {
+      const d = Math.hypot(p[2 * v] - x, p[2 * v + 1] - y);
+      if (d < best) [best, at] = [d, v];
+    }
+    return at;
+  });
+  model = { name: "figure", positions: p, triangles: mesh.triangles, handles, energies: ["sarap", "arap"] };
+  model.options = { samples, spatial: 100, seed: 1 };
+}
+const { positions: p, triangles, handles, options } = model;
+const vertexCount = p.length / 2;
 const rest = handles.flatMap((v) => [p[2 * v], p[2 * v + 1]]);
 
 console.log(
-  `${mesh.vertexCount} vertices, ${mesh.triangleCount} triangles, 9 handles, ${samples} samples, TPS, spatial 100`,
+  `${model.name}: ${vertexCount} vertices, ${triangles.length / 3} triangles, ${handles.length} handles, ${options.samples} samples, TPS, spatial ${options.spatial}`,
 );
 console.log("");
 console.log(
@@ -120,31 +139,32 @@ console.log(
 );
 console.log("|---|---|---|---|---|---|---|---|---|---|");
 const workerCount = Number(process.env.WORKERS ?? 0);
-for (const energy of (process.env.ENERGIES ?? "sarap,arap").split(",")) {
+for (const energy of process.env.ENERGIES?.split(",") ?? model.energies) {
   const start = performance.now();
-  const trainer = new DefOpTrainer(p, mesh.triangles, handles, { energy, samples, spatial: 100, seed: 1 });
+  const trainer = new DefOpTrainer(p, triangles, handles, { ...options, energy });
   while (trainer.advance(1000).stage !== "done");
   const seconds = (performance.now() - start) / 1000;
   const s = trainer.stats();
   const op = trainer.finish();
   const queries = Array.from({ length: 64 }, (_, k) => rest.map((x, i) => x + 0.05 * Math.sin(k + 1.7 * i)));
-  const ms = evaluationMs(op, queries, mesh.vertexCount);
+  const ms = evaluationMs(op, queries, vertexCount);
   const mean = (n, i) => (n ? (i / n).toFixed(1) : "-");
   let parallel = "- | -";
   if (workerCount > 0) {
     const begin = performance.now();
-    const options = { energy, samples, spatial: 100, seed: 1 };
-    const trained = await trainWithWorkers(new DefOpTrainer(p, mesh.triangles, handles, options), workerCount, {
-      positions: p,
-      triangles: mesh.triangles,
-      handles: Uint32Array.from(handles),
-      energy,
-    });
+    const trained = await trainWithWorkers(
+      new DefOpTrainer(p, triangles, handles, { ...options, energy }),
+      workerCount,
+      {
+        positions: p,
+        triangles,
+        handles: Uint32Array.from(handles),
+        energy,
+      },
+    );
     const s2 = (performance.now() - begin) / 1000;
-    const same = trained
-      .finish()
-      .evaluate(queries[0])
-      .every((x, i) => x === op.evaluate(queries[0])[i]);
+    const [mine, theirs] = [op.evaluate(queries[0]), trained.finish().evaluate(queries[0])];
+    const same = mine.every((x, i) => x === theirs[i]);
     parallel = `${s2.toFixed(1)} (${workerCount}; ${same ? "same operator" : "OPERATOR DIFFERS"}) | ${(seconds / s2).toFixed(2)}x`;
   }
   console.log(

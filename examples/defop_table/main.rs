@@ -30,7 +30,7 @@ mod run {
     use std::path::Path;
     use std::time::Instant;
 
-    use akap::defop::{write_operator, BasisKind};
+    use akap::defop::{write_operator, BasisKind, Energy, MeshPoint};
 
     use crate::figures;
     use crate::models::{self, Mode, RIDGE};
@@ -84,7 +84,24 @@ mod run {
                 let bytes = write_operator(&model.mesh, &operator).expect("a fitted operator writes");
                 std::fs::write(&file, bytes).expect("can write the operator file");
                 let queries: Vec<&Vec<f64>> = held.targets.iter().take(16).collect();
-                manifest.push(serde_json::json!({ "file": file.clone(), "targets": queries }));
+                // What `bench-defop.mjs --model` needs to train the model again in wasm: the
+                // handles (vertex ids) and the options, as the JavaScript API names them.
+                let vertex_handles: Option<Vec<u32>> =
+                    model.handles.iter().map(|h| if let MeshPoint::Vertex(v) = h { Some(*v) } else { None }).collect();
+                let training = serde_json::json!({
+                    "energy": if model.options.energy == Energy::SArap { "sarap" } else { "arap" },
+                    "samples": model.options.samples,
+                    "spatial": model.options.spatial,
+                    "radius": model.options.radius,
+                });
+                manifest.push(serde_json::json!({
+                    "file": file.clone(),
+                    "targets": queries,
+                    "model": model.name,
+                    "basis": basis_name(kind),
+                    "handles": vertex_handles,
+                    "training": training,
+                }));
                 let head = format!(
                     "| {} | {}{} | {} | {n} | {m} | {} | {} | {:.1} | {:.1} | {:.1} / {:.1} | {:.2} | {:.3} | {:.0} |",
                     model.name,
