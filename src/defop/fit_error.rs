@@ -69,6 +69,21 @@ pub enum FitError {
         /// What would be accepted.
         expected: &'static str,
     },
+    /// Canonical coordinates and fixed handles together: a rigid motion of all targets
+    /// moves the fixed handles.
+    CanonicalWithFixed,
+    /// A fixed handle's index is out of range or repeated.
+    InvalidFixedHandle {
+        /// The index.
+        index: usize,
+    },
+    /// A sample's target for a fixed handle is not the handle's rest position.
+    FixedHandleMoved {
+        /// The sample.
+        sample: usize,
+        /// The fixed handle.
+        handle: usize,
+    },
     /// A sparse factorisation failed.
     Factor(FactorError),
     /// The eigenproblem of a reduced spatial basis failed.
@@ -95,6 +110,15 @@ impl fmt::Display for FitError {
             Self::InvalidSpatialBasis { reason } => write!(f, "invalid reduced spatial basis: {reason}"),
             Self::InvalidOption { name, value, expected } => {
                 write!(f, "option {name} = {} is out of range: expected {expected}", Number(*value))
+            }
+            Self::CanonicalWithFixed => f.write_str(
+                "canonical coordinates and fixed handles cannot be combined: a rigid motion moves the fixed handles",
+            ),
+            Self::InvalidFixedHandle { index } => {
+                write!(f, "fixed handle {index} is not a handle, or is given twice")
+            }
+            Self::FixedHandleMoved { sample, handle } => {
+                write!(f, "sample {sample} moves fixed handle {handle} away from its rest position")
             }
             Self::Factor(e) => e.fmt(f),
             Self::Eigen(e) => write!(f, "the reduced basis could not be computed: {e}"),
