@@ -20,13 +20,13 @@ pub const MAX_BASIS_SIZE: usize = 1 << 20;
 /// Which functions of the handle targets a deformation operator combines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BasisKind {
-    /// 1 and the 2n coordinates: 2n + 1 functions.
+    /// 1 and the k coordinates: k + 1 functions (2n + 1 with all coordinates).
     Linear,
-    /// Linear plus all products of two coordinates: 1 + 3n + 2n² functions.
+    /// Linear plus all products of two coordinates: 1 + 3k/2 + k²/2 functions (1 + 3n + 2n²).
     Quadratic,
-    /// Quadratic plus all products of three coordinates: C(2n + 3, 3) functions.
+    /// Quadratic plus all products of three coordinates: C(k + 3, 3) functions.
     Cubic,
-    /// Linear plus one thin-plate radial function per training sample: 1 + 2n + m functions.
+    /// Linear plus one thin-plate radial function per training sample: 1 + k + m functions.
     Tps,
 }
 

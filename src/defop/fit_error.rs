@@ -40,8 +40,9 @@ pub enum FitError {
         second: usize,
     },
     /// A polynomial handle basis has more functions than there are samples and no
-    /// regularisation was asked for, or there are fewer samples than the 2n + 1 linear
-    /// functions (which the regularisation does not act on): the fit is not unique.
+    /// regularisation was asked for, or there are fewer samples than the k + 1 linear
+    /// functions (k handle coordinates, 2n unless canonical or with fixed handles; the
+    /// regularisation does not act on them): the fit is not unique.
     TooFewSamples {
         /// The number of samples.
         samples: usize,

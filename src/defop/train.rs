@@ -1,5 +1,6 @@
 //! Training a deformation operator by bootstrapping (the paper's main trick, Sections 1 and
-//! 3.3; notes, section 2.3): ground truths for `2n + 1` targets solved from the rest pose,
+//! 3.3; notes, section 2.3): ground truths for `k + 1` targets solved from the rest pose
+//! (k the handle coordinates: 2n, 2n − 3 canonical, 2(n − #fixed) with fixed handles),
 //! a linear operator fitted to them, then ever larger batches whose solves start from the
 //! current operator's prediction (a few Newton iterations instead of many), each batch
 //! followed by a refit with the richest basis its samples support, up to `m` samples and
