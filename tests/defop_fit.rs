@@ -20,15 +20,15 @@ use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use crate::common::Rng;
 
-const KINDS: [BasisKind; 4] = [BasisKind::Linear, BasisKind::Quadratic, BasisKind::Cubic, BasisKind::Tps];
+pub(crate) const KINDS: [BasisKind; 4] = [BasisKind::Linear, BasisKind::Quadratic, BasisKind::Cubic, BasisKind::Tps];
 
 /// The grid of 6 × 6 unit squares and three non-collinear handles at its vertices (1, 1),
 /// (5, 1) and (3, 5).
-fn grid() -> (Mesh, Vec<usize>) {
+pub(crate) fn grid() -> (Mesh, Vec<usize>) {
     (shapes::grid_mesh(6, 6), vec![8, 12, 38])
 }
 
-fn diagonal(mesh: &Mesh) -> f64 {
+pub(crate) fn diagonal(mesh: &Mesh) -> f64 {
     let p = mesh.positions();
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for q in p {
@@ -40,13 +40,13 @@ fn diagonal(mesh: &Mesh) -> f64 {
     (hi[0] - lo[0]).hypot(hi[1] - lo[1])
 }
 
-fn rest_of(mesh: &Mesh, vertices: &[usize]) -> Vec<f64> {
+pub(crate) fn rest_of(mesh: &Mesh, vertices: &[usize]) -> Vec<f64> {
     vertices.iter().flat_map(|&v| mesh.positions()[v]).collect()
 }
 
 /// `count` targets, each handle uniform (by area) in the disc of `radius` about its rest
 /// position, independently.
-fn disc_targets(rng: &mut Rng, rest: &[f64], radius: f64, count: usize) -> Vec<Vec<f64>> {
+pub(crate) fn disc_targets(rng: &mut Rng, rest: &[f64], radius: f64, count: usize) -> Vec<Vec<f64>> {
     (0..count)
         .map(|_| {
             rest.chunks_exact(2)
@@ -63,12 +63,12 @@ fn disc_targets(rng: &mut Rng, rest: &[f64], radius: f64, count: usize) -> Vec<V
 /// Q = P: g(v) = v + Σ_ℓ b_ℓ(v)(q_ℓ − p_ℓ) + c(v) n(Q), b_ℓ Shepard's inverse-square-distance
 /// weights (b_ℓ(p_k) = δ_ℓk), c(v) = Π_ℓ d_ℓ² / (d_ℓ² + 1) vanishing at the handles, and n
 /// a non-linear function of Q − P with n(P) = 0.
-fn shepard(mesh: &Mesh, handles: &[usize], targets: &[f64]) -> Vec<f64> {
+pub(crate) fn shepard(mesh: &Mesh, handles: &[usize], targets: &[f64]) -> Vec<f64> {
     shepard_about(mesh, &rest_of(mesh, handles), targets)
 }
 
 /// [`shepard`] for handles at the points `rest` (2n numbers), anywhere in the mesh.
-fn shepard_about(mesh: &Mesh, rest: &[f64], targets: &[f64]) -> Vec<f64> {
+pub(crate) fn shepard_about(mesh: &Mesh, rest: &[f64], targets: &[f64]) -> Vec<f64> {
     let delta: Vec<f64> = targets.iter().zip(rest).map(|(q, p)| q - p).collect();
     let s: f64 = delta.iter().enumerate().map(|(a, x)| (0.3 + 0.1 * a as f64) * x).sum();
     let t: f64 = delta.iter().enumerate().map(|(a, x)| (0.5 - 0.07 * a as f64) * x).sum();
@@ -94,15 +94,15 @@ fn shepard_about(mesh: &Mesh, rest: &[f64], targets: &[f64]) -> Vec<f64> {
     out
 }
 
-fn samples_of<'a>(targets: &'a [Vec<f64>], positions: &'a [Vec<f64>]) -> Vec<Sample<'a>> {
+pub(crate) fn samples_of<'a>(targets: &'a [Vec<f64>], positions: &'a [Vec<f64>]) -> Vec<Sample<'a>> {
     targets.iter().zip(positions).map(|(t, p)| Sample { targets: t, positions: p }).collect()
 }
 
-fn vertex_handles(vertices: &[usize]) -> Vec<MeshPoint> {
+pub(crate) fn vertex_handles(vertices: &[usize]) -> Vec<MeshPoint> {
     vertices.iter().map(|&v| MeshPoint::Vertex(v as u32)).collect()
 }
 
-fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn max_difference(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
 

@@ -3,7 +3,10 @@
 //! puts the handles on any targets; the same seed gives the same operator whether the
 //! samples are solved here in time slices or by separate solvers in any order ("workers");
 //! a solve started from the operator's prediction at a sample's targets needs at most one
-//! Newton step; bad calls are refused with typed errors. Runs natively and as wasm.
+//! Newton step; a canonical operator moves rigidly with rigid motions of its handles and
+//! still reproduces its samples; a fixed handle is at rest in every sample and stays there
+//! (the paper's bar: left end fixed, right end moving, 17 samples); bad calls are refused
+//! with typed errors. Runs natively and as wasm.
 
 use akap::defop::{
     BasisKind, Energy, FitError, MeshPoint, Operator, Start, TrainError, TrainOptions, TrainStats, Trainer,
@@ -65,7 +68,12 @@ fn samples_of(trainer: &Trainer) -> Vec<(Vec<f64>, Vec<f64>)> {
 
 /// Trains on this thread, one job per `advance`.
 fn train_here(mesh: &Mesh, options: TrainOptions) -> Trained {
-    let mut trainer = Trainer::new(mesh, &handles(mesh), options).unwrap();
+    train_with(mesh, &handles(mesh), options)
+}
+
+/// [`train_here`] with these handles.
+fn train_with(mesh: &Mesh, handles: &[MeshPoint], options: TrainOptions) -> Trained {
+    let mut trainer = Trainer::new(mesh, handles, options).unwrap();
     let mut calls = 0;
     while trainer.progress().stage != "done" {
         trainer.advance(0.0, frozen).unwrap();
@@ -235,4 +243,77 @@ fn bad_calls_are_refused() {
     );
     assert_eq!(trainer.progress().done, 1);
     assert!(matches!(trainer.finish(), Err(TrainError::NotDone { done: 1, total: 6 })));
+}
+
+/// Every point of `flat` rotated by θ about the origin, then shifted by t.
+fn moved(flat: &[f64], theta: f64, t: [f64; 2]) -> Vec<f64> {
+    let (s, c) = theta.sin_cos();
+    flat.chunks_exact(2).flat_map(|p| [c * p[0] - s * p[1] + t[0], s * p[0] + c * p[1] + t[1]]).collect()
+}
+
+fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+}
+
+#[test]
+fn a_canonical_operator_moves_rigidly_and_reproduces_its_samples() {
+    let mesh = bar();
+    let canonical = TrainOptions { canonical: true, ..options(12) };
+    let mut trained = train_here(&mesh, canonical);
+    let scale = size(&mesh);
+    let operator = &mut trained.operator;
+    assert_eq!(operator.handle_basis().coordinate_count(), 3);
+    // The rest targets: where the rest pose puts the handles (exact, a constraint).
+    let identity: Vec<f64> = mesh.positions().iter().flatten().copied().collect();
+    let rest = operator.handle_basis().rest().to_vec();
+    assert!(max_difference(&operator.evaluate(&rest).unwrap(), &identity) <= 1e-10 * scale);
+    for (k, (theta, t)) in [(0.5, [0.3, -2.0]), (-2.5, [4.0, 1.0]), (3.0, [0.0, 0.0])].into_iter().enumerate() {
+        let error = max_difference(&operator.evaluate(&moved(&rest, theta, t)).unwrap(), &moved(&identity, theta, t));
+        assert!(error <= 1e-9 * scale, "motion {k}: off by {error:e}");
+        let (q, _) = &trained.samples[k];
+        let expected = moved(&operator.evaluate(q).unwrap(), theta, t);
+        let error = max_difference(&operator.evaluate(&moved(q, theta, t)).unwrap(), &expected);
+        assert!(error <= 1e-9 * scale, "sample {k} moved: off by {error:e}");
+    }
+    // ARAP is rigid-invariant: the canonicalised samples are ground truths too, and a TPS
+    // interpolates them; moved back, the operator reproduces the samples.
+    for (k, (targets, truth)) in trained.samples.iter().enumerate() {
+        let error = max_difference(&operator.evaluate(targets).unwrap(), truth);
+        assert!(error <= 1e-8 * scale, "sample {k} reproduced to {error:e}");
+    }
+}
+
+/// The paper's bar (Table 1): the left end fixed, the right end moving, 17 samples.
+#[test]
+fn a_fixed_handle_stays_at_rest() {
+    let mesh = bar();
+    let ends = [MeshPoint::Vertex(nearest(&mesh, [-1.0, 0.0])), MeshPoint::Vertex(nearest(&mesh, [1.0, 0.0]))];
+    let [left, right] = ends.map(|h| match h {
+        MeshPoint::Vertex(v) => v as usize,
+        MeshPoint::Inside { .. } => unreachable!(),
+    });
+    let rest = mesh.positions()[left];
+    let fixed = TrainOptions { fixed: vec![0], samples: 17, seed: 3, ..TrainOptions::default() };
+    let mut trained = train_with(&mesh, &ends, fixed);
+    let scale = size(&mesh);
+    assert_eq!(trained.samples.len(), 17);
+    assert_eq!(trained.operator.handle_basis().len(), 1 + 2 + 18, "TPS: 1 + k + m, k = 2");
+    for (targets, truth) in &trained.samples {
+        assert_eq!(targets[..2], rest, "the fixed handle is sampled at rest");
+        assert!(max_difference(&truth[2 * left..2 * left + 2], &rest) <= 1e-9 * scale);
+        let error = max_difference(&trained.operator.evaluate(targets).unwrap(), truth);
+        assert!(error <= 1e-8 * scale, "sample reproduced to {error:e}");
+    }
+    for q in [[5.0, -3.0, 1.4, 0.6], [-1.0, 0.0, 0.2, -0.9], [0.0, 2.0, 3.0, 3.0]] {
+        let posed = trained.operator.evaluate(&q).unwrap();
+        assert!(max_difference(&posed[2 * left..2 * left + 2], &rest) <= 1e-9 * scale, "the fixed end moved");
+        assert!(max_difference(&posed[2 * right..2 * right + 2], &q[2..]) <= 1e-9 * scale, "the free end missed");
+    }
+    let both = TrainOptions { fixed: vec![0], canonical: true, ..TrainOptions::default() };
+    assert_eq!(Trainer::new(&mesh, &ends, both).unwrap_err(), TrainError::Fit(FitError::CanonicalWithFixed));
+    let outside = TrainOptions { fixed: vec![2], ..TrainOptions::default() };
+    assert_eq!(
+        Trainer::new(&mesh, &ends, outside).unwrap_err(),
+        TrainError::Fit(FitError::InvalidFixedHandle { index: 2 })
+    );
 }

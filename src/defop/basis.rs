@@ -1,13 +1,16 @@
-//! Handle bases Ψ: functions on the space of handle targets z = (q_1x, q_1y, …, q_nx, q_ny)
-//! ∈ R^{2n} (paper §3.1; notes §1). Every basis starts with the 2n + 1 linear functions
-//! {1, u_1, …, u_2n}; quadratic and cubic add the monomials u_a u_b (a ≤ b) and
-//! u_a u_b u_c (a ≤ b ≤ c); the thin-plate spline (TPS) adds one radial function
-//! ρ(‖u − u_k‖), ρ(r) = r² log r, per training sample. Functions are evaluated in scaled
-//! displacements u = (z − z_P) / r_s (z_P the rest handles, r_s the sampling radius): the
-//! same function space as raw monomials, far better conditioned.
+//! Handle bases Ψ: functions on the space of handle targets Q ∈ R^{2n} (paper §3.1; notes
+//! §1), through the k handle coordinates u = Bᵀ(Q̂ − P) / r_s of [`HandleCoordinates`]
+//! (P the rest handles, r_s the sampling radius; B = I and u = (Q − P) / r_s, k = 2n, unless
+//! the operator is canonical or has fixed handles). Every basis starts with the k + 1
+//! linear functions {1, u_1, …, u_k}; quadratic and cubic add the monomials u_a u_b (a ≤ b)
+//! and u_a u_b u_c (a ≤ b ≤ c); the thin-plate spline (TPS) adds one radial function
+//! ρ(‖u − u_j‖), ρ(r) = r² log r, per training sample. Scaled displacements span the same
+//! function space as raw monomials, far better conditioned.
 //!
-//! Sizes |Ψ|: 2n + 1, 1 + 3n + 2n², C(2n + 3, 3) and 1 + 2n + m (notes §1 table).
+//! Sizes |Ψ| with d = k: d + 1, 1 + 3d/2 + d²/2, C(d + 3, 3) and 1 + d + m (the notes §1
+//! table at d = 2n).
 
+use super::coordinates::HandleCoordinates;
 use super::fit_error::{check_finite, check_length, FitError};
 
 /// The largest handle basis accepted: 2^20 functions (a cubic basis of 50 handles has
@@ -17,22 +20,29 @@ pub const MAX_BASIS_SIZE: usize = 1 << 20;
 /// Which functions of the handle targets a deformation operator combines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BasisKind {
-    /// 1 and the 2n coordinates: 2n + 1 functions.
+    /// 1 and the k coordinates: k + 1 functions (2n + 1 with all coordinates).
     Linear,
-    /// Linear plus all products of two coordinates: 1 + 3n + 2n² functions.
+    /// Linear plus all products of two coordinates: 1 + 3k/2 + k²/2 functions (1 + 3n + 2n²).
     Quadratic,
-    /// Quadratic plus all products of three coordinates: C(2n + 3, 3) functions.
+    /// Quadratic plus all products of three coordinates: C(k + 3, 3) functions.
     Cubic,
-    /// Linear plus one thin-plate radial function per training sample: 1 + 2n + m functions.
+    /// Linear plus one thin-plate radial function per training sample: 1 + k + m functions.
     Tps,
 }
 
 impl BasisKind {
-    /// The number of functions |Ψ| with `handles` handles and `samples` training samples
-    /// (the samples count only for [`BasisKind::Tps`]); `usize::MAX` if it does not fit.
+    /// The number of functions |Ψ| with `handles` handles (all 2n coordinates) and
+    /// `samples` training samples (the samples count only for [`BasisKind::Tps`]);
+    /// `usize::MAX` if it does not fit.
     pub fn size(self, handles: usize, samples: usize) -> usize {
-        // Handle counts beyond 2^40 saturate before the products can overflow u128.
-        let d = (handles as u128).min(1 << 40) * 2;
+        self.size_in(handles.saturating_mul(2), samples)
+    }
+
+    /// The number of functions |Ψ| in `coordinates` handle coordinates k (see
+    /// [`HandleCoordinates`]) with `samples` training samples; `usize::MAX` if it does not fit.
+    pub fn size_in(self, coordinates: usize, samples: usize) -> usize {
+        // Coordinate counts beyond 2^41 saturate before the products can overflow u128.
+        let d = (coordinates as u128).min(1 << 41);
         let size = match self {
             Self::Linear => d + 1,
             Self::Quadratic => d + 1 + d * (d + 1) / 2,
@@ -66,90 +76,87 @@ pub(crate) fn thin_plate(r2: f64) -> f64 {
     }
 }
 
-/// A handle basis Ψ fixed at training time: its kind, the rest handles z_P and scale r_s
-/// of its coordinates, and for a TPS its centres.
+/// A handle basis Ψ fixed at training time: its kind, its handle coordinates (the rest
+/// handles P and the map B) and their scale r_s, and for a TPS its centres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HandleBasis {
     kind: BasisKind,
-    rest: Vec<f64>,
+    coordinates: HandleCoordinates,
     scale: f64,
-    /// TPS centres in scaled coordinates u, `2n` numbers each.
+    /// TPS centres in scaled coordinates u, `k` numbers each.
     centres: Vec<f64>,
     len: usize,
 }
 
 impl HandleBasis {
     /// A polynomial basis ([`BasisKind::Linear`], [`BasisKind::Quadratic`] or
-    /// [`BasisKind::Cubic`]) around the rest handles `rest` (2n numbers) with scale `scale`.
-    /// A [`BasisKind::Tps`] needs its centres: use [`HandleBasis::tps`].
+    /// [`BasisKind::Cubic`]) in all coordinates around the rest handles `rest` (2n numbers)
+    /// with scale `scale`. A [`BasisKind::Tps`] needs its centres: use [`HandleBasis::tps`].
     pub fn polynomial(kind: BasisKind, rest: &[f64], scale: f64) -> Result<Self, FitError> {
-        if !kind.is_polynomial() {
-            return Err(FitError::InvalidOption {
-                name: "kind",
-                value: f64::NAN,
-                expected: "a polynomial basis (a TPS needs its centres)",
-            });
-        }
-        Self::checked(kind, rest, scale, Vec::new())
+        Self::new(kind, HandleCoordinates::full(rest)?, scale, &[])
     }
 
-    /// A thin-plate spline basis with one radial function centred at each of `centres` (handle
-    /// targets, 2n numbers each, at least one), around the rest handles `rest` with scale
-    /// `scale`.
+    /// A thin-plate spline basis in all coordinates with one radial function centred at each
+    /// of `centres` (handle targets, 2n numbers each, at least one), around the rest handles
+    /// `rest` with scale `scale`.
     pub fn tps(rest: &[f64], scale: f64, centres: &[f64]) -> Result<Self, FitError> {
-        let d = rest.len();
-        if d == 0 {
-            return Err(FitError::NoHandles);
-        }
-        if centres.is_empty() {
+        Self::new(BasisKind::Tps, HandleCoordinates::full(rest)?, scale, centres)
+    }
+
+    /// A basis of `kind` in the handle coordinates `coordinates` with scale `scale`; for a
+    /// TPS, one radial function centred at each of `centres` (handle targets Q̂ as the
+    /// coordinates see them, canonical if they are; 2n numbers each, at least one; a TPS
+    /// needs k ≥ 1). Polynomial bases take no centres.
+    pub fn new(kind: BasisKind, coordinates: HandleCoordinates, scale: f64, centres: &[f64]) -> Result<Self, FitError> {
+        let d = coordinates.rest().len();
+        if !kind.is_polynomial() && centres.is_empty() {
             return Err(FitError::NoSamples);
         }
         check_length("centres", centres, centres.len().div_ceil(d) * d)?;
         check_finite("centres", centres)?;
-        let scaled = centres.chunks_exact(d).flat_map(|z| z.iter().zip(rest).map(|(a, b)| (a - b) / scale)).collect();
-        Self::checked(BasisKind::Tps, rest, scale, scaled)
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(FitError::InvalidOption { name: "scale", value: scale, expected: "a positive finite length" });
+        }
+        let k = coordinates.len();
+        let mut scaled = vec![0.0; centres.len() / d * k];
+        for (u, q) in scaled.chunks_exact_mut(k.max(1)).zip(centres.chunks_exact(d)) {
+            coordinates.project(q, u);
+            u.iter_mut().for_each(|x| *x /= scale);
+        }
+        Self::from_parts(kind, coordinates, scale, scaled)
     }
 
-    /// A basis from its parts as [`HandleBasis::rest`], [`HandleBasis::scale`] and
+    /// A basis from its parts as [`HandleBasis::coordinates`], [`HandleBasis::scale`] and
     /// [`HandleBasis::scaled_centres`] give them (an operator file), checked as the other
     /// constructors check theirs.
     pub(crate) fn from_parts(
         kind: BasisKind,
-        rest: &[f64],
+        coordinates: HandleCoordinates,
         scale: f64,
         scaled_centres: Vec<f64>,
     ) -> Result<Self, FitError> {
         check_finite("centres", &scaled_centres)?;
         let tps = kind == BasisKind::Tps;
-        if tps == scaled_centres.is_empty() || !scaled_centres.len().is_multiple_of(rest.len().max(1)) {
+        let k = coordinates.len();
+        if tps == scaled_centres.is_empty() || (tps && k == 0) || !scaled_centres.len().is_multiple_of(k.max(1)) {
             return Err(FitError::InvalidOption {
                 name: "centres",
                 value: scaled_centres.len() as f64,
-                expected: "centres, 2n numbers each, for a TPS basis only",
+                expected: "centres, k ≥ 1 numbers each, for a TPS basis only",
             });
         }
-        Self::checked(kind, rest, scale, scaled_centres)
-    }
-
-    fn checked(kind: BasisKind, rest: &[f64], scale: f64, centres: Vec<f64>) -> Result<Self, FitError> {
-        if rest.is_empty() {
-            return Err(FitError::NoHandles);
-        }
-        check_length("rest handles", rest, 2 * (rest.len() / 2))?;
-        check_finite("rest handles", rest)?;
         if !(scale.is_finite() && scale > 0.0) {
             return Err(FitError::InvalidOption { name: "scale", value: scale, expected: "a positive finite length" });
         }
-        let n = rest.len() / 2;
-        let len = kind.size(n, centres.len() / rest.len());
+        let len = kind.size_in(k, scaled_centres.len() / k.max(1));
         if len > MAX_BASIS_SIZE {
             return Err(FitError::InvalidOption {
                 name: "handles",
-                value: n as f64,
+                value: coordinates.rest().len() as f64 / 2.0,
                 expected: "few enough handles (and samples) for at most 2^20 handle basis functions",
             });
         }
-        Ok(Self { kind, rest: rest.to_vec(), scale, centres, len })
+        Ok(Self { kind, coordinates, scale, centres: scaled_centres, len })
     }
 
     /// The kind of basis.
@@ -159,7 +166,17 @@ impl HandleBasis {
 
     /// The number of handles n.
     pub fn handle_count(&self) -> usize {
-        self.rest.len() / 2
+        self.coordinates.rest().len() / 2
+    }
+
+    /// The handle coordinates: rest handles, canonical or not, fixed handles.
+    pub fn coordinates(&self) -> &HandleCoordinates {
+        &self.coordinates
+    }
+
+    /// The number of handle coordinates k.
+    pub fn coordinate_count(&self) -> usize {
+        self.coordinates.len()
     }
 
     /// The number of functions |Ψ|.
@@ -172,14 +189,14 @@ impl HandleBasis {
         false
     }
 
-    /// The number of linear functions 2n + 1, which come first in every basis.
+    /// The number of linear functions k + 1, which come first in every basis.
     pub fn linear_len(&self) -> usize {
-        self.rest.len() + 1
+        self.coordinates.len() + 1
     }
 
-    /// The rest handles z_P (2n numbers).
+    /// The rest handles P (2n numbers).
     pub fn rest(&self) -> &[f64] {
-        &self.rest
+        self.coordinates.rest()
     }
 
     /// The scale r_s of the coordinates u = (z − z_P) / r_s.
@@ -187,21 +204,26 @@ impl HandleBasis {
         self.scale
     }
 
-    /// The TPS centres in scaled coordinates u (2n numbers each; empty for a polynomial).
+    /// The TPS centres in scaled coordinates u (k numbers each; empty for a polynomial).
     pub fn scaled_centres(&self) -> &[f64] {
         &self.centres
     }
 
-    /// The coefficients of the function z ↦ z_a in this basis: `(constant, scaled)`, meaning
-    /// z_a = constant · ψ_0 + scaled · ψ_{1+a}; every other coefficient is zero.
-    pub fn coordinate(&self, a: usize) -> (f64, f64) {
-        (self.rest[a], self.scale)
+    /// The coefficients of the function Q ↦ q̂_a (coordinate a of the targets as the
+    /// coordinates see them) in this basis: `(constant, linear)`, meaning
+    /// q̂_a = constant · ψ_0 + Σ_j linear_j ψ_{1+j} (k numbers: r_s times row a of B); every
+    /// other coefficient is zero.
+    pub fn coordinate(&self, a: usize) -> (f64, Vec<f64>) {
+        let mut row = self.coordinates.row(a);
+        row.iter_mut().for_each(|x| *x *= self.scale);
+        (self.coordinates.rest()[a], row)
     }
 
-    /// Writes Ψ(z) to `out` (|Ψ| numbers) for handle targets `z` (2n numbers); allocates
-    /// nothing. Refuses wrong lengths and NaN or infinite targets.
+    /// Writes Ψ(Q̂) to `out` (|Ψ| numbers) for handle targets `z` = Q̂ (2n numbers, already
+    /// canonical for canonical coordinates); allocates nothing. Refuses wrong lengths and NaN
+    /// or infinite targets.
     pub fn evaluate_into(&self, z: &[f64], out: &mut [f64]) -> Result<(), FitError> {
-        check_length("targets", z, self.rest.len())?;
+        check_length("targets", z, self.coordinates.rest().len())?;
         check_finite("targets", z)?;
         if out.len() != self.len {
             return Err(FitError::Length { what: "output", expected: self.len, found: out.len() });
@@ -212,11 +234,12 @@ impl HandleBasis {
 
     /// [`HandleBasis::evaluate_into`] without the checks (lengths are the caller's invariant).
     pub(crate) fn evaluate_unchecked(&self, z: &[f64], out: &mut [f64]) {
-        let d = self.rest.len();
+        let d = self.coordinates.len();
         out[0] = 1.0;
         let inv = 1.0 / self.scale;
-        for a in 0..d {
-            out[1 + a] = (z[a] - self.rest[a]) * inv;
+        self.coordinates.project(z, &mut out[1..=d]);
+        for u in &mut out[1..=d] {
+            *u *= inv;
         }
         let (linear, rest) = out.split_at_mut(d + 1);
         let u = &linear[1..];
@@ -243,7 +266,7 @@ impl HandleBasis {
                 }
             }
             BasisKind::Tps => {
-                for (value, centre) in rest.iter_mut().zip(self.centres.chunks_exact(d)) {
+                for (value, centre) in rest.iter_mut().zip(self.centres.chunks_exact(d.max(1))) {
                     let r2: f64 = u.iter().zip(centre).map(|(a, c)| (a - c) * (a - c)).sum();
                     *value = thin_plate(r2);
                 }

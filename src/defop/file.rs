@@ -7,7 +7,7 @@
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `AKAPDEFO` |
-//! | 8 | 4 | version, 1 |
+//! | 8 | 4 | version, 2 (1: no canonical flag, no fixed handles) |
 //! | 12 | 4 | N, vertices |
 //! | 16 | 4 | F, triangles |
 //! | 20 | 4 | n, handles |
@@ -16,18 +16,25 @@
 //! | 32 | 1 | basis: 0 linear, 1 quadratic, 2 cubic, 3 TPS |
 //! | 33 | 1 | spatial: 0 hat functions, 1 reduced |
 //! | 34 | 1 | solver of the fit: 0 structured, 1 TPS interpolation |
-//! | 35 | 5 | zero |
+//! | 35 | 1 | handle coordinates: 0 all (or fixed handles), 1 canonical (version 2; 0 in 1) |
+//! | 36 | 4 | f, fixed handles (u32; version 2; 0 in 1) |
 //! | 40 | 8 | scale r_s of the handle coordinates (f64) |
 //! | 48 | 16 N | vertex positions, x and y (f64) |
 //! | | 12 F | triangles, 3 vertex indices each (u32) |
 //! | | 32 n | handles: kind (u32: 0 vertex, 1 in a triangle), index (u32: vertex or triangle), 3 barycentric coordinates (f64; 1, 0, 0 for a vertex) |
 //! | | 16 n | the handles' rest positions, x and y (f64) |
-//! | | 16 n m | TPS centres in scaled coordinates (f64) |
+//! | | 4 f | the fixed handles' indices, ascending (u32) |
+//! | | 8 k m | TPS centres in scaled coordinates (f64), k = 2(n − f), or 2n − 3 canonical (0 for n = 1) |
 //! | | 16 \|Φ\| \|Ψ\| | coefficients: for each spatial function, its row of X^x then of X^y (f64) |
 //! | | 8 \|Φ\| N | reduced basis only: D by vertex, `[v |Φ| + i] = D_iv` (f64) |
 //! | end − 8 | 8 | FNV-1a 64 of every byte before it |
 //!
-//! Evaluation: u = (q − rest) / r_s (multiplied by 1/r_s); Ψ = 1, u, then the monomials
+//! A version-1 file is a version-2 file with bytes 35..40 zero: it reads as one.
+//!
+//! Evaluation: u = Bᵀ(q̂ − rest) / r_s (multiplied by 1/r_s), B and q̂ as `coordinates`
+//! defines them (B = I and q̂ = q without canonical coordinates or fixed handles; fixed
+//! handles' coordinates left out; canonical: q̂ = R*ᵀ(q − c_Q) + c_P and every position
+//! moved back, R*(x − c_P) + c_Q); Ψ = 1, u, then the monomials
 //! u_a u_b (a ≤ b), u_a u_b u_c (a ≤ b ≤ c) in that nesting order, or for TPS `s log(s)
 //! / 2` (0 at 0) of the squared distances s from u to each centre; each spatial function's
 //! value is its row of X dotted with Ψ; a vertex's position is that value (hat functions)
@@ -39,6 +46,7 @@
 //! is an error saying which.
 
 use super::basis::{BasisKind, HandleBasis};
+use super::coordinates::HandleCoordinates;
 use super::fit_error::FitError;
 use super::operator::{Operator, Solver};
 use super::spatial::MeshPoint;
@@ -46,8 +54,8 @@ use crate::mesh::{Mesh, DEFAULT_MAX_VERTICES};
 
 /// The first 8 bytes of an operator file.
 pub const MAGIC: [u8; 8] = *b"AKAPDEFO";
-/// The version this code writes and reads.
-pub const VERSION: u32 = 1;
+/// The version this code writes (it reads this one and version 1).
+pub const VERSION: u32 = 2;
 const HEADER: usize = 48;
 
 /// Why an operator file could not be read.
@@ -90,7 +98,9 @@ impl std::fmt::Display for OperatorFileError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::NotAnOperator => f.write_str("not an operator file (it does not start with AKAPDEFO)"),
-            Self::Version { found } => write!(f, "operator file version {found} is not supported (only {VERSION})"),
+            Self::Version { found } => {
+                write!(f, "operator file version {found} is not supported (only 1 to {VERSION})")
+            }
             Self::Length { expected, found } => write!(
                 f,
                 "the operator file has {found} bytes but its counts need {expected}: it is truncated or altered"
@@ -127,7 +137,8 @@ pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitEr
     }
     let basis = operator.handle_basis();
     let n = operator.handles().len();
-    let m = basis.scaled_centres().len() / (2 * n).max(1);
+    let coordinates = basis.coordinates();
+    let m = basis.scaled_centres().len() / coordinates.len().max(1);
     let mut out = Vec::new();
     out.extend_from_slice(&MAGIC);
     for count in [VERSION as usize, mesh.vertex_count(), mesh.triangle_count(), n, m, operator.spatial_len()] {
@@ -135,7 +146,8 @@ pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitEr
     }
     let reduced = !operator.reduction().is_empty();
     let solver = u8::from(operator.solver() == Solver::TpsInterpolation);
-    out.extend_from_slice(&[kind_code(basis.kind()), u8::from(reduced), solver, 0, 0, 0, 0, 0]);
+    out.extend_from_slice(&[kind_code(basis.kind()), u8::from(reduced), solver, u8::from(coordinates.is_canonical())]);
+    out.extend_from_slice(&(coordinates.fixed().len() as u32).to_le_bytes());
     out.extend_from_slice(&basis.scale().to_le_bytes());
     let f64s = |out: &mut Vec<u8>, values: &mut dyn Iterator<Item = f64>| {
         values.for_each(|x| out.extend_from_slice(&x.to_le_bytes()))
@@ -152,6 +164,7 @@ pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitEr
         f64s(&mut out, &mut weights.into_iter());
     }
     f64s(&mut out, &mut basis.rest().iter().copied());
+    coordinates.fixed().iter().for_each(|&a| out.extend_from_slice(&(a as u32).to_le_bytes()));
     f64s(&mut out, &mut basis.scaled_centres().iter().copied());
     f64s(&mut out, &mut operator.coefficients().iter().copied());
     f64s(&mut out, &mut operator.reduction().iter().copied());
@@ -170,7 +183,7 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     }
     let u32_at = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
     let version = u32_at(8);
-    if version != VERSION {
+    if !(1..=VERSION).contains(&version) {
         return Err(OperatorFileError::Version { found: version });
     }
     let [nv, nt, n, m, phi] = [12, 16, 20, 24, 28].map(|at| u64::from(u32_at(at)));
@@ -204,19 +217,34 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
         1 => Solver::TpsInterpolation,
         _ => return Err(OperatorFileError::Field { what: "solver" }),
     };
-    if bytes[35..40].iter().any(|&b| b != 0) {
+    // Version 1 holds zeros where version 2 holds the coordinates' fields: the same file.
+    if version == 1 && bytes[35..40].iter().any(|&b| b != 0) {
         return Err(OperatorFileError::Field { what: "reserved bytes" });
     }
-    if (kind == BasisKind::Tps) != (m > 0) {
+    let canonical = match bytes[35] {
+        0 => false,
+        1 => true,
+        _ => return Err(OperatorFileError::Field { what: "handle coordinates" }),
+    };
+    let f = u64::from(u32_at(36));
+    if f > n || (canonical && f > 0) {
+        return Err(OperatorFileError::Count { what: "fixed handle count", value: f });
+    }
+    let k = HandleCoordinates::count(n as usize, canonical, f as usize) as u64;
+    if (kind == BasisKind::Tps) != (m > 0) || (m > 0 && k == 0) {
         return Err(OperatorFileError::Field { what: "TPS centre count" });
     }
-    let psi = kind.size(n as usize, m as usize) as u64;
+    let psi = kind.size_in(k as usize, m as usize) as u64;
+    if psi > super::basis::MAX_BASIS_SIZE as u64 {
+        return Err(OperatorFileError::Count { what: "handle basis size", value: psi });
+    }
     let expected = HEADER as u64
         + 16 * nv
         + 12 * nt
         + 32 * n
         + 16 * n
-        + 16 * n * m
+        + 4 * f
+        + 8 * k * m
         + 16 * phi * psi
         + if reduced { 8 * phi * nv } else { 0 }
         + 8;
@@ -242,7 +270,8 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
         });
     }
     let rest = cursor.f64s(2 * n);
-    let centres = cursor.f64s(2 * n * m);
+    let fixed: Vec<usize> = cursor.u32s(f).into_iter().map(|a| a as usize).collect();
+    let centres = cursor.f64s(k * m);
     let coefficients = cursor.f64s(2 * phi * psi);
     let reduction = if reduced { cursor.f64s(phi * nv) } else { Vec::new() };
     debug_assert_eq!(cursor.at, body.len(), "the length check covered every field");
@@ -269,7 +298,11 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     if !reduced && phi != nv {
         return Err(OperatorFileError::Field { what: "spatial basis size" });
     }
-    let basis = HandleBasis::from_parts(kind, &rest, scale, centres).map_err(|e| invalid(&e))?;
+    let coordinates = HandleCoordinates::new(&rest, canonical, &fixed).map_err(|e| invalid(&e))?;
+    if coordinates.fixed() != fixed.as_slice() {
+        return Err(OperatorFileError::Invalid("the fixed handles are not in ascending order".into()));
+    }
+    let basis = HandleBasis::from_parts(kind, coordinates, scale, centres).map_err(|e| invalid(&e))?;
     let operator = Operator::from_parts(handles, basis, solver, phi as usize, nv as usize, coefficients, reduction)
         .map_err(|e| invalid(&e))?;
     Ok((mesh, operator))

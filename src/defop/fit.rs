@@ -16,13 +16,17 @@
 //! Ψ_sᵀ restricted to their null space (never the normal equations). An optional ridge
 //! λ ‖z_nonlinear‖² (notes §2.6) makes polynomial fits with fewer samples than functions
 //! unique. The TPS shortcut: when the rest pose is a sample and the ground truths hit the
-//! handles, the optimum interpolates every sample, and one (m + 2n + 1)-square system gives it.
+//! handles, the optimum interpolates every sample, and one (m + k + 1)-square system gives it.
+//!
+//! Handle coordinates (see `coordinates`): with canonical coordinates the samples are
+//! canonicalised first; the strong constraint's S expresses q̂_ℓ through the k coordinates.
 
 use std::sync::Arc;
 
 use nalgebra::{DMatrix, DVector};
 
 use super::basis::{thin_plate, BasisKind, HandleBasis};
+use super::coordinates::HandleCoordinates;
 use super::fit_error::{check_finite, check_length, FitError};
 use super::operator::{Operator, Solver};
 use super::spatial::{consistent_mass, extent, mass_times_rows, resolve_points, MeshPoint, SpatialBasis};
@@ -53,11 +57,30 @@ pub struct FitOptions {
     /// Whether to add the rest pose (Q = P, ground truth the identity) as a sample when the
     /// samples do not hold it.
     pub rest_sample: bool,
+    /// Canonical handle coordinates (notes item 13): the samples are canonicalised (targets
+    /// and ground truths moved by the rigid motion that best aligns their targets with the
+    /// rest handles) and the operator moves its result back, so that it reproduces rigid
+    /// motions of all handles exactly; the basis has k = 2n − 3 coordinates (0 for one
+    /// handle: a translation). Valid for rigid-invariant ground truths (ARAP, S-ARAP).
+    /// Samples that differ by a rigid motion become one; not with `fixed`.
+    pub canonical: bool,
+    /// Handles held at their rest position in every sample (indices into the handles): the
+    /// basis leaves their coordinates out (k = 2(n − #fixed)), and the operator keeps them at
+    /// rest whatever targets it is given for them.
+    pub fixed: Vec<usize>,
 }
 
 impl Default for FitOptions {
     fn default() -> Self {
-        Self { kind: BasisKind::Tps, scale: None, regularisation: 0.0, tps_shortcut: true, rest_sample: true }
+        Self {
+            kind: BasisKind::Tps,
+            scale: None,
+            regularisation: 0.0,
+            tps_shortcut: true,
+            rest_sample: true,
+            canonical: false,
+            fixed: Vec::new(),
+        }
     }
 }
 
@@ -89,6 +112,18 @@ impl FitOptions {
     /// Adds the rest pose as a sample, or not.
     pub fn with_rest_sample(mut self, add: bool) -> Self {
         self.rest_sample = add;
+        self
+    }
+
+    /// Canonical handle coordinates, or not.
+    pub fn with_canonical(mut self, canonical: bool) -> Self {
+        self.canonical = canonical;
+        self
+    }
+
+    /// Holds the handles `fixed` at rest.
+    pub fn with_fixed(mut self, fixed: Vec<usize>) -> Self {
+        self.fixed = fixed;
         self
     }
 }
@@ -149,12 +184,31 @@ pub fn fit(
     if !(lambda.is_finite() && lambda >= 0.0) {
         return Err(FitError::InvalidOption { name: "regularisation", value: lambda, expected: "a finite λ ≥ 0" });
     }
+    let coordinates = HandleCoordinates::new(&rest, options.canonical, &options.fixed)?;
+    for (k, s) in samples.iter().enumerate() {
+        for &a in coordinates.fixed() {
+            let moved = (s.targets[2 * a] - rest[2 * a]).hypot(s.targets[2 * a + 1] - rest[2 * a + 1]);
+            if moved > 1e-9 * size {
+                return Err(FitError::FixedHandleMoved { sample: k, handle: a });
+            }
+        }
+    }
+    let canonical: Vec<(Vec<f64>, Vec<f64>)> = if coordinates.is_canonical() {
+        samples.iter().map(|s| canonicalised(&coordinates, s)).collect()
+    } else {
+        Vec::new()
+    };
+    let samples: Vec<Sample<'_>> = if coordinates.is_canonical() {
+        canonical.iter().map(|(t, p)| Sample { targets: t, positions: p }).collect()
+    } else {
+        samples.to_vec()
+    };
     let identity: Vec<f64> = mesh.positions().iter().flatten().copied().collect();
     let mut list: Vec<Sample<'_>> = Vec::with_capacity(samples.len() + 1);
     if options.rest_sample && !samples.iter().any(|s| s.targets == rest.as_slice()) {
         list.push(Sample { targets: &rest, positions: &identity });
     }
-    list.extend_from_slice(samples);
+    list.extend_from_slice(&samples);
     if list.is_empty() {
         return Err(FitError::NoSamples);
     }
@@ -174,14 +228,16 @@ pub fn fit(
             }
         }
     };
-    let basis = if options.kind.is_polynomial() {
-        HandleBasis::polynomial(options.kind, &rest, scale)?
+    // Without coordinates (one canonical handle, every handle fixed) Ψ is the constant.
+    let kind = if coordinates.is_empty() { BasisKind::Linear } else { options.kind };
+    let basis = if kind.is_polynomial() {
+        HandleBasis::new(kind, coordinates, scale, &[])?
     } else {
         let centres: Vec<f64> = list.iter().flat_map(|s| s.targets.iter().copied()).collect();
-        HandleBasis::tps(&rest, scale, &centres)?
+        HandleBasis::new(kind, coordinates, scale, &centres)?
     };
     let len = basis.len();
-    if options.kind.is_polynomial() && lambda == 0.0 && m < len {
+    if kind.is_polynomial() && lambda == 0.0 && m < len {
         return Err(FitError::TooFewSamples { samples: m, basis_size: len });
     }
     // The ridge acts on the non-linear coefficients only: the linear ones need the samples.
@@ -220,7 +276,7 @@ pub fn fit(
     }
     let phi_p = spatial.at_points(&hats);
 
-    let x = if options.kind == BasisKind::Tps
+    let x = if kind == BasisKind::Tps
         && lambda == 0.0
         && options.tps_shortcut
         && shortcut_applies(&list, &rest, &g_hat, &c0, &phi_p, 1e-11 * size)
@@ -230,6 +286,15 @@ pub fn fit(
         (structured(&basis, spatial, &mass, &phi_p, &psi_s, &a0, &g_hat, &c0, lambda)?, Solver::Structured)
     };
     Ok(Operator::new(handles.to_vec(), basis, x.1, x.0, spatial.reduction(), nv))
+}
+
+/// A sample's targets and ground truth, canonicalised: both moved by the inverse of the
+/// rigid motion [`HandleCoordinates::canonicalise`] finds for its targets.
+fn canonicalised(coordinates: &HandleCoordinates, sample: &Sample<'_>) -> (Vec<f64>, Vec<f64>) {
+    let mut targets = vec![0.0; sample.targets.len()];
+    let rigid = coordinates.canonicalise(sample.targets, &mut targets).expect("canonical coordinates");
+    let positions = sample.positions.chunks_exact(2).flat_map(|g| rigid.unapply([g[0], g[1]])).collect();
+    (targets, positions)
 }
 
 /// Whether the TPS shortcut applies: the rest pose is a sample with the identity as its
@@ -263,7 +328,7 @@ fn shortcut_applies(
 
 /// The TPS shortcut: `[[K_ρ, T], [Tᵀ, 0]] [a; b] = [Ĝᵀ; 0]`, both coordinates with one LU.
 fn tps_interpolation(basis: &HandleBasis, g_hat: &[DMatrix<f64>; 2]) -> Result<[DMatrix<f64>; 2], FitError> {
-    let (lin, d) = (basis.linear_len(), basis.rest().len());
+    let (lin, d) = (basis.linear_len(), basis.coordinate_count());
     let centres = basis.scaled_centres();
     let m = centres.len() / d;
     let size = m + lin;
@@ -352,9 +417,11 @@ fn structured(
         // S^ν: row ℓ holds the coefficients of Q ↦ q_ℓ^ν.
         let mut s = DMatrix::zeros(n, basis.len());
         for l in 0..n {
-            let (constant, scaled) = basis.coordinate(2 * l + nu);
+            let (constant, linear) = basis.coordinate(2 * l + nu);
             s[(l, 0)] = constant;
-            s[(l, 1 + 2 * l + nu)] = scaled;
+            for (j, b) in linear.into_iter().enumerate() {
+                s[(l, 1 + j)] = b;
+            }
         }
         let xp = &fw * s;
         let r = project(&DMatrix::from_column_slice(c0[nu].len(), 1, (&c0[nu] - &xp * a0).as_slice()));
@@ -370,7 +437,7 @@ fn row_problem(
     a0: &DVector<f64>,
     lambda: f64,
 ) -> Result<(DMatrix<f64>, DVector<f64>), FitError> {
-    let (len, m, lin, d) = (basis.len(), psi_s.ncols(), basis.linear_len(), basis.rest().len());
+    let (len, m, lin, d) = (basis.len(), psi_s.ncols(), basis.linear_len(), basis.coordinate_count());
     let tps = basis.kind() == BasisKind::Tps;
     let p = if tps { 1 + lin } else { 1 };
     let mut c = DMatrix::zeros(len, p);
@@ -421,9 +488,13 @@ fn row_problem(
     Ok((k1, k2))
 }
 
-/// Whether an upper-triangular factor has no diagonal entry below 1e-12 of its largest.
+/// Whether an upper-triangular factor has no diagonal entry below 1e-12 of its largest
+/// (an empty one is: a basis of the constant alone has nothing left to fit).
 fn well_conditioned(r: &DMatrix<f64>) -> bool {
     let diagonal = r.diagonal();
+    if diagonal.is_empty() {
+        return true;
+    }
     let largest = diagonal.amax();
     largest > 0.0 && diagonal.iter().all(|x| x.abs() > 1e-12 * largest)
 }

@@ -40,8 +40,9 @@ pub enum FitError {
         second: usize,
     },
     /// A polynomial handle basis has more functions than there are samples and no
-    /// regularisation was asked for, or there are fewer samples than the 2n + 1 linear
-    /// functions (which the regularisation does not act on): the fit is not unique.
+    /// regularisation was asked for, or there are fewer samples than the k + 1 linear
+    /// functions (k handle coordinates, 2n unless canonical or with fixed handles; the
+    /// regularisation does not act on them): the fit is not unique.
     TooFewSamples {
         /// The number of samples.
         samples: usize,
@@ -69,6 +70,21 @@ pub enum FitError {
         /// What would be accepted.
         expected: &'static str,
     },
+    /// Canonical coordinates and fixed handles together: a rigid motion of all targets
+    /// moves the fixed handles.
+    CanonicalWithFixed,
+    /// A fixed handle's index is out of range or repeated.
+    InvalidFixedHandle {
+        /// The index.
+        index: usize,
+    },
+    /// A sample's target for a fixed handle is not the handle's rest position.
+    FixedHandleMoved {
+        /// The sample.
+        sample: usize,
+        /// The fixed handle.
+        handle: usize,
+    },
     /// A sparse factorisation failed.
     Factor(FactorError),
     /// The eigenproblem of a reduced spatial basis failed.
@@ -95,6 +111,15 @@ impl fmt::Display for FitError {
             Self::InvalidSpatialBasis { reason } => write!(f, "invalid reduced spatial basis: {reason}"),
             Self::InvalidOption { name, value, expected } => {
                 write!(f, "option {name} = {} is out of range: expected {expected}", Number(*value))
+            }
+            Self::CanonicalWithFixed => f.write_str(
+                "canonical coordinates and fixed handles cannot be combined: a rigid motion moves the fixed handles",
+            ),
+            Self::InvalidFixedHandle { index } => {
+                write!(f, "fixed handle {index} is not a handle, or is given twice")
+            }
+            Self::FixedHandleMoved { sample, handle } => {
+                write!(f, "sample {sample} moves fixed handle {handle} away from its rest position")
             }
             Self::Factor(e) => e.fmt(f),
             Self::Eigen(e) => write!(f, "the reduced basis could not be computed: {e}"),

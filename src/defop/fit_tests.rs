@@ -76,7 +76,7 @@ fn kkt_min_norm(
         }
     }
     if tps {
-        let d2 = basis.rest().len();
+        let d2 = basis.coordinate_count();
         for i in 0..phi {
             for t in 0..lin {
                 let row = phi + n * m + i * lin + t;

@@ -10,6 +10,8 @@
 //! - `linear`: small dense helpers of the solver;
 //! - `problem`: the solver's options, handles, starts and reports;
 //! - [`sampling`]: the training targets Q (discs, Voronoi cells, both);
+//! - [`coordinates`]: the handle coordinates Ψ is a function of (all, canonical for exact
+//!   rigid motions, or with fixed handles left out);
 //! - [`basis`]: the handle bases Ψ (linear, quadratic, cubic, thin-plate spline);
 //! - [`spatial`]: the spatial basis Φ (hat functions or a reduced M-orthonormal basis), the
 //!   mass matrices and the linearly precise Laplacian;
@@ -22,6 +24,7 @@
 //!   refits), resumable in time slices or spread over workers as jobs.
 
 pub mod basis;
+pub mod coordinates;
 pub mod energy;
 mod error;
 pub mod file;
@@ -37,6 +40,7 @@ pub mod spatial;
 pub mod train;
 
 pub use basis::{BasisKind, HandleBasis};
+pub use coordinates::{HandleCoordinates, Rigid};
 pub use energy::{Energy, RestTriangle, SignedSvd};
 pub use file::{read_operator, write_operator, OperatorFileError};
 pub use fit::{fit, FitOptions, Sample};

@@ -36,6 +36,8 @@ pub struct Operator {
     psi: Vec<f64>,
     /// Scratch for a reduced basis: X^x Ψ then X^y Ψ.
     nodal: Vec<f64>,
+    /// Scratch for canonical coordinates: the canonical targets Q̂ (2n numbers; else empty).
+    canonical: Vec<f64>,
 }
 
 impl Operator {
@@ -57,6 +59,7 @@ impl Operator {
         let reduction = reduction.map_or_else(Vec::new, |d| d.as_slice().to_vec());
         let nodal = if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * rows] };
         Self {
+            canonical: canonical_scratch(&basis),
             handles,
             solver,
             spatial_len: rows,
@@ -98,7 +101,8 @@ impl Operator {
         check_finite("reduced basis", &reduction)?;
         let nodal = if hat { Vec::new() } else { vec![0.0; 2 * spatial_len] };
         let psi = vec![0.0; basis.len()];
-        Ok(Self { handles, basis, solver, spatial_len, vertex_count, coefficients, reduction, psi, nodal })
+        let canonical = canonical_scratch(&basis);
+        Ok(Self { handles, basis, solver, spatial_len, vertex_count, coefficients, reduction, psi, nodal, canonical })
     }
 
     /// The coefficients: row i of X^x then row i of X^y, for every spatial function i.
@@ -171,10 +175,11 @@ impl Operator {
 
     /// Writes the vertex positions D(v, Q) (2N numbers, x and y interleaved) for the handle
     /// targets Q (2n numbers) to `out`. Allocates nothing. Refuses wrong lengths and NaN or
-    /// infinite targets.
+    /// infinite targets. The targets of fixed handles are ignored (they stay at rest); with
+    /// canonical coordinates, D(v, Q) = R*(D̂(v, Q̂) − c_P) + c_Q (see `coordinates`).
     pub fn evaluate_into(&mut self, targets: &[f64], out: &mut [f64]) -> Result<(), FitError> {
         self.check(targets, out.len())?;
-        self.evaluate_with(targets, |v, x, y| {
+        self.evaluate_rigidly(targets, |v, x, y| {
             out[2 * v] = x;
             out[2 * v + 1] = y;
         });
@@ -185,7 +190,7 @@ impl Operator {
     /// computed in double precision.
     pub fn evaluate_into_f32(&mut self, targets: &[f64], out: &mut [f32]) -> Result<(), FitError> {
         self.check(targets, out.len())?;
-        self.evaluate_with(targets, |v, x, y| {
+        self.evaluate_rigidly(targets, |v, x, y| {
             out[2 * v] = x as f32;
             out[2 * v + 1] = y as f32;
         });
@@ -208,6 +213,20 @@ impl Operator {
         Ok(())
     }
 
+    /// [`Operator::evaluate_with`] at the canonical targets Q̂, each position moved back by
+    /// the rigid motion of the targets, for canonical coordinates; else that evaluation.
+    fn evaluate_rigidly(&mut self, targets: &[f64], mut write: impl FnMut(usize, f64, f64)) {
+        let mut canonical = std::mem::take(&mut self.canonical);
+        match self.basis.coordinates().canonicalise(targets, &mut canonical) {
+            Some(rigid) => self.evaluate_with(&canonical, |v, x, y| {
+                let [x, y] = rigid.apply([x, y]);
+                write(v, x, y)
+            }),
+            None => self.evaluate_with(targets, write),
+        }
+        self.canonical = canonical;
+    }
+
     fn evaluate_with(&mut self, targets: &[f64], mut write: impl FnMut(usize, f64, f64)) {
         self.basis.evaluate_unchecked(targets, &mut self.psi);
         let len = self.psi.len();
@@ -228,6 +247,15 @@ impl Operator {
                 write(v, x, y);
             }
         }
+    }
+}
+
+/// The scratch of the canonical targets: 2n numbers for canonical coordinates, else none.
+fn canonical_scratch(basis: &HandleBasis) -> Vec<f64> {
+    if basis.coordinates().is_canonical() {
+        vec![0.0; basis.rest().len()]
+    } else {
+        Vec::new()
     }
 }
 

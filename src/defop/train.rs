@@ -1,5 +1,6 @@
 //! Training a deformation operator by bootstrapping (the paper's main trick, Sections 1 and
-//! 3.3; notes, section 2.3): ground truths for `2n + 1` targets solved from the rest pose,
+//! 3.3; notes, section 2.3): ground truths for `k + 1` targets solved from the rest pose
+//! (k the handle coordinates: 2n, 2n − 3 canonical, 2(n − #fixed) with fixed handles),
 //! a linear operator fitted to them, then ever larger batches whose solves start from the
 //! current operator's prediction (a few Newton iterations instead of many), each batch
 //! followed by a refit with the richest basis its samples support, up to `m` samples and
@@ -13,6 +14,7 @@
 //! not depend on who solved it, and fits run on the samples in their index order.
 
 use super::basis::BasisKind;
+use super::coordinates::HandleCoordinates;
 use super::energy::Energy;
 use super::fit::{fit, FitOptions, Sample};
 use super::fit_error::FitError;
@@ -44,6 +46,13 @@ pub struct TrainOptions {
     pub seed: u64,
     /// The ground-truth solver's settings.
     pub ground_truth: GroundTruthOptions,
+    /// Canonical handle coordinates ([`FitOptions::canonical`]): the operator reproduces
+    /// rigid motions of all handles exactly (default false).
+    pub canonical: bool,
+    /// Handles (indices into the handles) held at their rest position in every sample; the
+    /// operator keeps them there whatever targets it is given ([`FitOptions::fixed`];
+    /// default none; not with `canonical`).
+    pub fixed: Vec<usize>,
 }
 
 impl Default for TrainOptions {
@@ -57,6 +66,8 @@ impl Default for TrainOptions {
             spatial: 0,
             seed: 1,
             ground_truth: GroundTruthOptions::default(),
+            canonical: false,
+            fixed: Vec::new(),
         }
     }
 }
@@ -230,6 +241,8 @@ pub struct Trainer {
     handles: Vec<MeshPoint>,
     options: TrainOptions,
     radius: f64,
+    /// The rest handles (2n numbers), where fixed handles are sampled.
+    rest: Vec<f64>,
     spatial: SpatialBasis,
     solver: GroundTruth,
     /// Targets of every sample drawn, `2n` each (drawn a batch at a time).
@@ -261,14 +274,18 @@ impl Trainer {
         let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
         let radius = options.radius.unwrap_or(DEFAULT_RADIUS_FRACTION * diagonal);
         let n = handles.len();
+        let k = HandleCoordinates::count(n, options.canonical, options.fixed.len());
         let spatial_len = if options.spatial == 0 { mesh.vertex_count() } else { options.spatial };
-        let coefficients = spatial_len as f64 * options.basis.size(n, options.samples) as f64;
+        let coefficients = spatial_len as f64 * options.basis.size_in(k, options.samples) as f64;
         let bytes = 16.0 * (coefficients + (options.samples * mesh.vertex_count()) as f64);
         if bytes > MAX_TRAINING_BYTES as f64 {
             return Err(TrainError::TooLarge { bytes });
         }
         let solver = Self::make_solver(mesh, handles, &options)?;
         let rest = solver.rest_handle_positions();
+        let flat: Vec<f64> = rest.iter().flatten().copied().collect();
+        // Refuses canonical with fixed handles and bad fixed indices before any solve.
+        HandleCoordinates::new(&flat, options.canonical, &options.fixed)?;
         let sampler =
             Sampler::new(&rest, [lo, hi], radius, options.sampling, options.seed).map_err(TrainError::Sampling)?;
         let spatial =
@@ -277,6 +294,7 @@ impl Trainer {
             mesh: mesh.clone(),
             handles: handles.to_vec(),
             radius,
+            rest: flat,
             spatial,
             solver,
             targets: Vec::new(),
@@ -291,7 +309,8 @@ impl Trainer {
             result: None,
             options,
         };
-        trainer.draw_batch((2 * rest.len() + 1).min(trainer.options.samples));
+        // Enough for the first, linear, fit: k + 1 samples with the rest pose.
+        trainer.draw_batch((k + 1).min(trainer.options.samples));
         Ok(trainer)
     }
 
@@ -486,13 +505,18 @@ impl Trainer {
 
     fn end_batch(&mut self) -> Result<(), TrainError> {
         let solved = self.batch_end;
-        let n = self.handles.len();
+        let k = HandleCoordinates::count(self.handles.len(), self.options.canonical, self.options.fixed.len());
         let kind = if solved == self.options.samples {
             self.options.basis
         } else {
-            bootstrap_basis(self.options.basis, n, solved + 1)
+            bootstrap_basis(self.options.basis, k, solved + 1)
         };
-        let options = FitOptions::default().with_kind(kind).with_scale(self.radius).with_tps_shortcut(false);
+        let options = FitOptions::default()
+            .with_kind(kind)
+            .with_scale(self.radius)
+            .with_tps_shortcut(false)
+            .with_canonical(self.options.canonical)
+            .with_fixed(self.options.fixed.clone());
         let operator = fit(&self.mesh, &self.spatial, &self.handles, &self.samples(), &options)?;
         if solved == self.options.samples {
             self.result = Some(operator);
@@ -523,19 +547,23 @@ impl Trainer {
         let redraw = u64::from(self.redraws[index]);
         let key = if redraw == 0 { index as u64 } else { (MAX_SAMPLES as u64) * redraw + index as u64 };
         self.sampler.keyed_into(key, &mut self.targets[index]);
+        for &a in &self.options.fixed {
+            self.targets[index][2 * a..2 * a + 2].copy_from_slice(&self.rest[2 * a..2 * a + 2]);
+        }
     }
 }
 
-/// The basis to bootstrap with from `samples` samples (the rest pose included): the one
-/// asked for when the samples determine it (a TPS always; a polynomial with at least as
-/// many samples as functions), else the richest polynomial they do.
-fn bootstrap_basis(wanted: BasisKind, handles: usize, samples: usize) -> BasisKind {
-    if wanted == BasisKind::Tps || wanted.size(handles, 0) <= samples {
+/// The basis to bootstrap with from `samples` samples (the rest pose included) in
+/// `coordinates` handle coordinates: the one asked for when the samples determine it (a TPS
+/// always; a polynomial with at least as many samples as functions), else the richest
+/// polynomial they do.
+fn bootstrap_basis(wanted: BasisKind, coordinates: usize, samples: usize) -> BasisKind {
+    if wanted == BasisKind::Tps || wanted.size_in(coordinates, 0) <= samples {
         return wanted;
     }
     [BasisKind::Quadratic, BasisKind::Linear]
         .into_iter()
-        .find(|k| k.degree() < wanted.degree() && k.size(handles, 0) <= samples)
+        .find(|k| k.degree() < wanted.degree() && k.size_in(coordinates, 0) <= samples)
         .unwrap_or(BasisKind::Linear)
 }
 

@@ -145,13 +145,16 @@ impl DefOpError {
 }
 
 impl FitError {
-    /// The kind of error: [`ErrorCode::InvalidOption`] for options and too few samples for
-    /// the basis, the factorisation's own, [`ErrorCode::NoConvergence`] for a reduced
-    /// basis's eigenproblem that did not converge, otherwise
-    /// [`ErrorCode::InvalidArgument`].
+    /// The kind of error: [`ErrorCode::InvalidOption`] for options (fixed handles and the
+    /// canonical option included) and too few samples for the basis, the factorisation's
+    /// own, [`ErrorCode::NoConvergence`] for a reduced basis's eigenproblem that did not
+    /// converge, otherwise [`ErrorCode::InvalidArgument`].
     pub fn code(&self) -> ErrorCode {
         match self {
-            Self::InvalidOption { .. } | Self::TooFewSamples { .. } => ErrorCode::InvalidOption,
+            Self::InvalidOption { .. }
+            | Self::TooFewSamples { .. }
+            | Self::CanonicalWithFixed
+            | Self::InvalidFixedHandle { .. } => ErrorCode::InvalidOption,
             Self::Factor(e) => e.code(),
             Self::InvalidHandle(e) => e.code(),
             Self::Eigen(EigenError::NotConverged { .. }) => ErrorCode::NoConvergence,

@@ -17,7 +17,8 @@ use crate::defop::{
 use crate::mesh::Mesh;
 
 /// The trainer's option names.
-const TRAINER_OPTIONS: [&str; 7] = ["energy", "basis", "samples", "radius", "sampling", "spatial", "seed"];
+const TRAINER_OPTIONS: [&str; 9] =
+    ["energy", "basis", "samples", "radius", "sampling", "spatial", "seed", "canonical", "fixed"];
 const ENERGIES: [(&str, Energy); 2] = [("sarap", Energy::SArap), ("arap", Energy::Arap)];
 const BASES: [(&str, BasisKind); 4] = [
     ("linear", BasisKind::Linear),
@@ -28,7 +29,8 @@ const BASES: [(&str, BasisKind); 4] = [
 const SAMPLINGS: [(&str, Sampling); 3] =
     [("disc", Sampling::Disc), ("voronoi", Sampling::Voronoi), ("mixed", Sampling::Mixed)];
 
-/// Reads `{ energy?, basis?, samples?, radius?, sampling?, spatial?, seed? }`.
+/// Reads `{ energy?, basis?, samples?, radius?, sampling?, spatial?, seed?, canonical?,
+/// fixed? }`.
 fn train_options(value: &JsValue) -> Result<TrainOptions, BindingError> {
     let given = Options::read(value, "DefOp training", &TRAINER_OPTIONS)?;
     let mut options = TrainOptions::default();
@@ -43,6 +45,20 @@ fn train_options(value: &JsValue) -> Result<TrainOptions, BindingError> {
             return Err(BindingError::option(format!("option radius is {radius}, expected a positive length")));
         }
         options.radius = Some(radius);
+    }
+    if let Some(value) = given.get("canonical") {
+        options.canonical = value.as_bool().ok_or_else(|| given.wrong_type("canonical", "true or false", value))?;
+    }
+    if let Some(value) = given.get("fixed") {
+        let most = limits().max_vertices;
+        let list = read::list(value, "fixed", most).map_err(|e| BindingError::option(e.message()))?;
+        options.fixed = list
+            .iter()
+            .map(|a| {
+                let index = a.as_f64().filter(|x| x.fract() == 0.0 && *x >= 0.0 && *x < most as f64);
+                index.map(|x| x as usize).ok_or_else(|| given.wrong_type("fixed", "an array of handle indices", value))
+            })
+            .collect::<Result<_, _>>()?;
     }
     Ok(options)
 }
@@ -101,7 +117,9 @@ impl JsDefOpTrainer {
     /// handle on each vertex of `handles` (`Uint32Array`). `options`: `{ energy?: "sarap" |
     /// "arap", basis?: "linear" | "quadratic" | "cubic" | "tps", samples?, radius?, sampling?:
     /// "disc" | "voronoi" | "mixed", spatial? (0: hat functions, else the size of the reduced
-    /// basis), seed? }`. Checks everything and computes the spatial basis.
+    /// basis), seed?, canonical?: boolean (rigid motions of all handles reproduced exactly),
+    /// fixed?: number[] (handles, by their index in `handles`, held at rest) }`. Checks
+    /// everything and computes the spatial basis.
     #[wasm_bindgen(constructor)]
     pub fn new(
         positions: JsValue,

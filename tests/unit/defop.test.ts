@@ -1,8 +1,11 @@
 /**
  * Deformation operators through the real wasm package in Node: a trained operator is the
  * identity at the rest targets and puts its handles exactly on any targets; the ground
- * truth of a rigid motion of the handles is that rigid motion; bad input throws with a code.
+ * truth of a rigid motion of the handles is that rigid motion; a canonical operator moves
+ * rigidly with its handles and a fixed handle stays at rest, in wasm and in the wasm-free
+ * reader alike (which also reads version-1 files); bad input throws with a code.
  */
+import { readFileSync } from "node:fs";
 import { beforeAll, describe, expect, it } from "vitest";
 import {
   DefOp,
@@ -94,6 +97,80 @@ describe("DefOp", () => {
       op.free();
       loaded.free();
     }
+  });
+
+  it("canonical operators move rigidly with their handles, fixed handles stay, and the wasm-free reader agrees", () => {
+    const m = mesh();
+    const handles = [2, 40, m.vertexCount - 3];
+    const rest = at(m.positions, handles);
+    const move = (flat: ArrayLike<number>, angle: number, t: [number, number]) => {
+      const [c, s] = [Math.cos(angle), Math.sin(angle)];
+      return Array.from({ length: flat.length }, (_, i) => {
+        const [x, y] = [flat[i - (i % 2)]!, flat[i - (i % 2) + 1]!];
+        return i % 2 === 0 ? c * x - s * y + t[0] : s * x + c * y + t[1];
+      });
+    };
+    const worst = (a: ArrayLike<number>, b: ArrayLike<number>) =>
+      Array.from(a).reduce((w, x, i) => Math.max(w, Math.abs(x - b[i]!)), 0);
+    const out = new Float64Array(2 * m.vertexCount);
+    for (const options of [
+      { basis: "tps" as const, canonical: true },
+      { basis: "linear" as const, canonical: true },
+      { basis: "tps" as const, spatial: 20, canonical: true },
+      { basis: "quadratic" as const, samples: 20, fixed: [1] },
+    ]) {
+      const trainer = new DefOpTrainer(m.positions, m.triangles, handles, { energy: "arap", samples: 8, ...options });
+      while (trainer.advance(50).stage !== "done");
+      const op = trainer.finish();
+      const plain = readOperatorFile(op.toBytes());
+      expect(plain.canonical).toBe(options.canonical === true);
+      expect([...plain.fixed]).toEqual(options.fixed ?? []);
+      for (let k = 0; k < 4; k++) {
+        const q = rest.map((x, i) => x + 0.3 * Math.sin(3 * k + 1.7 * i));
+        const t: [number, number] = [Math.cos(k), 2 * Math.sin(k)];
+        for (const targets of [q, move(q, 1.1 * k - 2, t)]) {
+          const expected = op.evaluate(targets);
+          plain.evaluateInto(targets, out);
+          expect(worst(out, expected)).toBeLessThan(1e-12);
+        }
+        if (options.canonical) {
+          // A rigid motion of the rest handles moves the shape rigidly.
+          expect(worst(op.evaluate(move(rest, 1.1 * k - 2, t)), move(m.positions, 1.1 * k - 2, t))).toBeLessThan(1e-9);
+        } else {
+          // Handle 1 is fixed: its target is ignored, and it stays at rest.
+          const posed = op.evaluate(q);
+          expect(worst(at(posed, [handles[1]!]), rest.slice(2, 4))).toBeLessThan(1e-9);
+          expect(worst(at(posed, [handles[0]!, handles[2]!]), [...q.slice(0, 2), ...q.slice(4)])).toBeLessThan(1e-9);
+        }
+      }
+      op.free();
+    }
+    expect(() => new DefOpTrainer(m.positions, m.triangles, handles, { canonical: true, fixed: [0] })).toThrow(
+      /cannot be combined/,
+    );
+    expect(
+      () => new DefOpTrainer(m.positions, m.triangles, handles, { canonical: "yes" as unknown as boolean }),
+    ).toThrow(/canonical/);
+  });
+
+  it("reads a version-1 operator file, with and without wasm", () => {
+    // Written by the version-1 writer: a linear operator on the 2 × 2 grid, handles at
+    // (0, 0) and (2, 2), exactly x + (1 − w)(q0 − p0) + w(q1 − p1), w = (x + y) / 4.
+    const bytes = new Uint8Array(readFileSync("tests/fixtures/defop-v1-linear.defop"));
+    const plain = readOperatorFile(bytes);
+    const op = DefOp.fromBytes(bytes);
+    const q = [0.3, -0.2, 2.5, 1.1];
+    const out = new Float64Array(2 * plain.vertexCount);
+    plain.evaluateInto(q, out);
+    const expected = Array.from(plain.positions, (x, i) => {
+      const [px, py] = [plain.positions[i - (i % 2)]!, plain.positions[i - (i % 2) + 1]!];
+      const w = (px + py) / 4;
+      const nu = i % 2;
+      return x + (1 - w) * q[nu]! + w * (q[2 + nu]! - 2);
+    });
+    out.forEach((x, i) => expect(Math.abs(x - expected[i]!)).toBeLessThan(1e-12));
+    op.evaluate(q).forEach((x, i) => expect(Math.abs(x - expected[i]!)).toBeLessThan(1e-12));
+    op.free();
   });
 
   it("trains the same operator with jobs solved by workers' solvers, in any order", () => {

@@ -24,6 +24,10 @@ export interface OperatorFile {
   readonly handleCount: number;
   /** The handles' rest positions (x and y each): the targets that give the rest pose. */
   readonly rest: Float64Array;
+  /** Whether the operator is canonical: a rigid motion of all targets moves the pose rigidly. */
+  readonly canonical: boolean;
+  /** Handles held at rest (ascending): their targets are ignored. */
+  readonly fixed: Uint32Array;
   /** Writes the vertex positions (2 per vertex) for handle targets (2 per handle) to `out`. */
   evaluateInto(targets: ArrayLike<number>, out: Float64Array): void;
 }
@@ -48,6 +52,136 @@ function fnv1a(bytes: Uint8Array): [number, number] {
   return [hi >>> 0, lo >>> 0];
 }
 
+/**
+ * The handle coordinates z = Bᵀ(Q̂ − P) of Rust's `akap::defop::coordinates`, computed the
+ * same way: the free coordinates (all but the fixed handles'), and for a canonical
+ * operator the Householder vectors of the two translations and the rotation about the
+ * rest handles' centroid.
+ */
+class Coordinates {
+  readonly free: number[];
+  readonly reflectors: Float64Array[] = [];
+  readonly gram: number[][] = [];
+  readonly centroid: [number, number];
+  readonly alpha = [0, 0, 0];
+  constructor(
+    readonly rest: Float64Array,
+    readonly canonical: boolean,
+    fixed: Uint32Array,
+  ) {
+    const n = rest.length / 2;
+    const isFixed = new Set(fixed);
+    this.free = [];
+    for (let c = 0; c < 2 * n; c++) if (!isFixed.has(c >> 1)) this.free.push(c);
+    const invN = 1 / n;
+    const sum = (nu: number) => {
+      let s = 0;
+      for (let a = nu; a < 2 * n; a += 2) s += rest[a]!;
+      return s;
+    };
+    this.centroid = [sum(0) * invN, sum(1) * invN];
+    const columns: Float64Array[] = [];
+    if (canonical) {
+      const s = Math.sqrt(invN);
+      columns.push(Float64Array.from({ length: 2 * n }, (_, c) => (c % 2 === 0 ? s : 0)));
+      columns.push(Float64Array.from({ length: 2 * n }, (_, c) => (c % 2 === 1 ? s : 0)));
+      if (n >= 2) {
+        const r = new Float64Array(2 * n);
+        for (let a = 0; a < n; a++) {
+          r[2 * a] = -(rest[2 * a + 1]! - this.centroid[1]);
+          r[2 * a + 1] = rest[2 * a]! - this.centroid[0];
+        }
+        let norm = 0;
+        for (const x of r) norm += x * x;
+        norm = Math.sqrt(norm);
+        if (norm === 0) throw new Error("not a usable operator file: its rest handles are all at one point");
+        columns.push(r.map((x) => x / norm));
+      }
+    }
+    // Householder QR of the columns, as Rust's `householder`.
+    for (let j = 0; j < columns.length; j++) {
+      const x = columns[j]!;
+      let sigma = 0;
+      for (let i = j; i < x.length; i++) sigma += x[i]! * x[i]!;
+      sigma = Math.sqrt(sigma);
+      const alpha = x[j]! >= 0 ? -sigma : sigma;
+      const v = x.slice();
+      v.fill(0, 0, j);
+      v[j] = v[j]! - alpha;
+      let norm = 0;
+      for (let i = j; i < v.length; i++) norm += v[i]! * v[i]!;
+      norm = Math.sqrt(norm);
+      for (let i = j; i < v.length; i++) v[i] = v[i]! / norm;
+      for (const column of columns.slice(j + 1)) {
+        let d = 0;
+        for (let i = j; i < v.length; i++) d += v[i]! * column[i]!;
+        const s = 2 * d;
+        for (let i = j; i < v.length; i++) column[i] = column[i]! - s * v[i]!;
+      }
+      this.reflectors.push(v);
+    }
+    for (let r = 0; r < this.reflectors.length; r++) {
+      this.gram.push([]);
+      for (let s = 0; s < r; s++) {
+        let d = 0;
+        const [a, b] = [this.reflectors[r]!, this.reflectors[s]!];
+        for (let i = 0; i < a.length; i++) d += a[i]! * b[i]!;
+        this.gram[r]!.push(d);
+      }
+    }
+  }
+
+  /** k, the number of coordinates. */
+  get length(): number {
+    return this.free.length - this.reflectors.length;
+  }
+
+  /** Writes Bᵀ(targets − P) · inv to `out` from index `at` on. */
+  project(targets: ArrayLike<number>, inv: number, out: Float64Array, at: number): void {
+    const { free, rest, reflectors, gram, alpha } = this;
+    const w = (i: number) => targets[free[i]!]! - rest[free[i]!]!;
+    const c = reflectors.length;
+    for (let r = 0; r < c; r++) {
+      const v = reflectors[r]!;
+      let a = 0;
+      for (let i = r; i < v.length; i++) a += v[i]! * w(i);
+      for (let s = 0; s < r; s++) a -= 2 * alpha[s]! * gram[r]![s]!;
+      alpha[r] = a;
+    }
+    for (let j = 0; j < this.length; j++) {
+      let x = w(c + j);
+      for (let r = 0; r < c; r++) x -= 2 * alpha[r]! * reflectors[r]![c + j]!;
+      out[at + j] = x * inv;
+    }
+  }
+
+  /** Writes the canonical targets Q̂ to `out`; returns [cos, sin, c_Q x, c_Q y] of the motion back. */
+  canonicalise(targets: ArrayLike<number>, out: Float64Array): [number, number, number, number] {
+    const { rest, centroid } = this;
+    const n = rest.length / 2;
+    const invN = 1 / n;
+    let [tx, ty] = [0, 0];
+    for (let a = 0; a < n; a++) [tx, ty] = [tx + targets[2 * a]!, ty + targets[2 * a + 1]!];
+    [tx, ty] = [tx * invN, ty * invN];
+    let [dot, cross] = [0, 0];
+    for (let a = 0; a < n; a++) {
+      const [px, py] = [rest[2 * a]! - centroid[0], rest[2 * a + 1]! - centroid[1]];
+      const [qx, qy] = [targets[2 * a]! - tx, targets[2 * a + 1]! - ty];
+      dot += px * qx + py * qy;
+      cross += px * qy - py * qx;
+    }
+    const h = Math.hypot(dot, cross);
+    const [cos, sin] = h > 0 ? [dot / h, cross / h] : [1, 0];
+    for (let a = 0; a < n; a++) {
+      const [px, py] = [rest[2 * a]!, rest[2 * a + 1]!];
+      const [qx, qy] = [targets[2 * a]! - tx, targets[2 * a + 1]! - ty];
+      out[2 * a] = px + (cos * qx + sin * qy - (px - centroid[0]));
+      out[2 * a + 1] = py + (-sin * qx + cos * qy - (py - centroid[1]));
+    }
+    return [cos, sin, tx, ty];
+  }
+}
+
 /** Reads and checks an operator file; throws an `Error` saying what is wrong. */
 export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   const fail = (why: string): never => {
@@ -56,15 +190,22 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   if (bytes.length < HEADER + 8 || String.fromCharCode(...bytes.subarray(0, 8)) !== MAGIC) fail("no AKAPDEFO header");
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   const u32 = (at: number) => view.getUint32(at, true);
-  if (u32(8) !== 1) fail(`version ${u32(8)} (only 1 is read)`);
+  const version = u32(8);
+  if (version !== 1 && version !== 2) fail(`version ${version} (only 1 and 2 are read)`);
   const [nv, nt, n, m, phi] = [12, 16, 20, 24, 28].map(u32) as [number, number, number, number, number];
-  const [kind, reduced] = [bytes[32]!, bytes[33]!];
-  if (kind > 3 || reduced > 1 || n === 0 || nv < 3) fail("a field holds a value no writer writes");
+  // Version 1 holds zeros where version 2 holds the canonical flag and the fixed count.
+  const [kind, reduced, canonical, f] = [bytes[32]!, bytes[33]!, bytes[35]!, u32(36)];
+  if (kind > 3 || reduced > 1 || canonical > 1 || n === 0 || nv < 3 || f > n || (canonical && f > 0))
+    fail("a field holds a value no writer writes");
+  if (version === 1 && (canonical || f)) fail("a version-1 file with version-2 fields");
   const d = 2 * n;
-  const psi = [d + 1, 1 + d + (d * (d + 1)) / 2, 1 + d + (d * (d + 1)) / 2 + (d * (d + 1) * (d + 2)) / 6, d + 1 + m][
+  // k, the handle coordinates: 2(n − f), or 2n − 3 canonical (0 for one handle).
+  const k = 2 * (n - f) - (canonical ? (n >= 2 ? 3 : 2) : 0);
+  const psi = [k + 1, 1 + k + (k * (k + 1)) / 2, 1 + k + (k * (k + 1)) / 2 + (k * (k + 1) * (k + 2)) / 6, k + 1 + m][
     kind
   ]!;
-  const expected = HEADER + 16 * nv + 12 * nt + 48 * n + 16 * n * m + 16 * phi * psi + (reduced ? 8 * phi * nv : 0) + 8;
+  const expected =
+    HEADER + 16 * nv + 12 * nt + 48 * n + 4 * f + 8 * k * m + 16 * phi * psi + (reduced ? 8 * phi * nv : 0) + 8;
   if (bytes.length !== expected) fail(`${bytes.length} bytes where its counts need ${expected}`);
   const [hi, lo] = fnv1a(bytes.subarray(0, bytes.length - 8));
   if (u32(bytes.length - 8) !== lo || u32(bytes.length - 4) !== hi) fail("the checksum does not match");
@@ -81,7 +222,11 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   for (let k = 0; k < 3 * nt; k++, at += 4) triangles[k] = u32(at);
   at += 32 * n; // the handles' places on the mesh: not needed to evaluate
   const rest = f64s(d);
-  const centres = f64s(d * m);
+  const fixed = new Uint32Array(f);
+  for (let a = 0; a < f; a++, at += 4) fixed[a] = u32(at);
+  const centres = f64s(k * m);
+  const coordinates = new Coordinates(rest, canonical === 1, fixed);
+  const hat = new Float64Array(d);
   const coefficients = f64s(2 * phi * psi);
   const reduction = reduced ? f64s(phi * nv) : undefined;
   const psiValues = new Float64Array(psi);
@@ -94,30 +239,34 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
     vertexCount: nv,
     handleCount: n,
     rest,
+    canonical: canonical === 1,
+    fixed,
     evaluateInto(targets: ArrayLike<number>, out: Float64Array): void {
       if (targets.length !== d) throw new Error(`targets has ${targets.length} numbers; ${n} handles need ${d}`);
       if (out.length !== 2 * nv) throw new Error(`out has ${out.length} numbers; ${nv} vertices need ${2 * nv}`);
-      // Ψ: 1, u, then the monomials or the thin-plate functions, in the Rust order.
+      const motion = canonical ? coordinates.canonicalise(targets, hat) : undefined;
+      // Ψ: 1, u = Bᵀ(Q̂ − P) / r_s, then the monomials or the thin-plate functions, in the Rust order.
       psiValues[0] = 1;
-      for (let a = 0; a < d; a++) psiValues[1 + a] = (targets[a]! - rest[a]!) * inv;
-      let k = d + 1;
+      coordinates.project(motion ? hat : targets, inv, psiValues, 1);
+      let next = k + 1;
       if (kind === 1 || kind === 2) {
-        for (let a = 0; a < d; a++) for (let b = a; b < d; b++) psiValues[k++] = psiValues[1 + a]! * psiValues[1 + b]!;
+        for (let a = 0; a < k; a++)
+          for (let b = a; b < k; b++) psiValues[next++] = psiValues[1 + a]! * psiValues[1 + b]!;
         if (kind === 2) {
-          for (let a = 0; a < d; a++)
-            for (let b = a; b < d; b++) {
+          for (let a = 0; a < k; a++)
+            for (let b = a; b < k; b++) {
               const ab = psiValues[1 + a]! * psiValues[1 + b]!;
-              for (let c = b; c < d; c++) psiValues[k++] = ab * psiValues[1 + c]!;
+              for (let c = b; c < k; c++) psiValues[next++] = ab * psiValues[1 + c]!;
             }
         }
       } else if (kind === 3) {
         for (let j = 0; j < m; j++) {
           let s = 0;
-          for (let a = 0; a < d; a++) {
-            const e = psiValues[1 + a]! - centres[j * d + a]!;
+          for (let a = 0; a < k; a++) {
+            const e = psiValues[1 + a]! - centres[j * k + a]!;
             s += e * e;
           }
-          psiValues[k++] = s > 0 ? 0.5 * s * Math.log(s) : 0;
+          psiValues[next++] = s > 0 ? 0.5 * s * Math.log(s) : 0;
         }
       }
       // Each spatial function: its rows of X^x and X^y dotted with Ψ.
@@ -142,6 +291,16 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
           }
           out[2 * v] = x;
           out[2 * v + 1] = y;
+        }
+      }
+      if (motion) {
+        // Back from the canonical pose: R(x − c_P) + c_Q.
+        const [cos, sin, tx, ty] = motion;
+        const [cx, cy] = coordinates.centroid;
+        for (let v = 0; v < nv; v++) {
+          const [dx, dy] = [out[2 * v]! - cx, out[2 * v + 1]! - cy];
+          out[2 * v] = cos * dx - sin * dy + tx;
+          out[2 * v + 1] = sin * dx + cos * dy + ty;
         }
       }
     },

@@ -37,6 +37,19 @@ export interface DefOpTrainerOptions {
   spatial?: number;
   /** Seed of the samples, a whole number (default 1): the same seed gives the same operator. */
   seed?: number;
+  /**
+   * Canonical handle coordinates (default false): the operator then reproduces a rigid motion
+   * of all handles exactly (the shape moves rigidly with them) and is equivariant,
+   * D(x, RQ + t) = R D(x, Q) + t. It works on the targets with their best-fitting rotation and
+   * translation taken out, so its handle space is 3 dimensions smaller (a single handle just
+   * translates the shape). Not with `fixed`.
+   */
+  canonical?: boolean;
+  /**
+   * Handles held at their rest position in every training sample, by their index in `handles`
+   * (default none): the operator keeps them there, and ignores the targets given for them.
+   */
+  fixed?: number[];
 }
 
 /** How far training is: `done` of `total` units (one per sample, one for the final fit). */
