@@ -97,9 +97,9 @@ if (process.argv[2] === "--model") {
   const op = DefOp.fromBytes(new Uint8Array(readFileSync(entry.file)));
   const { positions, triangles } = op.mesh();
   op.free();
-  const { samples, spatial, radius } = entry.training;
+  const { samples, spatial, radius, fixed } = entry.training;
   model = { name, positions, triangles, handles: entry.handles, energies: [entry.training.energy] };
-  model.options = { samples, spatial, ...(radius === null ? {} : { radius }), seed: 1 };
+  model.options = { samples, spatial, fixed, ...(radius === null ? {} : { radius }), seed: 1 };
 } else {
   const samples = Number(process.argv[2] ?? 1000);
   const { mesh } = triangulateToVertices(defaultShape(), Number(process.argv[3] ?? 2000));

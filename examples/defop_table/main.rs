@@ -59,7 +59,7 @@ mod run {
         let mut notes = String::new();
         let mut extra = String::new();
         for model in models::models(mode) {
-            let (n, nv) = (model.handles.len(), model.mesh.vertex_count());
+            let (n, nv) = (model.handles.len() - model.options.fixed.len(), model.mesh.vertex_count());
             eprintln!(
                 "{}: {nv} vertices, {} triangles, {n} handles, {} samples, {}",
                 model.name,
@@ -93,6 +93,7 @@ mod run {
                     "samples": model.options.samples,
                     "spatial": model.options.spatial,
                     "radius": model.options.radius,
+                    "fixed": model.options.fixed,
                 });
                 manifest.push(serde_json::json!({
                     "file": file.clone(),
@@ -338,7 +339,7 @@ mod run {
              ({} mode, {:.0} s) on {}; do not edit by hand.\n{quick}\n\
              The paper's table lost its numbers; these are its rows (bar TPS; aleph linear, cubic, TPS; octopus and crab \
              linear, quadratic, TPS) on our own shapes (`akap::shapes::{{toothed_bar, aleph, octopus, crab}}`), with our \
-             columns. m counts the rest pose (the trainer's samples + 1). *sampling s*: the ground-truth solves \
+             columns. n counts the moving handles (the bar also has a fixed one). m counts the rest pose (the trainer's samples + 1). *sampling s*: the ground-truth solves \
              (bootstrapped: warm starts from the current operator); *refits s*: the bootstrap's intermediate fits; \
              *iterations warm / cold*: mean Newton iterations per solve from a prediction / from the rest pose; *fit s*: \
              the final fit of the row's basis on all samples (TPS: the trainer's own final fit). *eval ms*, *fps*: one \

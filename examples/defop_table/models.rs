@@ -81,9 +81,8 @@ fn mesh_with_handles(outline: &Outline, vertices: usize, spots: &[Point]) -> (Me
     (mesh, handles)
 }
 
-/// The bar: the paper moves one handle (the right end) with the left end fixed. Until the
-/// trainer can hold handles at rest, both ends are handles and both are sampled; the
-/// trajectories figure keeps the left end at rest. Switch here when fixed handles land.
+/// The bar: as in the paper, one moving handle (the right end) and the left end fixed (a
+/// handle held at rest in every sample, `TrainOptions::fixed`).
 pub(crate) fn bar(mode: Mode) -> Model {
     let [length, height] = shapes::BAR_SIZE;
     let spots = [[0.03 * length, 0.5 * height], [0.97 * length, 0.5 * height]];
@@ -92,10 +91,9 @@ pub(crate) fn bar(mode: Mode) -> Model {
         name: "bar",
         mesh,
         handles,
-        options: TrainOptions { samples: 16, ..TrainOptions::default() },
+        options: TrainOptions { samples: 16, fixed: vec![0], ..TrainOptions::default() },
         bases: vec![BasisKind::Tps],
-        note: "both ends are handles and both are sampled (the paper: the left end fixed, one moving handle), \
-               until training can hold handles at rest",
+        note: "the left end is a fixed handle (held at rest), the right end the one moving handle",
     }
 }
 
@@ -269,7 +267,10 @@ pub(crate) fn held_out(model: &Model, trained: &mut Trained, count: usize) -> He
     let start = Instant::now();
     let (mut targets, mut truths, mut redrawn): (_, Vec<Vec<f64>>, _) = (Vec::new(), Vec::new(), 0);
     while targets.len() < count {
-        let t = sampler.take(1);
+        let mut t = sampler.take(1);
+        for &h in &model.options.fixed {
+            t[2 * h..2 * h + 2].copy_from_slice(&trained.rest[h]);
+        }
         let points: Vec<Point> = t.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
         match trained.solver.solve(&points, Start::Rest) {
             Ok(report) => {
