@@ -71,7 +71,10 @@ impl Energy {
 
     /// The density `ψ(J)` (`+∞` for S-ARAP when `det J <= 0`).
     pub fn density(self, j: &Jacobian) -> f64 {
-        let s = SignedSvd::new(j);
+        self.density_of(&SignedSvd::new(j))
+    }
+
+    fn density_of(self, s: &SignedSvd) -> f64 {
         match self {
             Self::Arap => (s.sigma_1 - 1.0).powi(2) + (s.sigma_2 - 1.0).powi(2),
             Self::SArap if s.sigma_2 > 0.0 => (s.sigma_1 - 1.0).powi(2) + (1.0 / s.sigma_2 - 1.0).powi(2),
@@ -81,14 +84,7 @@ impl Energy {
 
     /// The gradient `∂ψ/∂J`; `None` where the density is infinite.
     pub fn gradient(self, j: &Jacobian) -> Option<Jacobian> {
-        let modes = Modes::new(self, j)?;
-        let s = &modes.svd;
-        let twist = if s.q > 0.0 { modes.twist } else { 0.0 };
-        let flip = modes.flip_gradient;
-        Some([
-            [twist * s.e + flip * s.f, -twist * s.h + flip * s.g],
-            [twist * s.h + flip * s.g, twist * s.e - flip * s.f],
-        ])
+        Some(Modes::new(self, j)?.gradient())
     }
 
     /// The four eigenpairs of the Hessian `∂²ψ/∂J²` (eigenvalue, unit eigenvector as
@@ -113,10 +109,13 @@ impl Energy {
     /// slope of the cone `ψ ≈ ψ(Q, 0) + κ R` at `R = 0`, when `κ > 0`; `None` for ARAP
     /// (smooth) and where the density is infinite.
     pub fn kink(self, j: &Jacobian) -> Option<(f64, f64)> {
+        self.kink_of(&SignedSvd::new(j))
+    }
+
+    fn kink_of(self, s: &SignedSvd) -> Option<(f64, f64)> {
         if self == Self::Arap {
             return None;
         }
-        let s = SignedSvd::new(j);
         let kappa = 2.0 * (s.q - 1.0) * (1.0 - 1.0 / s.q.powi(3));
         (kappa > 0.0 && s.sigma_2 > 0.0).then_some((kappa, s.r))
     }
@@ -129,9 +128,52 @@ impl Energy {
     /// second derivatives of `κ(Q) R` that involve `Q` (small once `R` is about `κ/K`); the
     /// gradient is exact. `None` where [`Self::kink`] is.
     pub fn held(self, j: &Jacobian) -> Option<(f64, Jacobian, [[f64; 4]; 4])> {
-        let (kappa, r) = self.kink(j)?;
-        let mut m = Modes::new(self, j)?;
-        let density = self.density(j) - kappa * r + KINK_CAP * r * r;
+        Local::new(self, j)?.held()
+    }
+}
+
+/// One triangle's terms at one Jacobian from a single signed SVD: what [`Energy::density`],
+/// [`Energy::kink`], [`Energy::gradient`], [`Energy::hessian`] and [`Energy::held`] give,
+/// each of which computes the SVD anew (the ground truth's assembly needs most of them per
+/// triangle per iteration).
+pub(crate) struct Local {
+    energy: Energy,
+    modes: Modes,
+}
+
+impl Local {
+    /// `None` where the density is infinite (S-ARAP, `σ <= 0`).
+    pub(crate) fn new(energy: Energy, j: &Jacobian) -> Option<Self> {
+        Some(Self { energy, modes: Modes::new(energy, j)? })
+    }
+
+    /// [`Energy::density`].
+    pub(crate) fn density(&self) -> f64 {
+        self.energy.density_of(&self.modes.svd)
+    }
+
+    /// [`Energy::kink`].
+    pub(crate) fn kink(&self) -> Option<(f64, f64)> {
+        self.energy.kink_of(&self.modes.svd)
+    }
+
+    /// [`Energy::gradient`].
+    pub(crate) fn gradient(&self) -> Jacobian {
+        self.modes.gradient()
+    }
+
+    /// The Hessian, projected ([`Energy::hessian`] with `projected`), and, if asked for, the
+    /// exact one where it exists.
+    pub(crate) fn hessians(&self, exact: bool) -> (Option<[[f64; 4]; 4]>, Option<[[f64; 4]; 4]>) {
+        let modes = self.modes.eigensystem();
+        (hessian_of(&modes, true), if exact { hessian_of(&modes, false) } else { None })
+    }
+
+    /// [`Energy::held`].
+    pub(crate) fn held(&self) -> Option<(f64, Jacobian, [[f64; 4]; 4])> {
+        let (kappa, r) = self.kink()?;
+        let mut m = self.modes.clone();
+        let density = self.density() - kappa * r + KINK_CAP * r * r;
         m.flip = m.flip_smooth + KINK_CAP;
         m.flip_gradient = m.flip_smooth + KINK_CAP;
         // d(κ(Q) R)/dQ = κ'(Q) R, κ' = 2 (1 + 2 Q^-3 - 3 Q^-4), through ∂Q/∂J = S / (2Q).
@@ -224,6 +266,7 @@ fn hessian_of(modes: &[(f64, [f64; 4]); 4], projected: bool) -> Option<[[f64; 4]
 }
 
 /// The signed SVD with the eigenvalues of the twist, the flip and the `σ` scaling.
+#[derive(Clone)]
 struct Modes {
     svd: SignedSvd,
     twist: f64,

@@ -83,7 +83,7 @@
 
 use std::sync::Arc;
 
-use super::energy::{Energy, RestTriangle, SignedSvd, KINK_CAP};
+use super::energy::{Energy, Local, RestTriangle, SignedSvd, KINK_CAP};
 pub use super::error::DefOpError;
 use super::linear::{cholesky, cholesky_solve, first_root};
 pub use super::problem::{GroundTruthOptions, Handles, SolveReport, Start, MAX_POINT_HANDLES};
@@ -544,17 +544,17 @@ impl GroundTruth {
                     let armijo = true_slope < 0.0 && e <= energy + ARMIJO * alpha * true_slope;
                     if armijo || (!resolvable && e <= energy + 1e-12 * energy.abs()) {
                         flat = if energy - e <= FLAT * energy.abs() { flat + 1 } else { 0 };
-                        break true;
+                        break Some(e);
                     }
                     alpha /= 2.0;
                     full_step = false;
                     if alpha < 1e-12 {
-                        break false;
+                        break None;
                     }
                 };
-                if found {
+                if let Some(e) = found {
                     if !exact && alpha == 1.0 {
-                        self.extrapolate(cap);
+                        self.extrapolate(cap, e);
                     }
                     break;
                 }
@@ -609,7 +609,8 @@ impl GroundTruth {
         for (el, state) in self.elements.iter().zip(self.state.iter_mut()) {
             let p = el.vertices.map(|v| self.x[v]);
             let j = el.rest.jacobian(p);
-            *state = match (self.energy.kink(&j), *state) {
+            let local = Local::new(self.energy, &j);
+            *state = match (local.as_ref().and_then(Local::kink), *state) {
                 (_, HELD) if !hold => RELEASED,
                 (_, state) if !hold => state,
                 (Some((kappa, r)), LEFT) if feasible && kappa > KINK_MIN && r <= kappa / (4.0 * KINK_CAP) => HELD,
@@ -620,16 +621,20 @@ impl GroundTruth {
                 (None, HELD) => RELEASED,
                 (_, state) => state,
             };
-            let (Some(true_dpsi), Some(projected)) = (self.energy.gradient(&j), self.energy.hessian(&j, true)) else {
+            let Some((local, (Some(projected), exact_hessian))) = local.map(|l| {
+                let hessians = l.hessians(exact);
+                (l, hessians)
+            }) else {
                 // Infinite energy: never an iterate (the line search keeps S-ARAP finite).
                 energy = f64::INFINITY;
                 continue;
             };
-            energy += el.rest.area * self.energy.density(&j);
-            let held = if *state == HELD { self.energy.held(&j) } else { None };
+            let true_dpsi = local.gradient();
+            energy += el.rest.area * local.density();
+            let held = if *state == HELD { local.held() } else { None };
             let (dpsi, hj) = match held {
                 Some((_, g, h)) => (g, h),
-                None if exact => (true_dpsi, self.energy.hessian(&j, false).unwrap_or(projected)),
+                None if exact => (true_dpsi, exact_hessian.unwrap_or(projected)),
                 None => (true_dpsi, projected),
             };
             let w = el.rest.weights();
@@ -832,14 +837,13 @@ impl GroundTruth {
         first
     }
 
-    /// After a full step of the projected model was accepted: moves `trial` to that step
-    /// doubled while the energy keeps falling, at most [`MAX_EXTRAPOLATION`] times and below
+    /// After a full step of the projected model was accepted (to `energy`): moves `trial` to
+    /// that step doubled while the energy keeps falling, at most [`MAX_EXTRAPOLATION`] times and below
     /// `cap`. The projected Hessian drops the energy's negative curvature, so near a
     /// saddle its steps are far too short: on the gingerbread figure, ARAP solves spent
     /// dozens of full steps each lowering the energy by a millionth.
-    fn extrapolate(&mut self, cap: f64) {
-        let mut best = self.total_energy(&self.trial);
-        let mut alpha = 1.0;
+    fn extrapolate(&mut self, cap: f64, energy: f64) {
+        let (mut best, mut alpha) = (energy, 1.0);
         while 2.0 * alpha <= cap.min(MAX_EXTRAPOLATION) {
             self.move_to_trial(2.0 * alpha);
             let e = self.total_energy(&self.trial);
