@@ -27,6 +27,8 @@ pub(crate) struct Model {
     pub(crate) handles: Vec<MeshPoint>,
     pub(crate) options: TrainOptions,
     pub(crate) bases: Vec<BasisKind>,
+    /// Whether to fit TPS on the hat functions too (a model with a reduced basis).
+    pub(crate) hat_tps: bool,
     /// A remark for the table's notes.
     pub(crate) note: &'static str,
 }
@@ -93,6 +95,7 @@ pub(crate) fn bar(mode: Mode) -> Model {
         handles,
         options: TrainOptions { samples: 16, fixed: vec![0], ..TrainOptions::default() },
         bases: vec![BasisKind::Tps],
+        hat_tps: false,
         note: "the left end is a fixed handle (held at rest), the right end the one moving handle",
     }
 }
@@ -111,6 +114,7 @@ pub(crate) fn models(mode: Mode) -> Vec<Model> {
             handles: aleph_handles,
             options: TrainOptions { samples: mode.pick(59, 399), ..TrainOptions::default() },
             bases: vec![BasisKind::Linear, BasisKind::Cubic, BasisKind::Tps],
+            hat_tps: false,
             note: "",
         },
         Model {
@@ -119,6 +123,7 @@ pub(crate) fn models(mode: Mode) -> Vec<Model> {
             handles: octopus_handles,
             options: TrainOptions { samples: mode.pick(49, 999), spatial: 100, ..TrainOptions::default() },
             bases: vec![BasisKind::Linear, BasisKind::Quadratic, BasisKind::Tps],
+            hat_tps: true,
             note: "",
         },
         Model {
@@ -132,6 +137,7 @@ pub(crate) fn models(mode: Mode) -> Vec<Model> {
                 ..TrainOptions::default()
             },
             bases: vec![BasisKind::Linear, BasisKind::Quadratic, BasisKind::Tps],
+            hat_tps: false,
             note: "",
         },
     ]
@@ -236,6 +242,17 @@ pub(crate) fn fit_basis(model: &Model, trained: &Trained, kind: BasisKind, count
     let operator = fit(&model.mesh, &spatial, &model.handles, &trained.samples(count), &options)
         .unwrap_or_else(|e| panic!("{} {kind:?}: {e}", model.name));
     (operator, start.elapsed().as_secs_f64(), ridge)
+}
+
+/// TPS on the hat functions, fitted to all of `trained`'s samples (as the trainer's final
+/// fit, the interpolation shortcut allowed); with the seconds it took.
+pub(crate) fn fit_hat_tps(model: &Model, trained: &Trained) -> (Operator, f64, bool) {
+    let options = FitOptions::default().with_kind(BasisKind::Tps).with_scale(trained.radius);
+    let start = Instant::now();
+    let samples = trained.samples(trained.targets.len());
+    let operator = fit(&model.mesh, &akap::defop::SpatialBasis::hat(&model.mesh), &model.handles, &samples, &options)
+        .unwrap_or_else(|e| panic!("{} TPS on hat functions: {e}", model.name));
+    (operator, start.elapsed().as_secs_f64(), false)
 }
 
 /// The model's spatial basis, as its training makes it.
