@@ -41,6 +41,9 @@ use crate::geometry::Point;
 /// A 2 x 2 Jacobian `[[a, b], [c, d]]` (rows). As a 4-vector it is `(a, b, c, d)`.
 pub type Jacobian = [[f64; 2]; 2];
 
+/// A Hessian with respect to a Jacobian, as a 4 x 4 matrix in `(a, b, c, d)`.
+type Hessian = [[f64; 4]; 4];
+
 /// The cap on the S-ARAP flip eigenvalue at its kink (near `R = 0` with `κ > 0`), where the
 /// exact value grows like `κ / (2R)` without bound.
 pub const KINK_CAP: f64 = 1e8;
@@ -164,7 +167,7 @@ impl Local {
 
     /// The Hessian, projected ([`Energy::hessian`] with `projected`), and, if asked for, the
     /// exact one where it exists.
-    pub(crate) fn hessians(&self, exact: bool) -> (Option<[[f64; 4]; 4]>, Option<[[f64; 4]; 4]>) {
+    pub(crate) fn hessians(&self, exact: bool) -> (Option<Hessian>, Option<Hessian>) {
         let modes = self.modes.eigensystem();
         (hessian_of(&modes, true), if exact { hessian_of(&modes, false) } else { None })
     }

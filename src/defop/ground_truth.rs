@@ -847,7 +847,8 @@ impl GroundTruth {
         while 2.0 * alpha <= cap.min(MAX_EXTRAPOLATION) {
             self.move_to_trial(2.0 * alpha);
             let e = self.total_energy(&self.trial);
-            if !(e < best) {
+            // Not below (or NaN): stop.
+            if e.partial_cmp(&best) != Some(std::cmp::Ordering::Less) {
                 break;
             }
             (best, alpha) = (e, 2.0 * alpha);
