@@ -16,7 +16,8 @@
 //! - [`reduced`]: the reduced basis of Fig. 2 (the bilaplacian's lowest eigenfunctions);
 //! - [`fit`](mod@fit): the structured least-squares fit of eq. (8), with `fit_error`'s
 //!   [`FitError`];
-//! - [`operator`]: the trained operator and its allocation-free evaluation;
+//! - [`operator`]: the trained operator and its allocation-free evaluation, on the dot
+//!   product blocks of `kernels` (simd128 in wasm);
 //! - [`file`]: operator files (the operator with its mesh, versioned, checksummed);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
@@ -28,6 +29,7 @@ pub mod file;
 pub mod fit;
 pub mod fit_error;
 pub mod ground_truth;
+pub(crate) mod kernels;
 mod linear;
 pub mod operator;
 mod problem;
