@@ -23,7 +23,8 @@ fn main() {
     use akap::defop::{fit, reduced_basis, write_operator, FitOptions, MeshPoint, Sample, SpatialBasis};
 
     let args: Vec<String> = std::env::args().collect();
-    let write_dir = args.iter().position(|a| a == "--write").and_then(|i| args.get(i + 1)).map(std::path::PathBuf::from);
+    let write_dir =
+        args.iter().position(|a| a == "--write").and_then(|i| args.get(i + 1)).map(std::path::PathBuf::from);
     use akap::triangulate::triangulate_to_about;
     use akap::{shapes, TriangulationOptions};
 

@@ -150,65 +150,6 @@ pub fn bench_cholesky(
     Ok(format!("{{{}}}", fields.join(",")))
 }
 
-/// Times the stages of one DefOp evaluation of the operator file `bytes` (as
-/// `defop::write_operator` writes it): Ψ(Q), the coefficient product `X Ψ`, the reduction
-/// `Dᵀ (X Ψ)` (0 for the hat basis) and the whole `Operator::evaluate_into`, each as the
-/// median over `repeats` rounds of the mean over 64 target sets near the rest pose, in
-/// milliseconds. Returns one JSON object.
-#[wasm_bindgen]
-#[allow(unreachable_pub)] // exported to JavaScript; the module is private to the crate
-pub fn bench_defop_stages(bytes: &[u8], repeats: u32) -> Result<String, JsError> {
-    use crate::defop::kernels::{pairs_times_vector, rows_times_pair};
-
-    let (_, mut operator) = crate::defop::read_operator(bytes).map_err(|e| JsError::new(&e.to_string()))?;
-    let clock = Clock::new()?;
-    let basis = operator.handle_basis().clone();
-    let queries: Vec<Vec<f64>> = (0..64)
-        .map(|k| basis.rest().iter().enumerate().map(|(i, x)| x + 0.05 * (k as f64 + 1.7 * i as f64).sin()).collect())
-        .collect();
-    let (coefficients, reduction) = (operator.coefficients().to_vec(), operator.reduction().to_vec());
-    let mut psi = vec![0.0; basis.len()];
-    let mut nodal = vec![0.0; 2 * operator.spatial_len()];
-    let mut out = vec![0.0; 2 * operator.vertex_count()];
-    let per_query = |ms: f64| ms / queries.len() as f64;
-    let mut samples: [Vec<f64>; 4] = Default::default();
-    for _ in 0..repeats.max(1) {
-        samples[0].push(per_query(clock.time_ms(|| {
-            for q in &queries {
-                basis.evaluate_into(q, &mut psi).ok();
-            }
-        })));
-        let target = if reduction.is_empty() { &mut out } else { &mut nodal };
-        samples[1].push(per_query(clock.time_ms(|| {
-            for _ in &queries {
-                pairs_times_vector(&coefficients, &psi, |i, x, y| (target[2 * i], target[2 * i + 1]) = (x, y));
-            }
-        })));
-        let (nx, ny): (Vec<f64>, Vec<f64>) = nodal.chunks_exact(2).map(|p| (p[0], p[1])).unzip();
-        samples[2].push(per_query(clock.time_ms(|| {
-            for _ in &queries {
-                rows_times_pair(&reduction, &nx, &ny, |v, x, y| (out[2 * v], out[2 * v + 1]) = (x, y));
-            }
-        })));
-        samples[3].push(per_query(clock.time_ms(|| {
-            for q in &queries {
-                operator.evaluate_into(q, &mut out).ok();
-            }
-        })));
-        std::hint::black_box(&out);
-    }
-    let names = ["psiMs", "coefficientsMs", "reductionMs", "evaluateMs"];
-    let fields: Vec<String> = [
-        format!("\"psi\":{}", psi.len()),
-        format!("\"spatial\":{}", operator.spatial_len()),
-        format!("\"vertices\":{}", operator.vertex_count()),
-    ]
-    .into_iter()
-    .chain(names.iter().zip(samples).map(|(name, values)| format!("\"{name}\":{}", json_number(median(values)))))
-    .collect();
-    Ok(format!("{{{}}}", fields.join(",")))
-}
-
 /// Whether this build was compiled with wasm SIMD (`-C target-feature=+simd128`).
 #[wasm_bindgen]
 #[allow(unreachable_pub)] // exported to JavaScript

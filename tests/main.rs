@@ -2,6 +2,7 @@
 
 mod arap;
 mod common;
+mod defop_eval;
 mod defop_file;
 mod defop_fit;
 mod defop_ground_truth;

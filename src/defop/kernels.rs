@@ -1,14 +1,18 @@
 //! The dense kernels of an operator's evaluation (paper eq. 3: `X Ψ`, then `Dᵀ (X Ψ)`):
-//! blocks of dot products, several rows against one or two vectors at once, so that each
-//! vector element is loaded once per block of rows.
+//! blocks of dot products, four rows against one or two vectors at once, so that each
+//! vector element is loaded once per four rows.
 //!
-//! Every product is summed in the same order on every target: four partial sums per
-//! product (element k of each block of four into sum k), combined as `(s0 + s2) + (s1 + s3)`,
-//! then the last `len % 4` elements one by one. In wasm the four sums are two `f64x2` lanes
-//! pairs (`core::arch::wasm32`, simd128, which `.cargo/config.toml` enables): LLVM does not
-//! vectorise the scalar form for wasm32 by itself (its cost model keeps `f64` dot products
-//! scalar there). Elsewhere the portable form runs, which compilers vectorise natively; both
-//! round alike, so an operator gives the same bits natively and in wasm.
+//! Every product is summed in the same order on every target: two partial sums (the
+//! elements of even index, and of odd index), added, then the last element if the length
+//! is odd. In wasm the two sums are the lanes of one `f64x2` (`core::arch::wasm32`, simd128,
+//! which `.cargo/config.toml` enables): LLVM keeps the scalar form scalar for wasm32 (its
+//! cost model does not vectorise these reductions there), which made the evaluation three
+//! times slower than native. Elsewhere the portable form runs, which compilers vectorise
+//! natively; both round alike, so an operator gives the same bits natively and in wasm.
+//!
+//! Measured in wasm (Node 20, the octopus-sized operator): blocks of two elements with
+//! one accumulator per product beat blocks of four with two (fewer live registers), and
+//! four rows per block beat two or eight.
 
 /// `out[r][c] = rows[r] · vectors[c]` over the first `len` elements of each slice, for `R`
 /// rows and `C` vectors at once. Every slice must hold at least `len` numbers.
@@ -36,27 +40,26 @@ pub(crate) fn portable_dots<const R: usize, const C: usize>(
     vectors: [&[f64]; C],
     len: usize,
 ) -> [[f64; C]; R] {
-    let blocks = len / 4;
-    let rows = rows.map(|r| r[..len].split_at(4 * blocks));
-    let vectors = vectors.map(|v| v[..len].split_at(4 * blocks));
-    let row_blocks = rows.map(|(body, _)| body.as_chunks::<4>().0);
-    let vector_blocks = vectors.map(|(body, _)| body.as_chunks::<4>().0);
-    let mut sums = [[[0.0f64; 4]; C]; R];
-    for b in 0..blocks {
-        for (sum, row) in sums.iter_mut().zip(&row_blocks) {
+    let pairs = len / 2;
+    let rows = rows.map(|r| r[..len].split_at(2 * pairs));
+    let vectors = vectors.map(|v| v[..len].split_at(2 * pairs));
+    let row_pairs = rows.map(|(body, _)| body.as_chunks::<2>().0);
+    let vector_pairs = vectors.map(|(body, _)| body.as_chunks::<2>().0);
+    let mut sums = [[[0.0f64; 2]; C]; R];
+    for b in 0..pairs {
+        for (sum, row) in sums.iter_mut().zip(&row_pairs) {
             let x = &row[b];
-            for (s, vector) in sum.iter_mut().zip(&vector_blocks) {
+            for (s, vector) in sum.iter_mut().zip(&vector_pairs) {
                 let y = &vector[b];
-                for k in 0..4 {
-                    s[k] += x[k] * y[k];
-                }
+                s[0] += x[0] * y[0];
+                s[1] += x[1] * y[1];
             }
         }
     }
     let mut out = [[0.0; C]; R];
     for ((o, s), (_, row_tail)) in out.iter_mut().zip(&sums).zip(&rows) {
         for ((o, s), (_, vector_tail)) in o.iter_mut().zip(s).zip(&vectors) {
-            let mut total = (s[0] + s[2]) + (s[1] + s[3]);
+            let mut total = s[0] + s[1];
             for (x, y) in row_tail.iter().zip(*vector_tail) {
                 total += x * y;
             }
@@ -68,44 +71,37 @@ pub(crate) fn portable_dots<const R: usize, const C: usize>(
 
 #[cfg(target_arch = "wasm32")]
 mod simd {
-    use core::arch::wasm32::{f64x2, f64x2_add, f64x2_extract_lane, f64x2_mul, f64x2_splat, v128};
+    use core::arch::wasm32::{f64x2, f64x2_add, f64x2_extract_lane, f64x2_mul, f64x2_splat};
 
-    /// Two `f64x2` registers from four numbers: lanes (0, 1) and (2, 3).
-    #[inline(always)]
-    fn load(x: &[f64; 4]) -> [v128; 2] {
-        [f64x2(x[0], x[1]), f64x2(x[2], x[3])]
-    }
-
-    /// [`super::dots`] in simd128: partial sums k = 0, 1 in one register, 2, 3 in another.
+    /// [`super::dots`] in simd128: the two partial sums of a product are one register's lanes.
     #[inline(always)]
     pub(super) fn dots<const R: usize, const C: usize>(
         rows: [&[f64]; R],
         vectors: [&[f64]; C],
         len: usize,
     ) -> [[f64; C]; R] {
-        let blocks = len / 4;
-        let rows = rows.map(|r| r[..len].split_at(4 * blocks));
-        let vectors = vectors.map(|v| v[..len].split_at(4 * blocks));
-        let row_blocks = rows.map(|(body, _)| body.as_chunks::<4>().0);
-        let vector_blocks = vectors.map(|(body, _)| body.as_chunks::<4>().0);
-        let zero = f64x2_splat(0.0);
-        let mut sums = [[[zero; 2]; C]; R];
-        for b in 0..blocks {
-            let y = vector_blocks.map(|v| load(&v[b]));
-            for (sum, row) in sums.iter_mut().zip(&row_blocks) {
-                let x = load(&row[b]);
+        let pairs = len / 2;
+        let rows = rows.map(|r| r[..len].split_at(2 * pairs));
+        let vectors = vectors.map(|v| v[..len].split_at(2 * pairs));
+        let row_pairs = rows.map(|(body, _)| body.as_chunks::<2>().0);
+        let vector_pairs = vectors.map(|(body, _)| body.as_chunks::<2>().0);
+        // LLVM loads each pair with two lane loads rather than one `v128.load` (it does not
+        // merge them for wasm32); a `v128_load` through a pointer, which needs unsafe code,
+        // measured no faster.
+        let mut sums = [[f64x2_splat(0.0); C]; R];
+        for b in 0..pairs {
+            let y = vector_pairs.map(|v| f64x2(v[b][0], v[b][1]));
+            for (sum, row) in sums.iter_mut().zip(&row_pairs) {
+                let x = f64x2(row[b][0], row[b][1]);
                 for (s, y) in sum.iter_mut().zip(&y) {
-                    s[0] = f64x2_add(s[0], f64x2_mul(x[0], y[0]));
-                    s[1] = f64x2_add(s[1], f64x2_mul(x[1], y[1]));
+                    *s = f64x2_add(*s, f64x2_mul(x, *y));
                 }
             }
         }
         let mut out = [[0.0; C]; R];
         for ((o, s), (_, row_tail)) in out.iter_mut().zip(&sums).zip(&rows) {
             for ((o, s), (_, vector_tail)) in o.iter_mut().zip(s).zip(&vectors) {
-                // Lanes (s0 + s2, s1 + s3), then their sum.
-                let pair = f64x2_add(s[0], s[1]);
-                let mut total = f64x2_extract_lane::<0>(pair) + f64x2_extract_lane::<1>(pair);
+                let mut total = f64x2_extract_lane::<0>(*s) + f64x2_extract_lane::<1>(*s);
                 for (x, y) in row_tail.iter().zip(*vector_tail) {
                     total += x * y;
                 }
@@ -144,25 +140,28 @@ pub(crate) fn pairs_times_vector(pairs: &[f64], w: &[f64], mut write: impl FnMut
 }
 
 /// `Mᵀ (x, y)` for a matrix stored by rows of `x.len()` numbers (the reduction D by vertex):
-/// `write(v, m_v · x, m_v · y)` for every row v, two rows at a time. `x` and `y` have equal
+/// `write(v, m_v · x, m_v · y)` for every row v, four rows at a time. `x` and `y` have equal
 /// lengths.
 pub(crate) fn rows_times_pair(rows: &[f64], x: &[f64], y: &[f64], mut write: impl FnMut(usize, f64, f64)) {
     let len = x.len();
     if len == 0 {
         return;
     }
-    let mut blocks = rows.chunks_exact(2 * len);
+    let mut blocks = rows.chunks_exact(4 * len);
     let mut v = 0;
     for block in blocks.by_ref() {
-        let (a, b) = block.split_at(len);
-        let [[ax, ay], [bx, by]] = dots([a, b], [x, y], len);
-        write(v, ax, ay);
-        write(v + 1, bx, by);
-        v += 2;
+        let (a, rest) = block.split_at(len);
+        let (b, rest) = rest.split_at(len);
+        let (c, d) = rest.split_at(len);
+        for [mx, my] in dots([a, b, c, d], [x, y], len) {
+            write(v, mx, my);
+            v += 1;
+        }
     }
     for row in blocks.remainder().chunks_exact(len) {
-        let [[ax, ay]] = dots([row], [x, y], len);
-        write(v, ax, ay);
+        let [[mx, my]] = dots([row], [x, y], len);
+        write(v, mx, my);
+        v += 1;
     }
 }
 
@@ -237,7 +236,7 @@ mod tests {
                 assert_close(y, plain_dot(&row[len..2 * len], &w), len, "y");
             }
         }
-        for (count, len) in [(0, 4), (1, 4), (2, 100), (5, 100), (2058, 3)] {
+        for (count, len) in [(0, 4), (1, 4), (2, 100), (7, 100), (2058, 3), (4, 1)] {
             let matrix = numbers(count * len, 9);
             let (x, y) = (numbers(len, 10), numbers(len, 12));
             let mut seen = vec![None; count];

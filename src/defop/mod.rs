@@ -29,7 +29,7 @@ pub mod file;
 pub mod fit;
 pub mod fit_error;
 pub mod ground_truth;
-pub(crate) mod kernels;
+mod kernels;
 mod linear;
 pub mod operator;
 mod problem;

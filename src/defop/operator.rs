@@ -6,8 +6,8 @@
 use nalgebra::DMatrix;
 
 use super::basis::HandleBasis;
-use super::kernels;
 use super::fit_error::{check_finite, check_length, FitError};
+use super::kernels;
 use super::spatial::MeshPoint;
 
 /// How a fit solved its least-squares problem.
