@@ -3,6 +3,7 @@
 // octopus (the built-in figure at about 2,000 vertices, 9 handles, TPS on the samples,
 // the reduced spatial basis of 100 functions), for both energies.
 //   npm run build && node scripts/bench-defop.mjs [samples] [vertices]
+// Evaluation alone, without training and old build against new: scripts/bench-defop-eval.mjs.
 import process from "node:process";
 import { performance } from "node:perf_hooks";
 import { DefOpTrainer, defaultShape, init, triangulateToVertices } from "../www/lib/index.js";

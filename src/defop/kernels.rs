@@ -167,6 +167,10 @@ pub(crate) fn rows_times_pair(rows: &[f64], x: &[f64], y: &[f64], mut write: imp
 
 #[cfg(test)]
 mod tests {
+    // Run in wasm too (`wasm-pack test --node -- --lib`), where `dots` is the simd128 form.
+    #[cfg(target_arch = "wasm32")]
+    use wasm_bindgen_test::wasm_bindgen_test as test;
+
     use super::*;
 
     /// Numbers in [-1, 1) from a fixed stream (xorshift), with varied magnitudes.
