@@ -68,8 +68,14 @@ for (let round = 0; round < rounds; round++) {
     for (const { file, op, queries } of operators) {
       const out = new Float64Array(2 * op.vertexCount);
       const out32 = new Float32Array(2 * op.vertexCount);
-      record(`${lib}|${file}|f64`, time(queries, (q) => op.evaluateInto(q, out)));
-      record(`${lib}|${file}|f32`, time(queries, (q) => op.evaluateIntoF32(q, out32)));
+      record(
+        `${lib}|${file}|f64`,
+        time(queries, (q) => op.evaluateInto(q, out)),
+      );
+      record(
+        `${lib}|${file}|f32`,
+        time(queries, (q) => op.evaluateIntoF32(q, out32)),
+      );
     }
   }
 }
