@@ -5,7 +5,8 @@
 //! hat basis (|Φ| = N; TPS interpolation shortcut, and the structured solver for
 //! comparison) and for the reduced basis of 100 functions (1, x, y and the bilaplacian's
 //! lowest eigenfunctions; structured solver), and how far the single-precision output is
-//! from the double one. With `--write DIR` it also writes the operator files
+//! from the double one; the same for the operator's single-precision copy
+//! (`Operator::single_precision`). With `--write DIR` it also writes the operator files
 //! `DIR/hat.defop` and `DIR/reduced.defop` (operator and mesh, `defop::write_operator`), which
 //! `scripts/bench-defop.mjs --eval` times in wasm without training. Prints only; asserts
 //! nothing.
@@ -160,6 +161,32 @@ fn main() {
                 e.iter().zip(&out32).map(|(a, &b)| (a - f64::from(b)).abs()).fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);
+        let mut single = operator.single_precision();
+        let start = Instant::now();
+        let mut calls_single = 0usize;
+        while start.elapsed().as_secs_f64() < 1.0 {
+            for q in &queries {
+                single.evaluate_into(black_box(q), &mut out32).unwrap();
+                calls_single += 1;
+            }
+            black_box(&out32);
+        }
+        let per_call_single = start.elapsed().as_secs_f64() / calls_single as f64;
+        let single_error = queries
+            .iter()
+            .map(|q| {
+                let e = operator.evaluate(q).unwrap();
+                single.evaluate_into(q, &mut out32).unwrap();
+                e.iter().zip(&out32).map(|(a, &b)| (a - f64::from(b)).abs()).fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "{name:>7}: single-precision copy ({:.1} MB): {:.1} µs/call ({:.0}/s), {:.1e} of the diagonal from f64",
+            single.coefficient_bytes() as f64 / 1e6,
+            1e6 * per_call_single,
+            1.0 / per_call_single,
+            single_error / diagonal
+        );
         println!(
             "{name:>7}: |Φ| = {:4}, |Ψ| = {}, solver {:?}: fit {:.2} s; evaluate {:.1} µs/call ({:.0}/s), \
              f32 out {:.1} µs/call ({:.1e} of the diagonal from f64); handles hit to {:.1e} of the diagonal",

@@ -7,8 +7,12 @@
 // out) of every file for about `--ms` milliseconds each. With several `--lib` directories
 // (copies of www/lib with their www/pkg beside them, e.g. an old and a new build) the rounds
 // alternate between them, so that a noisy machine slows both alike; the table gives the
-// median over rounds and the fastest round.
+// median over rounds and the fastest round. With `--rust target/bench-pkg` (the `bench`
+// build of scripts/bench-wasm.sh) it also times, from Rust inside wasm, the double
+// evaluation against the operator's single-precision copy (`Operator::single_precision`),
+// which the JavaScript API does not expose.
 import { readFileSync } from "node:fs";
+import { createRequire } from "node:module";
 import path from "node:path";
 import process from "node:process";
 import { performance } from "node:perf_hooks";
@@ -17,12 +21,14 @@ import { pathToFileURL } from "node:url";
 const args = process.argv.slice(2);
 const libs = [];
 const files = [];
+let rust;
 let rounds = 7;
 let ms = 300;
 for (let i = 0; i < args.length; i++) {
   if (args[i] === "--lib") libs.push(args[++i]);
   else if (args[i] === "--rounds") rounds = Number(args[++i]);
   else if (args[i] === "--ms") ms = Number(args[++i]);
+  else if (args[i] === "--rust") rust = args[++i];
   else files.push(args[i]);
 }
 if (libs.length === 0) libs.push("www/lib");
@@ -93,3 +99,20 @@ for (const [key, values] of results) {
   );
 }
 for (const { operators } of builds) for (const { op } of operators) op.free();
+
+if (rust) {
+  const wasm = createRequire(import.meta.url)(path.resolve(rust, "akap.js"));
+  console.log("");
+  console.log(`From Rust in wasm (${rust}): double evaluation and the single-precision copy`);
+  console.log("");
+  console.log(
+    "| operator | double median ms | double evaluations/s | single median ms | single evaluations/s | single copy MB | single − double / diagonal |",
+  );
+  console.log("|---|--:|--:|--:|--:|--:|--:|");
+  for (const file of files) {
+    const r = JSON.parse(wasm.bench_defop_eval(new Uint8Array(readFileSync(file)), rounds, ms));
+    console.log(
+      `| ${path.basename(file)} | ${r.doubleMedianMs.toFixed(4)} | ${Math.round(1000 / r.doubleMedianMs)} | ${r.singleMedianMs.toFixed(4)} | ${Math.round(1000 / r.singleMedianMs)} | ${(r.singleBytes / 1e6).toFixed(1)} | ${r.singleDifference.toExponential(1)} |`,
+    );
+  }
+}

@@ -2,7 +2,9 @@
 //! src/defop/kernels.rs): for every handle basis, with hat functions and with a reduced
 //! spatial basis, and at sizes that leave remainders in every block, the positions equal the
 //! triple sum `Σ_i D_iv Σ_j X^ν_ij ψ_j(Q)` over the operator's own coefficients, summed
-//! here in plain order, to rounding; the single-precision output is the double one rounded.
+//! here in plain order, to rounding; the single-precision output is the double one rounded;
+//! the single-precision copy (`Operator::single_precision`) is within its rounding bound
+//! and within 1e-5 of the bounding-box diagonal (test plan 13).
 //! Runs natively and as wasm (where the kernels are simd128).
 
 use akap::defop::{fit, BasisKind, FitOptions, MeshPoint, Operator, Sample, SpatialBasis};
@@ -49,6 +51,11 @@ fn evaluation_equals_the_triple_sum_of_its_coefficients() {
     // 7 × 5 = 35 vertices and 3 handles: |Ψ| = 7 (linear), 28 (quadratic), 84 (cubic) and
     // 7 + 23 (TPS on 22 samples and the rest pose); |Φ| = 35 or 3 + 6 = 9.
     let mesh: Mesh = shapes::grid_mesh(6, 4);
+    let extent = |c: usize| {
+        let values = mesh.positions().iter().map(|p| p[c]);
+        values.clone().fold(f64::NEG_INFINITY, f64::max) - values.fold(f64::INFINITY, f64::min)
+    };
+    let size = extent(0).hypot(extent(1)); // the bounding-box diagonal
     let handles = [8usize, 12, 31];
     let rest: Vec<f64> = handles.iter().flat_map(|&v| mesh.positions()[v]).collect();
     let mut rng = Rng::new(11);
@@ -73,6 +80,8 @@ fn evaluation_equals_the_triple_sum_of_its_coefficients() {
             let options = FitOptions::default().with_kind(kind);
             let mut operator = fit(&mesh, &spatial, &points, &samples, &options).unwrap();
             let mut single = vec![0.0f32; 2 * mesh.vertex_count()];
+            let mut copy = operator.single_precision();
+            let mut copied = vec![0.0f32; 2 * mesh.vertex_count()];
             for q in &queries {
                 let found = operator.evaluate(q).unwrap();
                 let (expected, scale) = triple_sum(&operator, &spatial, q);
@@ -91,6 +100,19 @@ fn evaluation_equals_the_triple_sum_of_its_coefficients() {
                 operator.evaluate_into_f32(q, &mut single).unwrap();
                 let rounded: Vec<f32> = found.iter().map(|&x| x as f32).collect();
                 assert_eq!(single, rounded, "{kind:?}, |Φ| = {}", spatial.len());
+                // In single precision each term also carries the rounding of its coefficient,
+                // of ψ_j and of D_iv: a few ε_32 more per term.
+                copy.evaluate_into(q, &mut copied).unwrap();
+                for (v, ((f, e), s)) in copied.iter().zip(&expected).zip(&scale).enumerate() {
+                    let error = (f64::from(*f) - e).abs();
+                    let bound = 2.0 * (terms + 6.0) * f64::from(f32::EPSILON) * s;
+                    assert!(
+                        error <= bound && error <= 1e-5 * size,
+                        "{kind:?}, |Φ| = {}: single-precision position {v} is {f}, the triple sum {e} \
+                         (bound {bound}, diagonal {size})",
+                        spatial.len()
+                    );
+                }
             }
         }
     }

@@ -71,7 +71,10 @@ pub(crate) fn portable_dots<const R: usize, const C: usize>(
 
 #[cfg(target_arch = "wasm32")]
 mod simd {
-    use core::arch::wasm32::{f64x2, f64x2_add, f64x2_extract_lane, f64x2_mul, f64x2_splat};
+    use core::arch::wasm32::{
+        f32x4, f32x4_add, f32x4_extract_lane, f32x4_mul, f32x4_splat, f64x2, f64x2_add, f64x2_extract_lane, f64x2_mul,
+        f64x2_splat,
+    };
 
     /// [`super::dots`] in simd128: the two partial sums of a product are one register's lanes.
     #[inline(always)]
@@ -110,12 +113,128 @@ mod simd {
         }
         out
     }
+
+    /// [`super::dots_f32`] in simd128: the four partial sums of a product are one register's
+    /// lanes.
+    #[inline(always)]
+    pub(super) fn dots_f32<const R: usize, const C: usize>(
+        rows: [&[f32]; R],
+        vectors: [&[f32]; C],
+        len: usize,
+    ) -> [[f32; C]; R] {
+        let blocks = len / 4;
+        let rows = rows.map(|r| r[..len].split_at(4 * blocks));
+        let vectors = vectors.map(|v| v[..len].split_at(4 * blocks));
+        let row_blocks = rows.map(|(body, _)| body.as_chunks::<4>().0);
+        let vector_blocks = vectors.map(|(body, _)| body.as_chunks::<4>().0);
+        let load = |x: &[f32; 4]| f32x4(x[0], x[1], x[2], x[3]);
+        let mut sums = [[f32x4_splat(0.0); C]; R];
+        for b in 0..blocks {
+            let y = vector_blocks.map(|v| load(&v[b]));
+            for (sum, row) in sums.iter_mut().zip(&row_blocks) {
+                let x = load(&row[b]);
+                for (s, y) in sum.iter_mut().zip(&y) {
+                    *s = f32x4_add(*s, f32x4_mul(x, *y));
+                }
+            }
+        }
+        let mut out = [[0.0; C]; R];
+        for ((o, s), (_, row_tail)) in out.iter_mut().zip(&sums).zip(&rows) {
+            for ((o, s), (_, vector_tail)) in o.iter_mut().zip(s).zip(&vectors) {
+                let mut total = (f32x4_extract_lane::<0>(*s) + f32x4_extract_lane::<2>(*s))
+                    + (f32x4_extract_lane::<1>(*s) + f32x4_extract_lane::<3>(*s));
+                for (x, y) in row_tail.iter().zip(*vector_tail) {
+                    total += x * y;
+                }
+                *o = total;
+            }
+        }
+        out
+    }
+}
+
+/// `out[r][c] = rows[r] · vectors[c]` in single precision, as [`dots`]: four partial sums
+/// per product (element k of each block of four into sum k, the lanes of one `f32x4` in
+/// wasm), combined as `(s0 + s2) + (s1 + s3)`, then the last `len % 4` elements.
+#[inline(always)]
+pub(crate) fn dots_f32<const R: usize, const C: usize>(
+    rows: [&[f32]; R],
+    vectors: [&[f32]; C],
+    len: usize,
+) -> [[f32; C]; R] {
+    #[cfg(target_arch = "wasm32")]
+    {
+        simd::dots_f32(rows, vectors, len)
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        portable_dots_f32(rows, vectors, len)
+    }
+}
+
+/// The portable form of [`dots_f32`], in the same summation order.
+#[cfg(any(test, not(target_arch = "wasm32")))]
+#[inline(always)]
+pub(crate) fn portable_dots_f32<const R: usize, const C: usize>(
+    rows: [&[f32]; R],
+    vectors: [&[f32]; C],
+    len: usize,
+) -> [[f32; C]; R] {
+    let blocks = len / 4;
+    let rows = rows.map(|r| r[..len].split_at(4 * blocks));
+    let vectors = vectors.map(|v| v[..len].split_at(4 * blocks));
+    let row_blocks = rows.map(|(body, _)| body.as_chunks::<4>().0);
+    let vector_blocks = vectors.map(|(body, _)| body.as_chunks::<4>().0);
+    let mut sums = [[[0.0f32; 4]; C]; R];
+    for b in 0..blocks {
+        for (sum, row) in sums.iter_mut().zip(&row_blocks) {
+            let x = &row[b];
+            for (s, vector) in sum.iter_mut().zip(&vector_blocks) {
+                let y = &vector[b];
+                for k in 0..4 {
+                    s[k] += x[k] * y[k];
+                }
+            }
+        }
+    }
+    let mut out = [[0.0; C]; R];
+    for ((o, s), (_, row_tail)) in out.iter_mut().zip(&sums).zip(&rows) {
+        for ((o, s), (_, vector_tail)) in o.iter_mut().zip(s).zip(&vectors) {
+            let mut total = (s[0] + s[2]) + (s[1] + s[3]);
+            for (x, y) in row_tail.iter().zip(*vector_tail) {
+                total += x * y;
+            }
+            *o = total;
+        }
+    }
+    out
+}
+
+/// The number types the kernels multiply: `f64` (the evaluation) and `f32` (its
+/// single-precision copy for a GPU upload).
+pub(crate) trait Element: Copy {
+    /// [`dots`] or [`dots_f32`].
+    fn dots<const R: usize, const C: usize>(rows: [&[Self]; R], vectors: [&[Self]; C], len: usize) -> [[Self; C]; R];
+}
+
+impl Element for f64 {
+    #[inline(always)]
+    fn dots<const R: usize, const C: usize>(rows: [&[f64]; R], vectors: [&[f64]; C], len: usize) -> [[f64; C]; R] {
+        dots(rows, vectors, len)
+    }
+}
+
+impl Element for f32 {
+    #[inline(always)]
+    fn dots<const R: usize, const C: usize>(rows: [&[f32]; R], vectors: [&[f32]; C], len: usize) -> [[f32; C]; R] {
+        dots_f32(rows, vectors, len)
+    }
 }
 
 /// `X w` for coefficient rows stored in pairs (row i of X^x then row i of X^y, `2 len`
 /// numbers per pair, as the operator keeps them): `write(i, X^x_i · w, X^y_i · w)` for every
 /// pair i, two pairs at a time.
-pub(crate) fn pairs_times_vector(pairs: &[f64], w: &[f64], mut write: impl FnMut(usize, f64, f64)) {
+pub(crate) fn pairs_times_vector<T: Element>(pairs: &[T], w: &[T], mut write: impl FnMut(usize, T, T)) {
     let len = w.len();
     if len == 0 {
         return;
@@ -126,14 +245,14 @@ pub(crate) fn pairs_times_vector(pairs: &[f64], w: &[f64], mut write: impl FnMut
         let (a, rest) = block.split_at(len);
         let (b, rest) = rest.split_at(len);
         let (c, d) = rest.split_at(len);
-        let [[ax], [bx], [cx], [dx]] = dots([a, b, c, d], [w], len);
+        let [[ax], [bx], [cx], [dx]] = T::dots([a, b, c, d], [w], len);
         write(i, ax, bx);
         write(i + 1, cx, dx);
         i += 2;
     }
     for pair in blocks.remainder().chunks_exact(2 * len) {
         let (a, b) = pair.split_at(len);
-        let [[ax], [bx]] = dots([a, b], [w], len);
+        let [[ax], [bx]] = T::dots([a, b], [w], len);
         write(i, ax, bx);
         i += 1;
     }
@@ -142,7 +261,7 @@ pub(crate) fn pairs_times_vector(pairs: &[f64], w: &[f64], mut write: impl FnMut
 /// `Mᵀ (x, y)` for a matrix stored by rows of `x.len()` numbers (the reduction D by vertex):
 /// `write(v, m_v · x, m_v · y)` for every row v, four rows at a time. `x` and `y` have equal
 /// lengths.
-pub(crate) fn rows_times_pair(rows: &[f64], x: &[f64], y: &[f64], mut write: impl FnMut(usize, f64, f64)) {
+pub(crate) fn rows_times_pair<T: Element>(rows: &[T], x: &[T], y: &[T], mut write: impl FnMut(usize, T, T)) {
     let len = x.len();
     if len == 0 {
         return;
@@ -153,13 +272,13 @@ pub(crate) fn rows_times_pair(rows: &[f64], x: &[f64], y: &[f64], mut write: imp
         let (a, rest) = block.split_at(len);
         let (b, rest) = rest.split_at(len);
         let (c, d) = rest.split_at(len);
-        for [mx, my] in dots([a, b, c, d], [x, y], len) {
+        for [mx, my] in T::dots([a, b, c, d], [x, y], len) {
             write(v, mx, my);
             v += 1;
         }
     }
     for row in blocks.remainder().chunks_exact(len) {
-        let [[mx, my]] = dots([row], [x, y], len);
+        let [[mx, my]] = T::dots([row], [x, y], len);
         write(v, mx, my);
         v += 1;
     }
@@ -213,6 +332,31 @@ mod tests {
             }
             // The portable form rounds exactly alike.
             let portable = portable_dots([&rows[0], &rows[1], &rows[2], &rows[3]], [&vectors[0], &vectors[1]], len);
+            assert_eq!(out, portable, "len {len}");
+        }
+    }
+
+    #[test]
+    fn single_precision_dots_match_plain_dot_products_at_every_length() {
+        for len in [0, 1, 3, 4, 5, 7, 8, 9, 100, 1019] {
+            let rows: Vec<Vec<f32>> =
+                (0..4).map(|r| numbers(len, 21 + r).iter().map(|&x| x as f32).collect()).collect();
+            let vectors: Vec<Vec<f32>> =
+                (0..2).map(|c| numbers(len, 201 + c).iter().map(|&x| x as f32).collect()).collect();
+            let out = dots_f32([&rows[0], &rows[1], &rows[2], &rows[3]], [&vectors[0], &vectors[1]], len);
+            for (r, row) in rows.iter().enumerate() {
+                for (c, vector) in vectors.iter().enumerate() {
+                    // The products of f32 numbers are exact in f64: the plain sum there is
+                    // the exact one to f64 rounding; the f32 sum is within ~n ε_32 of it.
+                    let wide: Vec<f64> = row.iter().map(|&x| f64::from(x)).collect();
+                    let other: Vec<f64> = vector.iter().map(|&x| f64::from(x)).collect();
+                    let (expected, scale) = plain_dot(&wide, &other);
+                    let bound = 2.0 * (len as f64 + 1.0) * f64::from(f32::EPSILON) * scale;
+                    let found = f64::from(out[r][c]);
+                    assert!((found - expected).abs() <= bound, "len {len}: {found} vs {expected} (bound {bound})");
+                }
+            }
+            let portable = portable_dots_f32([&rows[0], &rows[1], &rows[2], &rows[3]], [&vectors[0], &vectors[1]], len);
             assert_eq!(out, portable, "len {len}");
         }
     }

@@ -17,7 +17,8 @@
 //! - [`fit`](mod@fit): the structured least-squares fit of eq. (8), with `fit_error`'s
 //!   [`FitError`];
 //! - [`operator`]: the trained operator and its allocation-free evaluation, on the dot
-//!   product blocks of `kernels` (simd128 in wasm);
+//!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy
+//!   for a GPU upload;
 //! - [`file`]: operator files (the operator with its mesh, versioned, checksummed);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
@@ -35,6 +36,7 @@ pub mod operator;
 mod problem;
 pub mod reduced;
 pub mod sampling;
+pub mod single;
 pub mod spatial;
 pub mod train;
 
@@ -46,5 +48,6 @@ pub use fit_error::FitError;
 pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, SolveReport, Start};
 pub use operator::Operator;
 pub use reduced::reduced_basis;
+pub use single::SinglePrecision;
 pub use spatial::{MeshPoint, SpatialBasis};
 pub use train::{Job, Progress, TrainError, TrainOptions, TrainStats, Trainer};
