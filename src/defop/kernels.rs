@@ -13,6 +13,10 @@
 //! Measured in wasm (Node 20, the octopus-sized operator): blocks of two elements with
 //! one accumulator per product beat blocks of four with two (fewer live registers), and
 //! four rows per block beat two or eight.
+//!
+//! The same blocks exist in single precision ([`dots_f32`]: four partial sums, the lanes of
+//! one `f32x4`) for an operator's single-precision copy (`super::single`); [`Element`] picks
+//! the kernel by number type.
 
 /// `out[r][c] = rows[r] · vectors[c]` over the first `len` elements of each slice, for `R`
 /// rows and `C` vectors at once. Every slice must hold at least `len` numbers.
