@@ -4,11 +4,15 @@
 //! identity at the rest pose. Prints the fit time and the evaluation time per call, for the
 //! hat basis (|Φ| = N; TPS interpolation shortcut, and the structured solver for
 //! comparison) and for the reduced basis of 100 functions (1, x, y and the bilaplacian's
-//! lowest eigenfunctions; structured solver). Prints only;
-//! asserts nothing.
+//! lowest eigenfunctions; structured solver), and how far the single-precision output is
+//! from the double one; the same for the operator's single-precision copy
+//! (`Operator::single_precision`). With `--write DIR` it also writes the operator files
+//! `DIR/hat.defop` and `DIR/reduced.defop` (operator and mesh, `defop::write_operator`), which
+//! `scripts/bench-defop.mjs --eval` times in wasm without training. Prints only; asserts
+//! nothing.
 //!
 //! ```text
-//! cargo run --release --example defop_eval
+//! cargo run --release --example defop_eval [-- --write target/defop-bench]
 //! ```
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -17,7 +21,11 @@ fn main() {
     use std::hint::black_box;
     use std::time::Instant;
 
-    use akap::defop::{fit, reduced_basis, FitOptions, MeshPoint, Sample, SpatialBasis};
+    use akap::defop::{fit, reduced_basis, write_operator, FitOptions, MeshPoint, Sample, SpatialBasis};
+
+    let args: Vec<String> = std::env::args().collect();
+    let write_dir =
+        args.iter().position(|a| a == "--write").and_then(|i| args.get(i + 1)).map(std::path::PathBuf::from);
     use akap::triangulate::triangulate_to_about;
     use akap::{shapes, TriangulationOptions};
 
@@ -100,14 +108,18 @@ fn main() {
         1e3 * start.elapsed().as_secs_f64()
     );
     let structured = FitOptions::default().with_tps_shortcut(false);
-    for (name, spatial, options) in [
-        ("hat", SpatialBasis::hat(&mesh), FitOptions::default()),
-        ("hat", SpatialBasis::hat(&mesh), structured),
-        ("reduced", reduced, FitOptions::default()),
+    for (name, spatial, options, file) in [
+        ("hat", SpatialBasis::hat(&mesh), FitOptions::default(), Some("hat.defop")),
+        ("hat", SpatialBasis::hat(&mesh), structured, None),
+        ("reduced", reduced, FitOptions::default(), Some("reduced.defop")),
     ] {
         let start = Instant::now();
         let mut operator = fit(&mesh, &spatial, &points, &samples, &options).unwrap();
         let fitting = start.elapsed().as_secs_f64();
+        if let (Some(dir), Some(file)) = (&write_dir, file) {
+            std::fs::create_dir_all(dir).unwrap();
+            std::fs::write(dir.join(file), write_operator(&mesh, &operator).unwrap()).unwrap();
+        }
         let mut out = vec![0.0; 2 * nv];
         let mut out32 = vec![0.0f32; 2 * nv];
         let mut calls = 0usize;
@@ -141,9 +153,43 @@ fn main() {
                     .fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);
+        let f32_error = queries
+            .iter()
+            .map(|q| {
+                let e = operator.evaluate(q).unwrap();
+                operator.evaluate_into_f32(q, &mut out32).unwrap();
+                e.iter().zip(&out32).map(|(a, &b)| (a - f64::from(b)).abs()).fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        let mut single = operator.single_precision();
+        let start = Instant::now();
+        let mut calls_single = 0usize;
+        while start.elapsed().as_secs_f64() < 1.0 {
+            for q in &queries {
+                single.evaluate_into(black_box(q), &mut out32).unwrap();
+                calls_single += 1;
+            }
+            black_box(&out32);
+        }
+        let per_call_single = start.elapsed().as_secs_f64() / calls_single as f64;
+        let single_error = queries
+            .iter()
+            .map(|q| {
+                let e = operator.evaluate(q).unwrap();
+                single.evaluate_into(q, &mut out32).unwrap();
+                e.iter().zip(&out32).map(|(a, &b)| (a - f64::from(b)).abs()).fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "{name:>7}: single-precision copy ({:.1} MB): {:.1} µs/call ({:.0}/s), {:.1e} of the diagonal from f64",
+            single.coefficient_bytes() as f64 / 1e6,
+            1e6 * per_call_single,
+            1.0 / per_call_single,
+            single_error / diagonal
+        );
         println!(
             "{name:>7}: |Φ| = {:4}, |Ψ| = {}, solver {:?}: fit {:.2} s; evaluate {:.1} µs/call ({:.0}/s), \
-             f32 out {:.1} µs/call; handles hit to {:.1e} of the diagonal",
+             f32 out {:.1} µs/call ({:.1e} of the diagonal from f64); handles hit to {:.1e} of the diagonal",
             spatial.len(),
             operator.handle_basis().len(),
             operator.solver(),
@@ -151,6 +197,7 @@ fn main() {
             1e6 * per_call,
             1.0 / per_call,
             1e6 * per_call32,
+            f32_error / diagonal,
             worst / diagonal
         );
     }

@@ -11,6 +11,7 @@
 // evaluateInto on each operator file it lists (loaded with DefOp.fromBytes, its targets
 // from the manifest) and prints one JSON object, file name to milliseconds per evaluation.
 //   node scripts/bench-defop.mjs --operators target/defop-table/manifest.json
+// Evaluation alone, without training and old build against new: scripts/bench-defop-eval.mjs.
 import { readFileSync } from "node:fs";
 import process from "node:process";
 import { URL } from "node:url";

@@ -2,7 +2,9 @@
 //! AKAP-like matrices, timed with `performance.now()`. Compiled only for wasm32 with the
 //! `bench` feature; `scripts/bench-wasm.sh` builds it for Node and `scripts/bench-wasm.mjs`
 //! prints the table. The matrices come from `benches/common/mod.rs`, included by path so
-//! that the native benchmarks and this one measure the same matrices.
+//! that the native benchmarks and this one measure the same matrices. Also the DefOp
+//! evaluation in double and single precision (`bench_defop_eval`, run by
+//! `scripts/bench-defop-eval.mjs --rust`).
 //!
 //! An exception to "only `wasm` touches js-sys and wasm-bindgen", confined to this
 //! feature-gated module.
@@ -146,6 +148,89 @@ pub fn bench_cholesky(
     }
     for (name, values) in names.iter().zip(samples) {
         fields.push(format!("\"{name}\":{}", json_number(median(values))));
+    }
+    Ok(format!("{{{}}}", fields.join(",")))
+}
+
+/// Times a DefOp evaluation of the operator file `bytes` (as `defop::write_operator` writes
+/// it), in double precision (`Operator::evaluate_into`) and with its single-precision copy
+/// (`SinglePrecision::evaluate_into`), alternating in `rounds` rounds of about `ms`
+/// milliseconds each on 64 target sets near the rest pose, after a warm-up (each call is a
+/// separate wasm function, so that V8 tiers it up). Returns one JSON object: the median and
+/// fastest milliseconds per evaluation of each, and the largest difference between the two
+/// over the bounding-box diagonal.
+#[wasm_bindgen]
+#[allow(unreachable_pub)] // exported to JavaScript; the module is private to the crate
+pub fn bench_defop_eval(bytes: &[u8], rounds: u32, ms: f64) -> Result<String, JsError> {
+    use crate::defop::{Operator, SinglePrecision};
+
+    #[inline(never)]
+    fn double(operator: &mut Operator, q: &[f64], out: &mut [f64]) {
+        operator.evaluate_into(q, out).ok();
+    }
+    #[inline(never)]
+    fn single(copy: &mut SinglePrecision, q: &[f64], out: &mut [f32]) {
+        copy.evaluate_into(q, out).ok();
+    }
+
+    let (mesh, mut operator) = crate::defop::read_operator(bytes).map_err(|e| JsError::new(&e.to_string()))?;
+    let mut copy = operator.single_precision();
+    let clock = Clock::new()?;
+    let rest = operator.handle_basis().rest().to_vec();
+    let queries: Vec<Vec<f64>> = (0..64)
+        .map(|k| rest.iter().enumerate().map(|(i, x)| x + 0.05 * (k as f64 + 1.7 * i as f64).sin()).collect())
+        .collect();
+    let mut out = vec![0.0; 2 * operator.vertex_count()];
+    let mut out32 = vec![0.0f32; out.len()];
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in mesh.positions() {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let mut difference: f64 = 0.0;
+    for q in &queries {
+        double(&mut operator, q, &mut out);
+        single(&mut copy, q, &mut out32);
+        for (a, b) in out.iter().zip(&out32) {
+            difference = difference.max((a - f64::from(*b)).abs());
+        }
+    }
+    let mut samples: [Vec<f64>; 2] = Default::default();
+    for round in 0..=rounds {
+        for (which, values) in samples.iter_mut().enumerate() {
+            let (start, mut calls) = (clock.ms(), 0usize);
+            while clock.ms() - start < ms {
+                for q in &queries {
+                    if which == 0 {
+                        double(&mut operator, q, &mut out);
+                    } else {
+                        single(&mut copy, q, &mut out32);
+                    }
+                }
+                calls += queries.len();
+            }
+            // Round 0 warms up.
+            if round > 0 {
+                values.push((clock.ms() - start) / calls as f64);
+            }
+        }
+    }
+    std::hint::black_box((&out, &out32));
+    let mut fields = vec![
+        format!("\"vertices\":{}", operator.vertex_count()),
+        format!("\"spatial\":{}", operator.spatial_len()),
+        format!("\"psi\":{}", operator.handle_basis().len()),
+        format!("\"singleBytes\":{}", copy.coefficient_bytes()),
+        format!("\"singleDifference\":{}", json_number(difference / diagonal)),
+    ];
+    for (name, mut values) in ["double", "single"].into_iter().zip(samples) {
+        values.sort_by(f64::total_cmp);
+        let fastest = values.first().copied().unwrap_or(f64::NAN);
+        fields.push(format!("\"{name}FastestMs\":{}", json_number(fastest)));
+        fields.push(format!("\"{name}MedianMs\":{}", json_number(median(values))));
     }
     Ok(format!("{{{}}}", fields.join(",")))
 }

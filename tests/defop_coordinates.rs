@@ -93,6 +93,16 @@ fn canonical_operators_move_rigidly_with_their_handles() {
                 let error = max_difference(&operator.evaluate(&moved(q, motion)).unwrap(), &expected);
                 assert!(error <= 1e-9 * size, "{what}: not equivariant, off by {error:e}");
             }
+            // The single-precision copy canonicalises as the operator does.
+            let mut single = operator.single_precision();
+            let mut out = vec![0.0f32; identity.len()];
+            for (q, &motion) in random.iter().zip(&rigid) {
+                let q = moved(q, motion);
+                single.evaluate_into(&q, &mut out).unwrap();
+                let wide: Vec<f64> = out.iter().map(|&x| f64::from(x)).collect();
+                let error = max_difference(&wide, &operator.evaluate(&q).unwrap());
+                assert!(error <= 1e-5 * size, "{what}: single precision off by {error:e}");
+            }
         }
     }
 }

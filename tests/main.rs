@@ -3,6 +3,7 @@
 mod arap;
 mod common;
 mod defop_coordinates;
+mod defop_eval;
 mod defop_file;
 mod defop_fit;
 mod defop_ground_truth;

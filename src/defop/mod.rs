@@ -18,7 +18,9 @@
 //! - [`reduced`]: the reduced basis of Fig. 2 (the bilaplacian's lowest eigenfunctions);
 //! - [`fit`](mod@fit): the structured least-squares fit of eq. (8), with `fit_error`'s
 //!   [`FitError`];
-//! - [`operator`]: the trained operator and its allocation-free evaluation;
+//! - [`operator`]: the trained operator and its allocation-free evaluation, on the dot
+//!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy
+//!   for a GPU upload;
 //! - [`file`]: operator files (the operator with its mesh, versioned, checksummed);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
@@ -31,11 +33,13 @@ pub mod file;
 pub mod fit;
 pub mod fit_error;
 pub mod ground_truth;
+mod kernels;
 mod linear;
 pub mod operator;
 mod problem;
 pub mod reduced;
 pub mod sampling;
+pub mod single;
 pub mod spatial;
 pub mod train;
 
@@ -48,5 +52,6 @@ pub use fit_error::FitError;
 pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, SolveReport, Start};
 pub use operator::Operator;
 pub use reduced::reduced_basis;
+pub use single::SinglePrecision;
 pub use spatial::{MeshPoint, SpatialBasis};
 pub use train::{Job, Progress, TrainError, TrainOptions, TrainStats, Trainer};

@@ -7,6 +7,7 @@ use nalgebra::DMatrix;
 
 use super::basis::HandleBasis;
 use super::fit_error::{check_finite, check_length, FitError};
+use super::kernels;
 use super::spatial::MeshPoint;
 
 /// How a fit solved its least-squares problem.
@@ -229,23 +230,12 @@ impl Operator {
 
     fn evaluate_with(&mut self, targets: &[f64], mut write: impl FnMut(usize, f64, f64)) {
         self.basis.evaluate_unchecked(targets, &mut self.psi);
-        let len = self.psi.len();
-        let rows = self.coefficients.chunks_exact(2 * len);
         if self.reduction.is_empty() {
-            for (v, pair) in rows.enumerate() {
-                let (x, y) = dot2(&pair[..len], &pair[len..], &self.psi);
-                write(v, x, y);
-            }
+            kernels::pairs_times_vector(&self.coefficients, &self.psi, write);
         } else {
-            let phi = self.spatial_len;
-            let (nx, ny) = self.nodal.split_at_mut(phi);
-            for (i, pair) in rows.enumerate() {
-                (nx[i], ny[i]) = dot2(&pair[..len], &pair[len..], &self.psi);
-            }
-            for (v, column) in self.reduction.chunks_exact(phi).enumerate() {
-                let (x, y) = dot2(nx, ny, column);
-                write(v, x, y);
-            }
+            let (nx, ny) = self.nodal.split_at_mut(self.spatial_len);
+            kernels::pairs_times_vector(&self.coefficients, &self.psi, |i, x, y| (nx[i], ny[i]) = (x, y));
+            kernels::rows_times_pair(&self.reduction, nx, ny, &mut write);
         }
     }
 }
@@ -257,23 +247,4 @@ fn canonical_scratch(basis: &HandleBasis) -> Vec<f64> {
     } else {
         Vec::new()
     }
-}
-
-/// (a·w, b·w) with four partial sums each, so that the loop pipelines.
-fn dot2(a: &[f64], b: &[f64], w: &[f64]) -> (f64, f64) {
-    let (mut sa, mut sb) = ([0.0f64; 4], [0.0f64; 4]);
-    let (ca, cb, cw) = (a.chunks_exact(4), b.chunks_exact(4), w.chunks_exact(4));
-    let (ra, rb, rw) = (ca.remainder(), cb.remainder(), cw.remainder());
-    for ((x, y), z) in ca.zip(cb).zip(cw) {
-        for k in 0..4 {
-            sa[k] += x[k] * z[k];
-            sb[k] += y[k] * z[k];
-        }
-    }
-    let (mut ta, mut tb) = ((sa[0] + sa[1]) + (sa[2] + sa[3]), (sb[0] + sb[1]) + (sb[2] + sb[3]));
-    for ((x, y), z) in ra.iter().zip(rb).zip(rw) {
-        ta += x * z;
-        tb += y * z;
-    }
-    (ta, tb)
 }
