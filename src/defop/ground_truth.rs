@@ -85,9 +85,12 @@ use std::sync::Arc;
 
 use super::energy::{Energy, Local, RestTriangle, SignedSvd, KINK_CAP};
 pub use super::error::DefOpError;
-use super::linear::{cholesky, cholesky_solve, first_root};
+use super::linear::first_root;
 pub use super::problem::{GroundTruthOptions, Handles, SolveReport, Start, MAX_POINT_HANDLES};
 use crate::deform::handles::{at_vertices, check_connected, diagonal, in_triangles, HandlePoint};
+use step::gram_factor;
+
+mod step;
 use crate::deform::pattern::BlockPattern;
 use crate::deform::DeformError;
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point, MAX_COORDINATE};
@@ -668,72 +671,6 @@ impl GroundTruth {
         energy
     }
 
-    /// Factors the assembled matrix, with more regularisation if a pivot fails.
-    fn factor(&mut self) -> Result<(), DefOpError> {
-        let mut extra = REGULARISATION;
-        for attempt in 0..4 {
-            match self.numeric.refactor_values(&self.values) {
-                Ok(()) => return Ok(()),
-                Err(e) if attempt == 3 => return Err(e.into()),
-                Err(_) => {
-                    for (d, &slot) in self.diagonal_slots.iter().enumerate() {
-                        self.values[slot] += 999.0 * extra * self.stiffness[d];
-                    }
-                    extra *= 1000.0;
-                }
-            }
-        }
-        unreachable!("the last attempt returns")
-    }
-
-    /// The constrained Newton step into `step` (range-space method for handles inside
-    /// triangles).
-    fn newton_step(&mut self) -> Result<(), DefOpError> {
-        self.step.copy_from_slice(&self.rhs);
-        self.numeric.solve_in_place(&mut self.step)?;
-        let m = 2 * self.points.len();
-        if m == 0 {
-            return Ok(());
-        }
-        let len = self.step.len();
-        for r in 0..m {
-            let column = &mut self.columns[r * len..(r + 1) * len];
-            column.fill(0.0);
-            let h = &self.handles[self.points[r / 2]];
-            for (v, w) in h.vertices.iter().zip(h.weights) {
-                if !self.fixed[*v as usize] {
-                    column[2 * *v as usize + r % 2] += w;
-                }
-            }
-            self.numeric.solve_in_place(column)?;
-        }
-        for r in 0..m {
-            let h = &self.handles[self.points[r / 2]];
-            let dof = |v: u32| 2 * v as usize + r % 2;
-            for c in 0..m {
-                let column = &self.columns[c * len..(c + 1) * len];
-                self.schur[r * m + c] = h
-                    .vertices
-                    .iter()
-                    .zip(h.weights)
-                    .filter(|(v, _)| !self.fixed[**v as usize])
-                    .map(|(v, w)| w * column[dof(*v)])
-                    .sum();
-            }
-            let c_step: f64 = h.vertices.iter().zip(h.weights).map(|(v, w)| w * self.step[dof(*v)]).sum();
-            self.small[r] = c_step - self.residual[r];
-        }
-        cholesky(&mut self.schur, m).map_err(|r| DefOpError::DependentHandles { handle: self.points[r / 2] })?;
-        cholesky_solve(&self.schur, m, &mut self.small);
-        for r in 0..m {
-            let (lambda, column) = (self.small[r], &self.columns[r * len..(r + 1) * len]);
-            for (s, y) in self.step.iter_mut().zip(column) {
-                *s -= lambda * y;
-            }
-        }
-        Ok(())
-    }
-
     /// Releases every held triangle farther than `SETTLED κ` from its kink ([`RELEASED`]:
     /// held again if it comes back); whether there was one.
     fn release_unsettled(&mut self) -> bool {
@@ -793,33 +730,6 @@ impl GroundTruth {
         released
     }
 
-    /// The infinity norm of `g + C^T μ` on the free unknowns, `μ` the least-squares
-    /// multipliers (`B B^T μ = -B g` per coordinate).
-    fn constrained_gradient(&mut self) -> f64 {
-        self.work.copy_from_slice(&self.grad);
-        let np = self.points.len();
-        for c in 0..2 {
-            for (j, &k) in self.points.iter().enumerate() {
-                let h = &self.handles[k];
-                self.small[j] = -h
-                    .vertices
-                    .iter()
-                    .zip(h.weights)
-                    .filter(|(v, _)| !self.fixed[**v as usize])
-                    .map(|(v, w)| w * self.grad[2 * *v as usize + c])
-                    .sum::<f64>();
-            }
-            cholesky_solve(&self.gram, np, &mut self.small[..np]);
-            for (j, &k) in self.points.iter().enumerate() {
-                let h = &self.handles[k];
-                for (v, w) in h.vertices.iter().zip(h.weights) {
-                    self.work[2 * *v as usize + c] += w * self.small[j];
-                }
-            }
-        }
-        self.work.iter().enumerate().filter(|(d, _)| !self.fixed[d / 2]).fold(0.0, |m, (_, g)| m.max(g.abs()))
-    }
-
     /// The smallest `α > 0` at which a triangle's determinant vanishes along `step`.
     fn first_flip(&self) -> f64 {
         let mut first = f64::INFINITY;
@@ -865,29 +775,6 @@ impl GroundTruth {
     fn total_energy(&self, positions: &[Point]) -> f64 {
         self.elements.iter().map(|el| el.rest.energy(self.energy, el.vertices.map(|v| positions[v]))).sum()
     }
-}
-
-/// The Cholesky factor of `B B^T` for the handles inside triangles (`B` their weights on
-/// free vertices); a dependent handle is refused.
-fn gram_factor(handles: &[HandlePoint], points: &[usize], fixed: &[bool]) -> Result<Vec<f64>, DefOpError> {
-    let np = points.len();
-    let mut gram = vec![0.0; np * np];
-    for (r, &a) in points.iter().enumerate() {
-        for (c, &b) in points.iter().enumerate() {
-            let (ha, hb) = (&handles[a], &handles[b]);
-            let mut sum = 0.0;
-            for (va, wa) in ha.vertices.iter().zip(ha.weights) {
-                for (vb, wb) in hb.vertices.iter().zip(hb.weights) {
-                    if va == vb && !fixed[*va as usize] {
-                        sum += wa * wb;
-                    }
-                }
-            }
-            gram[r * np + c] = sum;
-        }
-    }
-    cholesky(&mut gram, np).map_err(|r| DefOpError::DependentHandles { handle: points[r] })?;
-    Ok(gram)
 }
 
 /// Checks points given by the caller: the count, and each finite within the limits.
