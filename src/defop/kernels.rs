@@ -235,6 +235,26 @@ impl Element for f32 {
     }
 }
 
+/// An operator's positions from Ψ(Q) `psi`: X Ψ (`coefficients`: row i of X^x then of X^y,
+/// for every spatial function i), then, for a reduced basis (`reduction`, D by vertex,
+/// non-empty), Dᵀ through `nodal` (scratch, X^x Ψ then X^y Ψ); `write(v, x, y)` for every
+/// vertex. The one evaluation of both precisions.
+pub(crate) fn positions<T: Element>(
+    coefficients: &[T],
+    psi: &[T],
+    reduction: &[T],
+    nodal: &mut [T],
+    mut write: impl FnMut(usize, T, T),
+) {
+    if reduction.is_empty() {
+        pairs_times_vector(coefficients, psi, write);
+    } else {
+        let (nx, ny) = nodal.split_at_mut(nodal.len() / 2);
+        pairs_times_vector(coefficients, psi, |i, x, y| (nx[i], ny[i]) = (x, y));
+        rows_times_pair(reduction, nx, ny, &mut write);
+    }
+}
+
 /// `X w` for coefficient rows stored in pairs (row i of X^x then row i of X^y, `2 len`
 /// numbers per pair, as the operator keeps them): `write(i, X^x_i · w, X^y_i · w)` for every
 /// pair i, two pairs at a time.

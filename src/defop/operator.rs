@@ -228,15 +228,9 @@ impl Operator {
         self.canonical = canonical;
     }
 
-    fn evaluate_with(&mut self, targets: &[f64], mut write: impl FnMut(usize, f64, f64)) {
+    fn evaluate_with(&mut self, targets: &[f64], write: impl FnMut(usize, f64, f64)) {
         self.basis.evaluate_unchecked(targets, &mut self.psi);
-        if self.reduction.is_empty() {
-            kernels::pairs_times_vector(&self.coefficients, &self.psi, write);
-        } else {
-            let (nx, ny) = self.nodal.split_at_mut(self.spatial_len);
-            kernels::pairs_times_vector(&self.coefficients, &self.psi, |i, x, y| (nx[i], ny[i]) = (x, y));
-            kernels::rows_times_pair(&self.reduction, nx, ny, &mut write);
-        }
+        kernels::positions(&self.coefficients, &self.psi, &self.reduction, &mut self.nodal, write);
     }
 }
 

@@ -21,7 +21,6 @@ use super::operator::Operator;
 #[derive(Debug, Clone)]
 pub struct SinglePrecision {
     basis: HandleBasis,
-    spatial_len: usize,
     vertex_count: usize,
     /// The operator's coefficients rounded: row i of X^x then row i of X^y, for every i.
     coefficients: Vec<f32>,
@@ -45,7 +44,6 @@ impl Operator {
         let len = self.handle_basis().len();
         SinglePrecision {
             basis: self.handle_basis().clone(),
-            spatial_len: self.spatial_len(),
             vertex_count: self.vertex_count(),
             coefficients: round(self.coefficients()),
             nodal: if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * self.spatial_len()] },
@@ -89,7 +87,7 @@ impl SinglePrecision {
         for (single, &double) in self.psi32.iter_mut().zip(&self.psi) {
             *single = double as f32;
         }
-        let mut write = |v: usize, x: f32, y: f32| {
+        let write = |v: usize, x: f32, y: f32| {
             let [x, y] = match &rigid {
                 Some(rigid) => rigid.apply([f64::from(x), f64::from(y)]).map(|c| c as f32),
                 None => [x, y],
@@ -97,13 +95,7 @@ impl SinglePrecision {
             out[2 * v] = x;
             out[2 * v + 1] = y;
         };
-        if self.reduction.is_empty() {
-            kernels::pairs_times_vector(&self.coefficients, &self.psi32, write);
-        } else {
-            let (nx, ny) = self.nodal.split_at_mut(self.spatial_len);
-            kernels::pairs_times_vector(&self.coefficients, &self.psi32, |i, x, y| (nx[i], ny[i]) = (x, y));
-            kernels::rows_times_pair(&self.reduction, nx, ny, &mut write);
-        }
+        kernels::positions(&self.coefficients, &self.psi32, &self.reduction, &mut self.nodal, write);
         Ok(())
     }
 }
