@@ -58,19 +58,23 @@ impl Operator {
             }
         }
         let reduction = reduction.map_or_else(Vec::new, |d| d.as_slice().to_vec());
-        let nodal = if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * rows] };
-        Self {
-            canonical: canonical_scratch(&basis),
-            handles,
-            solver,
-            spatial_len: rows,
-            vertex_count,
-            coefficients,
-            reduction,
-            psi: vec![0.0; basis.len()],
-            nodal,
-            basis,
-        }
+        Self::with_scratch(handles, basis, solver, rows, vertex_count, coefficients, reduction)
+    }
+
+    /// The operator with its scratch buffers sized (the one place they are).
+    fn with_scratch(
+        handles: Vec<MeshPoint>,
+        basis: HandleBasis,
+        solver: Solver,
+        spatial_len: usize,
+        vertex_count: usize,
+        coefficients: Vec<f64>,
+        reduction: Vec<f64>,
+    ) -> Self {
+        let nodal = if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * spatial_len] };
+        let psi = vec![0.0; basis.len()];
+        let canonical = canonical_scratch(&basis);
+        Self { handles, basis, solver, spatial_len, vertex_count, coefficients, reduction, psi, nodal, canonical }
     }
 
     /// An operator from its parts as an operator file holds them, with every length checked
@@ -100,10 +104,7 @@ impl Operator {
         }
         check_finite("coefficients", &coefficients)?;
         check_finite("reduced basis", &reduction)?;
-        let nodal = if hat { Vec::new() } else { vec![0.0; 2 * spatial_len] };
-        let psi = vec![0.0; basis.len()];
-        let canonical = canonical_scratch(&basis);
-        Ok(Self { handles, basis, solver, spatial_len, vertex_count, coefficients, reduction, psi, nodal, canonical })
+        Ok(Self::with_scratch(handles, basis, solver, spatial_len, vertex_count, coefficients, reduction))
     }
 
     /// The coefficients: row i of X^x then row i of X^y, for every spatial function i.
@@ -235,7 +236,7 @@ impl Operator {
 }
 
 /// The scratch of the canonical targets: 2n numbers for canonical coordinates, else none.
-fn canonical_scratch(basis: &HandleBasis) -> Vec<f64> {
+pub(super) fn canonical_scratch(basis: &HandleBasis) -> Vec<f64> {
     if basis.coordinates().is_canonical() {
         vec![0.0; basis.rest().len()]
     } else {

@@ -14,7 +14,7 @@
 use super::basis::HandleBasis;
 use super::fit_error::{check_finite, check_length, FitError};
 use super::kernels;
-use super::operator::Operator;
+use super::operator::{canonical_scratch, Operator};
 
 /// An operator's coefficients in single precision, with its own scratch buffers; made by
 /// [`Operator::single_precision`]. Evaluating it allocates nothing.
@@ -50,11 +50,7 @@ impl Operator {
             reduction,
             psi: vec![0.0; len],
             psi32: vec![0.0; len],
-            canonical: if self.handle_basis().coordinates().is_canonical() {
-                vec![0.0; self.handle_basis().rest().len()]
-            } else {
-                Vec::new()
-            },
+            canonical: canonical_scratch(self.handle_basis()),
         }
     }
 }
