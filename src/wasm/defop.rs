@@ -130,7 +130,27 @@ impl JsDefOpTrainer {
         let options = train_options(&options)?;
         let mesh = read_mesh(&positions, &triangles)?;
         let handles = vertex_handles(&handles)?;
-        let trainer = Trainer::new(&mesh, &handles, options.clone())?;
+        Self::with(mesh, &handles, options)
+    }
+
+    /// A training with handles at points in triangles (`Uint32Array` triangles, `Float64Array`
+    /// barycentric coordinates, 3 each); otherwise as the constructor.
+    #[wasm_bindgen(js_name = withHandlePoints)]
+    pub fn with_handle_points(
+        positions: JsValue,
+        triangles: JsValue,
+        handle_triangles: JsValue,
+        barycentric: JsValue,
+        options: JsValue,
+    ) -> Result<JsDefOpTrainer, BindingError> {
+        let options = train_options(&options)?;
+        let mesh = read_mesh(&positions, &triangles)?;
+        let handles = point_handles(&handle_triangles, &barycentric)?;
+        Self::with(mesh, &handles, options)
+    }
+
+    fn with(mesh: Mesh, handles: &[MeshPoint], options: TrainOptions) -> Result<JsDefOpTrainer, BindingError> {
+        let trainer = Trainer::new(&mesh, handles, options.clone())?;
         Ok(Self { mesh, options, trainer: Some(trainer) })
     }
 
@@ -203,6 +223,13 @@ impl JsDefOpTrainer {
             )));
         }
         Ok(self.trainer_mut()?.redraw(index)?)
+    }
+
+    /// The sampling radius in use (the `radius` option, or its default from the mesh's size):
+    /// targets are drawn within it of each handle's rest place.
+    #[wasm_bindgen(getter)]
+    pub fn radius(&self) -> Result<f64, BindingError> {
+        Ok(self.trainer_ref()?.radius())
     }
 
     /// `{ done, total, stage }` without training.
@@ -332,6 +359,41 @@ impl JsDefOp {
         self.operator.evaluate_into_f32(&targets, &mut self.scratch32).map_err(TrainError::from)?;
         out.copy_from(&self.scratch32);
         Ok(())
+    }
+
+    /// The handles as points in triangles, in the operator's order: `{ triangles:
+    /// Uint32Array, barycentric: Float64Array }` (3 each; a handle trained on a vertex is
+    /// given in the first triangle of the vertex, with 1 at its corner).
+    #[wasm_bindgen(js_name = handlePoints)]
+    pub fn handle_points(&self) -> Result<JsValue, BindingError> {
+        let handles = self.operator.handles();
+        let mut triangles = Vec::with_capacity(handles.len());
+        let mut barycentric = Vec::with_capacity(3 * handles.len());
+        for handle in handles {
+            let (triangle, weights) = match *handle {
+                MeshPoint::Inside { triangle, barycentric } => (triangle, barycentric),
+                MeshPoint::Vertex(v) => {
+                    // A valid mesh has no unused vertex, so some triangle has it.
+                    let (t, corner) = self
+                        .mesh
+                        .triangles()
+                        .iter()
+                        .enumerate()
+                        .find_map(|(t, tri)| tri.iter().position(|&c| c == v).map(|corner| (t, corner)))
+                        .ok_or_else(|| BindingError::argument(format!("handle vertex {v} is in no triangle")))?;
+                    let mut weights = [0.0; 3];
+                    weights[corner] = 1.0;
+                    (t as u32, weights)
+                }
+            };
+            triangles.push(triangle);
+            barycentric.extend_from_slice(&weights);
+        }
+        Ok(object(&[
+            ("triangles", js_sys::Uint32Array::from(triangles.as_slice()).into()),
+            ("barycentric", js_sys::Float64Array::from(barycentric.as_slice()).into()),
+        ])?
+        .into())
     }
 
     /// The number of handles.

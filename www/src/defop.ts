@@ -52,6 +52,9 @@ export interface DefOpTrainerOptions {
   fixed?: number[];
 }
 
+/** Handles on vertices (their indices), or at points in triangles (3 barycentric coordinates each). */
+export type HandleSpec = Indices | { triangles: Indices; barycentric: Coordinates };
+
 /** How far training is: `done` of `total` units (one per sample, one for the final fit). */
 export interface DefOpProgress {
   done: number;
@@ -110,16 +113,23 @@ export class DefOpTrainer {
   /**
    * @param positions xy-interleaved vertex positions
    * @param triangles counter-clockwise index triples
-   * @param handles one handle on each of these vertices
+   * @param handles one handle on each of these vertices, or at points in triangles (3
+   *   barycentric coordinates each)
    */
-  constructor(positions: Coordinates, triangles: Indices, handles: Indices, options: DefOpTrainerOptions = {}) {
+  constructor(positions: Coordinates, triangles: Indices, handles: HandleSpec, options: DefOpTrainerOptions = {}) {
     assertLoaded();
-    this.#inner = new raw.DefOpTrainer(
-      toFloat64(positions, "positions"),
-      toUint32(triangles, "triangles"),
-      toUint32(handles, "handles"),
-      options,
-    );
+    const p = toFloat64(positions, "positions");
+    const t = toUint32(triangles, "triangles");
+    this.#inner =
+      "barycentric" in handles
+        ? raw.DefOpTrainer.withHandlePoints(
+            p,
+            t,
+            toUint32(handles.triangles, "handles.triangles"),
+            toFloat64(handles.barycentric, "handles.barycentric"),
+            options,
+          )
+        : new raw.DefOpTrainer(p, t, toUint32(handles, "handles"), options);
   }
 
   get #raw(): rawTypes.DefOpTrainer {
@@ -130,6 +140,11 @@ export class DefOpTrainer {
   /** Handles at points in triangles (3 barycentric coordinates each) instead; training starts again. */
   setHandlePoints(triangles: Indices, barycentric: Coordinates): void {
     this.#raw.setHandlePoints(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
+  }
+
+  /** The sampling radius in use (the `radius` option, or its default from the mesh's size). */
+  get radius(): number {
+    return this.#raw.radius;
   }
 
   /** Trains for about `budgetMs` milliseconds (a sample, once begun, is finished). */
@@ -244,6 +259,14 @@ export class DefOp {
     this.#raw.evaluateIntoF32(toFloat64(targets, "targets"), out);
   }
 
+  /**
+   * The handles as points in triangles (3 barycentric coordinates each), in the operator's
+   * order; a handle trained on a vertex is given in a triangle of that vertex.
+   */
+  handlePoints(): { triangles: Uint32Array; barycentric: Float64Array } {
+    return this.#raw.handlePoints() as { triangles: Uint32Array; barycentric: Float64Array };
+  }
+
   get handleCount(): number {
     return this.#raw.handleCount;
   }
@@ -271,7 +294,7 @@ export class DefOpSolver {
   constructor(
     positions: Coordinates,
     triangles: Indices,
-    handles: Indices | { triangles: Indices; barycentric: Coordinates },
+    handles: HandleSpec,
     options: { energy?: "sarap" | "arap" } = {},
   ) {
     assertLoaded();

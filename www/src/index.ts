@@ -22,6 +22,7 @@
  */
 export * from "./core.js";
 export * from "./defop.js";
+export { defaultWorkerCount, trainDefOp, type TrainControl, type Trained, type TrainProgress } from "./defop-pool.js";
 export { readOperatorFile, type OperatorFile } from "./defop-file.js";
 export {
   METHODS,
