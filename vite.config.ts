@@ -5,7 +5,7 @@ export default defineConfig({
   build: {
     outDir: "dist",
     target: "es2022",
-    rollupOptions: { input: { main: "index.html", embed: "www/examples/embed.html" } },
+    rollupOptions: { input: { main: "index.html", embed: "www/examples/embed.html", rig: "www/examples/rig.html" } },
   },
   // The set-up worker is an ES module (it imports the wasm package).
   worker: { format: "es" },

@@ -23,6 +23,7 @@
 import { compiledModule } from "./core.js";
 import {
   DefOp,
+  DefOpSolver,
   DefOpTrainer,
   type DefOpJob,
   type DefOpJobResult,
@@ -143,6 +144,37 @@ export async function trainDefOp(
   const pool = new Pool(count, control.signal);
   try {
     return await pool.train(p, t, h, options, control, clock);
+  } finally {
+    pool.terminate();
+  }
+}
+
+/**
+ * The deformation a DefOp approximates, for handles at `targets` (2 per handle): the pose
+ * of least ARAP or S-ARAP energy (default S-ARAP), solved from `start` (2 per vertex;
+ * default the rest pose) in a worker, or on this thread where there are none. A solve
+ * cannot be interrupted on this thread; in a worker, `signal` stops it at once.
+ */
+export async function solveGroundTruth(
+  positions: Coordinates,
+  triangles: Indices,
+  handles: HandleSpec,
+  targets: Coordinates,
+  options: { energy?: "sarap" | "arap"; start?: Float64Array; signal?: AbortSignal } = {},
+): Promise<{ positions: Float64Array; iterations: number }> {
+  const job: DefOpJob = { index: 0, targets: toFloat64(targets, "targets").slice(), start: options.start?.slice() };
+  options.signal?.throwIfAborted();
+  if (!workersAvailable()) {
+    const solver = new DefOpSolver(positions, triangles, handles, { energy: options.energy });
+    try {
+      return solver.solve(job);
+    } finally {
+      solver.free();
+    }
+  }
+  const pool = new Pool(1, options.signal);
+  try {
+    return await pool.solve(positions, triangles, handles, options.energy, job);
   } finally {
     pool.terminate();
   }
@@ -274,6 +306,36 @@ class Pool {
     const reply = new Promise<PoolReply>((resolve) => member.waiting.set(id, { resolve, progress }));
     member.worker.postMessage({ ...request, id } as PoolRequest, transfer);
     return Promise.race([reply, this.#failed]);
+  }
+
+  /** One ground-truth solve on the pool's first worker. */
+  async solve(
+    positions: Coordinates,
+    triangles: Indices,
+    handles: HandleSpec,
+    energy: DefOpTrainerOptions["energy"],
+    job: DefOpJob,
+  ): Promise<{ positions: Float64Array; iterations: number }> {
+    const [member] = this.#members as [Member];
+    const h =
+      "barycentric" in handles
+        ? { triangles: toUint32(handles.triangles, "handles"), barycentric: toFloat64(handles.barycentric, "handles") }
+        : toUint32(handles, "handles");
+    const request = {
+      kind: "start",
+      wasm: compiledModule(),
+      positions: toFloat64(positions, "positions"),
+      triangles: toUint32(triangles, "triangles"),
+      handles: h,
+      options: { energy },
+      train: false,
+    } as const;
+    expect(await this.#call(member, request), "ready");
+    const answer = await this.#call(member, { kind: "solve", job });
+    if (answer.kind === "unsolved") {
+      throw coded(new Error(`no pose of least energy was found for these targets (${answer.code})`), "no-convergence");
+    }
+    return expect(answer, "solved").result;
   }
 
   async train(

@@ -6,7 +6,9 @@
 import type { GalleryItem, MethodPreset } from "./options.js";
 import { Cancelled } from "./setup.js";
 import { download } from "./export.js";
-import type { ToolbarActions } from "./toolbar.js";
+import type { RigTrainOptions } from "./rig.js";
+import type { DisplayToggles, ToolbarActions } from "./toolbar.js";
+import { bounds } from "./view.js";
 import type { Widget } from "./widget.js";
 
 /** What the actions need beyond the widget's public API. */
@@ -57,9 +59,26 @@ export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions
       widget.setMethod(method as MethodPreset, lambda);
       host.succeeded();
     }),
-    display: guard((options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }) =>
-      widget.setDisplay(options),
-    ),
+    display: guard((options: DisplayToggles) => widget.setDisplay(options)),
+    train: (options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined) => {
+      const run = async () => {
+        const mesh = widget.mesh;
+        const b = bounds(mesh.positions);
+        const diagonal = Math.hypot(b.maxX - b.minX, b.maxY - b.minY);
+        const radius = radiusPercent === undefined ? undefined : (radiusPercent / 100) * diagonal;
+        const before = widget.method.method;
+        await widget.train({ ...options, ...(radius === undefined ? {} : { radius }) });
+        // Trained: pose with it, unless the user chose another method meanwhile.
+        if (widget.method.method === before) widget.setMethod("defop");
+        host.succeeded();
+      };
+      run().catch((error: unknown) => {
+        if ((error as Error | undefined)?.name === "AbortError") host.cancelled("Training cancelled; nothing changed.");
+        else host.failed(error);
+      });
+    },
+    saveRig: guard(() => download(doc, new Blob([widget.rigFile() as Uint8Array<ArrayBuffer>]), "rig.defop")),
+    openRig: guard((file: File) => widget.loadRig(file)),
     hud: (visible: boolean) => host.showHud(visible),
     record: guard(() => (widget.recording ? widget.stopRecording() : widget.startRecording())),
     replay: guard(() => (widget.lastSession ? widget.replay(widget.lastSession) : undefined)),

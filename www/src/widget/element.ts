@@ -9,7 +9,8 @@
  * <akap-deformer shape="gingerbread" vertices="1200" hud="false" style="height: 400px"></akap-deformer>
  * ```
  * Attributes (read when the element is connected): `shape`, `src` (an SVG, image or mesh
- * file to pose instead), `texture` (an image URL),
+ * file to pose instead), `operator` (a trained rig's `.defop` file: its shape posed at once
+ * by the rig, no training), `texture` (an image URL), `region`, `compare`,
  * `vertices`, `method`, `lambda`, `controls`, `hud`, `wireframe`, `field` (`"false"` turns
  * a default-on feature off). The element fires the widget's events (`akap-ready`,
  * `akap-pose`, `akap-handles`, `akap-error`); `element.widget` is the {@link Widget}.
@@ -91,6 +92,9 @@ function elementOptions(element: HTMLElement): WidgetOptions {
   assign("shape", text("shape"));
   assign("texture", text("texture"));
   assign("src", text("src"));
+  assign("operator", text("operator"));
+  assign("region", flag("region"));
+  assign("compare", flag("compare"));
   assign("vertices", num("vertices"));
   assign("method", text("method") as MethodPreset | undefined);
   assign("lambda", num("lambda"));

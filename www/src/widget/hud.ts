@@ -1,6 +1,7 @@
 /**
  * The heads-up display: frames per second, milliseconds per stage, mesh size, live
- * distortion and a sparkline of recent frame times (the 16.7 ms line marks 60 fps).
+ * distortion and a sparkline of recent frame times (the 16.7 ms line marks 60 fps); with a
+ * trained rig, its evaluation time and rate, and a line on the rig's state.
  */
 import type { Metrics, Timings } from "../core.js";
 
@@ -13,6 +14,8 @@ export interface FrameReport {
   timings: Timings;
   substeps: number;
   metrics: Metrics;
+  /** Milliseconds of a trained rig's evaluation, when the frame was posed by one. */
+  evaluationMs?: number;
 }
 
 const SPARK_FRAMES = 120;
@@ -55,6 +58,7 @@ export class Hud {
 
   /** Shows the distortion of a pose reached outside the frame loop (undo, reset, a load). */
   showMetrics(metrics: Metrics): void {
+    this.#metrics = metrics;
     clearTimeout(this.#trailing);
     this.#trailing = undefined;
     this.#last = this.#last === undefined ? undefined : { ...this.#last, metrics };
@@ -64,8 +68,17 @@ export class Hud {
           this.#method,
           `${this.#vertices} vertices, ${this.#triangles} triangles`,
           metricsLine(metrics),
+          ...(this.#rig ? [this.#rig] : []),
           "click the shape to add a handle",
         ].join("\n");
+  }
+
+  /** A line on the trained rig (its state, a comparison), or none. */
+  showRig(line: string | undefined): void {
+    if (line === this.#rig) return;
+    this.#rig = line;
+    if (this.#last) this.#text.textContent = this.#lines(this.#last);
+    else this.showMetrics(this.#metrics);
   }
 
   /** The method's name (after a switch). */
@@ -77,6 +90,8 @@ export class Hud {
   #vertices = 0;
   #triangles = 0;
   #method = "";
+  #rig: string | undefined;
+  #metrics: Metrics = { areaDistortion: 0, angleDistortion: 0, flipped: 0 };
   #last: FrameReport | undefined;
   #trailing: ReturnType<typeof setTimeout> | undefined;
 
@@ -109,11 +124,15 @@ export class Hud {
 
   #lines(frame: FrameReport): string {
     const t = frame.timings;
+    const e = frame.evaluationMs;
     return [
       `${this.#method}   ${this.#times.length} fps   ${frame.work.toFixed(1)} ms/frame (${frame.substeps} steps)`,
-      `assembly ${t.assembly.toFixed(1)}  factor ${t.factorisation.toFixed(1)}  solve ${t.solve.toFixed(1)}  spiral ${t.integration.toFixed(1)} ms`,
+      e === undefined
+        ? `assembly ${t.assembly.toFixed(1)}  factor ${t.factorisation.toFixed(1)}  solve ${t.solve.toFixed(1)}  spiral ${t.integration.toFixed(1)} ms`
+        : `rig evaluation ${e.toFixed(3)} ms (${e > 0 ? Math.round(1000 / e).toLocaleString("en") : "∞"} per second)`,
       `${this.#vertices} vertices, ${this.#triangles} triangles`,
       metricsLine(frame.metrics),
+      ...(this.#rig ? [this.#rig] : []),
     ].join("\n");
   }
 

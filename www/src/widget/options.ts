@@ -4,8 +4,13 @@
  */
 import type { DeformerOptions, Metrics, Outline, Timings, WasmSource } from "../core.js";
 import { coded } from "../internal/arrays.js";
+import type { RigTrainOptions } from "./rig.js";
 
-/** The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8). */
+/**
+ * The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8),
+ * ARAP, and a trained rig (DefOp), which poses in closed form once trained for the
+ * handles; its deformer options are AKAP's, which pose while no rig fits the handles.
+ */
 export const METHODS = {
   akap: { label: "AKAP", options: { method: "akap", dirichlet: true, integrator: "spiral" } },
   "akap-no-dirichlet": {
@@ -21,6 +26,7 @@ export const METHODS = {
     options: { method: "akap", dirichlet: false, integrator: "linear" },
   },
   arap: { label: "ARAP (10 iterations per step)", options: { method: "arap", iterations: 10 } },
+  defop: { label: "Trained (DefOp)", options: { method: "akap", dirichlet: true, integrator: "spiral" } },
 } as const satisfies Record<string, { label: string; options: DeformerOptions }>;
 
 /**
@@ -58,6 +64,18 @@ export interface WidgetOptions {
   lambda?: number;
   /** Velocities from raw pointer displacement, as in the paper, instead of target tracking. */
   paperMode?: boolean;
+  /**
+   * A trained rig to pose at once, without training: an operator file (as "Save rig" or
+   * `DefOp.toBytes` writes it) by URL, or its bytes. Its mesh and handles replace the
+   * shape, and the method is "defop".
+   */
+  operator?: string | Uint8Array | ArrayBuffer;
+  /** How the toolbar's Train (and {@link Widget.train} by default) trains a rig. */
+  training?: RigTrainOptions;
+  /** Show a trained rig's training discs, and mark handles dragged outside them. */
+  region?: boolean;
+  /** Draw the ground truth's outline (ARAP or S-ARAP, solved in a worker) beside a rig's pose. */
+  compare?: boolean;
   /** Show the toolbar (default true). */
   controls?: boolean;
   /** Show the heads-up display (default true). */
@@ -81,7 +99,7 @@ export interface WidgetOptions {
 
 /** The settings a widget runs with (its options that can change while it runs). */
 export type WidgetSettings = Required<
-  Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm">
+  Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm" | "operator">
 >;
 
 /** A file the toolbar offers beside the built-in shapes. */
@@ -100,6 +118,8 @@ export interface PoseDetail {
   steps: number;
   /** Solver stages summed over the frame's steps. */
   timings: Timings;
+  /** Milliseconds of a trained rig's evaluation, when a rig posed the frame. */
+  evaluationMs?: number;
 }
 
 export const DEFAULTS = {
@@ -123,6 +143,10 @@ export const WIDGET_OPTIONS = [
   "minAngle",
   "method",
   "lambda",
+  "operator",
+  "training",
+  "region",
+  "compare",
   "paperMode",
   "controls",
   "hud",
@@ -154,6 +178,9 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     minAngle: options.minAngle ?? DEFAULTS.minAngle,
     method: options.method ?? DEFAULTS.method,
     lambda: options.lambda ?? DEFAULTS.lambda,
+    training: { ...options.training },
+    region: options.region ?? false,
+    compare: options.compare ?? false,
     paperMode: options.paperMode ?? false,
     controls: options.controls ?? true,
     hud: options.hud ?? true,
@@ -172,7 +199,7 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
   return settings;
 }
 
-/** Deformer options of a widget method; lambda applies to the AKAP variants only. */
+/** Deformer options of a widget method; lambda applies to the AKAP variants (and DefOp's AKAP) only. */
 export function methodOptions(method: MethodPreset, lambda: number): DeformerOptions {
   const options: DeformerOptions = { ...METHODS[method].options };
   if (options.method === "akap") options.lambda = lambda;

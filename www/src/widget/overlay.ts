@@ -1,6 +1,7 @@
 /**
  * The 2D overlay above the mesh: the outline, flipped triangles, the velocity field of the
- * last frame (arrows, as in the paper's Figure 4) and the handles.
+ * last frame (arrows, as in the paper's Figure 4) and the handles; for a trained rig, its
+ * training discs, handles outside them marked, and the ground truth's outline as a ghost.
  */
 import { doubledArea } from "./geometry.js";
 import { toPixel, type View } from "./view.js";
@@ -13,6 +14,8 @@ export interface OverlayHandle {
   targetY: number;
   selected: boolean;
   dragged: boolean;
+  /** Outside the region a trained rig was trained on (it extrapolates there). */
+  outside?: boolean;
 }
 
 export interface OverlayScene {
@@ -23,6 +26,10 @@ export interface OverlayScene {
   /** The last field, 2 per vertex, or undefined to draw none. */
   field: ArrayLike<number> | undefined;
   showFlipped: boolean;
+  /** A trained rig's training discs (shape units), or none. */
+  regions?: readonly { x: number; y: number; r: number }[];
+  /** Positions (2 per vertex) whose outline is drawn dashed over the pose: the ground truth. */
+  ghost?: ArrayLike<number>;
 }
 
 /** Handle radius in CSS pixels. */
@@ -66,6 +73,36 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
   ctx.lineJoin = "round";
   ctx.stroke();
 
+  if (scene.ghost) {
+    const g = scene.ghost;
+    ctx.beginPath();
+    for (let i = 0; i + 1 < e.length; i += 2) {
+      const [ax, ay] = toPixel(view, g[2 * e[i]!]!, g[2 * e[i]! + 1]!);
+      const [bx, by] = toPixel(view, g[2 * e[i + 1]!]!, g[2 * e[i + 1]! + 1]!);
+      ctx.moveTo(ax, ay);
+      ctx.lineTo(bx, by);
+    }
+    ctx.setLineDash([5 * ratio, 4 * ratio]);
+    ctx.strokeStyle = "rgba(20, 110, 60, 0.9)";
+    ctx.lineWidth = 1.5 * ratio;
+    ctx.stroke();
+    ctx.setLineDash([]);
+  }
+
+  if (scene.regions) {
+    ctx.beginPath();
+    for (const { x, y, r } of scene.regions) {
+      const [cx, cy] = toPixel(view, x, y);
+      ctx.moveTo(cx + r * view.scale, cy);
+      ctx.arc(cx, cy, r * view.scale, 0, 2 * Math.PI);
+    }
+    ctx.fillStyle = "rgba(40, 120, 200, 0.08)";
+    ctx.fill();
+    ctx.strokeStyle = "rgba(40, 120, 200, 0.6)";
+    ctx.lineWidth = ratio;
+    ctx.stroke();
+  }
+
   if (scene.field) drawField(ctx, p, scene.field, view, ratio);
 
   for (const h of scene.handles) {
@@ -88,6 +125,15 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
     ctx.lineWidth = 2.5 * ratio;
     ctx.strokeStyle = h.dragged ? "#c0392b" : "#1d3557";
     ctx.stroke();
+    if (h.outside) {
+      ctx.beginPath();
+      ctx.arc(x, y, 1.9 * HANDLE_RADIUS * ratio, 0, 2 * Math.PI);
+      ctx.setLineDash([3 * ratio, 2 * ratio]);
+      ctx.strokeStyle = "#e67e22";
+      ctx.lineWidth = 2 * ratio;
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
   }
 }
 

@@ -38,12 +38,70 @@ export interface SavedWork {
 }
 
 const DATABASE = "akap";
-const STORE = "work";
+/** The object stores: the work (by the page's key) and trained rigs (by their content, `rig.ts`). */
+const STORES = ["work", "rigs"] as const;
+
+let database: Promise<IDBDatabase> | undefined;
+
+/** The page's database of the widget, opened once (version 2 added the rigs). */
+function openDatabase(): Promise<IDBDatabase> {
+  database ??= new Promise((resolve, reject) => {
+    if (typeof indexedDB === "undefined") {
+      reject(new Error("this browser has no IndexedDB"));
+      return;
+    }
+    const request = indexedDB.open(DATABASE, 2);
+    request.onupgradeneeded = () => {
+      for (const name of STORES) {
+        if (!request.result.objectStoreNames.contains(name)) request.result.createObjectStore(name);
+      }
+    };
+    request.onsuccess = () => resolve(request.result);
+    request.onerror = () => reject(new Error(`the browser's storage refused: ${request.error?.message}`));
+  });
+  database.catch(() => (database = undefined));
+  return database;
+}
+
+/** Values by key in one object store of the widget's database; every failure is an `Error` saying why. */
+export class KeyedStore {
+  readonly #store: (typeof STORES)[number];
+
+  constructor(store: (typeof STORES)[number]) {
+    this.#store = store;
+  }
+
+  get(key: string): Promise<unknown> {
+    return this.#request("readonly", (store) => store.get(key));
+  }
+
+  async put(key: string, value: unknown): Promise<void> {
+    await this.#request("readwrite", (store) => store.put(value, key));
+  }
+
+  async delete(key: string): Promise<void> {
+    await this.#request("readwrite", (store) => store.delete(key));
+  }
+
+  /** Every key in the store. */
+  async keys(): Promise<string[]> {
+    return (await this.#request("readonly", (store) => store.getAllKeys())) as string[];
+  }
+
+  async #request(mode: IDBTransactionMode, make: (store: IDBObjectStore) => IDBRequest): Promise<unknown> {
+    const db = await openDatabase();
+    return new Promise((resolve, reject) => {
+      const request = make(db.transaction(this.#store, mode).objectStore(this.#store));
+      request.onsuccess = () => resolve(request.result);
+      request.onerror = () => reject(new Error(`the browser's storage refused: ${request.error?.message}`));
+    });
+  }
+}
 
 /** Reads and writes one saved work under `key`. Every failure is an `Error` saying why. */
 export class WorkStore {
   readonly key: string;
-  #database: Promise<IDBDatabase> | undefined;
+  readonly #store = new KeyedStore("work");
 
   constructor(key: string) {
     this.key = key;
@@ -51,40 +109,16 @@ export class WorkStore {
 
   /** The saved work, or undefined when there is none (or it is not a work of this version). */
   async load(): Promise<SavedWork | undefined> {
-    const value = await this.#request("readonly", (store) => store.get(this.key));
-    const work = value as Partial<SavedWork> | undefined;
+    const work = (await this.#store.get(this.key)) as Partial<SavedWork> | undefined;
     return work?.format === "akap-work" && work.version === 1 ? (work as SavedWork) : undefined;
   }
 
-  async save(work: SavedWork): Promise<void> {
-    await this.#request("readwrite", (store) => store.put(work, this.key));
+  save(work: SavedWork): Promise<void> {
+    return this.#store.put(this.key, work);
   }
 
-  async clear(): Promise<void> {
-    await this.#request("readwrite", (store) => store.delete(this.key));
-  }
-
-  #open(): Promise<IDBDatabase> {
-    this.#database ??= new Promise((resolve, reject) => {
-      if (typeof indexedDB === "undefined") {
-        reject(new Error("this browser has no IndexedDB"));
-        return;
-      }
-      const request = indexedDB.open(DATABASE, 1);
-      request.onupgradeneeded = () => request.result.createObjectStore(STORE);
-      request.onsuccess = () => resolve(request.result);
-      request.onerror = () => reject(new Error(`the browser's storage refused: ${request.error?.message}`));
-    });
-    return this.#database;
-  }
-
-  async #request(mode: IDBTransactionMode, make: (store: IDBObjectStore) => IDBRequest): Promise<unknown> {
-    const database = await this.#open();
-    return new Promise((resolve, reject) => {
-      const request = make(database.transaction(STORE, mode).objectStore(STORE));
-      request.onsuccess = () => resolve(request.result);
-      request.onerror = () => reject(new Error(`the browser's storage refused: ${request.error?.message}`));
-    });
+  clear(): Promise<void> {
+    return this.#store.delete(this.key);
   }
 }
 
@@ -130,6 +164,9 @@ export function savedWork(
       flipped: s.flipped,
       paperMode: s.paperMode,
       hud: s.hud,
+      region: s.region,
+      compare: s.compare,
+      training: { ...s.training },
     },
     shape: shape.spec
       ? { kind: "builtin", spec: { ...shape.spec } }

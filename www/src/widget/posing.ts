@@ -7,7 +7,8 @@
  * Each frame, {@link Posing.advance} gives every handle the velocity that takes it toward its
  * target (the pointer, or where a pin was left), split into substeps no longer than
  * `maxStep` of the shape's size, and steps the deformer; a step that fails is tried again
- * with smaller velocities.
+ * with smaller velocities. With the "defop" method and a trained {@link Rig} that fits the
+ * shape and handles, a frame is instead one evaluation of the rig at the handles' targets.
  */
 import { Deformer, type DeformerOptions, type Timings } from "../core.js";
 import { PointMapper } from "../import.js";
@@ -16,6 +17,7 @@ import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset, type WidgetSettings } from "./options.js";
 import { locate, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, type Session, type SessionEvent } from "./session.js";
+import type { Rig } from "./rig.js";
 import type { Shape } from "./shape.js";
 import type { Loaded } from "./sources.js";
 
@@ -78,6 +80,13 @@ export class Posing {
   atRest = true;
   /** While a session replays: nothing is recorded. */
   replaying = false;
+  /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
+  rig: Rig | undefined;
+  /** Milliseconds of the last frame's rig evaluation (0 when the frame stepped the deformer). */
+  evaluationMs = 0;
+  /** The rig's last pose and the targets it was for (skipped when they have not moved). */
+  #rigPose: Float64Array | undefined;
+  #rigTargets: number[] | undefined;
   readonly #host: PosingHost;
   #gestureBefore: Snapshot | undefined;
   #gestureChanged = false;
@@ -112,6 +121,7 @@ export class Posing {
     const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.deformerOptions(), orders);
     this.deformer?.free();
     this.deformer = deformer;
+    this.#rigTargets = undefined;
     this.shape = shape;
     this.recorder.stop();
     this.#host.adopted(shape, deformer, refit);
@@ -190,6 +200,7 @@ export class Posing {
 
   /** Sends the handle set to the deformer (and the recording). */
   applyHandles(): void {
+    this.#rigTargets = undefined;
     const event = this.handlesEvent();
     this.deformer.setHandlePoints(event.handles.triangles, event.handles.barycentric);
     this.record(event);
@@ -217,6 +228,7 @@ export class Posing {
 
   /** Back to the rest pose; handles stay, at their rest places. */
   reset(): void {
+    this.#rigTargets = undefined;
     this.deformer.reset();
     this.record({ reset: true });
     this.atRest = true;
@@ -283,6 +295,7 @@ export class Posing {
 
   restore(snapshot: Snapshot): void {
     this.releasePointers();
+    this.#rigTargets = undefined;
     if (snapshot.method !== this.settings.method || snapshot.lambda !== this.settings.lambda) {
       this.settings.method = snapshot.method;
       this.settings.lambda = snapshot.lambda;
@@ -346,10 +359,20 @@ export class Posing {
 
   // ---------------------------------------------------------------- steps
 
-  /** Moves the handles toward their targets; returns the number of deformer steps taken. */
+  /** Whether the "defop" method is chosen and the rig fits the shape and the handles. */
+  get posingWithRig(): boolean {
+    return this.settings.method === "defop" && this.rig !== undefined && this.rig.fits(this.shape, this.handles);
+  }
+
+  /**
+   * Moves the handles toward their targets; returns the number of deformer steps taken
+   * (a rig's evaluation counts as one).
+   */
   advance(timings: Timings): number {
+    this.evaluationMs = 0;
     const n = this.handles.length;
     if (n === 0) return 0;
+    if (this.posingWithRig) return this.#evaluateRig(this.rig!);
     const { maxStep, maxSubsteps, paperMode } = this.settings;
     const longest = maxStep * this.shape.size;
     let current = this.deformer.handlePositions();
@@ -388,6 +411,26 @@ export class Posing {
       current = this.deformer.handlePositions();
     }
     return count;
+  }
+
+  /**
+   * The rig's pose for the handles' targets (every handle goes straight to its target: the
+   * pose is a function of the targets, so there is nothing to step through), recorded as a
+   * pose; nothing when the targets are those of the last evaluation.
+   */
+  #evaluateRig(rig: Rig): number {
+    const targets = this.handles.flatMap((h) => h.target);
+    if (this.#rigTargets && targets.every((t, i) => t === this.#rigTargets![i])) return 0;
+    const size = 2 * this.shape.mesh.vertexCount;
+    if (this.#rigPose?.length !== size) this.#rigPose = new Float64Array(size);
+    const started = performance.now();
+    rig.evaluate(this.handles, this.#rigPose);
+    this.evaluationMs = performance.now() - started;
+    this.deformer.setPositions(this.#rigPose);
+    this.#rigTargets = targets;
+    this.atRest = false;
+    this.record({ positions: this.#rigPose });
+    return 1;
   }
 
   /**
@@ -483,6 +526,7 @@ export class Posing {
 
   /** Carries out one recorded event. */
   apply(event: SessionEvent): void {
+    this.#rigTargets = undefined;
     if ("handles" in event) {
       const { triangles, barycentric } = event.handles;
       this.deformer.setHandlePoints(triangles, barycentric);

@@ -1,8 +1,9 @@
 /**
  * The widget's picture and what floats over it: the mesh canvas (WebGL2, or a 2D canvas
  * where WebGL2 is missing), the overlay canvas (outline, handles, field arrows, flipped
- * triangles), the view ({@link Camera}), the status line, the busy indicator, the HUD and
- * the help panel, all in the shadow root's stage element.
+ * triangles, a rig's training discs and ground-truth ghost), the view ({@link Camera}), the
+ * status line, the busy indicator, the training's progress (which never blocks posing), the
+ * HUD and the help panel, all in the shadow root's stage element.
  */
 import { Camera } from "./camera.js";
 import { Canvas2dRenderer } from "./canvas2d.js";
@@ -15,6 +16,12 @@ import type { Posing } from "./posing.js";
 import { BusyIndicator, StatusLine } from "./status.js";
 import { toPixel } from "./view.js";
 
+/** What the overlay draws beside the pose: the last velocity field, the ground truth's pose. */
+export interface Extras {
+  field?: Float64Array;
+  ghost?: Float64Array;
+}
+
 /** Widths (CSS pixels) below which the widget takes its narrow layout. */
 export const COMPACT_WIDTH = 640;
 
@@ -26,6 +33,8 @@ export class Stage {
   readonly camera = new Camera();
   readonly status: StatusLine;
   readonly busy: BusyIndicator;
+  /** A rig's training: progress, times and Cancel, in a corner, while posing goes on. */
+  readonly training: BusyIndicator;
   readonly hud: Hud;
   readonly help: HelpPanel;
   readonly #overlayContext: CanvasRenderingContext2D;
@@ -42,9 +51,11 @@ export class Stage {
     this.overlay.setAttribute("aria-label", "The shape; click to add a handle, drag a handle to move it");
     this.status = new StatusLine(document);
     this.busy = new BusyIndicator(document);
+    this.training = new BusyIndicator(document, "training");
     this.help = new HelpPanel(document, closeHelp);
     this.hud = new Hud(document);
     this.element.append(this.glCanvas, this.overlay, this.status.element, this.hud.element, this.busy.element);
+    this.element.append(this.training.element);
     this.element.append(this.help.element);
     const overlayContext = this.overlay.getContext("2d");
     if (!overlayContext) throw new Error("this browser cannot draw on a 2D canvas");
@@ -79,8 +90,8 @@ export class Stage {
     return rect.width;
   }
 
-  /** Draws the pose now: the mesh, then the overlay. */
-  render(posing: Posing, settings: WidgetSettings, field: Float64Array | undefined): void {
+  /** Draws the pose now: the mesh, then the overlay (with the last field and a rig's ghost, if any). */
+  render(posing: Posing, settings: WidgetSettings, extras: Extras): void {
     this.renderer.draw(posing.deformer.positionsView(), this.camera.view, {
       wireframe: settings.wireframe,
       pixelRatio: this.ratio,
@@ -88,21 +99,27 @@ export class Stage {
       fill: "#c8773a",
       wire: "rgba(60, 30, 10, 0.55)",
     });
-    this.drawOverlay(this.#overlayContext, posing, settings, field, true);
+    this.drawOverlay(this.#overlayContext, posing, settings, extras, true);
   }
 
-  /** The overlay on `ctx`: outline, flipped triangles, and with `withHandles` the handles and field. */
+  /**
+   * The overlay on `ctx`: outline, flipped triangles, and with `withHandles` the handles,
+   * the field, a rig's discs and its ghost.
+   */
   drawOverlay(
     ctx: CanvasRenderingContext2D,
     posing: Posing,
     settings: WidgetSettings,
-    field: Float64Array | undefined,
+    extras: Extras,
     withHandles: boolean,
   ): void {
     const { deformer, shape } = posing;
     const positions = deformer.positionsView();
     const at = withHandles ? deformer.handlePositions() : new Float64Array(0);
     const paper = settings.paperMode;
+    const rig = withHandles && posing.posingWithRig ? posing.rig : undefined;
+    const radius = settings.region ? rig?.radius : undefined;
+    const rest = radius !== undefined ? rig!.restHandles() : undefined;
     const handles: OverlayHandle[] = withHandles
       ? posing.handles.map((h, i) => ({
           x: at[2 * i]!,
@@ -111,23 +128,30 @@ export class Stage {
           targetY: paper ? at[2 * i + 1]! : h.target[1],
           selected: h.selected,
           dragged: h.pointerId !== undefined,
+          outside:
+            rest !== undefined && Math.hypot(h.target[0] - rest[2 * i]!, h.target[1] - rest[2 * i + 1]!) > radius!,
         }))
       : [];
+    const regions = rest
+      ? Array.from({ length: rest.length / 2 }, (_, i) => ({ x: rest[2 * i]!, y: rest[2 * i + 1]!, r: radius! }))
+      : undefined;
     const scene = {
       // Re-read: handlePositions() may have grown the memory and detached the view.
       positions: positions.length > 0 ? positions : deformer.positionsView(),
       triangles: shape.mesh.triangles,
       boundaryEdges: shape.mesh.boundaryEdges,
       handles,
-      field: withHandles && settings.field ? field : undefined,
+      field: withHandles && settings.field ? extras.field : undefined,
       showFlipped: settings.flipped,
+      regions,
+      ghost: rig && settings.compare ? extras.ghost : undefined,
     };
     drawOverlay(ctx, scene, this.camera.view, this.ratio);
   }
 
   /** The picture as drawn (mesh and outline, no handles) as a PNG. */
   png(posing: Posing, settings: WidgetSettings): Promise<Blob> {
-    this.render(posing, settings, undefined);
+    this.render(posing, settings, {});
     const document = this.element.ownerDocument;
     const canvas = document.createElement("canvas");
     canvas.width = this.glCanvas.width;
@@ -140,7 +164,7 @@ export class Stage {
     outline.height = canvas.height;
     const outlineContext = outline.getContext("2d");
     if (outlineContext) {
-      this.drawOverlay(outlineContext, posing, settings, undefined, false);
+      this.drawOverlay(outlineContext, posing, settings, {}, false);
       ctx.drawImage(outline, 0, 0);
     }
     return new Promise((resolve, reject) =>
@@ -181,5 +205,6 @@ export class Stage {
     this.renderer.destroy();
     this.hud.destroy();
     this.busy.done();
+    this.training.done();
   }
 }

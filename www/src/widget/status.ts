@@ -75,9 +75,10 @@ export class BusyIndicator {
   #timer: ReturnType<typeof setTimeout> | undefined;
   #since = 0;
 
-  constructor(document: Document) {
+  /** `className`: its look and place (the stage's other indicator is `"training"`). */
+  constructor(document: Document, className = "busy") {
     this.element = document.createElement("div");
-    this.element.className = "busy hidden";
+    this.element.className = `${className} hidden`;
     this.element.setAttribute("role", "progressbar");
     this.element.setAttribute("aria-live", "polite");
     this.#label = document.createElement("span");

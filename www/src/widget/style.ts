@@ -40,6 +40,12 @@ canvas.overlay.panning { cursor: grab; }
   box-shadow: 0 2px 12px rgba(0, 0, 0, 0.2);
 }
 .busy progress { width: 10em; }
+.training {
+  position: absolute; left: 0.6em; top: 0.6em; display: flex; gap: 0.6em; align-items: center;
+  padding: 0.4em 0.6em; border-radius: 8px; background: rgba(255, 250, 241, 0.95);
+  box-shadow: 0 2px 12px rgba(0, 0, 0, 0.2);
+}
+.training progress { width: 8em; }
 .help {
   position: absolute; inset: 1em; max-width: 34em; margin: auto; height: fit-content; max-height: calc(100% - 2em);
   overflow: auto; padding: 0.8em 1.1em; border-radius: 8px; background: #fffaf1; box-shadow: 0 4px 24px rgba(0, 0, 0, 0.3);

@@ -1,8 +1,20 @@
 /**
  * The widget's toolbar: shape, density, method and lambda; display toggles; undo, redo,
- * reset, clear; record, replay, save and load sessions; exports. Every control has a
- * label and is reachable with the keyboard.
+ * reset, clear; record, replay, save and load sessions; exports; a trained rig's training
+ * (energy, basis, samples, radius), files and display. Every control has a label and is
+ * reachable with the keyboard.
  */
+import type { RigTrainOptions } from "./rig.js";
+
+/** The display toggles. */
+export interface DisplayToggles {
+  wireframe: boolean;
+  field: boolean;
+  flipped: boolean;
+  paperMode: boolean;
+  region: boolean;
+  compare: boolean;
+}
 
 export interface ToolbarActions {
   undo(): void;
@@ -17,7 +29,11 @@ export interface ToolbarActions {
   /** Another separate part of the imported file. */
   part(index: number): void;
   method(method: string, lambda: number): void;
-  display(options: { wireframe: boolean; field: boolean; flipped: boolean; paperMode: boolean }): void;
+  display(options: DisplayToggles): void;
+  /** Train a rig; `radiusPercent` of the shape's bounding-box diagonal, undefined for the default. */
+  train(options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined): void;
+  saveRig(): void;
+  openRig(file: File): void;
   hud(visible: boolean): void;
   record(): void;
   replay(): void;
@@ -32,16 +48,13 @@ export interface ToolbarActions {
   startOver?(): void;
 }
 
-export interface ToolbarSettings {
+export interface ToolbarSettings extends DisplayToggles {
   vertices: number;
   minAngle: number;
   method: string;
   lambda: number;
-  wireframe: boolean;
-  field: boolean;
-  flipped: boolean;
-  paperMode: boolean;
   hud: boolean;
+  training: RigTrainOptions;
 }
 
 export interface Toolbar {
@@ -52,6 +65,8 @@ export interface Toolbar {
   showShape(value: string | undefined, vertices: number, parts: { count: number; index: number }): void;
   /** Adds a shape to the list (an imported file) and shows it as the current one. */
   addShape(option: { value: string; label: string }): void;
+  /** Enables the rig's buttons: Save with a rig, Train when no training runs. */
+  showRig(state: { hasRig: boolean; training: boolean }): void;
   /** Brings every field in line with the settings (changed by keys, a load, or a refused value). */
   sync(settings: ToolbarSettings): void;
 }
@@ -196,6 +211,8 @@ export function buildToolbar(
       field: field.checked,
       flipped: flipped.checked,
       paperMode: paper.checked,
+      region: region.checked,
+      compare: compare.checked,
     });
   const wireframe = checkbox(view, "Wireframe (W)", s.wireframe, display);
   wireframe.name = "wireframe";
@@ -207,6 +224,62 @@ export function buildToolbar(
   paper.name = "paper-mode";
   const hud = checkbox(view, "HUD", s.hud, () => actions.hud(hud.checked));
   hud.name = "hud";
+
+  const rigGroup = group("Trained rig");
+  const energy = select(
+    [
+      { value: "sarap", label: "S-ARAP" },
+      { value: "arap", label: "ARAP" },
+    ],
+    s.training.energy ?? "sarap",
+  );
+  energy.name = "rig-energy";
+  labelled(rigGroup, "Energy ", energy);
+  const basis = select(
+    ["tps", "linear", "quadratic", "cubic"].map((b) => ({ value: b, label: b === "tps" ? "TPS" : b })),
+    s.training.basis ?? "tps",
+  );
+  basis.name = "rig-basis";
+  labelled(rigGroup, "Basis ", basis);
+  const samples = number(s.training.samples ?? 200, 1, 100_000, 1);
+  samples.name = "rig-samples";
+  labelled(rigGroup, "Samples ", samples);
+  const radius = number(15, 0.1, 1000, "any");
+  radius.name = "rig-radius";
+  radius.value = "";
+  radius.placeholder = "15";
+  radius.title = "Radius of the training discs, in % of the shape's diagonal (empty: 15)";
+  labelled(rigGroup, "Radius % ", radius);
+  const train = button(
+    rigGroup,
+    "Train",
+    "Train a rig for these handles (DefOp), in workers; posing goes on meanwhile",
+    () => {
+      const options = {
+        energy: energy.value as "sarap" | "arap",
+        basis: basis.value as NonNullable<RigTrainOptions["basis"]>,
+        samples: Number(samples.value),
+      };
+      actions.train(options, radius.value === "" ? undefined : Number(radius.value));
+    },
+  );
+  const saveRig = button(rigGroup, "Save rig", "Download the trained rig (.defop)", actions.saveRig);
+  const rigFile = document.createElement("input");
+  rigFile.type = "file";
+  rigFile.accept = ".defop,application/octet-stream";
+  rigFile.className = "hidden";
+  rigFile.name = "rig-file";
+  rigFile.addEventListener("change", () => {
+    const chosen = rigFile.files?.[0];
+    if (chosen) actions.openRig(chosen);
+    rigFile.value = "";
+  });
+  rigGroup.append(rigFile);
+  button(rigGroup, "Open rig…", "Open a trained rig (.defop): it poses at once", () => rigFile.click(), "open-rig");
+  const region = checkbox(rigGroup, "Region", s.region, display);
+  region.name = "region";
+  const compare = checkbox(rigGroup, "Compare", s.compare, display);
+  compare.name = "compare";
 
   // Always in reach, also with the tools folded away.
   const edit = group("Edit", quick);
@@ -268,6 +341,10 @@ export function buildToolbar(
       part.value = String(parts.index);
       part.parentElement!.classList.toggle("hidden", parts.count < 2);
     },
+    showRig(state) {
+      saveRig.disabled = !state.hasRig;
+      train.disabled = state.training;
+    },
     addShape(option) {
       shape.append(new Option(option.label, option.value));
       shape.value = option.value;
@@ -278,6 +355,11 @@ export function buildToolbar(
       field.checked = settings.field;
       flipped.checked = settings.flipped;
       paper.checked = settings.paperMode;
+      region.checked = settings.region;
+      compare.checked = settings.compare;
+      energy.value = settings.training.energy ?? "sarap";
+      basis.value = settings.training.basis ?? "tps";
+      samples.value = String(settings.training.samples ?? 200);
       method.value = settings.method;
       lambda.value = String(settings.lambda);
     },

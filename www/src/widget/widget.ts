@@ -2,7 +2,8 @@
  * The posing widget: a shape drawn with WebGL2 (an image warps with it), handles added by
  * clicking anywhere on the shape, dragged with mouse, pen or several fingers, pins that
  * stay, undo and redo per gesture, recorded sessions that replay bit for bit, exports, a
- * heads-up display, a view that zooms and pans, help, and the work kept across reloads.
+ * heads-up display, a view that zooms and pans, help, the work kept across reloads, and
+ * trained rigs (DefOp) that pose in closed form, trained in workers or opened from files.
  * {@link mount} puts one into any element; several on one page are independent (all state
  * lives in the instance, the DOM in a shadow root).
  *
@@ -35,7 +36,10 @@ import {
 import { WorkKeeper, WorkStore, savedShape, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
 import { WidgetInput } from "./input.js";
-import { Posing, type Parts } from "./posing.js";
+import { Posing, newHandle, type Parts } from "./posing.js";
+import { Rig } from "./rig.js";
+import { Rigging, rigBytes, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
+import type { TrainProgress } from "../defop-pool.js";
 import { parseSession, type Session } from "./session.js";
 import { toolbarActions } from "./actions.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
@@ -49,6 +53,7 @@ import { buildToolbar, type Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
 
 export { METHODS, type GalleryItem, type MethodPreset, type PoseDetail, type WidgetOptions } from "./options.js";
+export type { RigInfo, WidgetTrainOptions } from "./rigging.js";
 
 /** Frames without input after which the loop stops even if pins have not settled. */
 const SETTLE_FRAMES = 240;
@@ -64,6 +69,7 @@ export class Widget {
   readonly #maker = new ShapeMaker();
   readonly #settings: WidgetSettings;
   readonly #posing: Posing;
+  readonly #rigging: Rigging;
   readonly #keeper: WorkKeeper | undefined;
   readonly #gallery: readonly GalleryItem[];
   /** Files opened so far, offered again in the shape list as `file:index`. */
@@ -97,8 +103,12 @@ export class Widget {
       methodChanged: (method) => {
         this.#toolbar?.sync(this.#settings);
         this.#stage.hud.showMethod(METHODS[method].label);
+        this.#rigChanged();
       },
-      handlesChanged: (count) => this.#emit("akap-handles", { count }),
+      handlesChanged: (count) => {
+        this.#emit("akap-handles", { count });
+        this.#rigChanged();
+      },
       poseChanged: () => this.#poseChanged(),
       historyChanged: () => this.#refreshButtons(),
       schedule: () => this.#schedule(),
@@ -118,6 +128,12 @@ export class Widget {
     shadow.append(style, this.#root);
 
     this.#stage = new Stage(document, () => this.#toggleHelp(false));
+    this.#rigging = new Rigging({
+      posing: this.#posing,
+      indicator: this.#stage.training,
+      changed: () => this.#rigChanged(),
+      info: (message) => this.#stage.status.info(message),
+    });
     this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
 
     if (this.#settings.controls) {
@@ -167,9 +183,10 @@ export class Widget {
       const name = options.outline ? undefined : (options.shape ?? builtinShapes()[0]!);
       const outline = options.outline ?? builtinShape(name!);
       widget.#baseTexture = options.texture ? await loadImage(options.texture) : defaultTexture();
-      const chosen = options.src !== undefined || options.shape !== undefined || options.outline !== undefined;
+      const chosen = [options.src, options.shape, options.outline, options.operator].some((o) => o !== undefined);
       const saved = chosen ? undefined : await widget.#keeper?.store.load().catch(() => undefined);
-      if (options.src) await widget.loadUrl(options.src);
+      if (options.operator !== undefined) await widget.loadRig(options.operator);
+      else if (options.src) await widget.loadUrl(options.src);
       else posing.install(meshOutline(outline, name, widget.#settings.vertices, widget.#settings.minAngle));
       if (saved) {
         await widget.#resume(saved).catch((error: unknown) => {
@@ -339,6 +356,7 @@ export class Widget {
    * step.
    */
   async loadFile(file: Blob, name = (file as File).name ?? "file"): Promise<void> {
+    if (/\.defop$/i.test(name)) return this.loadRig(file);
     if (fileKind(name, file.type) === "json" && file.size <= fileLimits().bytes) {
       const text = await file.text();
       if (/"format"\s*:\s*"akap-session"/.test(text)) return this.loadSession(file);
@@ -397,9 +415,80 @@ export class Widget {
     this.#gesture(() => this.#posing.carryOver(prepared.shape, prepared.orders));
   }
 
-  setDisplay(options: { wireframe?: boolean; field?: boolean; flipped?: boolean; paperMode?: boolean }): void {
+  /** Display options; `region` and `compare` concern a trained rig (see {@link WidgetOptions}). */
+  setDisplay(
+    options: Partial<Pick<WidgetSettings, "wireframe" | "field" | "flipped" | "paperMode" | "region" | "compare">>,
+  ): void {
     Object.assign(this.#settings, options);
     if (options.field) this.#lastField = this.#posing.deformer.field();
+    if (options.compare) this.#rigging.compareSoon();
+    this.#rigChanged();
+  }
+
+  // ---------------------------------------------------------------- trained rigs
+
+  /**
+   * Trains a rig (a DefOp operator) for the shape and the handles as they are now, on a
+   * pool of workers (posing goes on meanwhile, with any method) or from the browser's cache
+   * when the same training was done before; `onProgress` hears its progress, which the
+   * widget also shows with a Cancel button. Options default to the widget's `training`
+   * option. The rig poses while the method is "defop" and the shape and handles are the
+   * ones it was trained for; resolves once it is in place. Rejects, changing nothing, when
+   * there are no handles, on `options.signal`'s abort or Cancel (an `AbortError`), or when a
+   * worker fails.
+   */
+  async train(options: WidgetTrainOptions = {}, onProgress?: (progress: TrainProgress) => void): Promise<void> {
+    const rig = await this.#rigging.train({ ...this.#settings.training, ...options }, onProgress);
+    // The options of the rig in use: saved with the work, so a reload finds it in the cache.
+    this.#settings.training = { ...rig.options };
+    this.#toolbar?.sync(this.#settings);
+  }
+
+  /** Stops the training under way (its promise rejects with an `AbortError`). */
+  cancelTraining(): void {
+    this.#rigging.cancel();
+  }
+
+  /** The trained rig's state. */
+  get rig(): RigInfo {
+    return this.#rigging.info();
+  }
+
+  /** The rig's operator file (operator and mesh), as "Save rig" downloads it. */
+  rigFile(): Uint8Array {
+    const rig = this.#posing.rig;
+    if (!rig) throw new Error("there is no trained rig to save; Train one first");
+    return rig.toBytes();
+  }
+
+  /**
+   * Opens a rig: an operator file by URL, as a file or as bytes. Its mesh becomes the shape
+   * with its handles at rest and the method "defop": it poses at once. One undoable step;
+   * a file that is not a valid rig throws (code `import`), changing nothing.
+   */
+  async loadRig(source: string | Blob | Uint8Array | ArrayBuffer): Promise<void> {
+    const bytes = await rigBytes(source);
+    const rig = Rig.fromBytes(bytes);
+    const shape = shapeFromMesh(rig.mesh, undefined, undefined, "rig");
+    const rest = rig.restHandles();
+    this.#gesture(() => {
+      this.#posing.parts = undefined;
+      this.#posing.install(shape);
+      this.#posing.handles = rig.points.map((point, i) => ({
+        ...newHandle({ triangle: point.triangle, barycentric: [...point.barycentric] as [number, number, number] }),
+        target: [rest[2 * i]!, rest[2 * i + 1]!],
+      }));
+      this.#posing.applyHandles();
+      this.#posing.showMethod("defop", this.#settings.lambda);
+      this.#rigging.adopt(rig);
+    });
+  }
+
+  /** The rig's state changed (or the handles, shape or method): HUD, toolbar, picture. */
+  #rigChanged(): void {
+    if (!(this.#rigging as Rigging | undefined)) return;
+    this.#stage.hud.showRig(this.#rigging.statusLine());
+    this.#toolbar?.showRig({ hasRig: this.#posing.rig !== undefined, training: this.#rigging.training });
     this.#draw();
   }
 
@@ -520,6 +609,8 @@ export class Widget {
     this.#stage.destroy();
     this.#maker.destroy();
     this.#keeper?.stop();
+    this.#rigging.destroy();
+    this.#rigging.adopt(undefined);
     (this.#posing.deformer as Deformer | undefined)?.free();
     this.#host.remove();
     for (const resolve of this.#idleWaiters.splice(0)) resolve();
@@ -606,6 +697,9 @@ export class Widget {
       posing.restore(before);
       throw error;
     }
+    if (settings.method === "defop") {
+      await this.#rigging.fromCache(this.#settings.training).catch(() => false);
+    }
     this.#syncToolbar();
   }
 
@@ -665,13 +759,18 @@ export class Widget {
       posing.markChanged();
       this.#metrics = posing.deformer.metrics();
       if (this.#settings.field) this.#lastField = posing.deformer.field();
+      if (this.#settings.compare && posing.posingWithRig) {
+        this.#rigging.comparison = undefined;
+        this.#rigging.compareSoon();
+      }
     }
     this.#render();
     this.#stage.keepHudClear(this.#posing);
     if (substeps > 0) {
       const work = performance.now() - started;
-      this.#stage.hud.report({ time, work, timings, substeps, metrics: this.#metrics });
-      this.#emitPose(work, substeps, timings);
+      const evaluationMs = posing.evaluationMs > 0 ? posing.evaluationMs : undefined;
+      this.#stage.hud.report({ time, work, timings, substeps, metrics: this.#metrics, evaluationMs });
+      this.#emitPose(work, substeps, timings, evaluationMs);
     }
     if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
       this.#schedule();
@@ -698,7 +797,10 @@ export class Widget {
   /** Draws the picture now. */
   #render(): void {
     if (this.#destroyed) return;
-    this.#stage.render(this.#posing, this.#settings, this.#lastField);
+    this.#stage.render(this.#posing, this.#settings, {
+      field: this.#lastField,
+      ghost: this.#rigging.comparison?.positions,
+    });
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
     this.#keeper?.changed();
   }
@@ -767,6 +869,7 @@ export class Widget {
     frameMs = 0,
     steps = 0,
     timings: Timings = { assembly: 0, factorisation: 0, dirichletFactorisation: 0, solve: 0, integration: 0 },
+    evaluationMs?: number,
   ): void {
     const detail: PoseDetail = {
       metrics: { ...this.#metrics },
@@ -774,6 +877,7 @@ export class Widget {
       frameMs,
       steps,
       timings,
+      ...(evaluationMs === undefined ? {} : { evaluationMs }),
     };
     this.#emit("akap-pose", detail);
   }
