@@ -6,6 +6,9 @@
 //
 //   npm run build && node scripts/make-rig.mjs [samples]
 import { readFileSync, writeFileSync } from "node:fs";
+import { performance } from "node:perf_hooks";
+import process from "node:process";
+import { URL } from "node:url";
 import { importSvg, init, trainDefOp, triangulateToVertices } from "../www/lib/index.js";
 
 await init();
