@@ -1,10 +1,17 @@
-/* global requestAnimationFrame */
+/* global requestAnimationFrame, navigator, performance */
 // Frame times of the posing app in headless Chromium: for each mesh size, pin a foot,
 // drag the raised hand along a quarter circle with the mouse, and collect the widget's
 // per-frame work (solver steps and drawing) from its `akap-pose` events.
 // Prints median, 95th percentile and worst frame, and the solver stages at the median.
 //   npm run build && node scripts/bench-app.mjs [vertices ...]
+// With --defop MANIFEST (written by `cargo run --release --example defop_table`): the
+// table's octopus (about 2,000 vertices, 9 handles) opened as a rig, trained again in the
+// page (its options, 1,000 samples, no cache) on 1 worker and on one per core, then posed
+// by a tentacle dragged along a quarter circle: training times, whole-frame median and p95
+// and the rig's evaluation time.
+//   node scripts/bench-app.mjs --defop target/defop-table/manifest.json
 import { spawn } from "node:child_process";
+import { readFileSync } from "node:fs";
 import process from "node:process";
 import { chromium } from "@playwright/test";
 
@@ -45,6 +52,97 @@ const stat = (values, q) => {
   return sorted[Math.min(sorted.length - 1, Math.round((sorted.length - 1) * q))];
 };
 const ms = (x) => x.toFixed(1);
+
+/** Pins nothing new: drags handle `index` of the app's widget along a quarter circle about the shape's centre. */
+async function dragAround(page, index) {
+  const setup = await page.evaluate((index) => {
+    const w = window.akapDemo.widget;
+    const h = w.handlePositions();
+    const p = w.mesh.positions;
+    let [cx, cy] = [0, 0];
+    for (let v = 0; v < p.length / 2; v++) [cx, cy] = [cx + p[2 * v], cy + p[2 * v + 1]];
+    const n = p.length / 2;
+    window.benchFrames = [];
+    document.getElementById("app").addEventListener("akap-pose", (e) => {
+      if (e.detail.steps > 0) window.benchFrames.push({ ms: e.detail.frameMs, evaluation: e.detail.evaluationMs });
+    });
+    return { view: w.view, grab: [h[2 * index], h[2 * index + 1]], centre: [cx / n, cy / n] };
+  }, index);
+  const box = await page.locator("canvas.overlay").boundingBox();
+  const { view } = setup;
+  const css = ([x, y]) => [
+    box.x + (view.offsetX + view.scale * x) / view.pixelRatio,
+    box.y + (view.offsetY - view.scale * y) / view.pixelRatio,
+  ];
+  const [gx, gy] = css(setup.grab);
+  const [ox, oy] = css(setup.centre);
+  await page.mouse.move(gx, gy);
+  await page.mouse.down();
+  // A small arc (an eighth of a turn scaled to a third of the radius), one move per frame.
+  const [dx, dy] = [gx - ox, gy - oy];
+  for (let k = 1; k <= moves; k++) {
+    const a = ((Math.PI / 4) * k) / moves;
+    const [c, s] = [Math.cos(a), Math.sin(a)];
+    const [rx, ry] = [c * dx - s * dy, s * dx + c * dy];
+    await page.mouse.move(gx + (rx - dx) / 3, gy + (ry - dy) / 3);
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => r())));
+  }
+  await page.mouse.up();
+  await page.evaluate(() => window.akapDemo.widget.whenIdle());
+  return page.evaluate(() => window.benchFrames);
+}
+
+if (process.argv[2] === "--defop") {
+  const entries = JSON.parse(readFileSync(process.argv[3], "utf8"));
+  const entry = entries.find((e) => e.model === "octopus" && e.basis === "TPS");
+  if (!entry) throw new Error(`no TPS octopus in ${process.argv[3]}`);
+  const bytes = Array.from(readFileSync(entry.file));
+  const { samples, spatial, radius, energy } = entry.training;
+  const options = { energy: energy === "s-arap" ? "sarap" : energy, spatial, samples: 1000, seed: 1 };
+  if (radius !== null) options.radius = radius;
+  try {
+    const page = await browser.newPage({ viewport: { width: 1000, height: 800 } });
+    await page.goto(`http://127.0.0.1:${port}/?hud=false`);
+    await page.waitForFunction(() => document.body.dataset.ready === "true");
+    const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+    const model = await page.evaluate(async (bytes) => {
+      const w = window.akapDemo.widget;
+      await w.loadRig(Uint8Array.from(bytes));
+      return { vertices: w.vertexCount, handles: w.handleCount };
+    }, bytes);
+    console.log(
+      `Chromium ${browser.version()}, ${cores} cores; octopus ${model.vertices} vertices, ${model.handles} handles, ` +
+        `table options ${JSON.stringify(options)} (table: ${samples} samples)`,
+    );
+    console.log("| workers | training s |");
+    console.log("|---|---|");
+    for (const workers of [...new Set([1, cores])]) {
+      const seconds = await page.evaluate(
+        async ({ options, workers }) => {
+          const started = performance.now();
+          await window.akapDemo.widget.train({ ...options, workers, cache: false });
+          return (performance.now() - started) / 1000;
+        },
+        { options, workers },
+      );
+      console.log(`| ${workers} | ${seconds.toFixed(1)} |`);
+    }
+    await page.evaluate(() => window.akapDemo.widget.setMethod("defop"));
+    const frames = await dragAround(page, 1);
+    const times = frames.map((f) => f.ms);
+    const evaluations = frames.map((f) => f.evaluation).filter((e) => e !== undefined);
+    console.log("| frames | frame median ms | frame p95 ms | worst ms | evaluation median ms | evaluation p95 ms |");
+    console.log("|---|---|---|---|---|---|");
+    console.log(
+      `| ${frames.length} | ${ms(stat(times, 0.5))} | ${ms(stat(times, 0.95))} | ${ms(Math.max(...times))} | ` +
+        `${stat(evaluations, 0.5).toFixed(3)} | ${stat(evaluations, 0.95).toFixed(3)} |`,
+    );
+  } finally {
+    await browser.close();
+    server.kill();
+  }
+  process.exit(0);
+}
 
 console.log(`Chromium ${browser.version()}, ${moves} pointer moves per run`);
 console.log(

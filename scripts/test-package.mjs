@@ -41,6 +41,7 @@ const REQUIRED = [
   "www/lib/index.js",
   "www/lib/index.d.ts",
   "www/lib/widget/setup-worker.js",
+  "www/lib/defop-worker.js",
 ];
 const FORBIDDEN = [
   /^src\//,

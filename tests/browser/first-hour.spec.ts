@@ -177,7 +177,7 @@ test("Replay and Save are ready when Stop is pressed; a loaded ARAP session show
   await pinAndDrag(page, -60, 50);
   await page.getByRole("button", { name: "Stop" }).click();
   await expect(page.getByRole("button", { name: "Replay" })).toBeEnabled();
-  await expect(page.getByRole("button", { name: "Save" })).toBeEnabled();
+  await expect(page.getByRole("button", { name: "Save", exact: true })).toBeEnabled();
   const recorded = await positions(page);
   const { path } = await downloaded(page, "Save");
 

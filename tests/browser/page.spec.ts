@@ -99,7 +99,7 @@ test("a recorded session replays to the same positions bit for bit, also after s
 
   // Save, then load it in a fresh page through the file picker.
   const download = page.waitForEvent("download");
-  await page.getByRole("button", { name: "Save" }).click();
+  await page.getByRole("button", { name: "Save", exact: true }).click();
   const file = await (await download).path();
   await open(page);
   await page.locator('input[name="session-file"]').setInputFiles(file);

@@ -55,7 +55,7 @@ test("a session recorded in the app replays to the recorded pose; the committed 
   await page.getByRole("button", { name: "Stop" }).click();
   const recorded = await poseBits(page);
   const download = page.waitForEvent("download");
-  await page.getByRole("button", { name: "Save" }).click();
+  await page.getByRole("button", { name: "Save", exact: true }).click();
   const saved = await readFile((await (await download).path())!, "utf8");
   const kinds = (JSON.parse(saved) as { events: object[] }).events.map((e) => Object.keys(e)[0]);
   for (const kind of ["handles", "step", "options", "reset"]) expect(kinds).toContain(kind);

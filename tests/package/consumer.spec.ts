@@ -1,8 +1,8 @@
 /**
  * The installed package in Chromium, as users embed it (see scripts/test-package.mjs): a
  * Vite app with `mount()` (production build and dev server) and a plain page with
- * `<akap-deformer>`, each drawing the shape, posed by a drag, and running the core in a
- * Web Worker.
+ * `<akap-deformer>`, each drawing the shape, posed by a drag, running the core in a Web
+ * Worker, and training a rig in the package's own worker pool.
  */
 import { expect, test, type Page } from "@playwright/test";
 import { coverage, expectDrawnLikeTheMesh, mapping, pinAndDrag, prepare, type Which } from "../browser/helpers.js";
@@ -49,6 +49,27 @@ async function drawnAndPosed(page: Page, which: Which): Promise<void> {
   expectDrawnLikeTheMesh(await coverage(page, undefined, which));
 }
 
+/**
+ * A rig trains on the package's worker pool (a module worker loading the package's wasm)
+ * for the handles placed so far, and then poses.
+ */
+async function rigTrainsInAWorker(page: Page, which: Which): Promise<void> {
+  const started: string[] = [];
+  page.on("worker", (worker) => started.push(worker.url()));
+  const state = await page.evaluate(async (which) => {
+    const w = window.widgetFor(which) as unknown as {
+      train(o: object): Promise<void>;
+      setMethod(m: string): void;
+      rig: { state: string; posing: boolean };
+    };
+    await w.train({ samples: 3, energy: "arap", workers: 1 });
+    w.setMethod("defop");
+    return w.rig;
+  }, which);
+  expect(state).toMatchObject({ state: "ready", posing: true });
+  expect(started.some((url) => /defop-worker/.test(url))).toBe(true);
+}
+
 /** A worker of the page's own poses with the package: a rotation, reproduced exactly. */
 async function workerRotates(page: Page, share?: boolean): Promise<void> {
   const result = await page.evaluate((share) => window.fromWorker(share), share);
@@ -72,6 +93,7 @@ for (const server of ["build", "dev"] as const) {
     expect(workers().some((url) => /setup-worker/.test(url))).toBe(true);
     expect(await page.evaluate(() => window.widgetFor("mounted").mesh.positions.length / 2)).toBeGreaterThan(2000);
     expectDrawnLikeTheMesh(await coverage(page, undefined, "mounted"));
+    await rigTrainsInAWorker(page, "mounted");
     expect(errors).toEqual([]);
   });
 }
@@ -80,6 +102,7 @@ test("a plain page without a bundler: <akap-deformer> draws and poses; a worker 
   const errors = await load(page, `${SERVERS.plain}/plain/`, "element");
   await drawnAndPosed(page, "element");
   await workerRotates(page);
+  await rigTrainsInAWorker(page, "element");
   expect(errors).toEqual([]);
 });
 

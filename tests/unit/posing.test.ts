@@ -1,10 +1,13 @@
 /**
  * The widget's posing core in Node, through the real wasm: handles reach their targets
  * while pins stay, undo and redo restore poses exactly, a failed step changes nothing and
- * the next ones work, and re-meshing carries handles and pose over.
+ * the next ones work, and re-meshing carries handles and pose over. With the "defop" method
+ * a fitting rig poses each frame as its operator does; a rig for other handles is stale and
+ * AKAP poses instead; a recording of rig posing replays to the same bits.
  */
 import { beforeAll, describe, expect, it } from "vitest";
-import { builtinShape, init } from "../../www/src/index.js";
+import { builtinShape, init, trainDefOp } from "../../www/src/index.js";
+import { Rig } from "../../www/src/widget/rig.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
 import { Posing } from "../../www/src/widget/posing.js";
 import { meshOutline } from "../../www/src/widget/shape.js";
@@ -133,5 +136,45 @@ describe("Posing", () => {
     expect(posing.travel(false)).toBe(true);
     expect(posing.shape).toBe(old);
     expect(Array.from(posing.deformer.handlePositions())).toEqual(handles);
+  });
+
+  it("poses with a fitting rig as its operator does, steps AKAP when the rig is stale, and replays a recording of it", async () => {
+    const { posing } = posed(400);
+    const { mesh } = posing.shape;
+    const points = posing.handles.map((h) => h.point);
+    const trained = await trainDefOp(
+      mesh.positions,
+      mesh.triangles,
+      { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
+      { samples: 6, energy: "arap" },
+    );
+    posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
+    expect(posing.posingWithRig).toBe(false); // the method is still AKAP
+    posing.setMethod("defop", 100);
+    expect(posing.posingWithRig).toBe(true);
+    posing.startRecording();
+    const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
+    dragTo(posing, [x - 0.2, y + 0.3]);
+    expect(posing.evaluationMs).toBeGreaterThanOrEqual(0);
+    const targets = posing.handles.flatMap((h) => h.target);
+    const expected = trained.operator.evaluate(targets);
+    expect(Array.from(posing.deformer.positions())).toEqual(Array.from(expected));
+    // Unchanged targets: no evaluation, nothing recorded.
+    expect(posing.advance(noTimings())).toBe(0);
+    const session = posing.stopRecording()!;
+
+    // Another handle: the rig is stale, and a drag steps the deformer (AKAP) instead.
+    const t = posing.shape.mesh.triangles;
+    posing.addHandle(locate(mesh.positions, t, mesh.positions[0]!, mesh.positions[1]!, 1e-9)!);
+    expect(posing.posingWithRig).toBe(false);
+    const before = posing.deformer.positions();
+    dragTo(posing, [x - 0.1, y + 0.2]);
+    expect(posing.evaluationMs).toBe(0);
+    expect(Array.from(posing.deformer.positions())).not.toEqual(Array.from(before));
+
+    // The recording replays to the rig's pose, bit for bit.
+    await posing.replay(session, posing.shape, async () => true);
+    expect(Array.from(posing.deformer.positions())).toEqual(Array.from(expected));
+    posing.rig.free();
   });
 });

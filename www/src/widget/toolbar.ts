@@ -244,6 +244,11 @@ export function buildToolbar(
   const samples = number(s.training.samples ?? 200, 1, 100_000, 1);
   samples.name = "rig-samples";
   labelled(rigGroup, "Samples ", samples);
+  const spatial = number(s.training.spatial ?? 0, 0, 100_000, 1);
+  spatial.name = "rig-spatial";
+  spatial.title =
+    "Size of the reduced spatial basis (0: every mesh vertex); smaller poses faster and saves smaller files";
+  labelled(rigGroup, "Reduced ", spatial);
   const radius = number(15, 0.1, 1000, "any");
   radius.name = "rig-radius";
   radius.value = "";
@@ -259,6 +264,7 @@ export function buildToolbar(
         energy: energy.value as "sarap" | "arap",
         basis: basis.value as NonNullable<RigTrainOptions["basis"]>,
         samples: Number(samples.value),
+        spatial: Number(spatial.value),
       };
       actions.train(options, radius.value === "" ? undefined : Number(radius.value));
     },
@@ -360,6 +366,7 @@ export function buildToolbar(
       energy.value = settings.training.energy ?? "sarap";
       basis.value = settings.training.basis ?? "tps";
       samples.value = String(settings.training.samples ?? 200);
+      spatial.value = String(settings.training.spatial ?? 0);
       method.value = settings.method;
       lambda.value = String(settings.lambda);
     },
