@@ -127,6 +127,27 @@ if (process.argv[2] === "--defop") {
       );
       console.log(`| ${workers} | ${seconds.toFixed(1)} |`);
     }
+    // The trained operator's evaluation alone, timed over a second in a page of its own.
+    const rigBytes = await page.evaluate(() => Array.from(window.akapDemo.widget.rigFile()));
+    const plain = await browser.newPage();
+    await plain.goto(`http://127.0.0.1:${port}/www/examples/rig.html`);
+    await plain.waitForFunction(() => document.body.dataset.ready === "true");
+    const alone = await plain.evaluate((bytes) => {
+      const op = window.akap.DefOp.fromBytes(Uint8Array.from(bytes));
+      const out = new Float64Array(2 * op.vertexCount);
+      const targets = Array.from({ length: 16 }, (_, k) =>
+        Float64Array.from({ length: 2 * op.handleCount }, (_, i) => 0.05 * Math.sin(k + i)),
+      );
+      let calls = 0;
+      const started = performance.now();
+      while (performance.now() - started < 1000) {
+        for (const t of targets) op.evaluateInto(t, out);
+        calls += targets.length;
+      }
+      return (performance.now() - started) / calls;
+    }, rigBytes);
+    await plain.close();
+    console.log(`evaluateInto alone in the page: ${alone.toFixed(3)} ms`);
     await page.evaluate(() => window.akapDemo.widget.setMethod("defop"));
     const frames = await dragAround(page, 1);
     const times = frames.map((f) => f.ms);

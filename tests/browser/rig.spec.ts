@@ -1,6 +1,6 @@
 /**
  * Trained rigs (DefOp) in the app and the widget: trained in the page's workers from the
- * toolbar with the progress shown to the end, posed by a drag exactly as `DefOp.evaluate`
+ * toolbar with the progress shown to the end, the same on one worker as on several, posed by a drag exactly as `DefOp.evaluate`
  * poses in Node for the same targets, restored from the browser's cache after a reload
  * without training, saved and opened as a file, cancelled mid-way with nothing changed, a
  * failing worker reported, and the example page's shipped rig posed without training.
@@ -119,9 +119,15 @@ test("Save rig downloads the operator file, and Open rig poses it in a fresh pag
   await page.setViewportSize({ width: 1280, height: 800 });
   await open(page);
   await barWithTwoHandles(page);
-  await page.evaluate(() =>
-    (window.akapDemo!.widget as unknown as { train(o: object): Promise<void> }).train({ samples: 8, energy: "arap" }),
-  );
+  // Two solving workers and a lead, then one worker alone: the same operator, bit for bit.
+  const [two, one] = await page.evaluate(async () => {
+    const w = window.akapDemo!.widget as unknown as { train(o: object): Promise<void>; rigFile(): Uint8Array };
+    await w.train({ samples: 8, energy: "arap", workers: 2 });
+    const two = Array.from(w.rigFile());
+    await w.train({ samples: 8, energy: "arap", workers: 1, cache: false });
+    return [two, Array.from(w.rigFile())];
+  });
+  expect(two).toEqual(one);
   const download = page.waitForEvent("download");
   await page.getByRole("button", { name: "Save rig" }).click();
   const file = (await (await download).path())!;

@@ -3,7 +3,8 @@
  * training on a pool of Web Workers (module workers, one per spare core by default, at
  * least one), each with its own wasm instance of the module this page compiled. The pool's
  * lead worker holds the {@link DefOpTrainer} (so the refits between batches run there too)
- * and hands out each batch's sample solves to every worker, itself included; this thread
+ * and hands out each batch's sample solves to the others (a pool of one trains alone in
+ * its worker; the lead solves nothing, so a result is taken as soon as it comes); this thread
  * only passes messages. Progress comes with the stage, samples done of total, the time so
  * far and an estimate of the time left; an `AbortSignal` stops every worker at once, and
  * the result is the same operator, bit for bit, whatever the number of workers.
@@ -141,7 +142,9 @@ export async function trainDefOp(
   }
   const clock = new Clock();
   if (count === 0 || !workersAvailable()) return trainHere(p, t, h, options, control, clock);
-  const pool = new Pool(count, control.signal);
+  // One worker trains alone; with more, a lead worker holds the trainer and only hands out
+  // jobs and refits, so that results are taken at once, and the others solve.
+  const pool = new Pool(count === 1 ? 1 : count + 1, control.signal);
   try {
     return await pool.train(p, t, h, options, control, clock);
   } finally {
@@ -347,8 +350,8 @@ class Pool {
     clock: Clock,
   ): Promise<Trained> {
     const wasm = compiledModule();
-    const workers = this.#members.length;
     const [lead, ...others] = this.#members as [Member, ...Member[]];
+    const workers = Math.max(1, others.length);
     const start = async (member: Member, train: boolean) =>
       expect(await this.#call(member, { kind: "start", wasm, positions, triangles, handles, options, train }), "ready");
     const [ready] = await Promise.all([start(lead, true), ...others.map((m) => start(m, false))]);
@@ -360,7 +363,7 @@ class Pool {
       });
       report(expect(done, "progress").progress);
     } else {
-      await this.#solveAll(lead, report);
+      await this.#solveAll(lead, others, report);
     }
     const { bytes, stats } = expect(await this.#call(lead, { kind: "finish" }), "operator");
     if (this.#failure) throw this.#failure;
@@ -369,11 +372,11 @@ class Pool {
   }
 
   /**
-   * Hands each batch's jobs to idle workers (the lead too), passes their results to the
+   * Hands each batch's jobs to idle solvers, passes their results to the
    * lead's trainer, and resolves when every sample is in and the operator fitted.
    */
-  #solveAll(lead: Member, report: (progress: DefOpProgress) => void): Promise<void> {
-    const idle = [...this.#members];
+  #solveAll(lead: Member, solvers: Member[], report: (progress: DefOpProgress) => void): Promise<void> {
+    const idle = [...solvers];
     let outstanding = 0;
     let asking = false;
     return new Promise<void>((resolve, reject) => {
