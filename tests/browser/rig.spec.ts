@@ -7,7 +7,7 @@
  */
 import { readFile } from "node:fs/promises";
 import { expect, test, type Page } from "@playwright/test";
-import { DefOp, init } from "../../www/lib/index.js";
+import { DefOp, DefOpSolver, init } from "../../www/lib/index.js";
 import { dragMouse, handles, idle, mapping, open, positions, prepare, usePrepared } from "./helpers.js";
 
 usePrepared();
@@ -23,6 +23,7 @@ interface RigView {
   training: boolean;
   posing: boolean;
   radius: number | undefined;
+  comparison: number | undefined;
 }
 
 const rig = (page: Page): Promise<RigView> =>
@@ -100,18 +101,74 @@ test("a rig trained in workers poses a drag as DefOp.evaluate does, and comes ba
   );
   const op = DefOp.fromBytes(Uint8Array.from(bytes));
   const expected = op.evaluate(targets);
-  op.free();
   expect(expected.length).toBe(pose.length);
   let worst = 0;
   expected.forEach((e, i) => (worst = Math.max(worst, Math.abs(e - pose[i]!))));
   expect(worst).toBeLessThan(1e-9);
+
+  // Compare: the ground truth's distance from the pose, as Node's solver gives it (S-ARAP
+  // from the rest pose, the rig's handle points, the same targets), over the shape's size.
+  await page.getByLabel("Compare").check();
+  await expect.poll(async () => (await rig(page)).comparison, { timeout: 20_000 }).toBeDefined();
+  const mesh = op.mesh();
+  const solver = new DefOpSolver(mesh.positions, mesh.triangles, op.handlePoints(), { energy: "sarap" });
+  const truth = solver.solve({ index: 0, targets: Float64Array.from(targets), start: undefined }).positions;
+  solver.free();
+  const { triangles: ht, barycentric: hb } = op.handlePoints();
+  op.free();
+  const xs = Array.from(mesh.positions).filter((_, i) => i % 2 === 0);
+  const ys = Array.from(mesh.positions).filter((_, i) => i % 2 === 1);
+  const size = Math.max(Math.max(...xs) - Math.min(...xs), Math.max(...ys) - Math.min(...ys));
+  let far = 0;
+  for (let i = 0; i < pose.length; i += 2)
+    far = Math.max(far, Math.hypot(pose[i]! - truth[i]!, pose[i + 1]! - truth[i + 1]!));
+  // To the solver's tolerance: the page solved for the handles' targets, Node for where the
+  // pose put the handles, which agree only to rounding.
+  expect((await rig(page)).comparison).toBeCloseTo(far / size, 5);
+  expect(far).toBeGreaterThan(0);
+
+  // Region: the training discs about the handles' rest places, and a ring round a handle
+  // dragged outside its disc, in the overlay's pixels.
+  const { radius } = await rig(page);
+  const restRight = [0, 1].map((c) => {
+    return [0, 1, 2].reduce((sum, k) => sum + hb[3 + k]! * mesh.positions[2 * mesh.triangles[3 * ht[1]! + k]! + c]!, 0);
+  }) as [number, number];
+  await page.getByLabel("Region").check();
+  const [ex, ey] = toCss(...(Array.from(await handles(page)).slice(2, 4) as [number, number]));
+  await dragMouse(page, [ex, ey], [ex - 40, ey - 120], 6);
+  const moved = await handles(page);
+  expect(Math.hypot(moved[2]! - restRight[0], moved[3]! - restRight[1])).toBeGreaterThan(radius!);
+  const pixel = (x: number, y: number) =>
+    page.evaluate(
+      ([x, y]) => {
+        const overlay = document.querySelector("#app .akap-host")!.shadowRoot!.querySelector("canvas.overlay");
+        const { view } = window.akapDemo!.widget;
+        const at = [view.offsetX + view.scale * x!, view.offsetY - view.scale * y!].map(Math.round);
+        return Array.from((overlay as HTMLCanvasElement).getContext("2d")!.getImageData(at[0]!, at[1]!, 1, 1).data);
+      },
+      [x, y],
+    );
+  const inDisc: [number, number] = [restRight[0], restRight[1] - 0.9 * radius!];
+  expect((await pixel(...inDisc))[3]).toBeGreaterThan(0);
+  const ratio = await page.evaluate(() => window.akapDemo!.widget.view.pixelRatio);
+  const view = await page.evaluate(() => window.akapDemo!.widget.view);
+  const ring: [number, number] = [moved[2]! + (1.9 * 7 * ratio) / view.scale, moved[3]!];
+  const [r, g, b] = await pixel(...ring);
+  expect(r).toBeGreaterThan(180);
+  expect(g).toBeGreaterThan(80);
+  expect(g).toBeLessThan(170);
+  expect(b).toBeLessThan(90);
+  await page.getByLabel("Region").uncheck();
+  await idle(page);
+  expect((await pixel(...inDisc))[3]).toBe(0);
+  const posed = await positions(page);
 
   // The work is saved a moment after the last change; the reload reads the rig from the cache.
   await page.waitForTimeout(1000);
   await page.reload();
   await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
   expect(await rig(page)).toMatchObject({ state: "ready", source: "cache", training: false, posing: true });
-  expect(await positions(page)).toEqual(pose);
+  expect(await positions(page)).toEqual(posed);
 });
 
 test("Save rig downloads the operator file, and Open rig poses it in a fresh page", async ({ page, browser }) => {
