@@ -37,7 +37,13 @@ import { coded, toFloat64, toUint32, type Coordinates, type Indices } from "./in
 import { unbundledFile } from "./internal/wasm.js";
 
 /** How far a {@link trainDefOp} is, with times. */
-export interface TrainProgress extends DefOpProgress {
+export interface TrainProgress extends Omit<DefOpProgress, "stage"> {
+  /**
+   * `"setup"` while the trainer is made (the spatial basis: for a reduced basis, an
+   * eigenproblem; `total` is 0 then), then the trainer's stages: `"samples"`, `"fit"`,
+   * `"done"`.
+   */
+  stage: DefOpProgress["stage"] | "setup";
   /** Milliseconds since training began. */
   elapsedMs: number;
   /** Estimated milliseconds left (from the pace so far), once a few samples are in. */
@@ -183,13 +189,16 @@ export async function solveGroundTruth(
   }
 }
 
+/** Progress before the trainer exists. */
+const SETUP = { done: 0, total: 0, stage: "setup" } as const;
+
 /** Elapsed time and the estimate of what is left. */
 class Clock {
   readonly #start = performance.now();
   /** Progress when the pace began to be measured (after the first cold samples). */
   #from: { at: number; done: number } | undefined;
 
-  progress(p: DefOpProgress, workers: number): TrainProgress {
+  progress(p: DefOpProgress | { done: 0; total: 0; stage: "setup" }, workers: number): TrainProgress {
     const now = performance.now();
     const elapsedMs = now - this.#start;
     let remainingMs: number | undefined;
@@ -216,6 +225,8 @@ async function trainHere(
   control: TrainControl,
   clock: Clock,
 ): Promise<Trained> {
+  control.onProgress?.(clock.progress(SETUP, 0));
+  await yieldToEventLoop();
   const trainer = new DefOpTrainer(positions, triangles, handles, options);
   try {
     const slice = control.sliceMs ?? 8;
@@ -354,6 +365,7 @@ class Pool {
     const workers = Math.max(1, others.length);
     const start = async (member: Member, train: boolean) =>
       expect(await this.#call(member, { kind: "start", wasm, positions, triangles, handles, options, train }), "ready");
+    control.onProgress?.(clock.progress(SETUP, workers));
     const [ready] = await Promise.all([start(lead, true), ...others.map((m) => start(m, false))]);
     const report = (progress: DefOpProgress) => control.onProgress?.(clock.progress(progress, workers));
     report(ready.progress!);

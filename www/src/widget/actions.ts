@@ -3,11 +3,18 @@
  * fails says why (a cancelled one says so as information) with every field back to the
  * settings in force.
  */
-import type { GalleryItem, MethodPreset } from "./options.js";
+import { builtinShapes } from "../core.js";
+import { METHODS, type GalleryItem, type MethodPreset } from "./options.js";
 import { Cancelled } from "./setup.js";
 import { download } from "./export.js";
 import type { RigTrainOptions } from "./rig.js";
-import type { DisplayToggles, ToolbarActions } from "./toolbar.js";
+import {
+  buildToolbar,
+  type DisplayToggles,
+  type Toolbar,
+  type ToolbarActions,
+  type ToolbarSettings,
+} from "./toolbar.js";
 import { bounds } from "./view.js";
 import type { Widget } from "./widget.js";
 
@@ -23,6 +30,23 @@ export interface ActionHost {
   succeeded(): void;
   showHud(visible: boolean): void;
   help(): void;
+}
+
+/** The widget's toolbar: its lists (built-in shapes, the gallery, the methods) and its actions. */
+export function widgetToolbar(
+  document: Document,
+  widget: Widget,
+  settings: ToolbarSettings,
+  host: ActionHost,
+): Toolbar {
+  return buildToolbar(document, toolbarActions(widget, host), {
+    shapes: [
+      ...builtinShapes().map((name) => ({ value: `builtin:${name}`, label: name })),
+      ...host.gallery.map((item, i) => ({ value: `gallery:${i}`, label: item.name })),
+    ],
+    methods: Object.entries(METHODS).map(([value, m]) => ({ value, label: m.label })),
+    settings,
+  });
 }
 
 export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions {

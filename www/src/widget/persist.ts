@@ -10,6 +10,8 @@ import type { MeshPoint } from "./picking.js";
 import type { ShapeSpec } from "./session.js";
 import { shapeFromMesh, type Shape } from "./shape.js";
 import type { ToolbarSettings } from "./toolbar.js";
+import { METHODS, type MethodPreset, type WidgetSettings } from "./options.js";
+import type { Posing } from "./posing.js";
 
 /** Settings that come back with the work: those the toolbar shows. */
 export type SavedSettings = ToolbarSettings;
@@ -224,6 +226,38 @@ export interface WorkSource {
  * Saves the work a moment after the last change (a change only asks; the save comes
  * `delay` ms after the last ask), encoding an imported image's texture once per shape.
  */
+/**
+ * Puts `saved` back over the shape installed in `posing`: its settings, its shape (made by
+ * `shape`), pose and handles; throws, with the posing and settings as they were, if it
+ * cannot.
+ */
+export async function restoreWork(
+  saved: SavedWork,
+  posing: Posing,
+  settings: WidgetSettings,
+  shape: (saved: SavedShape) => Promise<Shape>,
+): Promise<void> {
+  const restored = await shape(saved.shape);
+  const method = saved.settings.method;
+  if (!Object.hasOwn(METHODS, method)) throw new Error(`unknown method ${method}`);
+  const before = { snapshot: posing.snapshot(), settings: { ...settings } };
+  try {
+    Object.assign(settings, saved.settings);
+    posing.install(restored);
+    posing.restore({
+      ...saved,
+      shape: restored,
+      parts: undefined,
+      method: method as MethodPreset,
+      lambda: saved.settings.lambda,
+    });
+  } catch (error) {
+    Object.assign(settings, before.settings);
+    posing.restore(before.snapshot);
+    throw error;
+  }
+}
+
 export class WorkKeeper {
   readonly store: WorkStore;
   readonly #source: () => WorkSource | undefined;

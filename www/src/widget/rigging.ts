@@ -128,7 +128,7 @@ export class Rigging {
           signal: controller.signal,
           onProgress: (p) => {
             this.progress = p;
-            indicator.update({ label: progressLabel(p), progress: p.done / p.total, cancel });
+            indicator.update({ label: progressLabel(p), progress: p.total > 0 ? p.done / p.total : undefined, cancel });
             onProgress?.(p);
           },
         },
@@ -268,8 +268,12 @@ export async function rigBytes(source: string | Blob | Uint8Array | ArrayBuffer)
 
 /** "Training: samples 120 of 1000, about 1 min 20 s left". */
 export function progressLabel(p: TrainProgress): string {
-  const stage =
-    p.stage === "fit" ? "fitting the operator" : p.stage === "done" ? "done" : `samples ${p.done} of ${p.total}`;
+  const stage = {
+    setup: "setting up (the spatial basis)",
+    samples: `samples ${p.done} of ${p.total}`,
+    fit: "fitting the operator",
+    done: "done",
+  }[p.stage];
   const left = p.remainingMs === undefined || p.stage === "done" ? "" : `, about ${duration(p.remainingMs)} left`;
   const where = p.workers > 0 ? ` on ${p.workers} worker${p.workers > 1 ? "s" : ""}` : "";
   return `Training${where}: ${stage}${left}`;

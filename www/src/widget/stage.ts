@@ -14,12 +14,33 @@ import type { WidgetSettings } from "./options.js";
 import { drawOverlay, type OverlayHandle } from "./overlay.js";
 import type { Posing } from "./posing.js";
 import { BusyIndicator, StatusLine } from "./status.js";
+import { WIDGET_CSS } from "./style.js";
 import { toPixel } from "./view.js";
 
 /** What the overlay draws beside the pose: the last velocity field, the ground truth's pose. */
 export interface Extras {
   field?: Float64Array;
   ghost?: Float64Array;
+}
+
+/**
+ * The widget's element in the page (`host`, filling its container) and, in its shadow root
+ * with the widget's CSS, the element that holds the toolbar and the stage (`root`).
+ */
+export function widgetShell(document: Document): { host: HTMLElement; root: HTMLElement } {
+  const host = document.createElement("div");
+  host.className = "akap-host";
+  host.style.cssText = "display:block;width:100%;height:100%;";
+  const shadow = host.attachShadow({ mode: "open" });
+  const style = document.createElement("style");
+  style.textContent = WIDGET_CSS;
+  const root = document.createElement("div");
+  root.className = "widget";
+  root.tabIndex = 0;
+  root.setAttribute("role", "application");
+  root.setAttribute("aria-label", "Shape posing: click the shape to add handles, drag them to pose");
+  shadow.append(style, root);
+  return { host, root };
 }
 
 /** Widths (CSS pixels) below which the widget takes its narrow layout. */

@@ -33,7 +33,7 @@ import {
   type WidgetOptions,
   type WidgetSettings,
 } from "./options.js";
-import { WorkKeeper, WorkStore, savedShape, type SavedWork } from "./persist.js";
+import { WorkKeeper, WorkStore, restoreWork, savedShape, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
 import { WidgetInput } from "./input.js";
 import { Posing, newHandle, type Parts } from "./posing.js";
@@ -41,15 +41,14 @@ import { Rig } from "./rig.js";
 import { Rigging, rigBytes, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
 import type { TrainProgress } from "../defop-pool.js";
 import { parseSession, type Session } from "./session.js";
-import { toolbarActions } from "./actions.js";
+import { widgetToolbar } from "./actions.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
 import { fileKind, fileLimits, loadImage, paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
 import { messageOf } from "./status.js";
-import { COMPACT_WIDTH, Stage } from "./stage.js";
-import { WIDGET_CSS } from "./style.js";
+import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
-import { buildToolbar, type Toolbar } from "./toolbar.js";
+import type { Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
 
 export { METHODS, type GalleryItem, type MethodPreset, type PoseDetail, type WidgetOptions } from "./options.js";
@@ -114,18 +113,7 @@ export class Widget {
       schedule: () => this.#schedule(),
     });
     const document = target.ownerDocument;
-    this.#host = document.createElement("div");
-    this.#host.className = "akap-host";
-    this.#host.style.cssText = "display:block;width:100%;height:100%;";
-    const shadow = this.#host.attachShadow({ mode: "open" });
-    const style = document.createElement("style");
-    style.textContent = WIDGET_CSS;
-    this.#root = document.createElement("div");
-    this.#root.className = "widget";
-    this.#root.tabIndex = 0;
-    this.#root.setAttribute("role", "application");
-    this.#root.setAttribute("aria-label", "Shape posing: click the shape to add handles, drag them to pose");
-    shadow.append(style, this.#root);
+    ({ host: this.#host, root: this.#root } = widgetShell(document));
 
     this.#stage = new Stage(document, () => this.#toggleHelp(false));
     this.#rigging = new Rigging({
@@ -137,7 +125,7 @@ export class Widget {
     this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
 
     if (this.#settings.controls) {
-      const actions = toolbarActions(this, {
+      this.#toolbar = widgetToolbar(document, this, this.#settings, {
         gallery: this.#gallery,
         showFile: (index) => this.#showFile(this.#files[index]!, 0),
         keepsWork: this.#keeper !== undefined,
@@ -155,14 +143,6 @@ export class Widget {
           this.#stage.hud.element.classList.toggle("hidden", !visible);
         },
         help: () => this.#toggleHelp(),
-      });
-      this.#toolbar = buildToolbar(document, actions, {
-        shapes: [
-          ...builtinShapes().map((name) => ({ value: `builtin:${name}`, label: name })),
-          ...this.#gallery.map((item, i) => ({ value: `gallery:${i}`, label: item.name })),
-        ],
-        methods: Object.entries(METHODS).map(([value, m]) => ({ value, label: m.label })),
-        settings: this.#settings,
       });
       this.#root.append(this.#toolbar.element);
     }
@@ -676,28 +656,12 @@ export class Widget {
 
   /** Puts back saved work (over the shape just installed); throws, changing nothing, if it cannot. */
   async #resume(saved: SavedWork): Promise<void> {
-    const { settings } = saved;
     const document = this.target.ownerDocument;
-    const shape = await savedShape(document, saved.shape, (s, v) => paintVector(document, s, v));
-    if (!Object.hasOwn(METHODS, settings.method)) throw new Error(`unknown method ${settings.method}`);
-    const posing = this.#posing;
-    const before = posing.snapshot();
-    try {
-      Object.assign(this.#settings, settings);
-      this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
-      posing.install(shape);
-      posing.restore({
-        ...saved,
-        shape,
-        parts: undefined,
-        method: settings.method as MethodPreset,
-        lambda: settings.lambda,
-      });
-    } catch (error) {
-      posing.restore(before);
-      throw error;
-    }
-    if (settings.method === "defop") {
+    await restoreWork(saved, this.#posing, this.#settings, (shape) =>
+      savedShape(document, shape, (s, v) => paintVector(document, s, v)),
+    );
+    this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
+    if (this.#settings.method === "defop") {
       await this.#rigging.fromCache(this.#settings.training).catch(() => false);
     }
     this.#syncToolbar();
