@@ -209,16 +209,15 @@ fn polynomial_bases_bootstrap_through_the_smaller_ones() {
     let quadratic = TrainOptions { basis: BasisKind::Quadratic, ..options(30) };
     let trained = train_here(&mesh, quadratic);
     assert_eq!(trained.operator.handle_basis().kind(), BasisKind::Quadratic);
+    // Too few to determine the basis: refused before any solve, saying how many it needs.
     let too_few = TrainOptions { basis: BasisKind::Quadratic, ..options(20) };
-    let mut trainer = Trainer::new(&mesh, &handles(&mesh), too_few).unwrap();
-    let error = loop {
-        match trainer.advance(f64::INFINITY, frozen) {
-            Ok(p) if p.stage == "done" => panic!("a quadratic fit from 21 samples of 28 functions"),
-            Ok(_) => {}
-            Err(e) => break e,
-        }
-    };
-    assert!(matches!(error, TrainError::Fit(FitError::TooFewSamples { .. })), "{error}");
+    let error = Trainer::new(&mesh, &handles(&mesh), too_few).unwrap_err();
+    assert_eq!(error, TrainError::TooFewSamples { samples: 20, needed: 27 });
+    assert!(error.to_string().contains("at least 27"), "{error}");
+    // TPS needs its linear part: 2n + 1 = 7 functions, so 6 samples and the rest pose.
+    let tps = |samples| Trainer::new(&mesh, &handles(&mesh), options(samples)).map(|_| ());
+    assert_eq!(tps(5), Err(TrainError::TooFewSamples { samples: 5, needed: 6 }));
+    assert_eq!(tps(6), Ok(()));
 }
 
 #[test]
@@ -228,9 +227,9 @@ fn bad_calls_are_refused() {
     let zero = Trainer::new(&mesh, &h, options(0)).unwrap_err();
     assert!(matches!(zero, TrainError::InvalidOption { name: "samples", .. }));
     let outside = [MeshPoint::Vertex(mesh.vertex_count() as u32)];
-    assert!(Trainer::new(&mesh, &outside, options(5)).is_err());
+    assert!(Trainer::new(&mesh, &outside, options(6)).is_err());
 
-    let mut trainer = Trainer::new(&mesh, &h, options(5)).unwrap();
+    let mut trainer = Trainer::new(&mesh, &h, options(6)).unwrap();
     let job = trainer.next_jobs(1).unwrap().remove(0);
     let solved = trainer.solver().unwrap().solve(&job.targets, Start::Rest).unwrap();
     // A job not handed out, a wrong size, then the right one, then the same again.
@@ -242,7 +241,7 @@ fn bad_calls_are_refused() {
         Err(TrainError::UnknownJob { index: job.index })
     );
     assert_eq!(trainer.progress().done, 1);
-    assert!(matches!(trainer.finish(), Err(TrainError::NotDone { done: 1, total: 6 })));
+    assert!(matches!(trainer.finish(), Err(TrainError::NotDone { done: 1, total: 7 })));
 }
 
 /// Every point of `flat` rotated by θ about the origin, then shifted by t.

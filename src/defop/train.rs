@@ -118,6 +118,15 @@ pub enum TrainError {
         /// The sample.
         index: usize,
     },
+    /// Fewer samples than the handle basis needs to be determined: its polynomial part (all
+    /// of it for a polynomial basis, the linear part for TPS) has more functions than the
+    /// samples and the rest pose.
+    TooFewSamples {
+        /// The samples asked for.
+        samples: usize,
+        /// The fewest that determine the basis.
+        needed: usize,
+    },
     /// A result for a job that was not handed out, or was already submitted, or of the
     /// wrong length.
     UnknownJob {
@@ -145,6 +154,11 @@ impl std::fmt::Display for TrainError {
                 write!(f, "sample {index} could not be solved in {MAX_REDRAWS} draws; try a smaller radius")
             }
             Self::NotDone { done, total } => write!(f, "training is not done: {done} of {total}"),
+            Self::TooFewSamples { samples, needed } => write!(
+                f,
+                "{samples} samples cannot determine this handle basis: give at least {needed} \
+                 (or a smaller basis, or fewer handles)"
+            ),
             Self::UnknownJob { index } => {
                 write!(f, "no pending job {index} takes this result (not handed out, already in, or the wrong size)")
             }
@@ -275,6 +289,11 @@ impl Trainer {
         let radius = options.radius.unwrap_or(DEFAULT_RADIUS_FRACTION * diagonal);
         let n = handles.len();
         let k = HandleCoordinates::count(n, options.canonical, options.fixed.len());
+        // With the rest pose, the samples must determine the basis's polynomial part.
+        let polynomial = if options.basis.is_polynomial() { options.basis.size_in(k, 0) } else { k + 1 };
+        if options.samples + 1 < polynomial {
+            return Err(TrainError::TooFewSamples { samples: options.samples, needed: polynomial - 1 });
+        }
         let spatial_len = if options.spatial == 0 { mesh.vertex_count() } else { options.spatial };
         let coefficients = spatial_len as f64 * options.basis.size_in(k, options.samples) as f64;
         let bytes = 16.0 * (coefficients + (options.samples * mesh.vertex_count()) as f64);

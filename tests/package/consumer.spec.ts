@@ -62,7 +62,7 @@ async function rigTrainsInAWorker(page: Page, which: Which): Promise<void> {
       setMethod(m: string): void;
       rig: { state: string; posing: boolean };
     };
-    await w.train({ samples: 3, energy: "arap", workers: 1 });
+    await w.train({ samples: 6, energy: "arap", workers: 1 });
     w.setMethod("defop");
     return w.rig;
   }, which);
