@@ -31,9 +31,16 @@ import {
   type DefOpProgress,
   type DefOpStats,
   type DefOpTrainerOptions,
-  type HandleSpec,
 } from "./defop.js";
-import { coded, toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
+import {
+  coded,
+  handleArrays,
+  toFloat64,
+  toUint32,
+  type Coordinates,
+  type HandleSpec,
+  type Indices,
+} from "./internal/arrays.js";
 import { unbundledFile } from "./internal/wasm.js";
 
 /** How far a {@link trainDefOp} is, with times. */
@@ -134,13 +141,7 @@ export async function trainDefOp(
 ): Promise<Trained> {
   const p = toFloat64(positions, "positions");
   const t = toUint32(triangles, "triangles");
-  const h =
-    "barycentric" in handles
-      ? {
-          triangles: toUint32(handles.triangles, "handles.triangles"),
-          barycentric: toFloat64(handles.barycentric, "handles.barycentric"),
-        }
-      : toUint32(handles, "handles");
+  const h = handleArrays(handles);
   control.signal?.throwIfAborted();
   const count = control.workers ?? defaultWorkerCount();
   if (!(Number.isInteger(count) && count >= 0 && count <= 64)) {
@@ -331,16 +332,12 @@ class Pool {
     job: DefOpJob,
   ): Promise<{ positions: Float64Array; iterations: number }> {
     const [member] = this.#members as [Member];
-    const h =
-      "barycentric" in handles
-        ? { triangles: toUint32(handles.triangles, "handles"), barycentric: toFloat64(handles.barycentric, "handles") }
-        : toUint32(handles, "handles");
     const request = {
       kind: "start",
       wasm: compiledModule(),
       positions: toFloat64(positions, "positions"),
       triangles: toUint32(triangles, "triangles"),
-      handles: h,
+      handles: handleArrays(handles),
       options: { energy },
       train: false,
     } as const;

@@ -9,6 +9,7 @@ import { solveGroundTruth, trainDefOp, type TrainProgress } from "../defop-pool.
 import { coded } from "../internal/arrays.js";
 import type { Posing } from "./posing.js";
 import { Rig, RigCache, rigKey, type RigTrainOptions } from "./rig.js";
+import { fetchFile } from "./sources.js";
 import type { BusyIndicator } from "./status.js";
 
 /** {@link Widget.train}'s options: the training's, and how it runs. */
@@ -256,14 +257,7 @@ export async function rigBytes(source: string | Blob | Uint8Array | ArrayBuffer)
   if (source instanceof Uint8Array) return source;
   if (source instanceof ArrayBuffer) return new Uint8Array(source);
   if (source instanceof Blob) return new Uint8Array(await source.arrayBuffer());
-  let response: Response;
-  try {
-    response = await fetch(source);
-  } catch {
-    throw new Error(`${source} could not be loaded (the address is wrong, or the server refused it)`);
-  }
-  if (!response.ok) throw new Error(`${source}: ${response.status} ${response.statusText}`);
-  return new Uint8Array(await response.arrayBuffer());
+  return new Uint8Array(await (await fetchFile(source)).arrayBuffer());
 }
 
 /** "Training: samples 120 of 1000, about 1 min 20 s left". */
