@@ -185,6 +185,7 @@ test("Save rig downloads the operator file, and Open rig poses it in a fresh pag
     return [two, Array.from(w.rigFile())];
   });
   expect(two).toEqual(one);
+  const { radius } = await rig(page);
   const download = page.waitForEvent("download");
   await page.getByRole("button", { name: "Save rig" }).click();
   const file = (await (await download).path())!;
@@ -197,7 +198,8 @@ test("Save rig downloads the operator file, and Open rig poses it in a fresh pag
   await expect(fresh.locator("body")).toHaveAttribute("data-ready", "true");
   await fresh.locator("input[name=rig-file]").setInputFiles({ name: "bar.defop", mimeType: "", buffer: saved });
   await expect.poll(async () => (await rig(fresh)).state).toBe("ready");
-  expect(await rig(fresh)).toMatchObject({ source: "file", posing: true, radius: undefined });
+  // The file keeps the training's radius (Region works for it), not the other options.
+  expect(await rig(fresh)).toMatchObject({ source: "file", posing: true, radius });
   expect(await fresh.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
   // At rest: the operator reproduces the rest pose (to rounding).
   const rest = await fresh.evaluate(() => Array.from(window.akapDemo!.widget.mesh.positions));

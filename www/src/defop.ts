@@ -268,6 +268,14 @@ export class DefOp {
     return this.#raw.handlePoints() as { triangles: Uint32Array; barycentric: Float64Array };
   }
 
+  /**
+   * The scale of its handle coordinates: for an operator trained by {@link DefOpTrainer},
+   * the training's sampling radius (operator files keep it).
+   */
+  get radius(): number {
+    return this.#raw.radius;
+  }
+
   get handleCount(): number {
     return this.#raw.handleCount;
   }

@@ -32,7 +32,7 @@ export interface RigInfo {
   training: boolean;
   /** Whether it poses now (the method is "defop" and it is ready). */
   posing: boolean;
-  /** The training's sampling radius (shape units), when known (not for a file). */
+  /** The training's sampling radius (shape units; a rig file keeps it). */
   radius: number | undefined;
   /** Largest vertex distance between the rig's pose and the ground truth, as a fraction of the shape's size, once compared. */
   comparison: number | undefined;
