@@ -339,8 +339,8 @@ export class Widget {
   /**
    * Loads a shape from a file: an SVG document (its filled shapes, in their colours), an
    * image (the shape where it is opaque, or where it differs from the background; the image
-   * warps with it), a mesh (OBJ or our JSON), or a recorded session (JSON), which is
-   * replayed. Files with several separate parts show the largest; {@link choosePart} picks
+   * warps with it), a mesh (OBJ or our JSON), a recorded session (JSON), which is
+   * replayed, or a trained rig (`.defop`, see {@link loadRig}). Files with several separate parts show the largest; {@link choosePart} picks
    * another. Throws (and changes nothing) for files it cannot use; a load is one undoable
    * step.
    */
