@@ -267,3 +267,26 @@ test("the rig example poses its shipped rig without training", async ({ page }) 
   expect(Math.max(...moved.map((x, i) => Math.abs(x - rest[i]!)))).toBeGreaterThan(5);
   await expect(page.locator("#log")).toContainText("evaluated in");
 });
+
+test("where the page may not start workers, a rig trains on the page's thread in slices", async ({ page }) => {
+  await page.addInitScript(() => {
+    // As a Content-Security-Policy without worker-src does: every `new Worker` throws.
+    (window as unknown as { Worker: unknown }).Worker = function refused(): never {
+      throw new DOMException("refused by the page's policy", "SecurityError");
+    };
+  });
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page);
+  await barWithTwoHandles(page);
+  const workers = await page.evaluate(async () => {
+    const seen: number[] = [];
+    const w = window.akapDemo!.widget as unknown as {
+      train(o: object, progress: (p: { workers: number }) => void): Promise<void>;
+    };
+    await w.train({ samples: 8, energy: "arap" }, (p) => seen.push(p.workers));
+    return seen;
+  });
+  expect(workers.length).toBeGreaterThan(1);
+  expect(new Set(workers)).toEqual(new Set([0]));
+  expect(await rig(page)).toMatchObject({ state: "ready", source: "trained", training: false });
+});

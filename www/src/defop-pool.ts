@@ -151,7 +151,8 @@ export async function trainDefOp(
   if (count === 0 || !workersAvailable()) return trainHere(p, t, h, options, control, clock);
   // One worker trains alone; with more, a lead worker holds the trainer and only hands out
   // jobs and refits, so that results are taken at once, and the others solve.
-  const pool = new Pool(count === 1 ? 1 : count + 1, control.signal);
+  const pool = startPool(count === 1 ? 1 : count + 1, control.signal);
+  if (!pool) return trainHere(p, t, h, options, control, clock);
   try {
     return await pool.train(p, t, h, options, control, clock);
   } finally {
@@ -174,7 +175,8 @@ export async function solveGroundTruth(
 ): Promise<{ positions: Float64Array; iterations: number }> {
   const job: DefOpJob = { index: 0, targets: toFloat64(targets, "targets").slice(), start: options.start?.slice() };
   options.signal?.throwIfAborted();
-  if (!workersAvailable()) {
+  const pool = workersAvailable() ? startPool(1, options.signal) : undefined;
+  if (!pool) {
     const solver = new DefOpSolver(positions, triangles, handles, { energy: options.energy });
     try {
       return solver.solve(job);
@@ -182,11 +184,19 @@ export async function solveGroundTruth(
       solver.free();
     }
   }
-  const pool = new Pool(1, options.signal);
   try {
     return await pool.solve(positions, triangles, handles, options.energy, job);
   } finally {
     pool.terminate();
+  }
+}
+
+/** A pool of `count` workers, or undefined where the page may not start workers. */
+function startPool(count: number, signal: AbortSignal | undefined): Pool | undefined {
+  try {
+    return new Pool(count, signal);
+  } catch {
+    return undefined;
   }
 }
 
@@ -275,7 +285,13 @@ class Pool {
     });
     this.#failed.catch(() => {});
     signal?.addEventListener("abort", () => this.#fail(abortReason(signal)), { once: true });
-    for (let i = 0; i < count; i++) this.#members.push(this.#spawn(i));
+    try {
+      for (let i = 0; i < count; i++) this.#members.push(this.#spawn(i));
+    } catch (error) {
+      // `new Worker` refused (a page whose policy forbids workers): none is left running.
+      this.terminate();
+      throw error;
+    }
   }
 
   #spawn(index: number): Member {
