@@ -237,7 +237,7 @@ export class Rigging {
     if (!rig) return "no trained rig: Train to pose with one (posing with AKAP until then)";
     if (!posing.posingWithRig) return "the rig is stale (the shape or handles changed): Train again (posing with AKAP)";
     const what = rig.options
-      ? `${rig.options.samples ?? 200} samples, ${rig.options.energy === "arap" ? "ARAP" : "S-ARAP"}`
+      ? `${rig.options.samples === undefined ? "" : `${rig.options.samples} samples, `}${rig.options.energy === "arap" ? "ARAP" : "S-ARAP"}`
       : "from a file";
     const compare = this.comparison
       ? `; ground truth ${(100 * this.comparison.distance).toFixed(2)}% of the size away`
