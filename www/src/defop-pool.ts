@@ -15,7 +15,7 @@
  *
  * @example
  * ```ts
- * const op = await trainDefOp(mesh.positions, mesh.triangles, [0, 42], { samples: 200 }, {
+ * const { operator } = await trainDefOp(mesh.positions, mesh.triangles, [0, 42], { samples: 200 }, {
  *   onProgress: (p) => console.log(`${p.done} of ${p.total}`),
  *   signal: AbortSignal.timeout(60_000),
  * });
