@@ -15,6 +15,7 @@ mod path_data;
 mod style;
 mod text;
 mod transform;
+pub mod tree;
 
 use std::cell::RefCell;
 
@@ -162,7 +163,46 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
         Walk { cursor: RefCell::new(Cursor::new(text)), limits, paths: Vec::new(), skipped: Vec::new(), points: 0 };
     walk.run(root)?;
     let Walk { paths, skipped, .. } = walk;
+    shape_of(paths, skipped, options)
+}
 
+/// Issue 21's spike: the same, with the drawing resolved by usvg (fills and strokes; see
+/// [`tree`]). Not the importer yet: for comparing the two.
+pub fn import_svg_usvg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportError> {
+    options.validate()?;
+    let xml = |e: roxmltree::Error| {
+        let pos = e.pos();
+        ImportError::Xml { message: e.to_string(), line: pos.row, column: pos.col }
+    };
+    let parsing = ParsingOptions { allow_dtd: true, ..ParsingOptions::default() };
+    let document = Document::parse_with_options(text, parsing).map_err(xml)?;
+    let root = document.root_element();
+    // With a viewBox, usvg's coordinates are its user units moved by its corner once the
+    // root's width and height are gone (the size is then the viewBox's).
+    let view_box = root.attribute("viewBox").and_then(|v| {
+        let n: Vec<f64> = v.split(|c: char| c == ',' || c.is_whitespace()).filter_map(|t| t.parse().ok()).collect();
+        (n.len() == 4 && n[2] > 0.0 && n[3] > 0.0).then(|| [n[0], n[1], n[2], n[3]])
+    });
+    let mut plain = text.to_string();
+    if view_box.is_some() {
+        for a in root.attributes().filter(|a| matches!(a.name(), "width" | "height")) {
+            let range = a.range();
+            plain.replace_range(range.clone(), &" ".repeat(range.len()));
+        }
+    }
+    let tree = usvg::Tree::from_str(&plain, &usvg::Options::default()).map_err(|e| ImportError::Xml {
+        message: e.to_string(),
+        line: 0,
+        column: 0,
+    })?;
+    let height = view_box.map_or(f64::from(tree.size().height()), |v| v[3]);
+    let paths = tree::visible_paths(&tree, [1.0, 0.0, 0.0, -1.0, 0.0, height]);
+    shape_of(paths.into_iter().map(|(p, _)| p).collect(), Vec::new(), options)
+}
+
+/// The outlines of `paths` (flattened, nested or merged), and the paths themselves.
+fn shape_of(paths: Vec<SvgPath>, skipped: Vec<String>, options: &SvgOptions) -> Result<SvgShape, ImportError> {
+    let limits = &options.limits;
     let every_point = paths.iter().flat_map(|p| p.path.points.iter().copied());
     let Some((lo, hi)) = bounding_box(every_point) else {
         return Err(ImportError::NoShapes { skipped });

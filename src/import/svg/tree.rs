@@ -1,0 +1,135 @@
+//! A spike for issue 21 (not wired into `import_svg` yet): the drawing as usvg resolves it
+//! (CSS, `<use>`, units, transforms, `switch`, markers, paint references), turned into the
+//! paths our downstream steps take, in output coordinates (the root's user units, y up).
+//! Visible fills become filled paths with their rule and colour; visible strokes become
+//! their outlines (dashes first, then tiny-skia's stroker: width, joins, caps, miter
+//! limit), filled with the nonzero rule. Groups with zero opacity, invisible paths and
+//! paints with zero opacity draw nothing. Clip paths and masks are not applied yet.
+
+use tiny_skia_path::{PathSegment, Transform};
+
+use super::{FillColour, SvgPath};
+use crate::import::error::ElementRef;
+use crate::import::vector::{FillRule, VectorPath, Verb};
+
+/// What a usvg path contributes: its fill, or its stroke's outline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// The path's interior.
+    Fill,
+    /// The area its stroke covers.
+    Stroke,
+}
+
+/// The filled and stroked areas of `tree`, each with where it came from, in document order
+/// (a path's fill before its stroke, as `paint-order` normally has it).
+pub fn visible_paths(tree: &usvg::Tree, output: [f64; 6]) -> Vec<(SvgPath, Part)> {
+    let mut out = Vec::new();
+    let mut stack: Vec<(&usvg::Group, f32)> = vec![(tree.root(), 1.0)];
+    // Depth-first, in document order: children are pushed in reverse.
+    let mut pending: Vec<(&usvg::Node, f32)> = Vec::new();
+    while let Some((group, opacity)) = stack.pop() {
+        for child in group.children().iter().rev() {
+            pending.push((child, opacity));
+        }
+        while let Some((node, opacity)) = pending.pop() {
+            match node {
+                usvg::Node::Group(g) => {
+                    let opacity = opacity * g.opacity().get();
+                    if opacity > 0.0 {
+                        for child in g.children().iter().rev() {
+                            pending.push((child, opacity));
+                        }
+                    }
+                }
+                usvg::Node::Path(p) if p.is_visible() => add_path(p, opacity, output, &mut out),
+                _ => {}
+            }
+        }
+    }
+    out
+}
+
+fn add_path(p: &usvg::Path, opacity: f32, output: [f64; 6], out: &mut Vec<(SvgPath, Part)>) {
+    let element =
+        ElementRef { name: "path".into(), id: (!p.id().is_empty()).then(|| p.id().to_string()), line: 0, column: 0 };
+    let ts = p.abs_transform();
+    if let Some(fill) = p.fill() {
+        let alpha = opacity * fill.opacity().get();
+        if alpha > 0.0 {
+            let rule = match fill.rule() {
+                usvg::FillRule::NonZero => FillRule::NonZero,
+                usvg::FillRule::EvenOdd => FillRule::EvenOdd,
+            };
+            let path = convert(p.data(), ts, output);
+            out.push((
+                SvgPath { element: element.clone(), path, fill_rule: rule, fill: colour(fill.paint(), alpha) },
+                Part::Fill,
+            ));
+        }
+    }
+    if let Some(stroke) = p.stroke() {
+        let alpha = opacity * stroke.opacity().get();
+        if alpha > 0.0 {
+            // Stroked in the path's own coordinates (where width and dashes are given), with
+            // the resolution scale of the transform so that round joins stay round.
+            let scale = (ts.sx * ts.sy - ts.kx * ts.ky).abs().sqrt().max(1e-6);
+            let tiny = stroke.to_tiny_skia();
+            let dashed = match &tiny.dash {
+                Some(dash) => p.data().dash(dash, scale),
+                None => Some(p.data().clone()),
+            };
+            if let Some(outline) = dashed.and_then(|d| d.stroke(&tiny, scale)) {
+                let path = convert(&outline, ts, output);
+                out.push((
+                    SvgPath { element, path, fill_rule: FillRule::NonZero, fill: colour(stroke.paint(), alpha) },
+                    Part::Stroke,
+                ));
+            }
+        }
+    }
+}
+
+fn colour(paint: &usvg::Paint, alpha: f32) -> Option<FillColour> {
+    match paint {
+        usvg::Paint::Color(c) => Some(FillColour { red: c.red, green: c.green, blue: c.blue, alpha: f64::from(alpha) }),
+        _ => None,
+    }
+}
+
+/// A tiny-skia path through `ts` (f32, as usvg keeps it) and then `output` (f64).
+fn convert(path: &tiny_skia_path::Path, ts: Transform, output: [f64; 6]) -> VectorPath {
+    let [a, b, c, d, e, f] = output;
+    let place = |p: tiny_skia_path::Point| {
+        let (x, y) = (f64::from(p.x), f64::from(p.y));
+        let (x, y) = (
+            f64::from(ts.sx) * x + f64::from(ts.kx) * y + f64::from(ts.tx),
+            f64::from(ts.ky) * x + f64::from(ts.sy) * y + f64::from(ts.ty),
+        );
+        [a * x + c * y + e, b * x + d * y + f]
+    };
+    let mut verbs = Vec::new();
+    let mut points = Vec::new();
+    for segment in path.segments() {
+        match segment {
+            PathSegment::MoveTo(p) => {
+                verbs.push(Verb::Move);
+                points.push(place(p));
+            }
+            PathSegment::LineTo(p) => {
+                verbs.push(Verb::Line);
+                points.push(place(p));
+            }
+            PathSegment::QuadTo(p1, p) => {
+                verbs.push(Verb::Quad);
+                points.extend([place(p1), place(p)]);
+            }
+            PathSegment::CubicTo(p1, p2, p) => {
+                verbs.push(Verb::Cubic);
+                points.extend([place(p1), place(p2), place(p)]);
+            }
+            PathSegment::Close => verbs.push(Verb::Close),
+        }
+    }
+    VectorPath { verbs, points }
+}
