@@ -396,6 +396,13 @@ impl JsDefOp {
         .into())
     }
 
+    /// The scale of its handle coordinates, `u = (Q − P) / r`: for an operator trained by
+    /// `DefOpTrainer`, the training's sampling radius (files keep it).
+    #[wasm_bindgen(getter)]
+    pub fn radius(&self) -> f64 {
+        self.operator.handle_basis().scale()
+    }
+
     /// The number of handles.
     #[wasm_bindgen(getter, js_name = handleCount)]
     pub fn handle_count(&self) -> usize {

@@ -185,6 +185,7 @@ test("Save rig downloads the operator file, and Open rig poses it in a fresh pag
     return [two, Array.from(w.rigFile())];
   });
   expect(two).toEqual(one);
+  const { radius } = await rig(page);
   const download = page.waitForEvent("download");
   await page.getByRole("button", { name: "Save rig" }).click();
   const file = (await (await download).path())!;
@@ -197,7 +198,8 @@ test("Save rig downloads the operator file, and Open rig poses it in a fresh pag
   await expect(fresh.locator("body")).toHaveAttribute("data-ready", "true");
   await fresh.locator("input[name=rig-file]").setInputFiles({ name: "bar.defop", mimeType: "", buffer: saved });
   await expect.poll(async () => (await rig(fresh)).state).toBe("ready");
-  expect(await rig(fresh)).toMatchObject({ source: "file", posing: true, radius: undefined });
+  // The file keeps the training's radius (Region works for it), not the other options.
+  expect(await rig(fresh)).toMatchObject({ source: "file", posing: true, radius });
   expect(await fresh.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
   // At rest: the operator reproduces the rest pose (to rounding).
   const rest = await fresh.evaluate(() => Array.from(window.akapDemo!.widget.mesh.positions));
@@ -264,4 +266,27 @@ test("the rig example poses its shipped rig without training", async ({ page }) 
   const moved = await page.evaluate(() => Array.from(window.widgetFor("element").positions()));
   expect(Math.max(...moved.map((x, i) => Math.abs(x - rest[i]!)))).toBeGreaterThan(5);
   await expect(page.locator("#log")).toContainText("evaluated in");
+});
+
+test("where the page may not start workers, a rig trains on the page's thread in slices", async ({ page }) => {
+  await page.addInitScript(() => {
+    // As a Content-Security-Policy without worker-src does: every `new Worker` throws.
+    (window as unknown as { Worker: unknown }).Worker = function refused(): never {
+      throw new DOMException("refused by the page's policy", "SecurityError");
+    };
+  });
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page);
+  await barWithTwoHandles(page);
+  const workers = await page.evaluate(async () => {
+    const seen: number[] = [];
+    const w = window.akapDemo!.widget as unknown as {
+      train(o: object, progress: (p: { workers: number }) => void): Promise<void>;
+    };
+    await w.train({ samples: 8, energy: "arap" }, (p) => seen.push(p.workers));
+    return seen;
+  });
+  expect(workers.length).toBeGreaterThan(1);
+  expect(new Set(workers)).toEqual(new Set([0]));
+  expect(await rig(page)).toMatchObject({ state: "ready", source: "trained", training: false });
 });

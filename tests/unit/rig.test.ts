@@ -48,7 +48,8 @@ describe("Rig", () => {
     const bytes = rig.toBytes();
     const back = Rig.fromBytes(bytes);
     expect(back.source).toBe("file");
-    expect(back.radius).toBeUndefined();
+    expect(back.radius).toBe(radius);
+    expect(back.options).toBeUndefined();
     expect(back.points).toEqual(points);
     expect(back.fits(copy, handles)).toBe(true);
     const targets = handles.map((_, i) => ({ target: [0.1 * i, -0.2 + 0.3 * i] as [number, number] }));

@@ -31,9 +31,16 @@ import {
   type DefOpProgress,
   type DefOpStats,
   type DefOpTrainerOptions,
-  type HandleSpec,
 } from "./defop.js";
-import { coded, toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
+import {
+  coded,
+  handleArrays,
+  toFloat64,
+  toUint32,
+  type Coordinates,
+  type HandleSpec,
+  type Indices,
+} from "./internal/arrays.js";
 import { unbundledFile } from "./internal/wasm.js";
 
 /** How far a {@link trainDefOp} is, with times. */
@@ -134,13 +141,7 @@ export async function trainDefOp(
 ): Promise<Trained> {
   const p = toFloat64(positions, "positions");
   const t = toUint32(triangles, "triangles");
-  const h =
-    "barycentric" in handles
-      ? {
-          triangles: toUint32(handles.triangles, "handles.triangles"),
-          barycentric: toFloat64(handles.barycentric, "handles.barycentric"),
-        }
-      : toUint32(handles, "handles");
+  const h = handleArrays(handles);
   control.signal?.throwIfAborted();
   const count = control.workers ?? defaultWorkerCount();
   if (!(Number.isInteger(count) && count >= 0 && count <= 64)) {
@@ -150,7 +151,8 @@ export async function trainDefOp(
   if (count === 0 || !workersAvailable()) return trainHere(p, t, h, options, control, clock);
   // One worker trains alone; with more, a lead worker holds the trainer and only hands out
   // jobs and refits, so that results are taken at once, and the others solve.
-  const pool = new Pool(count === 1 ? 1 : count + 1, control.signal);
+  const pool = startPool(count === 1 ? 1 : count + 1, control.signal);
+  if (!pool) return trainHere(p, t, h, options, control, clock);
   try {
     return await pool.train(p, t, h, options, control, clock);
   } finally {
@@ -173,7 +175,8 @@ export async function solveGroundTruth(
 ): Promise<{ positions: Float64Array; iterations: number }> {
   const job: DefOpJob = { index: 0, targets: toFloat64(targets, "targets").slice(), start: options.start?.slice() };
   options.signal?.throwIfAborted();
-  if (!workersAvailable()) {
+  const pool = workersAvailable() ? startPool(1, options.signal) : undefined;
+  if (!pool) {
     const solver = new DefOpSolver(positions, triangles, handles, { energy: options.energy });
     try {
       return solver.solve(job);
@@ -181,11 +184,19 @@ export async function solveGroundTruth(
       solver.free();
     }
   }
-  const pool = new Pool(1, options.signal);
   try {
     return await pool.solve(positions, triangles, handles, options.energy, job);
   } finally {
     pool.terminate();
+  }
+}
+
+/** A pool of `count` workers, or undefined where the page may not start workers. */
+function startPool(count: number, signal: AbortSignal | undefined): Pool | undefined {
+  try {
+    return new Pool(count, signal);
+  } catch {
+    return undefined;
   }
 }
 
@@ -274,7 +285,13 @@ class Pool {
     });
     this.#failed.catch(() => {});
     signal?.addEventListener("abort", () => this.#fail(abortReason(signal)), { once: true });
-    for (let i = 0; i < count; i++) this.#members.push(this.#spawn(i));
+    try {
+      for (let i = 0; i < count; i++) this.#members.push(this.#spawn(i));
+    } catch (error) {
+      // `new Worker` refused (a page whose policy forbids workers): none is left running.
+      this.terminate();
+      throw error;
+    }
   }
 
   #spawn(index: number): Member {
@@ -331,16 +348,12 @@ class Pool {
     job: DefOpJob,
   ): Promise<{ positions: Float64Array; iterations: number }> {
     const [member] = this.#members as [Member];
-    const h =
-      "barycentric" in handles
-        ? { triangles: toUint32(handles.triangles, "handles"), barycentric: toFloat64(handles.barycentric, "handles") }
-        : toUint32(handles, "handles");
     const request = {
       kind: "start",
       wasm: compiledModule(),
       positions: toFloat64(positions, "positions"),
       triangles: toUint32(triangles, "triangles"),
-      handles: h,
+      handles: handleArrays(handles),
       options: { energy },
       train: false,
     } as const;

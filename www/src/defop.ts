@@ -16,7 +16,14 @@
  * const posed = op.evaluate([0, 0, 0.1, 0.3]); // two targets, x and y each
  * ```
  */
-import { toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
+import {
+  handleArrays,
+  toFloat64,
+  toUint32,
+  type Coordinates,
+  type HandleSpec,
+  type Indices,
+} from "./internal/arrays.js";
 import type { MeshData } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
 import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
@@ -52,8 +59,7 @@ export interface DefOpTrainerOptions {
   fixed?: number[];
 }
 
-/** Handles on vertices (their indices), or at points in triangles (3 barycentric coordinates each). */
-export type HandleSpec = Indices | { triangles: Indices; barycentric: Coordinates };
+export type { HandleSpec } from "./internal/arrays.js";
 
 /** How far training is: `done` of `total` units (one per sample, one for the final fit). */
 export interface DefOpProgress {
@@ -120,16 +126,11 @@ export class DefOpTrainer {
     assertLoaded();
     const p = toFloat64(positions, "positions");
     const t = toUint32(triangles, "triangles");
+    const h = handleArrays(handles);
     this.#inner =
-      "barycentric" in handles
-        ? raw.DefOpTrainer.withHandlePoints(
-            p,
-            t,
-            toUint32(handles.triangles, "handles.triangles"),
-            toFloat64(handles.barycentric, "handles.barycentric"),
-            options,
-          )
-        : new raw.DefOpTrainer(p, t, toUint32(handles, "handles"), options);
+      h instanceof Uint32Array
+        ? new raw.DefOpTrainer(p, t, h, options)
+        : raw.DefOpTrainer.withHandlePoints(p, t, h.triangles, h.barycentric, options);
   }
 
   get #raw(): rawTypes.DefOpTrainer {
@@ -267,6 +268,14 @@ export class DefOp {
     return this.#raw.handlePoints() as { triangles: Uint32Array; barycentric: Float64Array };
   }
 
+  /**
+   * The scale of its handle coordinates: for an operator trained by {@link DefOpTrainer},
+   * the training's sampling radius (operator files keep it).
+   */
+  get radius(): number {
+    return this.#raw.radius;
+  }
+
   get handleCount(): number {
     return this.#raw.handleCount;
   }
@@ -300,16 +309,11 @@ export class DefOpSolver {
     assertLoaded();
     const p = toFloat64(positions, "positions");
     const t = toUint32(triangles, "triangles");
+    const h = handleArrays(handles);
     this.#inner =
-      "barycentric" in handles
-        ? raw.DefOpSolver.withHandlePoints(
-            p,
-            t,
-            toUint32(handles.triangles, "handles.triangles"),
-            toFloat64(handles.barycentric, "handles.barycentric"),
-            options,
-          )
-        : new raw.DefOpSolver(p, t, toUint32(handles, "handles"), options);
+      h instanceof Uint32Array
+        ? new raw.DefOpSolver(p, t, h, options)
+        : raw.DefOpSolver.withHandlePoints(p, t, h.triangles, h.barycentric, options);
   }
 
   get #raw(): rawTypes.DefOpSolver {

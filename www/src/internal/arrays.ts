@@ -30,3 +30,16 @@ export function toUint32(values: Indices, what: string): Uint32Array {
   if (bad >= 0) throw coded(new RangeError(`${what}[${bad}] is ${values[bad]}, not an index`), "invalid-argument");
   return Uint32Array.from(values);
 }
+
+/** Handles on vertices (their indices), or at points in triangles (3 barycentric coordinates each). (Public through `defop.ts`.) */
+export type HandleSpec = Indices | { triangles: Indices; barycentric: Coordinates };
+
+/** A {@link HandleSpec} as the typed arrays the bindings take (and workers are posted). */
+export function handleArrays(handles: HandleSpec): Uint32Array | { triangles: Uint32Array; barycentric: Float64Array } {
+  return "barycentric" in handles
+    ? {
+        triangles: toUint32(handles.triangles, "handles.triangles"),
+        barycentric: toFloat64(handles.barycentric, "handles.barycentric"),
+      }
+    : toUint32(handles, "handles");
+}

@@ -89,5 +89,12 @@ export const HELP: readonly { keys: string; does: string }[] = [
   { keys: "F or 0", does: "fit the shape in view" },
   { keys: "W", does: "wireframe" },
   { keys: "V", does: "velocity field arrows" },
+  {
+    keys: "Train (toolbar)",
+    does:
+      "train a rig for the handles placed (in the background; keep posing); it then poses with " +
+      "the method Trained (DefOp) until the handles change",
+  },
+  { keys: "Drop a .defop file", does: "open a trained rig: it poses at once" },
   { keys: "?", does: "this help" },
 ];

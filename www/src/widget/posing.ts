@@ -86,7 +86,7 @@ export class Posing {
   evaluationMs = 0;
   /** The rig's last pose and the targets it was for (skipped when they have not moved). */
   #rigPose: Float64Array | undefined;
-  #rigTargets: number[] | undefined;
+  #rigTargets: Float64Array | undefined;
   readonly #host: PosingHost;
   #gestureBefore: Snapshot | undefined;
   #gestureChanged = false;
@@ -419,15 +419,23 @@ export class Posing {
    * pose; nothing when the targets are those of the last evaluation.
    */
   #evaluateRig(rig: Rig): number {
-    const targets = this.handles.flatMap((h) => h.target);
-    if (this.#rigTargets && targets.every((t, i) => t === this.#rigTargets![i])) return 0;
+    const last = this.#rigTargets;
+    if (
+      last?.length === 2 * this.handles.length &&
+      this.handles.every((h, i) => h.target[0] === last[2 * i] && h.target[1] === last[2 * i + 1])
+    ) {
+      return 0;
+    }
     const size = 2 * this.shape.mesh.vertexCount;
     if (this.#rigPose?.length !== size) this.#rigPose = new Float64Array(size);
     const started = performance.now();
     rig.evaluate(this.handles, this.#rigPose);
     this.evaluationMs = performance.now() - started;
     this.deformer.setPositions(this.#rigPose);
-    this.#rigTargets = targets;
+    // Kept in place (allocated again only when the handle count changes).
+    const kept = last?.length === 2 * this.handles.length ? last : new Float64Array(2 * this.handles.length);
+    this.handles.forEach((h, i) => kept.set(h.target, 2 * i));
+    this.#rigTargets = kept;
     this.atRest = false;
     this.record({ positions: this.#rigPose });
     return 1;

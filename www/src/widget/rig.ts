@@ -23,7 +23,7 @@ export class Rig {
   /** The rest mesh it poses. */
   readonly mesh: MeshData;
   readonly points: readonly MeshPoint[];
-  /** The training's sampling radius; undefined for a rig from a file (files do not keep it). */
+  /** The training's sampling radius (a file keeps it as its handle coordinates' scale). */
   readonly radius: number | undefined;
   /** The training options; undefined for a rig from a file. */
   readonly options: RigTrainOptions | undefined;
@@ -66,7 +66,9 @@ export class Rig {
           number,
         ],
       }));
-      return new Rig(operator, operator.mesh(), points, { radius: undefined, options: undefined, source });
+      // The file keeps the sampling radius (as the scale of the handle coordinates), not
+      // the other training options.
+      return new Rig(operator, operator.mesh(), points, { radius: operator.radius, options: undefined, source });
     } catch (error) {
       operator.free();
       throw error;

@@ -9,6 +9,7 @@ import { solveGroundTruth, trainDefOp, type TrainProgress } from "../defop-pool.
 import { coded } from "../internal/arrays.js";
 import type { Posing } from "./posing.js";
 import { Rig, RigCache, rigKey, type RigTrainOptions } from "./rig.js";
+import { fetchFile } from "./sources.js";
 import type { BusyIndicator } from "./status.js";
 
 /** {@link Widget.train}'s options: the training's, and how it runs. */
@@ -31,7 +32,7 @@ export interface RigInfo {
   training: boolean;
   /** Whether it poses now (the method is "defop" and it is ready). */
   posing: boolean;
-  /** The training's sampling radius (shape units), when known (not for a file). */
+  /** The training's sampling radius (shape units; a rig file keeps it). */
   radius: number | undefined;
   /** Largest vertex distance between the rig's pose and the ground truth, as a fraction of the shape's size, once compared. */
   comparison: number | undefined;
@@ -236,7 +237,7 @@ export class Rigging {
     if (!rig) return "no trained rig: Train to pose with one (posing with AKAP until then)";
     if (!posing.posingWithRig) return "the rig is stale (the shape or handles changed): Train again (posing with AKAP)";
     const what = rig.options
-      ? `${rig.options.samples ?? 200} samples, ${rig.options.energy === "arap" ? "ARAP" : "S-ARAP"}`
+      ? `${rig.options.samples === undefined ? "" : `${rig.options.samples} samples, `}${rig.options.energy === "arap" ? "ARAP" : "S-ARAP"}`
       : "from a file";
     const compare = this.comparison
       ? `; ground truth ${(100 * this.comparison.distance).toFixed(2)}% of the size away`
@@ -256,14 +257,7 @@ export async function rigBytes(source: string | Blob | Uint8Array | ArrayBuffer)
   if (source instanceof Uint8Array) return source;
   if (source instanceof ArrayBuffer) return new Uint8Array(source);
   if (source instanceof Blob) return new Uint8Array(await source.arrayBuffer());
-  let response: Response;
-  try {
-    response = await fetch(source);
-  } catch {
-    throw new Error(`${source} could not be loaded (the address is wrong, or the server refused it)`);
-  }
-  if (!response.ok) throw new Error(`${source}: ${response.status} ${response.statusText}`);
-  return new Uint8Array(await response.arrayBuffer());
+  return new Uint8Array(await (await fetchFile(source)).arrayBuffer());
 }
 
 /** "Training: samples 120 of 1000, about 1 min 20 s left". */

@@ -164,3 +164,15 @@ export function loadImage(url: string): Promise<HTMLImageElement> {
     image.src = url;
   });
 }
+
+/** `fetch(url)`, with an error that says what went wrong when it fails or is not OK. */
+export async function fetchFile(url: string): Promise<Response> {
+  let response: Response;
+  try {
+    response = await fetch(url);
+  } catch {
+    throw new Error(`${url} could not be loaded (the address is wrong, or the server refused it)`);
+  }
+  if (!response.ok) throw new Error(`${url}: ${response.status} ${response.statusText}`);
+  return response;
+}

@@ -162,7 +162,7 @@ export function buildToolbar(
   shape.addEventListener("change", () => actions.shape(shape.value));
   const picker = document.createElement("input");
   picker.type = "file";
-  picker.accept = ".svg,.png,.jpg,.jpeg,.webp,.gif,.obj,.json,image/*";
+  picker.accept = ".svg,.png,.jpg,.jpeg,.webp,.gif,.obj,.json,.defop,image/*";
   picker.className = "hidden";
   picker.name = "shape-file";
   picker.addEventListener("change", () => {
@@ -174,7 +174,7 @@ export function buildToolbar(
   button(
     shapeGroup,
     "Open…",
-    "Open an SVG, an image, a mesh (OBJ, JSON) or a session; or drop a file on the shape",
+    "Open an SVG, an image, a mesh (OBJ, JSON), a session or a rig (.defop); or drop a file on the shape",
     () => picker.click(),
     "open",
   );

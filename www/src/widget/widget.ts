@@ -44,7 +44,16 @@ import { parseSession, type Session } from "./session.js";
 import { widgetToolbar } from "./actions.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
-import { fileKind, fileLimits, loadImage, paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
+import {
+  fetchFile,
+  fileKind,
+  fileLimits,
+  loadImage,
+  paintVector,
+  partShape,
+  readShapeFile,
+  type Loaded,
+} from "./sources.js";
 import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
@@ -330,8 +339,8 @@ export class Widget {
   /**
    * Loads a shape from a file: an SVG document (its filled shapes, in their colours), an
    * image (the shape where it is opaque, or where it differs from the background; the image
-   * warps with it), a mesh (OBJ or our JSON), or a recorded session (JSON), which is
-   * replayed. Files with several separate parts show the largest; {@link choosePart} picks
+   * warps with it), a mesh (OBJ or our JSON), a recorded session (JSON), which is
+   * replayed, or a trained rig (`.defop`, see {@link loadRig}). Files with several separate parts show the largest; {@link choosePart} picks
    * another. Throws (and changes nothing) for files it cannot use; a load is one undoable
    * step.
    */
@@ -350,13 +359,7 @@ export class Widget {
 
   /** Loads a shape file by URL (see {@link loadFile}). */
   async loadUrl(url: string): Promise<void> {
-    let response: Response;
-    try {
-      response = await fetch(url);
-    } catch {
-      throw new Error(`${url} could not be loaded (the address is wrong, or the server refused it)`);
-    }
-    if (!response.ok) throw new Error(`${url}: ${response.status} ${response.statusText}`);
+    const response = await fetchFile(url);
     const name = decodeURIComponent(new URL(url, this.target.ownerDocument.baseURI).pathname.split("/").pop() ?? url);
     await this.loadFile(await response.blob(), name);
   }
