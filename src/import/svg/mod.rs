@@ -130,30 +130,7 @@ pub struct SvgShape {
 pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportError> {
     options.validate()?;
     let limits = &options.limits;
-    if text.len() > limits.max_bytes {
-        return Err(ImportError::TooLarge {
-            what: "the SVG text",
-            size: text.len(),
-            limit: limits.max_bytes,
-            unit: "bytes",
-        });
-    }
-    check_attributes(text, limits.max_elements, limits.max_attribute_pairs).map_err(|e| {
-        let (line, column) = Cursor::new(text).at(e.tag);
-        ImportError::TooManyAttributes { line, column, attributes: e.attributes, limit: limits.max_attribute_pairs }
-    })?;
-    let parsing = ParsingOptions {
-        allow_dtd: true,
-        nodes_limit: u32::try_from(limits.max_elements).unwrap_or(u32::MAX),
-        ..ParsingOptions::default()
-    };
-    let document = Document::parse_with_options(text, parsing).map_err(|e| {
-        let pos = e.pos();
-        let message = e.to_string();
-        let suffix = format!(" at {}:{}", pos.row, pos.col);
-        let message = message.strip_suffix(&suffix).unwrap_or(&message).to_string();
-        ImportError::Xml { message, line: pos.row, column: pos.col }
-    })?;
+    let document = parse_document(text, limits)?;
     let root = document.root_element();
     if root.tag_name().name() != "svg" || !in_svg_namespace(root) {
         return Err(ImportError::NotSvg { root: root.tag_name().name().to_string() });
@@ -167,37 +144,51 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
 }
 
 /// Issue 21's spike: the same, with the drawing resolved by usvg (fills and strokes; see
-/// [`tree`]). Not the importer yet: for comparing the two.
+/// [`tree`]). Not the importer yet: for comparing the two. The document is read with every
+/// limit first (as [`import_svg`] reads it) and handed to usvg as it is.
 pub fn import_svg_usvg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportError> {
     options.validate()?;
-    let xml = |e: roxmltree::Error| {
-        let pos = e.pos();
-        ImportError::Xml { message: e.to_string(), line: pos.row, column: pos.col }
-    };
-    let parsing = ParsingOptions { allow_dtd: true, ..ParsingOptions::default() };
-    let document = Document::parse_with_options(text, parsing).map_err(xml)?;
+    let limits = &options.limits;
+    let document = parse_document(text, limits)?;
     let root = document.root_element();
-    // With a viewBox, usvg's coordinates are its user units moved by its corner once the
-    // root's width and height are gone (the size is then the viewBox's).
-    let view_box = root.attribute("viewBox").and_then(|v| {
-        let n: Vec<f64> = v.split(|c: char| c == ',' || c.is_whitespace()).filter_map(|t| t.parse().ok()).collect();
-        (n.len() == 4 && n[2] > 0.0 && n[3] > 0.0).then(|| [n[0], n[1], n[2], n[3]])
-    });
+    if root.tag_name().name() != "svg" || !in_svg_namespace(root) {
+        return Err(ImportError::NotSvg { root: root.tag_name().name().to_string() });
+    }
+    // usvg maps the root's user units into its size through the viewBox; with the size set
+    // to the viewBox's own (or 1 x 1 with a unit viewBox when there is none), that map is
+    // the shift by the viewBox's corner, and nothing of usvg's sizing rules is needed.
+    let (view_box, output) = match root.attribute("viewBox").and_then(|v| v.parse::<svgtypes::ViewBox>().ok()) {
+        Some(v) if v.w > 0.0 && v.h > 0.0 && v.w.is_finite() && v.h.is_finite() => {
+            ([v.x, v.y, v.w, v.h], [1.0, 0.0, 0.0, -1.0, 0.0, v.h])
+        }
+        _ => {
+            let height = root.attribute("height").and_then(|h| parse_length(h).ok()).unwrap_or(0.0);
+            ([0.0, 0.0, 1.0, 1.0], [1.0, 0.0, 0.0, -1.0, 0.0, height])
+        }
+    };
     let mut plain = text.to_string();
-    if view_box.is_some() {
-        for a in root.attributes().filter(|a| matches!(a.name(), "width" | "height")) {
-            let range = a.range();
-            plain.replace_range(range.clone(), &" ".repeat(range.len()));
+    for a in root.attributes().filter(|a| matches!(a.name(), "width" | "height" | "viewBox" | "preserveAspectRatio")) {
+        let range = a.range();
+        plain.replace_range(range.clone(), &" ".repeat(range.len()));
+    }
+    let [vx, vy, vw, vh] = view_box;
+    // Right after the root's (possibly prefixed) tag name.
+    let tag = root.range().start + 1;
+    let name_end = tag + text[tag..].find(|c: char| c.is_whitespace() || c == '>' || c == '/').unwrap_or(0);
+    plain.insert_str(name_end, &format!(r#" width="{vw}" height="{vh}" viewBox="{vx} {vy} {vw} {vh}""#));
+    let sized = parse_document(&plain, limits)?;
+    let tree = usvg::Tree::from_xmltree(&sized, &usvg::Options::default())
+        .map_err(|e| ImportError::Svg { message: e.to_string() })?;
+    // Drawn by browsers, not imported: said once each.
+    let mut skipped: Vec<String> = Vec::new();
+    for node in document.descendants().filter(|n| n.is_element() && in_svg_namespace(*n)) {
+        let name = node.tag_name().name();
+        if matches!(name, "text" | "image" | "foreignObject") && !skipped.iter().any(|s| s == name) {
+            skipped.push(name.to_string());
         }
     }
-    let tree = usvg::Tree::from_str(&plain, &usvg::Options::default()).map_err(|e| ImportError::Xml {
-        message: e.to_string(),
-        line: 0,
-        column: 0,
-    })?;
-    let height = view_box.map_or(f64::from(tree.size().height()), |v| v[3]);
-    let paths = tree::visible_paths(&tree, [1.0, 0.0, 0.0, -1.0, 0.0, height]);
-    shape_of(paths.into_iter().map(|(p, _)| p).collect(), Vec::new(), options)
+    let paths = tree::visible_paths(&tree, output, limits)?;
+    shape_of(paths.into_iter().map(|(p, _)| p).collect(), skipped, options)
 }
 
 /// The outlines of `paths` (flattened, nested or merged), and the paths themselves.
@@ -233,6 +224,36 @@ fn shape_of(paths: Vec<SvgPath>, skipped: Vec<String>, options: &SvgOptions) -> 
         return Err(ImportError::NoShapes { skipped });
     }
     Ok(SvgShape { outlines, paths, skipped })
+}
+
+/// The document read as data with every limit applied: its size in bytes, its start tags'
+/// attribute pairs (before roxmltree's quadratic duplicate check), its node count.
+fn parse_document<'i>(text: &'i str, limits: &Limits) -> Result<Document<'i>, ImportError> {
+    if text.len() > limits.max_bytes {
+        return Err(ImportError::TooLarge {
+            what: "the SVG text",
+            size: text.len(),
+            limit: limits.max_bytes,
+            unit: "bytes",
+        });
+    }
+    check_attributes(text, limits.max_elements, limits.max_attribute_pairs).map_err(|e| {
+        let (line, column) = Cursor::new(text).at(e.tag);
+        ImportError::TooManyAttributes { line, column, attributes: e.attributes, limit: limits.max_attribute_pairs }
+    })?;
+    let parsing = ParsingOptions {
+        allow_dtd: true,
+        nodes_limit: u32::try_from(limits.max_elements).unwrap_or(u32::MAX),
+        ..ParsingOptions::default()
+    };
+    let document = Document::parse_with_options(text, parsing).map_err(|e| {
+        let pos = e.pos();
+        let message = e.to_string();
+        let suffix = format!(" at {}:{}", pos.row, pos.col);
+        let message = message.strip_suffix(&suffix).unwrap_or(&message).to_string();
+        ImportError::Xml { message, line: pos.row, column: pos.col }
+    })?;
+    Ok(document)
 }
 
 fn in_svg_namespace(node: Node) -> bool {

@@ -9,8 +9,9 @@
 use tiny_skia_path::{PathSegment, Transform};
 
 use super::{FillColour, SvgPath};
-use crate::import::error::ElementRef;
+use crate::import::error::{ElementRef, ImportError};
 use crate::import::vector::{FillRule, VectorPath, Verb};
+use crate::import::Limits;
 
 /// What a usvg path contributes: its fill, or its stroke's outline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,9 +23,15 @@ pub enum Part {
 }
 
 /// The filled and stroked areas of `tree`, each with where it came from, in document order
-/// (a path's fill before its stroke, as `paint-order` normally has it).
-pub fn visible_paths(tree: &usvg::Tree, output: [f64; 6]) -> Vec<(SvgPath, Part)> {
+/// (a path's fill before its stroke, as `paint-order` normally has it), within `limits`:
+/// at most `max_points` points in all, every coordinate within `max_coordinate`.
+pub fn visible_paths(
+    tree: &usvg::Tree,
+    output: [f64; 6],
+    limits: &Limits,
+) -> Result<Vec<(SvgPath, Part)>, ImportError> {
     let mut out = Vec::new();
+    let mut points = 0usize;
     let mut stack: Vec<(&usvg::Group, f32)> = vec![(tree.root(), 1.0)];
     // Depth-first, in document order: children are pushed in reverse.
     let mut pending: Vec<(&usvg::Node, f32)> = Vec::new();
@@ -42,12 +49,34 @@ pub fn visible_paths(tree: &usvg::Tree, output: [f64; 6]) -> Vec<(SvgPath, Part)
                         }
                     }
                 }
-                usvg::Node::Path(p) if p.is_visible() => add_path(p, opacity, output, &mut out),
+                usvg::Node::Path(p) if p.is_visible() => {
+                    let before = out.len();
+                    add_path(p, opacity, output, &mut out);
+                    for (path, _) in &out[before..] {
+                        points += path.path.points.len();
+                        if points > limits.max_points {
+                            return Err(ImportError::TooManyPoints {
+                                what: "the SVG's shapes",
+                                needed: None,
+                                limit: limits.max_points,
+                            });
+                        }
+                        let limit = limits.max_coordinate;
+                        if let Some(&value) = path.path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit)
+                        {
+                            return Err(ImportError::CoordinateTooLarge {
+                                element: path.element.clone(),
+                                value,
+                                limit,
+                            });
+                        }
+                    }
+                }
                 _ => {}
             }
         }
     }
-    out
+    Ok(out)
 }
 
 fn add_path(p: &usvg::Path, opacity: f32, output: [f64; 6], out: &mut Vec<(SvgPath, Part)>) {
