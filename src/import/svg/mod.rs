@@ -154,6 +154,7 @@ pub fn import_svg_usvg(text: &str, options: &SvgOptions) -> Result<SvgShape, Imp
     if root.tag_name().name() != "svg" || !in_svg_namespace(root) {
         return Err(ImportError::NotSvg { root: root.tag_name().name().to_string() });
     }
+    check_depth(root, text)?;
     // usvg maps the root's user units into its size through the viewBox; with the size set
     // to the viewBox's own (or 1 x 1 with a unit viewBox when there is none), that map is
     // the shift by the viewBox's corner, and nothing of usvg's sizing rules is needed.
@@ -254,6 +255,25 @@ fn parse_document<'i>(text: &'i str, limits: &Limits) -> Result<Document<'i>, Im
         ImportError::Xml { message, line: pos.row, column: pos.col }
     })?;
     Ok(document)
+}
+
+/// Refuses elements nested deeper than [`MAX_DEPTH`], found without recursion.
+fn check_depth(root: Node, text: &str) -> Result<(), ImportError> {
+    let mut stack = vec![(root, 0usize)];
+    while let Some((node, depth)) = stack.pop() {
+        if depth > MAX_DEPTH {
+            let (line, column) = Cursor::new(text).at(node.range().start);
+            let element = ElementRef {
+                name: node.tag_name().name().to_string(),
+                id: node.attribute("id").map(str::to_string),
+                line,
+                column,
+            };
+            return Err(ImportError::TooDeep { element, limit: MAX_DEPTH });
+        }
+        stack.extend(node.children().filter(Node::is_element).map(|c| (c, depth + 1)));
+    }
+    Ok(())
 }
 
 fn in_svg_namespace(node: Node) -> bool {

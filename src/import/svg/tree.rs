@@ -198,4 +198,25 @@ mod tests {
             <use xlink:href="#s" x="5" y="5"/><use href="#s" x="50" y="50"/></svg>"##;
         assert!((area(styled) - 400.0).abs() < 1e-3, "{}", area(styled));
     }
+
+    #[test]
+    fn our_limits_hold_before_usvg_reads_anything() {
+        use crate::import::{ImportError, Limits};
+        let deep = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg">{}<rect width="1" height="1"/>{}</svg>"#,
+            "<g>".repeat(300),
+            "</g>".repeat(300)
+        );
+        let error = import_svg_usvg(&deep, &SvgOptions::default()).unwrap_err();
+        assert!(matches!(error, ImportError::TooDeep { limit: 256, .. }), "{error}");
+        let small = SvgOptions { limits: Limits { max_bytes: 100, ..Limits::default() }, ..SvgOptions::default() };
+        let long = format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{}</svg>"#, "<g/>".repeat(30));
+        assert!(matches!(import_svg_usvg(&long, &small), Err(ImportError::TooLarge { .. })));
+        // Without a viewBox, y is flipped about the height, as the importer always did.
+        let plain = r#"<svg xmlns="http://www.w3.org/2000/svg" height="10"><polygon points="0,0 4,0 4,2"/></svg>"#;
+        let shape = import_svg_usvg(plain, &SvgOptions::default()).unwrap();
+        let mut ys: Vec<f64> = shape.outlines[0].outer.iter().map(|p| p[1]).collect();
+        ys.sort_by(f64::total_cmp);
+        assert_eq!(ys, [8.0, 10.0, 10.0]);
+    }
 }
