@@ -15,11 +15,11 @@
 //! | [`vector`] | vector paths: flattening, writing path data |
 
 mod error;
-mod merge;
 pub mod mesh_file;
 pub mod raster;
 mod regions;
 mod simplify;
+mod union;
 pub mod svg;
 pub mod vector;
 pub mod warp;

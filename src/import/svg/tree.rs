@@ -1,19 +1,24 @@
-//! A spike for issue 21 (not wired into `import_svg` yet): the drawing as usvg resolves it
-//! (CSS, `<use>`, units, transforms, `switch`, markers, paint references), turned into the
-//! paths our downstream steps take, in output coordinates (the root's user units, y up).
-//! Visible fills become filled paths with their rule and colour; visible strokes become
-//! their outlines (dashes first, then tiny-skia's stroker: width, joins, caps, miter
-//! limit), filled with the nonzero rule. Groups with zero opacity, invisible paths and
-//! paints with zero opacity draw nothing. Clip paths and masks are not applied yet.
+//! The drawing as usvg resolves it (CSS, `<use>`, units, transforms, `switch`, markers,
+//! paint references), turned into the paths our downstream steps take, in output
+//! coordinates (the root's user units, y up).
+//!
+//! - Visible fills become filled paths with their rule and colour.
+//! - Visible strokes become their outlines (dashes first, then tiny-skia's stroker: width,
+//!   joins, caps, miter limit), filled with the non-zero rule, in the stroke's colour.
+//! - Groups with zero opacity, hidden paths and paints with zero opacity draw nothing.
+//! - Clip paths become regions that what they clip is intersected with (their shapes'
+//!   union under each one's `clip-rule`, itself clipped by the clip path's own
+//!   `clip-path`). Masks are approximated the same way: the union of the mask's visible
+//!   shapes that let something through (luminance or alpha above zero), within the mask's
+//!   rectangle. Partial transparency is not modelled: a shape is in or out.
 
 use tiny_skia_path::{PathSegment, Transform};
 
 use super::{FillColour, SvgPath};
-use crate::import::error::{ElementRef, ImportError};
+use crate::import::error::ElementRef;
 use crate::import::vector::{FillRule, VectorPath, Verb};
-use crate::import::Limits;
 
-/// What a usvg path contributes: its fill, or its stroke's outline.
+/// What a path contributes: its fill, or its stroke's outline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Part {
     /// The path's interior.
@@ -22,106 +27,222 @@ pub enum Part {
     Stroke,
 }
 
-/// The filled and stroked areas of `tree`, each with where it came from, in document order
-/// (a path's fill before its stroke, as `paint-order` normally has it), within `limits`:
-/// at most `max_points` points in all, every coordinate within `max_coordinate`.
-pub fn visible_paths(
-    tree: &usvg::Tree,
-    output: [f64; 6],
-    limits: &Limits,
-) -> Result<Vec<(SvgPath, Part)>, ImportError> {
-    let mut out = Vec::new();
-    let mut points = 0usize;
-    let mut stack: Vec<(&usvg::Group, f32)> = vec![(tree.root(), 1.0)];
-    // Depth-first, in document order: children are pushed in reverse.
-    let mut pending: Vec<(&usvg::Node, f32)> = Vec::new();
-    while let Some((group, opacity)) = stack.pop() {
+/// A region that paths are intersected with: the union of its members, each intersected
+/// with its own clips, intersected with every region of `clips`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Clip {
+    /// The shapes (fill rule and geometry, in output coordinates) and their own clips.
+    pub members: Vec<(VectorPath, FillRule, Vec<usize>)>,
+    /// Further clips (indices into [`Drawing::clips`], always smaller than this one's).
+    pub clips: Vec<usize>,
+}
+
+/// The visible paths of a drawing, and the clips they refer to.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Drawing {
+    /// Filled and stroked areas in document order (a path's fill before its stroke).
+    pub paths: Vec<(SvgPath, Vec<usize>)>,
+    /// Regions referred to by [`Drawing::paths`] (each path is intersected with all of its).
+    pub clips: Vec<Clip>,
+}
+
+/// Where an element came from, for messages: usvg keeps the `id`, and `locate` finds it.
+pub type Locate<'a> = dyn Fn(&str) -> ElementRef + 'a;
+
+/// A plane affine map `[a, b, c, d, e, f]`: `(x, y) -> (a x + c y + e, b x + d y + f)`.
+type Map = [f64; 6];
+
+fn of(t: Transform) -> Map {
+    [t.sx, t.ky, t.kx, t.sy, t.tx, t.ty].map(f64::from)
+}
+
+/// `outer` after `inner`.
+fn then(outer: Map, inner: Map) -> Map {
+    let [a, b, c, d, e, f] = outer;
+    let [p, q, r, s, t, u] = inner;
+    [a * p + c * q, b * p + d * q, a * r + c * s, b * r + d * s, a * t + c * u + e, b * t + d * u + f]
+}
+
+/// Which parts of paths a walk takes.
+#[derive(Clone, Copy)]
+enum Take {
+    /// The drawing: fills and, if asked, strokes, with their colours.
+    Drawing { strokes: bool },
+    /// A clip path: fills only, whatever their paint (`clip-rule` is usvg's fill rule).
+    Clip,
+    /// A mask: fills and strokes that let something through.
+    Mask,
+}
+
+/// Walks `tree`: the root's user units mapped by `output`.
+pub fn drawing(tree: &usvg::Tree, output: Map, strokes: bool, locate: &Locate) -> Drawing {
+    let mut walker = Walker { drawing: Drawing::default(), locate };
+    let mut paths = Vec::new();
+    walker.walk(tree.root(), output, Take::Drawing { strokes }, &[], &mut paths);
+    walker.drawing.paths = paths;
+    walker.drawing
+}
+
+struct Walker<'a> {
+    drawing: Drawing,
+    locate: &'a Locate<'a>,
+}
+
+impl Walker<'_> {
+    /// Adds the paths under `group` (whose parent's user units `map` takes to output) to
+    /// `out`, each with `clips` and those of the groups on the way. Without recursion.
+    fn walk(
+        &mut self,
+        group: &usvg::Group,
+        map: Map,
+        take: Take,
+        clips: &[usize],
+        out: &mut Vec<(SvgPath, Vec<usize>)>,
+    ) {
+        let mut pending: Vec<(&usvg::Node, Map, f32, Vec<usize>)> = Vec::new();
         for child in group.children().iter().rev() {
-            pending.push((child, opacity));
+            pending.push((child, map, 1.0, clips.to_vec()));
         }
-        while let Some((node, opacity)) = pending.pop() {
+        while let Some((node, map, opacity, clips)) = pending.pop() {
             match node {
                 usvg::Node::Group(g) => {
+                    // A group with zero opacity draws nothing (in a clip path opacity does
+                    // not apply).
                     let opacity = opacity * g.opacity().get();
-                    if opacity > 0.0 {
-                        for child in g.children().iter().rev() {
-                            pending.push((child, opacity));
-                        }
+                    if opacity <= 0.0 && !matches!(take, Take::Clip) {
+                        continue;
+                    }
+                    let map = then(map, of(g.transform()));
+                    let mut clips = clips;
+                    if let Some(clip) = g.clip_path() {
+                        clips.push(self.clip(clip, map));
+                    }
+                    if let Some(mask) = g.mask() {
+                        clips.push(self.mask(mask, map));
+                    }
+                    for child in g.children().iter().rev() {
+                        pending.push((child, map, opacity, clips.clone()));
                     }
                 }
                 usvg::Node::Path(p) if p.is_visible() => {
-                    let before = out.len();
-                    add_path(p, opacity, output, &mut out);
-                    for (path, _) in &out[before..] {
-                        points += path.path.points.len();
-                        if points > limits.max_points {
-                            return Err(ImportError::TooManyPoints {
-                                what: "the SVG's shapes",
-                                needed: None,
-                                limit: limits.max_points,
-                            });
-                        }
-                        let limit = limits.max_coordinate;
-                        if let Some(&value) = path.path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit)
-                        {
-                            return Err(ImportError::CoordinateTooLarge {
-                                element: path.element.clone(),
-                                value,
-                                limit,
-                            });
-                        }
-                    }
+                    out.extend(self.parts(p, map, opacity, take).into_iter().map(|path| (path, clips.clone())));
                 }
                 _ => {}
             }
         }
     }
-    Ok(out)
-}
 
-fn add_path(p: &usvg::Path, opacity: f32, output: [f64; 6], out: &mut Vec<(SvgPath, Part)>) {
-    let element =
-        ElementRef { name: "path".into(), id: (!p.id().is_empty()).then(|| p.id().to_string()), line: 0, column: 0 };
-    let ts = p.abs_transform();
-    if let Some(fill) = p.fill() {
-        let alpha = opacity * fill.opacity().get();
-        if alpha > 0.0 {
-            let rule = match fill.rule() {
-                usvg::FillRule::NonZero => FillRule::NonZero,
-                usvg::FillRule::EvenOdd => FillRule::EvenOdd,
-            };
-            let path = convert(p.data(), ts, output);
-            out.push((
-                SvgPath { element: element.clone(), path, fill_rule: rule, fill: colour(fill.paint(), alpha) },
-                Part::Fill,
-            ));
+    /// A clip path applied in the user units that `map` takes to output.
+    fn clip(&mut self, clip: &usvg::ClipPath, map: Map) -> usize {
+        let mut clips = Vec::new();
+        if let Some(inner) = clip.clip_path() {
+            clips.push(self.clip(inner, map));
         }
+        let mut members = Vec::new();
+        self.walk(clip.root(), then(map, of(clip.transform())), Take::Clip, &[], &mut members);
+        self.add(members, clips)
     }
-    if let Some(stroke) = p.stroke() {
-        let alpha = opacity * stroke.opacity().get();
-        if alpha > 0.0 {
-            // Stroked in the path's own coordinates (where width and dashes are given), with
-            // the resolution scale of the transform so that round joins stay round.
-            // tiny-skia's stroker's nominal accuracy is 1/(4 scale); at a thousandth of the
-            // size (the flattening's) a stroked circle's area was 0.4% off, at 1e-5 of it
-            // within 2e-4 (the test below).
-            let b = p.data().bounds();
-            let size = (b.width().hypot(b.height()) + stroke.width().get()).max(1e-6);
-            let scale = 0.25 / (1e-5 * size);
-            let tiny = stroke.to_tiny_skia();
-            let dashed = match &tiny.dash {
-                Some(dash) => p.data().dash(dash, scale),
-                None => Some(p.data().clone()),
+
+    /// A mask, as the union of its shapes that let something through, in its rectangle.
+    fn mask(&mut self, mask: &usvg::Mask, map: Map) -> usize {
+        let mut clips = Vec::new();
+        if let Some(inner) = mask.mask() {
+            clips.push(self.mask(inner, map));
+        }
+        let r = mask.rect();
+        let corners = [[r.left(), r.top()], [r.right(), r.top()], [r.right(), r.bottom()], [r.left(), r.bottom()]];
+        let place = |p: [f32; 2]| apply(map, [f64::from(p[0]), f64::from(p[1])]);
+        let verbs = vec![Verb::Move, Verb::Line, Verb::Line, Verb::Line, Verb::Close];
+        let rect = VectorPath { verbs, points: corners.map(place).to_vec() };
+        clips.push(self.add(vec![(rect_path(rect), Vec::new())], Vec::new()));
+        let mut members = Vec::new();
+        self.walk(mask.root(), map, Take::Mask, &[], &mut members);
+        self.add(members, clips)
+    }
+
+    fn add(&mut self, members: Vec<(SvgPath, Vec<usize>)>, clips: Vec<usize>) -> usize {
+        let members = members.into_iter().map(|(p, clips)| (p.path, p.fill_rule, clips)).collect();
+        self.drawing.clips.push(Clip { members, clips });
+        self.drawing.clips.len() - 1
+    }
+
+    /// The fill and stroke areas of `p` that `take` wants.
+    fn parts(&self, p: &usvg::Path, map: Map, opacity: f32, take: Take) -> Vec<SvgPath> {
+        let mut out = Vec::new();
+        let element = || if p.id().is_empty() { unnamed() } else { (self.locate)(p.id()) };
+        // A fill of a path without area (a line, two points) draws nothing.
+        let bounds = p.data().bounds();
+        let has_area = p.data().len() >= 3 && bounds.width() > 0.0 && bounds.height() > 0.0;
+        if let Some(fill) = p.fill().filter(|_| has_area) {
+            let alpha = opacity * fill.opacity().get();
+            let wanted = match take {
+                Take::Clip => true,
+                Take::Drawing { .. } => alpha > 0.0,
+                Take::Mask => alpha > 0.0 && lets_through(fill.paint()),
             };
-            if let Some(outline) = dashed.and_then(|d| d.stroke(&tiny, scale)) {
-                let path = convert(&outline, ts, output);
-                out.push((
-                    SvgPath { element, path, fill_rule: FillRule::NonZero, fill: colour(stroke.paint(), alpha) },
-                    Part::Stroke,
-                ));
+            if wanted {
+                let fill_rule = match fill.rule() {
+                    usvg::FillRule::NonZero => FillRule::NonZero,
+                    usvg::FillRule::EvenOdd => FillRule::EvenOdd,
+                };
+                let path = convert(p.data(), map);
+                let fill = colour(fill.paint(), alpha);
+                out.push(SvgPath { element: element(), path, fill_rule, fill, part: Part::Fill });
             }
         }
+        let strokes = match take {
+            Take::Drawing { strokes } => strokes,
+            Take::Clip => false,
+            Take::Mask => true,
+        };
+        if let Some(stroke) = p.stroke().filter(|_| strokes) {
+            let alpha = opacity * stroke.opacity().get();
+            let lets = !matches!(take, Take::Mask) || lets_through(stroke.paint());
+            if alpha > 0.0 && lets {
+                if let Some(outline) = stroke_outline(p, stroke) {
+                    let path = convert(&outline, map);
+                    let fill = colour(stroke.paint(), alpha);
+                    let fill_rule = FillRule::NonZero;
+                    out.push(SvgPath { element: element(), path, fill_rule, fill, part: Part::Stroke });
+                }
+            }
+        }
+        out
     }
+}
+
+/// A path without an `id` (usvg keeps no position).
+fn unnamed() -> ElementRef {
+    ElementRef { name: "path".into(), id: None, line: 0, column: 0 }
+}
+
+fn rect_path(path: VectorPath) -> SvgPath {
+    SvgPath { element: unnamed(), path, fill_rule: FillRule::NonZero, fill: None, part: Part::Fill }
+}
+
+/// Whether a paint in a mask lets anything through (a colour of luminance above zero; a
+/// gradient or pattern is taken to).
+fn lets_through(paint: &usvg::Paint) -> bool {
+    match paint {
+        usvg::Paint::Color(c) => c.red > 0 || c.green > 0 || c.blue > 0,
+        _ => true,
+    }
+}
+
+/// The area `stroke` covers along `p`, in the path's own coordinates (where width and
+/// dashes are given). tiny-skia's stroker's nominal accuracy is 1/(4 scale); at a thousandth
+/// of the size (the flattening's) a stroked circle's area was 0.4% off, at 1e-5 of it within
+/// 2e-4 (see the tests), so the scale is set for 1e-5 of the path's size.
+fn stroke_outline(p: &usvg::Path, stroke: &usvg::Stroke) -> Option<tiny_skia_path::Path> {
+    let b = p.data().bounds();
+    let size = (b.width().hypot(b.height()) + stroke.width().get()).max(1e-6);
+    let scale = 0.25 / (1e-5 * size);
+    let tiny = stroke.to_tiny_skia();
+    let dashed = match &tiny.dash {
+        Some(dash) => p.data().dash(dash, scale),
+        None => Some(p.data().clone()),
+    };
+    dashed.and_then(|d| d.stroke(&tiny, scale))
 }
 
 fn colour(paint: &usvg::Paint, alpha: f32) -> Option<FillColour> {
@@ -131,17 +252,13 @@ fn colour(paint: &usvg::Paint, alpha: f32) -> Option<FillColour> {
     }
 }
 
-/// A tiny-skia path through `ts` (f32, as usvg keeps it) and then `output` (f64).
-fn convert(path: &tiny_skia_path::Path, ts: Transform, output: [f64; 6]) -> VectorPath {
-    let [a, b, c, d, e, f] = output;
-    let place = |p: tiny_skia_path::Point| {
-        let (x, y) = (f64::from(p.x), f64::from(p.y));
-        let (x, y) = (
-            f64::from(ts.sx) * x + f64::from(ts.kx) * y + f64::from(ts.tx),
-            f64::from(ts.ky) * x + f64::from(ts.sy) * y + f64::from(ts.ty),
-        );
-        [a * x + c * y + e, b * x + d * y + f]
-    };
+fn apply(m: Map, [x, y]: [f64; 2]) -> [f64; 2] {
+    [m[0] * x + m[2] * y + m[4], m[1] * x + m[3] * y + m[5]]
+}
+
+/// A tiny-skia path (f32, as usvg keeps it) through `map`, in f64.
+fn convert(path: &tiny_skia_path::Path, map: Map) -> VectorPath {
+    let place = |p: tiny_skia_path::Point| apply(map, [f64::from(p.x), f64::from(p.y)]);
     let mut verbs = Vec::new();
     let mut points = Vec::new();
     for segment in path.segments() {
@@ -166,57 +283,4 @@ fn convert(path: &tiny_skia_path::Path, ts: Transform, output: [f64; 6]) -> Vect
         }
     }
     VectorPath { verbs, points }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::super::{import_svg_usvg, SvgOptions};
-
-    fn area(svg: &str) -> f64 {
-        let shape = import_svg_usvg(svg, &SvgOptions::default().with_tolerance(0.01)).unwrap();
-        shape.outlines.iter().map(|o| o.area()).sum()
-    }
-
-    #[test]
-    fn a_stroked_circle_covers_its_ring_and_invisible_things_nothing() {
-        let (r, w) = (40.0, 10.0);
-        let ring = std::f64::consts::PI * ((r + w / 2.0) * (r + w / 2.0) - (r - w / 2.0) * (r - w / 2.0));
-        let svg = format!(
-            r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100" width="300" height="300">
-               <circle cx="50" cy="50" r="{r}" fill="none" stroke="black" stroke-width="{w}"/>
-               <rect x="0" y="0" width="10" height="10" opacity="0"/>
-               <rect x="0" y="0" width="10" height="10" fill-opacity="0"/>
-               <rect x="0" y="0" width="10" height="10" visibility="hidden"/></svg>"#
-        );
-        let got = area(&svg);
-        assert!((got - ring).abs() < 2e-4 * ring, "{got} against {ring}");
-        // CSS classes (Illustrator's export) and <use> twice, apart: twice the area.
-        let styled = r##"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" viewBox="0 0 100 100">
-            <style>.a { fill: none; stroke: none } .b { fill: #123 }</style>
-            <rect class="a" x="0" y="0" width="100" height="100"/>
-            <defs><rect id="s" class="b" width="10" height="20"/></defs>
-            <use xlink:href="#s" x="5" y="5"/><use href="#s" x="50" y="50"/></svg>"##;
-        assert!((area(styled) - 400.0).abs() < 1e-3, "{}", area(styled));
-    }
-
-    #[test]
-    fn our_limits_hold_before_usvg_reads_anything() {
-        use crate::import::{ImportError, Limits};
-        let deep = format!(
-            r#"<svg xmlns="http://www.w3.org/2000/svg">{}<rect width="1" height="1"/>{}</svg>"#,
-            "<g>".repeat(300),
-            "</g>".repeat(300)
-        );
-        let error = import_svg_usvg(&deep, &SvgOptions::default()).unwrap_err();
-        assert!(matches!(error, ImportError::TooDeep { limit: 256, .. }), "{error}");
-        let small = SvgOptions { limits: Limits { max_bytes: 100, ..Limits::default() }, ..SvgOptions::default() };
-        let long = format!(r#"<svg xmlns="http://www.w3.org/2000/svg">{}</svg>"#, "<g/>".repeat(30));
-        assert!(matches!(import_svg_usvg(&long, &small), Err(ImportError::TooLarge { .. })));
-        // Without a viewBox, y is flipped about the height, as the importer always did.
-        let plain = r#"<svg xmlns="http://www.w3.org/2000/svg" height="10"><polygon points="0,0 4,0 4,2"/></svg>"#;
-        let shape = import_svg_usvg(plain, &SvgOptions::default()).unwrap();
-        let mut ys: Vec<f64> = shape.outlines[0].outer.iter().map(|p| p[1]).collect();
-        ys.sort_by(f64::total_cmp);
-        assert_eq!(ys, [8.0, 10.0, 10.0]);
-    }
 }
