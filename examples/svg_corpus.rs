@@ -28,10 +28,8 @@ fn main() {
         files(Path::new(&dir), &mut all);
     }
     all.sort();
-    let texts: Vec<(String, String)> = all
-        .iter()
-        .filter_map(|p| Some((p.display().to_string(), std::fs::read_to_string(p).ok()?)))
-        .collect();
+    let texts: Vec<(String, String)> =
+        all.iter().filter_map(|p| Some((p.display().to_string(), std::fs::read_to_string(p).ok()?))).collect();
     for strokes in [true, false] {
         let options = SvgOptions { strokes, ..SvgOptions::default() };
         let (mut imported, mut panicked) = (0, 0);

@@ -256,7 +256,9 @@ fn malformed_attributes_are_read_as_browsers_read_them() {
     // Path data is drawn up to its first error (SVG 2, "error handling" of path data).
     assert_eq!(area(r#"<path d="M0 0h10v10h-10z L1"/>"#), 100.0);
     // (A number out of range is refused, naming the element: see the coordinate limit.)
-    assert!(error(r#"<path d="M0 0h10v10h-10z M0 0H1e999V1z"/>"#, "").contains("<path> (line 1, column 42) is too large"));
+    assert!(
+        error(r#"<path d="M0 0h10v10h-10z M0 0H1e999V1z"/>"#, "").contains("<path> (line 1, column 42) is too large")
+    );
     // An odd number of coordinates: the last one is ignored.
     assert_eq!(area(r#"<polygon points="0 0 4 0 4 4 9"/>"#), 8.0);
     // An invalid value is ignored and the property's default applies: non-zero, no
@@ -375,7 +377,9 @@ fn vector_paths_follow_the_deformed_mesh() {
             svgtypes::PathSegment::MoveTo { abs: true, x, y } | svgtypes::PathSegment::LineTo { abs: true, x, y } => {
                 read.push([x, y])
             }
-            svgtypes::PathSegment::CurveTo { abs: true, x1, y1, x2, y2, x, y } => read.extend([[x1, y1], [x2, y2], [x, y]]),
+            svgtypes::PathSegment::CurveTo { abs: true, x1, y1, x2, y2, x, y } => {
+                read.extend([[x1, y1], [x2, y2], [x, y]])
+            }
             svgtypes::PathSegment::Quadratic { abs: true, x1, y1, x, y } => read.extend([[x1, y1], [x, y]]),
             svgtypes::PathSegment::ClosePath { .. } => {}
             other => panic!("{other:?} in {data}"),

@@ -75,13 +75,17 @@ fn joins_caps_and_dashes_shape_the_stroke() {
     // round caps with half discs.
     let (l, w) = (60.0, 6.0);
     let line = |cap: &str| {
-        area(&format!(r#"<line x1="20" y1="50" x2="{}" y2="50" stroke="black" stroke-width="{w}" stroke-linecap="{cap}"/>"#, 20.0 + l))
+        area(&format!(
+            r#"<line x1="20" y1="50" x2="{}" y2="50" stroke="black" stroke-width="{w}" stroke-linecap="{cap}"/>"#,
+            20.0 + l
+        ))
     };
     close(line("butt"), l * w, tolerance);
     close(line("square"), (l + w) * w, tolerance);
     close(line("round"), l * w + PI * (w / 2.0) * (w / 2.0), ROUND * l * w);
     // Dashes of 10 with gaps of 5 along 60: four dashes, butt caps.
-    let dashed = format!(r#"<line x1="20" y1="50" x2="80" y2="50" stroke="black" stroke-width="{w}" stroke-dasharray="10 5"/>"#);
+    let dashed =
+        format!(r#"<line x1="20" y1="50" x2="80" y2="50" stroke="black" stroke-width="{w}" stroke-dasharray="10 5"/>"#);
     let parts = shape(&dashed, SvgOptions::default()).outlines;
     assert_eq!(parts.len(), 4);
     close(parts.iter().map(Outline::area).sum(), 4.0 * 10.0 * w, tolerance);

@@ -19,8 +19,8 @@ pub mod mesh_file;
 pub mod raster;
 mod regions;
 mod simplify;
-mod union;
 pub mod svg;
+mod union;
 pub mod vector;
 pub mod warp;
 

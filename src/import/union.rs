@@ -118,7 +118,8 @@ mod tests {
         // union with it is no cancellation.
         let mut clockwise = square(5.0, 0.0, 1.0);
         clockwise.reverse();
-        let both = union([resolve(&[clockwise], FillRule::NonZero), resolve(&[square(5.5, 0.0, 1.0)], FillRule::NonZero)]);
+        let both =
+            union([resolve(&[clockwise], FillRule::NonZero), resolve(&[square(5.5, 0.0, 1.0)], FillRule::NonZero)]);
         assert!((area(&both) - 1.5).abs() < 1e-8);
     }
 

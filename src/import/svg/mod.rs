@@ -250,7 +250,11 @@ fn check_points(drawing: &Drawing, limits: &Limits) -> Result<(), ImportError> {
     for (path, element) in paths.chain(members) {
         count += path.points.len();
         if count > limits.max_points {
-            return Err(ImportError::TooManyPoints { what: "the SVG's shapes", needed: None, limit: limits.max_points });
+            return Err(ImportError::TooManyPoints {
+                what: "the SVG's shapes",
+                needed: None,
+                limit: limits.max_points,
+            });
         }
         let limit = limits.max_coordinate;
         if let Some(&value) = path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit) {
@@ -261,7 +265,12 @@ fn check_points(drawing: &Drawing, limits: &Limits) -> Result<(), ImportError> {
 }
 
 /// Flattens `path` to rings within what is left of the point budget.
-fn flatten(path: &VectorPath, tolerance: f64, count: &mut usize, limits: &Limits) -> Result<Vec<Vec<crate::geometry::Point>>, ImportError> {
+fn flatten(
+    path: &VectorPath,
+    tolerance: f64,
+    count: &mut usize,
+    limits: &Limits,
+) -> Result<Vec<Vec<crate::geometry::Point>>, ImportError> {
     let flat = path.flatten(tolerance.max(f64::MIN_POSITIVE), *count, limits.max_points).map_err(|needed| {
         ImportError::TooManyPoints {
             what: "the outline flattened to the tolerance",
@@ -335,7 +344,11 @@ fn shape_of(drawing: Drawing, skipped: Vec<String>, options: &SvgOptions) -> Res
     let region = union::union(parts);
     let points = union::point_count(&region);
     if points > limits.max_points {
-        return Err(ImportError::TooManyPoints { what: "the united outline", needed: Some(points as f64), limit: limits.max_points });
+        return Err(ImportError::TooManyPoints {
+            what: "the united outline",
+            needed: Some(points as f64),
+            limit: limits.max_points,
+        });
     }
     finish(union::outlines(region, options.min_area), kept, skipped)
 }
@@ -418,8 +431,24 @@ fn check_depth(root: Node, text: &str) -> Result<(), ImportError> {
 
 /// Attributes that place geometry.
 const GEOMETRY: [&str; 18] = [
-    "d", "points", "x", "y", "width", "height", "x1", "y1", "x2", "y2", "cx", "cy", "r", "rx", "ry", "transform",
-    "viewBox", "stroke-width",
+    "d",
+    "points",
+    "x",
+    "y",
+    "width",
+    "height",
+    "x1",
+    "y1",
+    "x2",
+    "y2",
+    "cx",
+    "cy",
+    "r",
+    "rx",
+    "ry",
+    "transform",
+    "viewBox",
+    "stroke-width",
 ];
 
 /// Refuses an element with a number beyond [`Limits::max_coordinate`] in an attribute that
@@ -429,7 +458,8 @@ fn check_numbers(document: &Document, text: &str, limit: f64) -> Result<(), Impo
     let mut cursor = Cursor::new(text);
     for node in document.descendants().filter(Node::is_element) {
         for attribute in node.attributes().filter(|a| GEOMETRY.contains(&a.name())) {
-            let tokens = attribute.value().split(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '-' | '+')));
+            let tokens =
+                attribute.value().split(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '-' | '+')));
             if let Some(value) = tokens.filter_map(|t| t.parse::<f64>().ok()).find(|v| v.abs() > limit) {
                 let (line, column) = cursor.at(node.range().start);
                 let element = ElementRef {
@@ -448,4 +478,3 @@ fn check_numbers(document: &Document, text: &str, limit: f64) -> Result<(), Impo
 fn in_svg_namespace(node: Node) -> bool {
     matches!(node.tag_name().namespace(), None | Some(SVG_NAMESPACE))
 }
-
