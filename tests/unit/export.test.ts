@@ -115,6 +115,7 @@ describe("vector SVG export", () => {
   it("writes other CSS colours as they are, escaped", () => {
     const path: VectorPath = {
       element: "<path>",
+      part: "fill",
       commands: "MLLZ",
       points: Float64Array.from([0, 0, 1, 0, 0, 1]),
       fillRule: "nonzero",

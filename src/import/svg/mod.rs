@@ -163,7 +163,7 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
     }
     check_depth(root, text)?;
     check_numbers(&document, text, limits.max_coordinate)?;
-    let sized = sized_to_view_box(text, root);
+    let sized = sized_to_view_box(text, &document);
     let output = sized.output;
     let sized = parse_document(&sized.text, limits)?;
     let tree = usvg::Tree::from_xmltree(&sized, &usvg::Options::default())
@@ -176,15 +176,24 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
             skipped.push(name.to_string());
         }
     }
+    // usvg keeps ids only: every shape has one (see `sized_to_view_box`) to find it by.
+    let shapes: Vec<Node> = document.descendants().filter(is_shape).collect();
     let elements: HashMap<&str, Node> =
         document.descendants().filter_map(|n| n.attribute("id").map(|id| (id, n))).collect();
     let cursor = std::cell::RefCell::new(Cursor::new(text));
-    let locate = |id: &str| match elements.get(id) {
-        Some(node) => {
-            let (line, column) = cursor.borrow_mut().at(node.range().start);
-            ElementRef { name: node.tag_name().name().to_string(), id: Some(id.to_string()), line, column }
+    let locate = |id: &str| {
+        let node = match id.strip_prefix(SHAPE_ID) {
+            Some(k) => k.parse::<usize>().ok().and_then(|k| shapes.get(k)).copied(),
+            None => elements.get(id).copied(),
+        };
+        match node {
+            Some(node) => {
+                let (line, column) = cursor.borrow_mut().at(node.range().start);
+                let id = node.attribute("id").map(str::to_string);
+                ElementRef { name: node.tag_name().name().to_string(), id, line, column }
+            }
+            None => ElementRef { name: "path".into(), id: Some(id.to_string()), line: 0, column: 0 },
         }
-        None => ElementRef { name: "path".into(), id: Some(id.to_string()), line: 0, column: 0 },
     };
     let drawing = tree::drawing(&tree, output, options.strokes, &locate);
     check_points(&drawing, limits)?;
@@ -192,7 +201,8 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
 }
 
 /// The document's text with its root sized to its `viewBox` (or 1 x 1 with a unit
-/// `viewBox` when it has none), and the map from the root's user units to output.
+/// `viewBox` when it has none) and an id on every shape without one (`SHAPE_ID` and its
+/// index among the shapes), and the map from the root's user units to output.
 struct Sized {
     text: String,
     output: [f64; 6],
@@ -201,7 +211,8 @@ struct Sized {
 /// usvg maps the root's user units into its size through the viewBox; with the size set to
 /// the viewBox's own, that map is the shift by the viewBox's corner, and none of usvg's
 /// sizing rules (percentages, aspect ratios) apply.
-fn sized_to_view_box(text: &str, root: Node) -> Sized {
+fn sized_to_view_box(text: &str, document: &Document) -> Sized {
+    let root = document.root_element();
     let (view_box, output) = match root.attribute("viewBox").and_then(|v| v.parse::<svgtypes::ViewBox>().ok()) {
         Some(v) if v.w > 0.0 && v.h > 0.0 && v.w.is_finite() && v.h.is_finite() => {
             ([v.x, v.y, v.w, v.h], [1.0, 0.0, 0.0, -1.0, 0.0, v.h])
@@ -211,17 +222,63 @@ fn sized_to_view_box(text: &str, root: Node) -> Sized {
             ([0.0, 0.0, 1.0, 1.0], [1.0, 0.0, 0.0, -1.0, 0.0, height])
         }
     };
+    // Insertions after tag names, made from the end so that earlier offsets stay valid.
+    let name_end = |node: Node| {
+        let tag = node.range().start + 1;
+        tag + text[tag..].find(|c: char| c.is_whitespace() || c == '>' || c == '/').unwrap_or(0)
+    };
+    let mut edits: Vec<(std::ops::Range<usize>, String)> = document
+        .descendants()
+        .filter(is_shape)
+        .enumerate()
+        .filter(|(_, n)| n.attribute("id").is_none())
+        .map(|(k, n)| (name_end(n)..name_end(n), format!(r#" id="{SHAPE_ID}{k}""#)))
+        .collect();
+    // svgtypes skips repeated closepaths by recursing once per repeat: a hostile run of
+    // them would overflow the stack. One closepath does what a run does.
+    for node in document.descendants().filter(is_shape) {
+        if let Some(d) = node.attributes().find(|a| a.name() == "d") {
+            let range = d.range_value();
+            if let Some(collapsed) = collapse_closepaths(&text[range.clone()]) {
+                edits.push((range, collapsed));
+            }
+        }
+    }
     let mut sized = text.to_string();
     for a in root.attributes().filter(|a| matches!(a.name(), "width" | "height" | "viewBox" | "preserveAspectRatio")) {
         let range = a.range();
         sized.replace_range(range.clone(), &" ".repeat(range.len()));
     }
     let [vx, vy, vw, vh] = view_box;
-    // Right after the root's (possibly prefixed) tag name.
-    let tag = root.range().start + 1;
-    let name_end = tag + text[tag..].find(|c: char| c.is_whitespace() || c == '>' || c == '/').unwrap_or(0);
-    sized.insert_str(name_end, &format!(r#" width="{vw}" height="{vh}" viewBox="{vx} {vy} {vw} {vh}""#));
+    let at = name_end(root);
+    edits.push((at..at, format!(r#" width="{vw}" height="{vh}" viewBox="{vx} {vy} {vw} {vh}""#)));
+    edits.sort_by_key(|(range, _)| std::cmp::Reverse(range.start));
+    for (range, replacement) in edits {
+        sized.replace_range(range, &replacement);
+    }
     Sized { text: sized, output }
+}
+
+/// Path data with each run of closepaths (`Z`, `z`, with spaces between) made one, or
+/// `None` when it has no such run.
+fn collapse_closepaths(data: &str) -> Option<String> {
+    let mut out = String::with_capacity(data.len());
+    let (mut closed, mut changed) = (false, false);
+    for c in data.chars() {
+        match c {
+            'Z' | 'z' if closed => changed = true,
+            'Z' | 'z' => {
+                closed = true;
+                out.push(c);
+            }
+            c if c.is_whitespace() => out.push(c),
+            c => {
+                closed = false;
+                out.push(c);
+            }
+        }
+    }
+    changed.then_some(out)
 }
 
 /// A length in user units: a number with an optional absolute unit; `None` for anything
@@ -427,6 +484,16 @@ fn check_depth(root: Node, text: &str) -> Result<(), ImportError> {
         stack.extend(node.children().filter(Node::is_element).map(|c| (c, depth + 1)));
     }
     Ok(())
+}
+
+/// The prefix of the ids given to shapes without one.
+const SHAPE_ID: &str = "akap-shape-";
+
+/// Whether `node` is an SVG shape element.
+fn is_shape(node: &Node) -> bool {
+    node.is_element()
+        && in_svg_namespace(*node)
+        && matches!(node.tag_name().name(), "path" | "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon")
 }
 
 /// Attributes that place geometry.
