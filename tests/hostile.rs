@@ -7,7 +7,7 @@
 use akap::deform::arap::MAX_ITERATIONS;
 use akap::deform::{ArapDeformer, ArapOptions, DeformError, Deformer, DeformerOptions};
 use akap::geometry::Point;
-use akap::import::svg::{import_svg, parse_path_data, SvgOptions};
+use akap::import::svg::{import_svg, SvgOptions};
 use akap::import::vector::Verb;
 use akap::import::warp::PointMapper;
 use akap::import::{ImportError, Limits};
@@ -33,28 +33,20 @@ fn path_data(points: &[Point]) -> String {
 
 #[test]
 fn a_path_of_many_closepaths_parses_in_one_pass() {
+    // (svgtypes, which usvg reads path data with, recurses once per repeated closepath: the
+    // importer makes each run one first, or this would overflow the stack.)
     let closes = 300_000;
     let d = format!("M0 0L1 0L0 1{}", "Z".repeat(closes));
-    let path = parse_path_data(&d, 100).unwrap();
-    assert_eq!(path.points, vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
-    assert_eq!(path.verbs.len(), 3 + closes);
-    assert!(path.verbs[3..].iter().all(|&v| v == Verb::Close));
     // The triangle, y flipped in the 1 x 1 viewBox: area 1/2.
     let shape = import_svg(&svg("0 0 1 1", &format!(r#"<path d="{d}"/>"#)), &SvgOptions::default()).unwrap();
     assert_eq!(shape.outlines.len(), 1);
     assert_eq!(shape.outlines[0].area(), 0.5);
-    // A transform list of many steps that cancel out, and an error still placed exactly.
+    assert_eq!(shape.paths[0].path.verbs.iter().filter(|&&v| v != Verb::Close).count(), 3);
+    // A transform list of many steps that cancel out.
     let steps = "translate(1 0) translate(-1 0) ".repeat(50_000);
     let body = format!(r#"<path transform="{steps}" d="M0 0H1V1Z"/>"#);
     let shape = import_svg(&svg("0 0 1 1", &body), &SvgOptions::default()).unwrap();
     assert_eq!(shape.outlines[0].area(), 0.5);
-    let message = import_svg(
-        &svg("0 0 1 1", &format!(r#"<path transform="{steps}skew(1)" d="M0 0H1V1Z"/>"#)),
-        &SvgOptions::default(),
-    )
-    .unwrap_err()
-    .to_string();
-    assert!(message.contains(&format!("unknown transform `skew` (at character {})", steps.len())), "{message}");
 }
 
 #[test]
@@ -92,10 +84,10 @@ fn thousands_of_small_polygons_and_deep_nesting() {
     let shape = import_svg(&svg("0 0 100 50", &body), &SvgOptions::default()).unwrap();
     assert_eq!(shape.outlines.len(), 5000);
     assert!(shape.outlines.iter().all(|o| o.outer.len() == 3 && o.holes.is_empty() && o.area() == 0.125));
-    // Errors still name the right element: the last polygon is bad.
-    let bad = format!("{body}\n<polygon points=\"1 2 3\"/>");
+    // Errors still name the right element: the last polygon is too large.
+    let bad = format!("{body}\n<polygon id=\"last\" points=\"1 2 3 4 1e31 0\"/>");
     let message = import_svg(&svg("0 0 100 50", &bad), &SvgOptions::default()).unwrap_err().to_string();
-    assert!(message.contains("<polygon> (line 2, column 1)"), "{message}");
+    assert!(message.contains("<polygon id=\"last\"> (line 2, column 1)"), "{message}");
     // 400 nested squares in one even-odd path: filled between squares 0-1, 2-3, ...; the
     // squares have sides 800, 798, ..., so each part is a frame of area s^2 - (s - 2)^2.
     let squares: String = (0..400).map(|k| format!("M{k} {k}H{}V{}H{k}Z", 800 - k, 800 - k)).collect();
@@ -125,7 +117,8 @@ fn long_paths_import_whole() {
     let outer = &shape.outlines[0].outer;
     assert_eq!(outer.len(), n);
     for (p, q) in circle.iter().zip(outer) {
-        assert!((q[0] - (p[0] + 1.0)).abs() < 1e-15 && (q[1] - (1.0 - p[1])).abs() < 1e-15, "{p:?} -> {q:?}");
+        // usvg keeps single precision: 2^-24 of the unit, rounded twice.
+        assert!((q[0] - (p[0] + 1.0)).abs() < 2e-7 && (q[1] - (1.0 - p[1])).abs() < 2e-7, "{p:?} -> {q:?}");
     }
     // A comb of 30,000 points, every long edge overlapping every other in x.
     let teeth = 7_500;

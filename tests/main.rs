@@ -15,6 +15,7 @@ mod hostile;
 mod import_mesh;
 mod import_raster;
 mod import_svg;
+mod import_svg_art;
 mod killing;
 mod limits;
 #[cfg(not(target_arch = "wasm32"))]

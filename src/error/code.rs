@@ -213,6 +213,7 @@ impl ImportError {
             | Self::TooManyPoints { .. }
             | Self::TooManyContourPoints { .. } => ErrorCode::Limit,
             Self::Xml { .. }
+            | Self::Svg { .. }
             | Self::NotSvg { .. }
             | Self::Attribute { .. }
             | Self::NoShapes { .. }

@@ -52,6 +52,12 @@ pub enum ImportError {
         /// Column, from 1.
         column: u32,
     },
+    /// usvg could not make a drawing of the document (no valid size, too many elements
+    /// once `<use>` is expanded).
+    Svg {
+        /// What usvg said.
+        message: String,
+    },
     /// The document's root element is not `svg`.
     NotSvg {
         /// The root element's name.
@@ -200,6 +206,7 @@ impl fmt::Display for ImportError {
                 write!(f, "the SVG is not well-formed XML at line {line}, column {column}: {message}")
             }
             Self::NotSvg { root } => write!(f, "the document's root element is <{root}>, not <svg>"),
+            Self::Svg { message } => write!(f, "the SVG cannot be drawn: {message}"),
             Self::Attribute { element, attribute, message } => {
                 write!(f, "attribute {attribute} of {element}: {message}")
             }

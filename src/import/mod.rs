@@ -15,12 +15,12 @@
 //! | [`vector`] | vector paths: flattening, writing path data |
 
 mod error;
-mod merge;
 pub mod mesh_file;
 pub mod raster;
 mod regions;
 mod simplify;
 pub mod svg;
+mod union;
 pub mod vector;
 pub mod warp;
 

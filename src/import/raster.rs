@@ -95,8 +95,6 @@ pub(crate) enum Values<'a> {
     Alpha(&'a [u8]),
     /// An image's distance from a background colour.
     Colour(&'a [u8], [f64; 3]),
-    /// One value per pixel (a coverage, say).
-    Grid(&'a [f32]),
 }
 
 /// The scalar field marching squares contours: one value per pixel, inside from `level`
@@ -124,7 +122,6 @@ impl Field<'_> {
                 let d = |k: usize| alpha * (f64::from(px[k]) - bg[k]);
                 (d(0).powi(2) + d(1).powi(2) + d(2).powi(2)).sqrt()
             }
-            Values::Grid(values) => f64::from(values[i]),
         }
     }
 

@@ -46,9 +46,7 @@ fn train_options(value: &JsValue) -> Result<TrainOptions, BindingError> {
         }
         options.radius = Some(radius);
     }
-    if let Some(value) = given.get("canonical") {
-        options.canonical = value.as_bool().ok_or_else(|| given.wrong_type("canonical", "true or false", value))?;
-    }
+    options.canonical = given.boolean("canonical")?.unwrap_or(options.canonical);
     if let Some(value) = given.get("fixed") {
         let most = limits().max_vertices;
         let list = read::list(value, "fixed", most).map_err(|e| BindingError::option(e.message()))?;

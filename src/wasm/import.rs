@@ -10,17 +10,18 @@ use super::read::{self, Options};
 use super::{flat, limits, max_coordinates, max_indices, object, outlines_to_js, pairs};
 use crate::import::mesh_file::{self, MeshFile};
 use crate::import::raster::{self, MaskMode, TraceOptions};
-use crate::import::svg::{self as svg_import, SvgOptions};
+use crate::import::svg::{self as svg_import, Part, SvgOptions};
 use crate::import::vector::{FillRule, VectorPath};
 use crate::import::warp::{self, PointMapper};
 use crate::mesh::MeshError;
 
-/// Reads `{ tolerance?, minArea?, maxPoints?, maxBytes? }`.
+/// Reads `{ tolerance?, minArea?, strokes?, maxPoints?, maxBytes? }`.
 fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, BindingError> {
-    let given = Options::read(value, "SVG import", &["tolerance", "minArea", "maxPoints", "maxBytes"])?;
+    let given = Options::read(value, "SVG import", &["tolerance", "minArea", "strokes", "maxPoints", "maxBytes"])?;
     let mut options = SvgOptions::default();
     options.tolerance = given.number("tolerance")?.or(options.tolerance);
     options.min_area = given.number("minArea")?.unwrap_or(options.min_area);
+    options.strokes = given.boolean("strokes")?.unwrap_or(options.strokes);
     options.limits.max_points = given.count("maxPoints", usize::MAX)?.unwrap_or(options.limits.max_points);
     options.limits.max_bytes = given.count("maxBytes", usize::MAX)?.unwrap_or(options.limits.max_bytes);
     Ok(options)
@@ -49,8 +50,8 @@ fn svg_text(text: &JsValue, options: &SvgOptions) -> Result<String, BindingError
     read::string(text, "the SVG text", options.limits.max_bytes)
 }
 
-/// The filled region of an SVG document as outlines, largest part first. `options`:
-/// `{ tolerance?, minArea?, maxPoints?, maxBytes? }`.
+/// The filled (and stroked) region of an SVG document as outlines, largest part first.
+/// `options`: `{ tolerance?, minArea?, strokes?, maxPoints?, maxBytes? }`.
 #[wasm_bindgen]
 pub fn import_svg(text: JsValue, options: JsValue) -> Result<Array, BindingError> {
     let options = parse_svg_options(&options)?;
@@ -58,10 +59,11 @@ pub fn import_svg(text: JsValue, options: JsValue) -> Result<Array, BindingError
     outlines_to_js(&shape.outlines)
 }
 
-/// The filled elements' paths in output coordinates:
-/// `[{ element, commands: "MLQCZ"-letters, points: Float64Array, fillRule, fill }]`, where
-/// `fill` is `"rgba(R, G, B, A)"` (channels 0-255, alpha 0-1 with every opacity folded in)
-/// or `undefined` when the importer does not know the colour (a gradient, say).
+/// The filled areas' paths in output coordinates, in drawing order: `[{ element, part:
+/// "fill" | "stroke", commands: "MLQCZ"-letters, points: Float64Array, fillRule, fill }]`,
+/// where a stroke is its outline, filled; `fill` is `"rgba(R, G, B, A)"` (channels 0-255,
+/// alpha 0-1 with every opacity folded in) or `undefined` when the paint is a gradient or a
+/// pattern.
 #[wasm_bindgen]
 pub fn import_svg_paths(text: JsValue, options: JsValue) -> Result<Array, BindingError> {
     let options = parse_svg_options(&options)?;
@@ -75,6 +77,7 @@ pub fn import_svg_paths(text: JsValue, options: JsValue) -> Result<Array, Bindin
         };
         let entry = object(&[
             ("element", p.element.to_string().into()),
+            ("part", if p.part == Part::Fill { "fill" } else { "stroke" }.into()),
             ("commands", commands.into()),
             ("points", flat(&p.path.points).into()),
             ("fillRule", rule.into()),

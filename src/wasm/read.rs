@@ -253,6 +253,13 @@ impl Options {
         })
     }
 
+    /// Option `name` as true or false, if given.
+    pub(super) fn boolean(&self, name: &str) -> Result<Option<bool>, BindingError> {
+        self.get(name)
+            .map(|value| value.as_bool().ok_or_else(|| self.wrong_type(name, "true or false", value)))
+            .transpose()
+    }
+
     /// Option `name` has a value of the wrong type.
     pub(super) fn wrong_type(&self, name: &str, expected: &str, value: &JsValue) -> BindingError {
         BindingError::option(format!("option {name} must be {expected}, not {}", describe(value)))

@@ -110,7 +110,7 @@ describe("a misspelt option is refused by every options object", () => {
   // misspelt key and listing the known ones otherwise.
   const triangulation = "maxArea, targetEdgeLength, minAngle, maxVertices";
   const deformer = "method, lambda, dirichlet, integrator, iterations";
-  const svgImport = "tolerance, minArea, maxPoints, maxBytes";
+  const svgImport = "tolerance, minArea, strokes, maxPoints, maxBytes";
   const tracing = "mode, alphaThreshold, colourThreshold, tolerance, minArea, maxPoints, maxPixels";
   const { positions, triangles } = grid;
   const cases: [string, string, (options: object) => unknown, object, object][] = [

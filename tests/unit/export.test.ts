@@ -98,23 +98,29 @@ describe("vector SVG export", () => {
     '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 20">' +
     '<g fill="red" opacity="0.5"><rect width="10" height="10" fill-opacity="0.5"/></g>' +
     '<rect x="20" width="10" height="10" fill="#0f0" fill-rule="evenodd"/>' +
-    '<rect x="40" width="10" height="10" fill="url(#gradient)"/></svg>';
+    '<linearGradient id="g"><stop offset="0" stop-color="red"/><stop offset="1"/></linearGradient>' +
+    '<rect x="40" width="10" height="10" fill="url(#g)"/>' +
+    '<circle cx="70" cy="10" r="5" fill="none" stroke="#00f" stroke-width="2"/></svg>';
 
   it("writes each path in its own colour and opacity, the default only when unknown", () => {
     const paths = importSvgPaths(text);
     const svg = vectorSvg(paths.map((path) => ({ path, points: path.points })));
     const written = [...svg.matchAll(/<path d="[^"]*" ([^/]*)\/>/g)].map((m) => m[1]);
+    // The stroke is its outline, filled in the stroke's colour.
     expect(written).toEqual([
       'fill="#ff0000" fill-opacity="0.25" fill-rule="nonzero"',
       'fill="#00ff00" fill-rule="evenodd"',
       'fill="#c8773a" fill-rule="nonzero"',
+      'fill="#0000ff" fill-rule="nonzero"',
     ]);
+    expect(paths.map((p) => p.part)).toEqual(["fill", "fill", "fill", "stroke"]);
     expect(vectorSvg([{ path: paths[2]!, points: paths[2]!.points }], "teal")).toContain('fill="teal"');
   });
 
   it("writes other CSS colours as they are, escaped", () => {
     const path: VectorPath = {
       element: "<path>",
+      part: "fill",
       commands: "MLLZ",
       points: Float64Array.from([0, 0, 1, 0, 0, 1]),
       fillRule: "nonzero",

@@ -73,6 +73,7 @@ describe("vectorTexture", () => {
     const document = { createElement: () => canvas } as unknown as Document;
     const square = (x: number, fill: string | undefined, fillRule: "nonzero" | "evenodd"): VectorPath => ({
       element: "<rect>",
+      part: "fill",
       commands: "MLLLZ",
       points: Float64Array.from([x, 0, x + 1, 0, x + 1, 1, x, 1]),
       fillRule,

@@ -31,6 +31,9 @@ export interface SvgImportOptions {
   tolerance?: number;
   /** Parts and holes with a smaller area are dropped (default 0). */
   minArea?: number;
+  /** Whether strokes count as the area their outline covers (default true) or only fills
+   * do. */
+  strokes?: boolean;
   /** Most outline points after flattening (default 100000). */
   maxPoints?: number;
   /** Largest SVG text, in bytes (default 32 MiB). */
@@ -38,42 +41,55 @@ export interface SvgImportOptions {
 }
 
 /**
- * The filled shapes of an SVG document as outlines with holes, one per separate part,
- * largest first. Coordinates are the root `viewBox`'s user units with y flipped to point
- * up (the `viewBox`'s bottom-left corner is the origin). The document is parsed as data,
- * never inserted into a page. Overlapping shapes are merged (their union traced on a fine
- * grid). Throws an `Error` that names the element (and line) at fault for malformed input
- * or unsupported units, or says that the document has no filled shape.
+ * The filled and stroked shapes of an SVG document as outlines with holes, one per
+ * separate part, largest first. Coordinates are the root `viewBox`'s user units with y
+ * flipped to point up (the `viewBox`'s bottom-left corner is the origin). The document is
+ * parsed as data, never inserted into a page, and resolved as browsers draw it (by usvg):
+ * CSS `<style>` sheets and classes, `<use>`/`<symbol>`, units, `transform-origin`, markers.
+ * A visible stroke counts as the area its outline covers (width, joins, caps, dashes)
+ * unless `strokes: false`; clip paths cut what they clip; a mask counts as the union of
+ * its shapes that let anything through; hidden things and text do not count. Overlapping
+ * shapes are united exactly. Malformed attributes are read as browsers read them (path
+ * data drawn up to its first error). Throws an `Error` for malformed XML (with its line),
+ * a number beyond the coordinate limit (naming the element), or a document with no filled
+ * shape.
  */
 export function importSvg(text: string, options: SvgImportOptions = {}): ImportedOutline[] {
   assertLoaded();
   return raw.import_svg(text, options) as ImportedOutline[];
 }
 
-/** One filled SVG element's geometry, in the same coordinates as {@link importSvg}. */
+/** One filled area of an SVG (an element's fill or its stroke's outline), in the same
+ * coordinates as {@link importSvg}. */
 export interface VectorPath {
-  /** The element, e.g. `<path id="body"> (line 3, column 5)`. */
+  /** The element, e.g. `<path id="body"> (line 3, column 5)` (the position is known for
+   * elements with an `id`; others read `<path> (line 0, column 0)`). */
   element: string;
+  /** Whether this is the element's fill or its stroke (drawn as a filled outline, in the
+   * stroke's colour, so that it bends with the mesh). */
+  part: "fill" | "stroke";
   /** One letter per command: M (1 point), L (1), Q (2), C (3), Z (0); arcs became C. */
   commands: string;
   /** The commands' points, x and y interleaved. */
   points: Float64Array;
   fillRule: "nonzero" | "evenodd";
   /**
-   * The fill colour as a CSS colour, always `rgba(R, G, B, A)` when it comes from
-   * {@link importSvgPaths}: R, G, B whole numbers from 0 to 255, A from 0 to 1 with the
-   * element's `fill-opacity` and the `opacity` of the element and its groups multiplied
-   * in. Usable as it is as a canvas `fillStyle` or an SVG `fill`. `undefined` when the
-   * colour is unknown (a gradient or pattern, `url(#...)`, or a value the importer does not
-   * understand): the element is still filled, so draw it in a colour of your choice.
+   * The colour (the fill's, or the stroke's for a stroke) as a CSS colour, always
+   * `rgba(R, G, B, A)` when it comes from {@link importSvgPaths}: R, G, B whole numbers
+   * from 0 to 255, A from 0 to 1 with the paint's opacity and the `opacity` of the element
+   * and its groups multiplied in. Usable as it is as a canvas `fillStyle` or an SVG `fill`.
+   * `undefined` when the paint is a gradient or a pattern: the area still counts, so draw
+   * it in a colour of your choice.
    */
   fill: string | undefined;
 }
 
 /**
- * The filled elements of an SVG document as vector paths (absolute M, L, Q, C, Z) with
- * their fill rule and colour, for exporting the art deformed: map `points` through the
- * mesh with a {@link PointMapper}, then write them with {@link pathData}.
+ * The filled areas of an SVG document as vector paths (absolute M, L, Q, C, Z) in drawing
+ * order (each element's fill, then its stroke's outline) with their fill rule and colour,
+ * for exporting the art deformed: map `points` through the mesh with a
+ * {@link PointMapper}, then write them with {@link pathData}. Where a clip path or mask
+ * applies, the path is what is left of the area, flattened to lines.
  */
 export function importSvgPaths(text: string, options: SvgImportOptions = {}): VectorPath[] {
   assertLoaded();

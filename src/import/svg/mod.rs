@@ -1,38 +1,45 @@
-//! SVG documents to outlines: the document is read as data (roxmltree), never rendered or
-//! run. Filled `path`, `rect` (with rounded corners), `circle`, `ellipse`, `polygon` and
-//! `polyline` elements count, through `g`, `a`, `switch` and nested `svg` elements, with
-//! their `transform`s and `viewBox`es; `fill`, `fill-rule`, `fill-opacity`, `color`,
-//! `opacity` and `display` are read from attributes and `style` (see `style`), and each
-//! filled element keeps its fill colour. Curves are flattened to a tolerance and the rings
-//! become outlines with holes by nesting (see `regions`), exactly; when boundaries cross or
-//! touch (overlapping shapes), the union is traced on a fine grid instead (see `merge`).
+//! SVG documents to outlines. The document is read as data (roxmltree, with every limit of
+//! [`Limits`] applied first), never rendered or run, and resolved by `usvg` (the resvg
+//! project's SVG simplifier): CSS (`<style>` sheets, classes, `style` attributes), `<use>`
+//! and `<symbol>`, units, transforms and `transform-origin`, nested `<svg>` viewports,
+//! `<switch>`, markers and paint references become a plain tree of paths. From it (see
+//! [`tree`]) every visible fill counts, and so does every visible stroke, as the area its
+//! outline covers (width, joins, caps, miter limit, dashes), unless
+//! [`SvgOptions::strokes`] is off. Clip paths intersect what they clip; masks are
+//! approximated by the union of their shapes that let anything through. Hidden things
+//! (`display="none"`, `visibility="hidden"`, zero opacity) and text are not imported;
+//! images and text are named in [`SvgShape::skipped`].
+//!
+//! Malformed attributes are read as browsers read them: path data is drawn up to its first
+//! error, and an attribute that cannot be parsed is ignored (its default applies). Malformed
+//! XML is refused with its line and column.
+//!
+//! Curves are flattened to a tolerance and the rings become outlines with holes by nesting
+//! (see `regions`), exactly; when boundaries cross or touch (overlapping shapes, a stroke
+//! over its fill) or clips apply, the exact union is computed instead (see `union`).
 //! Elements reaching coordinates beyond [`Limits::max_coordinate`] are refused.
 //!
 //! Output coordinates are the root's user units (its `viewBox`) with y flipped to point
 //! up: the bottom-left corner of the `viewBox` is the origin.
 
-mod path_data;
-mod style;
 mod text;
-mod transform;
+pub mod tree;
 
-use std::cell::RefCell;
+use std::collections::HashMap;
 
 use roxmltree::{Document, Node, ParsingOptions};
 
-pub use path_data::{parse_path_data, SyntaxError};
-pub use style::FillColour;
-pub use transform::{parse_transform, Affine};
+pub use tree::Part;
 
-use crate::geometry::{bounding_box, Point};
+use crate::geometry::bounding_box;
 use crate::import::error::{ElementRef, ImportError};
-use crate::import::merge::merge;
 use crate::import::regions::{assemble, RegionError, SourceRing};
+use crate::import::union::{self, Region};
 use crate::import::vector::{FillRule, VectorPath, Verb};
 use crate::import::Limits;
 use crate::outline::Outline;
-use style::Style;
 use text::{check_attributes, Cursor};
+use tree::Drawing;
 
 const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
@@ -51,13 +58,15 @@ pub struct SvgOptions {
     pub tolerance: Option<f64>,
     /// Parts and holes with a smaller area are dropped (holes are filled).
     pub min_area: f64,
+    /// Whether strokes count as area (the default) or only fills do.
+    pub strokes: bool,
     /// Size limits.
     pub limits: Limits,
 }
 
 impl Default for SvgOptions {
     fn default() -> Self {
-        Self { tolerance: None, min_area: 0.0, limits: Limits::default() }
+        Self { tolerance: None, min_area: 0.0, strokes: true, limits: Limits::default() }
     }
 }
 
@@ -89,19 +98,37 @@ impl SvgOptions {
     }
 }
 
-/// One filled element's geometry, in output coordinates, for exporting the art deformed.
+/// A colour with its alpha: every opacity on the way from the root folded in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FillColour {
+    /// Red, 0-255.
+    pub red: u8,
+    /// Green, 0-255.
+    pub green: u8,
+    /// Blue, 0-255.
+    pub blue: u8,
+    /// Alpha, 0-1.
+    pub alpha: f64,
+}
+
+/// One filled area's geometry (an element's fill, or its stroke's outline), in output
+/// coordinates, for exporting the art deformed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SvgPath {
-    /// The element it comes from.
+    /// The element it comes from (its position is known when it has an `id`).
     pub element: ElementRef,
-    /// Its path (arcs converted to cubics).
+    /// Its path: cubics, quadratics and lines as usvg resolved them; where a clip path or a
+    /// mask applies, the clipped area's flattened outline.
     pub path: VectorPath,
-    /// Its fill rule.
+    /// Its fill rule (non-zero for stroke outlines).
     pub fill_rule: FillRule,
-    /// Its fill colour, with `fill-opacity` and every `opacity` on the way from the root
-    /// folded into the alpha; `None` when the fill is a paint server (`url(#gradient)`) or
-    /// a value the importer does not understand (still filled: the shape counts).
+    /// Its colour (the fill's or the stroke's), with the paint's opacity and every group
+    /// `opacity` on the way from the root folded into the alpha (exact where the group's
+    /// shapes do not overlap); `None` when the paint is a gradient or a pattern (the area
+    /// still counts).
     pub fill: Option<FillColour>,
+    /// Whether it is the element's fill or its stroke.
+    pub part: Part,
 }
 
 /// What an SVG document gave.
@@ -109,13 +136,13 @@ pub struct SvgPath {
 pub struct SvgShape {
     /// The filled region's separate parts, largest first.
     pub outlines: Vec<Outline>,
-    /// Every filled element's path, in document order.
+    /// Every filled area in drawing order: an element's fill, then its stroke.
     pub paths: Vec<SvgPath>,
-    /// Unsupported elements that were skipped (`text`, `use`, `image`, ...), once each.
+    /// Elements that were skipped (`text`, `image`, `foreignObject`), once each.
     pub skipped: Vec<String>,
 }
 
-/// Reads an SVG document and builds the outlines of its filled shapes.
+/// Reads an SVG document and builds the outlines of its filled and stroked shapes.
 ///
 /// ```
 /// use akap::import::svg::{import_svg, SvgOptions};
@@ -129,6 +156,290 @@ pub struct SvgShape {
 pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportError> {
     options.validate()?;
     let limits = &options.limits;
+    let document = parse_document(text, limits)?;
+    let root = document.root_element();
+    if root.tag_name().name() != "svg" || !in_svg_namespace(root) {
+        return Err(ImportError::NotSvg { root: root.tag_name().name().to_string() });
+    }
+    check_depth(root, text)?;
+    check_numbers(&document, text, limits.max_coordinate)?;
+    let sized = sized_to_view_box(text, &document);
+    let output = sized.output;
+    let sized = parse_document(&sized.text, limits)?;
+    let tree = usvg::Tree::from_xmltree(&sized, &usvg::Options::default())
+        .map_err(|e| ImportError::Svg { message: e.to_string() })?;
+    // Drawn by browsers, not imported: said once each.
+    let mut skipped: Vec<String> = Vec::new();
+    for node in document.descendants().filter(|n| n.is_element() && in_svg_namespace(*n)) {
+        let name = node.tag_name().name();
+        if matches!(name, "text" | "image" | "foreignObject") && !skipped.iter().any(|s| s == name) {
+            skipped.push(name.to_string());
+        }
+    }
+    // usvg keeps ids only: every shape has one (see `sized_to_view_box`) to find it by.
+    let shapes: Vec<Node> = document.descendants().filter(is_shape).collect();
+    let elements: HashMap<&str, Node> =
+        document.descendants().filter_map(|n| n.attribute("id").map(|id| (id, n))).collect();
+    let cursor = std::cell::RefCell::new(Cursor::new(text));
+    let locate = |id: &str| {
+        let node = match id.strip_prefix(SHAPE_ID) {
+            Some(k) => k.parse::<usize>().ok().and_then(|k| shapes.get(k)).copied(),
+            None => elements.get(id).copied(),
+        };
+        match node {
+            Some(node) => {
+                let (line, column) = cursor.borrow_mut().at(node.range().start);
+                let id = node.attribute("id").map(str::to_string);
+                ElementRef { name: node.tag_name().name().to_string(), id, line, column }
+            }
+            None => ElementRef { name: "path".into(), id: Some(id.to_string()), line: 0, column: 0 },
+        }
+    };
+    let drawing = tree::drawing(&tree, output, options.strokes, &locate);
+    check_points(&drawing, limits)?;
+    shape_of(drawing, skipped, options)
+}
+
+/// The document's text with its root sized to its `viewBox` (or 1 x 1 with a unit
+/// `viewBox` when it has none) and an id on every shape without one (`SHAPE_ID` and its
+/// index among the shapes), and the map from the root's user units to output.
+struct Sized {
+    text: String,
+    output: [f64; 6],
+}
+
+/// usvg maps the root's user units into its size through the viewBox; with the size set to
+/// the viewBox's own, that map is the shift by the viewBox's corner, and none of usvg's
+/// sizing rules (percentages, aspect ratios) apply.
+fn sized_to_view_box(text: &str, document: &Document) -> Sized {
+    let root = document.root_element();
+    let (view_box, output) = match root.attribute("viewBox").and_then(|v| v.parse::<svgtypes::ViewBox>().ok()) {
+        Some(v) if v.w > 0.0 && v.h > 0.0 && v.w.is_finite() && v.h.is_finite() => {
+            ([v.x, v.y, v.w, v.h], [1.0, 0.0, 0.0, -1.0, 0.0, v.h])
+        }
+        _ => {
+            let height = root.attribute("height").and_then(parse_length).unwrap_or(0.0);
+            ([0.0, 0.0, 1.0, 1.0], [1.0, 0.0, 0.0, -1.0, 0.0, height])
+        }
+    };
+    // Insertions after tag names, made from the end so that earlier offsets stay valid.
+    let name_end = |node: Node| {
+        let tag = node.range().start + 1;
+        tag + text[tag..].find(|c: char| c.is_whitespace() || c == '>' || c == '/').unwrap_or(0)
+    };
+    let mut edits: Vec<(std::ops::Range<usize>, String)> = document
+        .descendants()
+        .filter(is_shape)
+        .enumerate()
+        .filter(|(_, n)| n.attribute("id").is_none())
+        .map(|(k, n)| (name_end(n)..name_end(n), format!(r#" id="{SHAPE_ID}{k}""#)))
+        .collect();
+    // svgtypes skips repeated closepaths by recursing once per repeat: a hostile run of
+    // them would overflow the stack. One closepath does what a run does.
+    for node in document.descendants().filter(is_shape) {
+        if let Some(d) = node.attributes().find(|a| a.name() == "d") {
+            let range = d.range_value();
+            if let Some(collapsed) = collapse_closepaths(&text[range.clone()]) {
+                edits.push((range, collapsed));
+            }
+        }
+    }
+    let mut sized = text.to_string();
+    for a in root.attributes().filter(|a| matches!(a.name(), "width" | "height" | "viewBox" | "preserveAspectRatio")) {
+        let range = a.range();
+        sized.replace_range(range.clone(), &" ".repeat(range.len()));
+    }
+    let [vx, vy, vw, vh] = view_box;
+    let at = name_end(root);
+    edits.push((at..at, format!(r#" width="{vw}" height="{vh}" viewBox="{vx} {vy} {vw} {vh}""#)));
+    edits.sort_by_key(|(range, _)| std::cmp::Reverse(range.start));
+    for (range, replacement) in edits {
+        sized.replace_range(range, &replacement);
+    }
+    Sized { text: sized, output }
+}
+
+/// Path data with each run of closepaths (`Z`, `z`, with spaces between) made one, or
+/// `None` when it has no such run.
+fn collapse_closepaths(data: &str) -> Option<String> {
+    let mut out = String::with_capacity(data.len());
+    let (mut closed, mut changed) = (false, false);
+    for c in data.chars() {
+        match c {
+            'Z' | 'z' if closed => changed = true,
+            'Z' | 'z' => {
+                closed = true;
+                out.push(c);
+            }
+            c if c.is_whitespace() => out.push(c),
+            c => {
+                closed = false;
+                out.push(c);
+            }
+        }
+    }
+    changed.then_some(out)
+}
+
+/// A length in user units: a number with an optional absolute unit; `None` for anything
+/// else (the root's height without a `viewBox` only places the y flip).
+fn parse_length(text: &str) -> Option<f64> {
+    let length: svgtypes::Length = text.parse().ok()?;
+    let scale = match length.unit {
+        svgtypes::LengthUnit::None | svgtypes::LengthUnit::Px => 1.0,
+        svgtypes::LengthUnit::Mm => 96.0 / 25.4,
+        svgtypes::LengthUnit::Cm => 96.0 / 2.54,
+        svgtypes::LengthUnit::In => 96.0,
+        svgtypes::LengthUnit::Pt => 96.0 / 72.0,
+        svgtypes::LengthUnit::Pc => 16.0,
+        _ => return None,
+    };
+    Some(length.number * scale)
+}
+
+/// Refuses drawings of more than [`Limits::max_points`] points before flattening, and
+/// elements reaching beyond [`Limits::max_coordinate`].
+fn check_points(drawing: &Drawing, limits: &Limits) -> Result<(), ImportError> {
+    let paths = drawing.paths.iter().map(|(p, _)| (&p.path, &p.element));
+    let unnamed = ElementRef { name: "clipPath".into(), id: None, line: 0, column: 0 };
+    let members = drawing.clips.iter().flat_map(|c| c.members.iter().map(|m| (&m.0, &unnamed)));
+    let mut count = 0usize;
+    for (path, element) in paths.chain(members) {
+        count += path.points.len();
+        if count > limits.max_points {
+            return Err(ImportError::TooManyPoints {
+                what: "the SVG's shapes",
+                needed: None,
+                limit: limits.max_points,
+            });
+        }
+        let limit = limits.max_coordinate;
+        if let Some(&value) = path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit) {
+            return Err(ImportError::CoordinateTooLarge { element: element.clone(), value, limit });
+        }
+    }
+    Ok(())
+}
+
+/// Flattens `path` to rings within what is left of the point budget.
+fn flatten(
+    path: &VectorPath,
+    tolerance: f64,
+    count: &mut usize,
+    limits: &Limits,
+) -> Result<Vec<Vec<crate::geometry::Point>>, ImportError> {
+    let flat = path.flatten(tolerance.max(f64::MIN_POSITIVE), *count, limits.max_points).map_err(|needed| {
+        ImportError::TooManyPoints {
+            what: "the outline flattened to the tolerance",
+            needed: needed.is_finite().then_some(needed),
+            limit: limits.max_points,
+        }
+    })?;
+    *count += flat.iter().map(Vec::len).sum::<usize>();
+    Ok(flat)
+}
+
+/// The outlines of the drawing (flattened, then nested, or united where shapes cross or
+/// clips apply), and its paths.
+fn shape_of(drawing: Drawing, skipped: Vec<String>, options: &SvgOptions) -> Result<SvgShape, ImportError> {
+    let limits = &options.limits;
+    let Drawing { paths, clips } = drawing;
+    let every_point = paths.iter().flat_map(|(p, _)| p.path.points.iter().copied());
+    let Some((lo, hi)) = bounding_box(every_point) else {
+        return Err(ImportError::NoShapes { skipped });
+    };
+    let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let tolerance = options.tolerance.unwrap_or(DEFAULT_RELATIVE_TOLERANCE * size);
+    let mut count = 0;
+    let mut flat = Vec::with_capacity(paths.len());
+    for (p, _) in &paths {
+        flat.push(flatten(&p.path, tolerance, &mut count, limits)?);
+    }
+    let clipped = paths.iter().any(|(_, c)| !c.is_empty());
+    if !clipped {
+        let rings: Vec<SourceRing> = flat
+            .iter()
+            .enumerate()
+            .flat_map(|(shape, rings)| rings.iter().map(move |r| SourceRing { points: r.clone(), shape }))
+            .collect();
+        let rules: Vec<FillRule> = paths.iter().map(|(p, _)| p.fill_rule).collect();
+        match assemble(&rings, &rules, options.min_area, limits.max_segment_pairs) {
+            Ok(outlines) => return finish(outlines, paths.into_iter().map(|(p, _)| p).collect(), skipped),
+            Err(RegionError::Crossing(..)) => {}
+            Err(RegionError::TooComplex) => return Err(ImportError::TooComplex { pairs: limits.max_segment_pairs }),
+        }
+    }
+    // Clip regions in order (a clip only refers to earlier ones).
+    let mut regions: Vec<Region> = Vec::with_capacity(clips.len());
+    for clip in &clips {
+        let mut members = Vec::with_capacity(clip.members.len());
+        for (path, rule, own) in &clip.members {
+            let rings = flatten(path, tolerance, &mut count, limits)?;
+            members.push(clipped_by(union::resolve(&rings, *rule), own, &regions));
+        }
+        regions.push(clipped_by(union::union(members), &clip.clips, &regions));
+    }
+    let mut parts = Vec::with_capacity(paths.len());
+    let mut kept = Vec::with_capacity(paths.len());
+    for ((mut p, own), rings) in paths.into_iter().zip(&flat) {
+        let region = union::resolve(rings, p.fill_rule);
+        if own.is_empty() {
+            parts.push(region);
+            kept.push(p);
+            continue;
+        }
+        // A clipped area is exported as what is left of it.
+        let region = clipped_by(region, &own, &regions);
+        if region.is_empty() {
+            continue;
+        }
+        p.path = polygon_path(&region);
+        p.fill_rule = FillRule::NonZero;
+        parts.push(region);
+        kept.push(p);
+    }
+    let region = union::union(parts);
+    let points = union::point_count(&region);
+    if points > limits.max_points {
+        return Err(ImportError::TooManyPoints {
+            what: "the united outline",
+            needed: Some(points as f64),
+            limit: limits.max_points,
+        });
+    }
+    finish(union::outlines(region, options.min_area), kept, skipped)
+}
+
+fn finish(outlines: Vec<Outline>, paths: Vec<SvgPath>, skipped: Vec<String>) -> Result<SvgShape, ImportError> {
+    if outlines.is_empty() {
+        return Err(ImportError::NoShapes { skipped });
+    }
+    Ok(SvgShape { outlines, paths, skipped })
+}
+
+/// `region` intersected with each of `clips` (indices into `regions`).
+fn clipped_by(mut region: Region, clips: &[usize], regions: &[Region]) -> Region {
+    for &c in clips {
+        region = union::intersect(&region, &regions[c]);
+    }
+    region
+}
+
+/// A region's rings as a path of lines.
+fn polygon_path(region: &Region) -> VectorPath {
+    let mut path = VectorPath { verbs: Vec::new(), points: Vec::new() };
+    for ring in region.iter().flatten() {
+        path.verbs.push(Verb::Move);
+        path.verbs.extend(std::iter::repeat_n(Verb::Line, ring.len().saturating_sub(1)));
+        path.verbs.push(Verb::Close);
+        path.points.extend_from_slice(ring);
+    }
+    path
+}
+
+/// The document read as data with every limit applied: its size in bytes, its start tags'
+/// attribute pairs (before roxmltree's quadratic duplicate check), its node count.
+fn parse_document<'i>(text: &'i str, limits: &Limits) -> Result<Document<'i>, ImportError> {
     if text.len() > limits.max_bytes {
         return Err(ImportError::TooLarge {
             what: "the SVG text",
@@ -153,330 +464,84 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
         let message = message.strip_suffix(&suffix).unwrap_or(&message).to_string();
         ImportError::Xml { message, line: pos.row, column: pos.col }
     })?;
-    let root = document.root_element();
-    if root.tag_name().name() != "svg" || !in_svg_namespace(root) {
-        return Err(ImportError::NotSvg { root: root.tag_name().name().to_string() });
+    Ok(document)
+}
+
+/// Refuses elements nested deeper than [`MAX_DEPTH`], found without recursion.
+fn check_depth(root: Node, text: &str) -> Result<(), ImportError> {
+    let mut stack = vec![(root, 0usize)];
+    while let Some((node, depth)) = stack.pop() {
+        if depth > MAX_DEPTH {
+            let (line, column) = Cursor::new(text).at(node.range().start);
+            let element = ElementRef {
+                name: node.tag_name().name().to_string(),
+                id: node.attribute("id").map(str::to_string),
+                line,
+                column,
+            };
+            return Err(ImportError::TooDeep { element, limit: MAX_DEPTH });
+        }
+        stack.extend(node.children().filter(Node::is_element).map(|c| (c, depth + 1)));
     }
+    Ok(())
+}
 
-    let mut walk =
-        Walk { cursor: RefCell::new(Cursor::new(text)), limits, paths: Vec::new(), skipped: Vec::new(), points: 0 };
-    walk.run(root)?;
-    let Walk { paths, skipped, .. } = walk;
+/// The prefix of the ids given to shapes without one.
+const SHAPE_ID: &str = "akap-shape-";
 
-    let every_point = paths.iter().flat_map(|p| p.path.points.iter().copied());
-    let Some((lo, hi)) = bounding_box(every_point) else {
-        return Err(ImportError::NoShapes { skipped });
-    };
-    let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
-    let tolerance = options.tolerance.unwrap_or(DEFAULT_RELATIVE_TOLERANCE * size);
-    let mut rings = Vec::new();
-    let mut count = 0;
-    for (shape, p) in paths.iter().enumerate() {
-        let flat = p.path.flatten(tolerance.max(f64::MIN_POSITIVE), count, limits.max_points).map_err(|needed| {
-            ImportError::TooManyPoints {
-                what: "the outline flattened to the tolerance",
-                needed: needed.is_finite().then_some(needed),
-                limit: limits.max_points,
+/// Whether `node` is an SVG shape element.
+fn is_shape(node: &Node) -> bool {
+    node.is_element()
+        && in_svg_namespace(*node)
+        && matches!(node.tag_name().name(), "path" | "rect" | "circle" | "ellipse" | "line" | "polyline" | "polygon")
+}
+
+/// Attributes that place geometry.
+const GEOMETRY: [&str; 18] = [
+    "d",
+    "points",
+    "x",
+    "y",
+    "width",
+    "height",
+    "x1",
+    "y1",
+    "x2",
+    "y2",
+    "cx",
+    "cy",
+    "r",
+    "rx",
+    "ry",
+    "transform",
+    "viewBox",
+    "stroke-width",
+];
+
+/// Refuses an element with a number beyond [`Limits::max_coordinate`] in an attribute that
+/// places geometry, naming it, before usvg reads the numbers in single precision (where
+/// those beyond about 3.4e38 become infinite and the element would silently vanish).
+fn check_numbers(document: &Document, text: &str, limit: f64) -> Result<(), ImportError> {
+    let mut cursor = Cursor::new(text);
+    for node in document.descendants().filter(Node::is_element) {
+        for attribute in node.attributes().filter(|a| GEOMETRY.contains(&a.name())) {
+            let tokens =
+                attribute.value().split(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '-' | '+')));
+            if let Some(value) = tokens.filter_map(|t| t.parse::<f64>().ok()).find(|v| v.abs() > limit) {
+                let (line, column) = cursor.at(node.range().start);
+                let element = ElementRef {
+                    name: node.tag_name().name().to_string(),
+                    id: node.attribute("id").map(str::to_string),
+                    line,
+                    column,
+                };
+                return Err(ImportError::CoordinateTooLarge { element, value, limit });
             }
-        })?;
-        count += flat.iter().map(Vec::len).sum::<usize>();
-        rings.extend(flat.into_iter().map(|points| SourceRing { points, shape }));
+        }
     }
-    let rules: Vec<FillRule> = paths.iter().map(|p| p.fill_rule).collect();
-    // Boundaries that cross or touch leave nesting undecided: merge those shapes on a grid.
-    let outlines = match assemble(&rings, &rules, options.min_area, limits.max_segment_pairs) {
-        Ok(outlines) => outlines,
-        Err(RegionError::Crossing(..)) => merge(&rings, &rules, tolerance, options.min_area, limits)?,
-        Err(RegionError::TooComplex) => return Err(ImportError::TooComplex { pairs: limits.max_segment_pairs }),
-    };
-    if outlines.is_empty() {
-        return Err(ImportError::NoShapes { skipped });
-    }
-    Ok(SvgShape { outlines, paths, skipped })
+    Ok(())
 }
 
 fn in_svg_namespace(node: Node) -> bool {
     matches!(node.tag_name().namespace(), None | Some(SVG_NAMESPACE))
-}
-
-struct Walk<'a, 'input> {
-    /// Lines and columns of elements, met in document order.
-    cursor: RefCell<Cursor<'input>>,
-    limits: &'a Limits,
-    paths: Vec<SvgPath>,
-    skipped: Vec<String>,
-    points: usize,
-}
-
-impl<'a, 'input> Walk<'a, 'input> {
-    fn element_ref(&self, node: Node) -> ElementRef {
-        let (line, column) = self.cursor.borrow_mut().at(node.range().start);
-        ElementRef {
-            name: node.tag_name().name().to_string(),
-            id: node.attribute("id").map(str::to_string),
-            line,
-            column,
-        }
-    }
-
-    fn attribute_error(&self, node: Node, attribute: &str, message: impl Into<String>) -> ImportError {
-        ImportError::Attribute {
-            element: self.element_ref(node),
-            attribute: attribute.to_string(),
-            message: message.into(),
-        }
-    }
-
-    /// Walks the tree without recursion: (node, transform to output, style, depth).
-    fn run(&mut self, root: Node<'a, 'input>) -> Result<(), ImportError> {
-        let viewport = self.root_viewport(root)?;
-        let mut stack = vec![(root, viewport, Style::initial(), 0usize)];
-        while let Some((node, parent_transform, parent_style, depth)) = stack.pop() {
-            if depth > MAX_DEPTH {
-                return Err(ImportError::TooDeep { element: self.element_ref(node), limit: MAX_DEPTH });
-            }
-            let style =
-                Style::of(node, &parent_style).map_err(|e| self.attribute_error(node, e.property, e.message))?;
-            let Some(style) = style else { continue };
-            let mut transform = parent_transform;
-            if let Some(text) = node.attribute("transform") {
-                let local = parse_transform(text).map_err(|e| self.syntax_error(node, "transform", e))?;
-                transform = transform.then_apply_to(local);
-            }
-            let name = node.tag_name().name();
-            match name {
-                "svg" | "g" | "a" | "switch" => {
-                    if name == "svg" && depth > 0 {
-                        transform = transform.then_apply_to(self.nested_viewport(node)?);
-                    }
-                    let children: Vec<_> = node.children().filter(|c| c.is_element() && in_svg_namespace(*c)).collect();
-                    // Reversed, so that the stack pops them in document order.
-                    stack.extend(children.into_iter().rev().map(|c| (c, transform, style, depth + 1)));
-                }
-                "path" | "rect" | "circle" | "ellipse" | "polygon" | "polyline" => {
-                    if !style.filled() {
-                        continue;
-                    }
-                    if let Some(mut path) = self.shape(node)? {
-                        path.map_points(|p| transform.apply(p));
-                        self.check_coordinates(node, &path)?;
-                        self.paths.push(SvgPath {
-                            element: self.element_ref(node),
-                            path,
-                            fill_rule: style.fill_rule,
-                            fill: style.fill_colour(),
-                        });
-                    }
-                }
-                "text" | "use" | "image" | "foreignObject" | "textPath" | "tspan"
-                    if !self.skipped.iter().any(|s| s == name) =>
-                {
-                    self.skipped.push(name.to_string());
-                }
-                // Definitions, metadata, lines and anything unknown draw no filled area.
-                _ => {}
-            }
-        }
-        Ok(())
-    }
-
-    /// Refuses an element whose points, placed in the drawing, lie beyond
-    /// [`Limits::max_coordinate`] (or overflowed on the way there).
-    fn check_coordinates(&self, node: Node, path: &VectorPath) -> Result<(), ImportError> {
-        let limit = self.limits.max_coordinate;
-        match path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit) {
-            Some(&value) => Err(ImportError::CoordinateTooLarge { element: self.element_ref(node), value, limit }),
-            None => Ok(()),
-        }
-    }
-
-    fn syntax_error(&self, node: Node, attribute: &str, e: SyntaxError) -> ImportError {
-        if e.too_many {
-            // Parsed with what is left of the document's budget: the caller's limit is the
-            // news, not the remainder (which may be 0).
-            return ImportError::TooManyPoints {
-                what: "the SVG's shapes",
-                needed: None,
-                limit: self.limits.max_points,
-            };
-        }
-        self.attribute_error(node, attribute, format!("{} (at character {})", e.message, e.offset))
-    }
-
-    /// The map from the root's user units to output coordinates (y up).
-    fn root_viewport(&self, root: Node) -> Result<Affine, ImportError> {
-        if let Some([x, y, _, h]) = self.view_box(root)? {
-            return Ok(Affine([1.0, 0.0, 0.0, -1.0, -x, y + h]));
-        }
-        let height = root.attribute("height").and_then(|h| parse_length(h).ok()).unwrap_or(0.0);
-        Ok(Affine([1.0, 0.0, 0.0, -1.0, 0.0, height]))
-    }
-
-    fn view_box(&self, node: Node) -> Result<Option<[f64; 4]>, ImportError> {
-        let Some(text) = node.attribute("viewBox") else { return Ok(None) };
-        let numbers = path_data::parse_number_list(text, 4).map_err(|e| self.syntax_error(node, "viewBox", e))?;
-        match numbers[..] {
-            [x, y, w, h] if w > 0.0 && h > 0.0 => Ok(Some([x, y, w, h])),
-            _ => Err(self.attribute_error(
-                node,
-                "viewBox",
-                "expected four numbers: x, y, and a width and height above 0",
-            )),
-        }
-    }
-
-    /// A nested `svg`: its position, and its `viewBox` fitted into its width and height as
-    /// `preserveAspectRatio` says.
-    fn nested_viewport(&self, node: Node) -> Result<Affine, ImportError> {
-        let x = self.length(node, "x")?.unwrap_or(0.0);
-        let y = self.length(node, "y")?.unwrap_or(0.0);
-        let mut map = Affine::translate(x, y);
-        let (Some([vx, vy, vw, vh]), Some(w), Some(h)) =
-            (self.view_box(node)?, self.length(node, "width")?, self.length(node, "height")?)
-        else {
-            return Ok(map);
-        };
-        let aspect = node.attribute("preserveAspectRatio").unwrap_or("xMidYMid meet").trim();
-        let (mut sx, mut sy) = (w / vw, h / vh);
-        let (mut tx, mut ty) = (0.0, 0.0);
-        if aspect != "none" {
-            let s = if aspect.ends_with("slice") { sx.max(sy) } else { sx.min(sy) };
-            (sx, sy) = (s, s);
-            let align = |axis: &str, free: f64| {
-                if aspect.contains(&format!("{axis}Mid")) {
-                    free / 2.0
-                } else if aspect.contains(&format!("{axis}Max")) {
-                    free
-                } else {
-                    0.0
-                }
-            };
-            tx = align("x", w - vw * s);
-            ty = align("Y", h - vh * s);
-        }
-        map = map.then_apply_to(Affine([sx, 0.0, 0.0, sy, tx - vx * sx, ty - vy * sy]));
-        Ok(map)
-    }
-
-    /// An optional length attribute in user units.
-    fn length(&self, node: Node, attribute: &str) -> Result<Option<f64>, ImportError> {
-        node.attribute(attribute)
-            .map(|text| parse_length(text).map_err(|message| self.attribute_error(node, attribute, message)))
-            .transpose()
-    }
-
-    /// The element's geometry in its own user units, or `None` if it draws nothing.
-    fn shape(&mut self, node: Node) -> Result<Option<VectorPath>, ImportError> {
-        let remaining = self.limits.max_points.saturating_sub(self.points);
-        let path = match node.tag_name().name() {
-            "path" => {
-                let Some(d) = node.attribute("d") else { return Ok(None) };
-                parse_path_data(d, remaining).map_err(|e| self.syntax_error(node, "d", e))?
-            }
-            "rect" => {
-                let get = |a| self.length(node, a);
-                let (x, y) = (get("x")?.unwrap_or(0.0), get("y")?.unwrap_or(0.0));
-                let (Some(w), Some(h)) = (get("width")?, get("height")?) else { return Ok(None) };
-                if !(w > 0.0 && h > 0.0) {
-                    return Ok(None);
-                }
-                let (rx, ry) = match (get("rx")?.filter(|r| *r >= 0.0), get("ry")?.filter(|r| *r >= 0.0)) {
-                    (Some(rx), Some(ry)) => (rx, ry),
-                    (Some(r), None) | (None, Some(r)) => (r, r),
-                    (None, None) => (0.0, 0.0),
-                };
-                let (rx, ry) = (rx.min(w / 2.0), ry.min(h / 2.0));
-                let d = if rx > 0.0 && ry > 0.0 {
-                    let arc = |x: f64, y: f64| format!("A{rx} {ry} 0 0 1 {x} {y}");
-                    format!(
-                        "M{} {y}H{}{}V{}{}H{}{}V{}{}Z",
-                        x + rx,
-                        x + w - rx,
-                        arc(x + w, y + ry),
-                        y + h - ry,
-                        arc(x + w - rx, y + h),
-                        x + rx,
-                        arc(x, y + h - ry),
-                        y + ry,
-                        arc(x + rx, y),
-                    )
-                } else {
-                    format!("M{x} {y}H{}V{}H{x}Z", x + w, y + h)
-                };
-                parse_path_data(&d, remaining).map_err(|e| self.syntax_error(node, "(rect)", e))?
-            }
-            "circle" | "ellipse" => {
-                let get = |a| self.length(node, a);
-                let (cx, cy) = (get("cx")?.unwrap_or(0.0), get("cy")?.unwrap_or(0.0));
-                let (rx, ry) = if node.tag_name().name() == "circle" {
-                    let r = get("r")?.unwrap_or(0.0);
-                    (r, r)
-                } else {
-                    match (get("rx")?, get("ry")?) {
-                        (Some(rx), Some(ry)) => (rx, ry),
-                        (Some(r), None) | (None, Some(r)) => (r, r),
-                        (None, None) => (0.0, 0.0),
-                    }
-                };
-                if !(rx > 0.0 && ry > 0.0) {
-                    return Ok(None);
-                }
-                let d = format!("M{} {cy}A{rx} {ry} 0 0 1 {} {cy}A{rx} {ry} 0 0 1 {} {cy}Z", cx + rx, cx - rx, cx + rx);
-                parse_path_data(&d, remaining).map_err(|e| self.syntax_error(node, "(ellipse)", e))?
-            }
-            _ => {
-                // polygon and polyline: a polyline is closed when filled.
-                let Some(text) = node.attribute("points") else { return Ok(None) };
-                let numbers = path_data::parse_number_list(text, remaining.saturating_mul(2))
-                    .map_err(|e| self.syntax_error(node, "points", e))?;
-                if numbers.len() % 2 == 1 {
-                    return Err(self.attribute_error(node, "points", "an odd count of numbers (x y pairs expected)"));
-                }
-                let points: Vec<Point> = numbers.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
-                if points.is_empty() {
-                    return Ok(None);
-                }
-                let mut verbs = vec![Verb::Line; points.len()];
-                verbs[0] = Verb::Move;
-                verbs.push(Verb::Close);
-                VectorPath { verbs, points }
-            }
-        };
-        self.points += path.points.len();
-        Ok(Some(path))
-    }
-}
-
-/// A length in user units: a number with an optional absolute unit (px, mm, cm, in, pt, pc).
-fn parse_length(text: &str) -> Result<f64, String> {
-    let text = text.trim();
-    let mut s = path_data::Scanner::new(text);
-    let value = s.number().map_err(|e| format!("{} in `{text}`", e.message))?;
-    let unit = &text[s.offset()..];
-    let scale = match unit.trim() {
-        "" | "px" => 1.0,
-        "mm" => 96.0 / 25.4,
-        "cm" => 96.0 / 2.54,
-        "in" => 96.0,
-        "pt" => 96.0 / 72.0,
-        "pc" => 16.0,
-        other => {
-            return Err(format!("unsupported unit `{other}` in `{text}` (use user units, px, mm, cm, in, pt or pc)"))
-        }
-    };
-    Ok(value * scale)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn lengths_take_absolute_units() {
-        assert_eq!(parse_length(" 12 "), Ok(12.0));
-        assert_eq!(parse_length("1in"), Ok(96.0));
-        assert_eq!(parse_length("3pt"), Ok(4.0));
-        assert!(parse_length("50%").unwrap_err().contains("unsupported unit `%`"));
-        assert!(parse_length("wide").is_err());
-    }
 }
