@@ -215,7 +215,6 @@ impl ImportError {
             Self::Xml { .. }
             | Self::Svg { .. }
             | Self::NotSvg { .. }
-            | Self::Attribute { .. }
             | Self::NoShapes { .. }
             | Self::EmptyImage
             | Self::Syntax { .. }

@@ -63,15 +63,6 @@ pub enum ImportError {
         /// The root element's name.
         root: String,
     },
-    /// An attribute of an SVG element has a value that cannot be used.
-    Attribute {
-        /// The element.
-        element: ElementRef,
-        /// The attribute's name.
-        attribute: String,
-        /// What is wrong, including the position in the value where that helps.
-        message: String,
-    },
     /// SVG elements nest deeper than the limit.
     TooDeep {
         /// The first element past the limit.
@@ -207,9 +198,6 @@ impl fmt::Display for ImportError {
             }
             Self::NotSvg { root } => write!(f, "the document's root element is <{root}>, not <svg>"),
             Self::Svg { message } => write!(f, "the SVG cannot be drawn: {message}"),
-            Self::Attribute { element, attribute, message } => {
-                write!(f, "attribute {attribute} of {element}: {message}")
-            }
             Self::TooDeep { element, limit } => write!(f, "{element} nests deeper than {limit} elements"),
             Self::CoordinateTooLarge { element, value, limit } => {
                 write!(f, "{element} is too large: ")?;

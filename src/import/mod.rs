@@ -8,7 +8,7 @@
 //!
 //! | module | what |
 //! |---|---|
-//! | [`svg`] | SVG to outlines (and the filled paths, for exporting the art deformed) |
+//! | [`svg`] | SVG to outlines, through usvg (and the filled and stroked areas as paths, for exporting the art deformed) |
 //! | [`raster`] | RGBA pixels to outlines: threshold, marching squares, simplification |
 //! | [`mesh_file`] | JSON and OBJ meshes, read (validated) and written |
 //! | [`warp`] | points through a deformed mesh (barycentric), texture coordinates |

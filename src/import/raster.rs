@@ -90,7 +90,7 @@ impl TraceOptions {
 }
 
 /// Where the values of a field come from.
-pub(crate) enum Values<'a> {
+enum Values<'a> {
     /// An image's alpha.
     Alpha(&'a [u8]),
     /// An image's distance from a background colour.
@@ -99,11 +99,11 @@ pub(crate) enum Values<'a> {
 
 /// The scalar field marching squares contours: one value per pixel, inside from `level`
 /// on; 0 outside the grid.
-pub(crate) struct Field<'a> {
-    pub(crate) values: Values<'a>,
-    pub(crate) width: usize,
-    pub(crate) height: usize,
-    pub(crate) level: f64,
+struct Field<'a> {
+    values: Values<'a>,
+    width: usize,
+    height: usize,
+    level: f64,
 }
 
 impl Field<'_> {
@@ -207,7 +207,7 @@ pub fn trace_image(
 
 /// Outlines of a field: marching squares, specks dropped, rings simplified to `tolerance`
 /// (pixels) without crossing, nested into parts. In pixel units, y up.
-pub(crate) fn contour_outlines(
+fn contour_outlines(
     field: &Field,
     tolerance: f64,
     min_area: f64,
@@ -264,7 +264,7 @@ fn corner_colour(rgba: &[u8], width: usize, height: usize) -> [f64; 3] {
 
 /// How many contour points (before simplification) tracing allows per outline point of
 /// [`Limits::max_points`].
-pub(crate) const CONTOUR_POINTS_PER_POINT: usize = 20;
+const CONTOUR_POINTS_PER_POINT: usize = 20;
 
 /// Marching squares: directed segments between edge crossings, the shape on their left
 /// (y up). Fails when there are more than `max_segments`.

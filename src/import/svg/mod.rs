@@ -187,11 +187,7 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
             None => elements.get(id).copied(),
         };
         match node {
-            Some(node) => {
-                let (line, column) = cursor.borrow_mut().at(node.range().start);
-                let id = node.attribute("id").map(str::to_string);
-                ElementRef { name: node.tag_name().name().to_string(), id, line, column }
-            }
+            Some(node) => element_ref(node, &mut cursor.borrow_mut()),
             None => ElementRef { name: "path".into(), id: Some(id.to_string()), line: 0, column: 0 },
         }
     };
@@ -297,14 +293,19 @@ fn parse_length(text: &str) -> Option<f64> {
     Some(length.number * scale)
 }
 
+/// The element `node` in messages: its name, `id` and position.
+fn element_ref(node: Node, cursor: &mut Cursor) -> ElementRef {
+    let (line, column) = cursor.at(node.range().start);
+    let id = node.attribute("id").map(str::to_string);
+    ElementRef { name: node.tag_name().name().to_string(), id, line, column }
+}
+
 /// Refuses drawings of more than [`Limits::max_points`] points before flattening, and
 /// elements reaching beyond [`Limits::max_coordinate`].
 fn check_points(drawing: &Drawing, limits: &Limits) -> Result<(), ImportError> {
-    let paths = drawing.paths.iter().map(|(p, _)| (&p.path, &p.element));
-    let unnamed = ElementRef { name: "clipPath".into(), id: None, line: 0, column: 0 };
-    let members = drawing.clips.iter().flat_map(|c| c.members.iter().map(|m| (&m.0, &unnamed)));
+    let members = drawing.clips.iter().flat_map(|c| &c.members);
     let mut count = 0usize;
-    for (path, element) in paths.chain(members) {
+    for (SvgPath { path, element, .. }, _) in drawing.paths.iter().chain(members) {
         count += path.points.len();
         if count > limits.max_points {
             return Err(ImportError::TooManyPoints {
@@ -373,9 +374,9 @@ fn shape_of(drawing: Drawing, skipped: Vec<String>, options: &SvgOptions) -> Res
     let mut regions: Vec<Region> = Vec::with_capacity(clips.len());
     for clip in &clips {
         let mut members = Vec::with_capacity(clip.members.len());
-        for (path, rule, own) in &clip.members {
-            let rings = flatten(path, tolerance, &mut count, limits)?;
-            members.push(clipped_by(union::resolve(&rings, *rule), own, &regions));
+        for (member, own) in &clip.members {
+            let rings = flatten(&member.path, tolerance, &mut count, limits)?;
+            members.push(clipped_by(union::resolve(&rings, member.fill_rule), own, &regions));
         }
         regions.push(clipped_by(union::union(members), &clip.clips, &regions));
     }
@@ -472,13 +473,7 @@ fn check_depth(root: Node, text: &str) -> Result<(), ImportError> {
     let mut stack = vec![(root, 0usize)];
     while let Some((node, depth)) = stack.pop() {
         if depth > MAX_DEPTH {
-            let (line, column) = Cursor::new(text).at(node.range().start);
-            let element = ElementRef {
-                name: node.tag_name().name().to_string(),
-                id: node.attribute("id").map(str::to_string),
-                line,
-                column,
-            };
+            let element = element_ref(node, &mut Cursor::new(text));
             return Err(ImportError::TooDeep { element, limit: MAX_DEPTH });
         }
         stack.extend(node.children().filter(Node::is_element).map(|c| (c, depth + 1)));
@@ -528,13 +523,7 @@ fn check_numbers(document: &Document, text: &str, limit: f64) -> Result<(), Impo
             let tokens =
                 attribute.value().split(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '-' | '+')));
             if let Some(value) = tokens.filter_map(|t| t.parse::<f64>().ok()).find(|v| v.abs() > limit) {
-                let (line, column) = cursor.at(node.range().start);
-                let element = ElementRef {
-                    name: node.tag_name().name().to_string(),
-                    id: node.attribute("id").map(str::to_string),
-                    line,
-                    column,
-                };
+                let element = element_ref(node, &mut cursor);
                 return Err(ImportError::CoordinateTooLarge { element, value, limit });
             }
         }

@@ -32,7 +32,7 @@ pub enum Part {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Clip {
     /// The shapes (fill rule and geometry, in output coordinates) and their own clips.
-    pub members: Vec<(VectorPath, FillRule, Vec<usize>)>,
+    pub members: Vec<(SvgPath, Vec<usize>)>,
     /// Further clips (indices into [`Drawing::clips`], always smaller than this one's).
     pub clips: Vec<usize>,
 }
@@ -161,7 +161,6 @@ impl Walker<'_> {
     }
 
     fn add(&mut self, members: Vec<(SvgPath, Vec<usize>)>, clips: Vec<usize>) -> usize {
-        let members = members.into_iter().map(|(p, clips)| (p.path, p.fill_rule, clips)).collect();
         self.drawing.clips.push(Clip { members, clips });
         self.drawing.clips.len() - 1
     }
