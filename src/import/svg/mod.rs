@@ -356,8 +356,14 @@ fn shape_of(drawing: Drawing, skipped: Vec<String>, options: &SvgOptions) -> Res
     for (p, _) in &paths {
         flat.push(flatten(&p.path, tolerance, &mut count, limits)?);
     }
+    // Nesting is exact and keeps every vertex, but only decides drawings whose boundaries
+    // neither cross nor touch. A stroke's outline nearly always meets itself (at the inner
+    // side of each corner), so with strokes the union is taken straight away: skipping the
+    // sweep that would find the crossing took 20% off a 1 MB drawing and 15% off resvg's
+    // test files (see the commit).
     let clipped = paths.iter().any(|(_, c)| !c.is_empty());
-    if !clipped {
+    let stroked = paths.iter().any(|(p, _)| p.part == Part::Stroke);
+    if !clipped && !stroked {
         let rings: Vec<SourceRing> = flat
             .iter()
             .enumerate()
