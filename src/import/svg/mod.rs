@@ -15,8 +15,8 @@
 //! XML is refused with its line and column.
 //!
 //! Curves are flattened to a tolerance and the rings become outlines with holes by nesting
-//! (see `regions`), exactly; when boundaries cross or touch (overlapping shapes, a stroke
-//! over its fill) or clips apply, the exact union is computed instead (see `union`).
+//! (see `regions`), exactly; when boundaries cross or touch (overlapping shapes), strokes
+//! count or clips apply, the exact union is computed instead (see `union`).
 //! Elements reaching coordinates beyond [`Limits::max_coordinate`] are refused.
 //!
 //! Output coordinates are the root's user units (its `viewBox`) with y flipped to point
