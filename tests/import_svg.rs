@@ -481,20 +481,32 @@ fn paint_servers_and_unknown_fills() {
 #[test]
 fn coordinates_beyond_the_limit_are_refused_in_the_users_terms() {
     let limit = Limits::default().max_coordinate;
+    // A number beyond the limit is named with its attribute; points beyond it once placed,
+    // with where they reach.
     let cases = [
-        (svg(r#"<rect width="1e308" height="1e308"/>"#, r#"viewBox="0 0 1e308 1e308""#), "<svg>", "1e308"),
-        (svg(r#"<path id="huge" d="M 0 0 L 1e308 0 L 1e308 1e308 Z"/>"#, ""), "<path id=\"huge\">", "1e308"),
+        (
+            svg(r#"<rect width="1e308" height="1e308"/>"#, r#"viewBox="0 0 1e308 1e308""#),
+            "<svg>",
+            "its viewBox holds 1e308",
+        ),
+        (
+            svg(r#"<path id="huge" d="M 0 0 L 1e308 0 L 1e308 1e308 Z"/>"#, ""),
+            "<path id=\"huge\">",
+            "its d holds 1e308",
+        ),
+        (svg(r#"<path d="M 0 0 L 1e999 0 L 0 1 Z"/>"#, ""), "<path>", "its d holds a number out of range"),
         (
             svg(r#"<g transform="scale(1e20)"><rect id="r" width="1e15" height="10"/></g>"#, r#"viewBox="0 0 10 10""#),
             "<rect id=\"r\"> (line 1, column 88)",
-            "1.000000007031981e35",
+            // 1e20 x 1e15 in usvg's single precision.
+            "it reaches 1.000000007031981e35 in the drawing's units (after its transforms and viewBoxes)",
         ),
     ];
-    for (text, element, value) in cases {
+    for (text, element, reach) in cases {
         let error = import_svg(&text, &SvgOptions::default()).unwrap_err();
         assert!(matches!(error, ImportError::CoordinateTooLarge { .. }), "{error:?}");
         let message = error.to_string();
-        for part in [element, &format!("it reaches {value}"), &format!("beyond ±{limit:e}, the limit")] {
+        for part in [element, reach, &format!("beyond ±{limit:e}, the limit")] {
             assert!(message.contains(part), "{message:?} should contain {part:?}");
         }
     }

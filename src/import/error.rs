@@ -75,8 +75,12 @@ pub enum ImportError {
     CoordinateTooLarge {
         /// The element.
         element: ElementRef,
-        /// The first coordinate beyond the limit, in the drawing's units (infinite or NaN
-        /// when it overflowed).
+        /// The attribute that holds the number, when the number itself is beyond the limit
+        /// (found before the drawing is placed); `None` when the element's points reach
+        /// beyond it once placed.
+        attribute: Option<String>,
+        /// The first coordinate beyond the limit, in the drawing's units, or the number in
+        /// the attribute (infinite or NaN when it overflowed).
         value: f64,
         /// The limit on the magnitude of coordinates.
         limit: f64,
@@ -199,17 +203,22 @@ impl fmt::Display for ImportError {
             Self::NotSvg { root } => write!(f, "the document's root element is <{root}>, not <svg>"),
             Self::Svg { message } => write!(f, "the SVG cannot be drawn: {message}"),
             Self::TooDeep { element, limit } => write!(f, "{element} nests deeper than {limit} elements"),
-            Self::CoordinateTooLarge { element, value, limit } => {
+            Self::CoordinateTooLarge { element, attribute, value, limit } => {
                 write!(f, "{element} is too large: ")?;
-                if value.is_finite() {
-                    write!(f, "it reaches {:e}", value.abs())?;
-                } else {
-                    write!(f, "its coordinates overflow")?;
+                match (attribute, value.is_finite()) {
+                    (Some(attribute), true) => write!(f, "its {attribute} holds {:e},", value.abs())?,
+                    (Some(attribute), false) => write!(f, "its {attribute} holds a number out of range,")?,
+                    (None, true) => write!(
+                        f,
+                        "it reaches {:e} in the drawing's units (after its transforms and viewBoxes),",
+                        value.abs()
+                    )?,
+                    (None, false) => write!(f, "its coordinates overflow in the drawing's units,")?,
                 }
                 write!(
                     f,
-                    " in the drawing's units (after its transforms and viewBoxes), beyond ±{limit:e}, the \
-                     limit for the geometry to work in double precision; scale the drawing down"
+                    " beyond ±{limit:e}, the limit for the geometry to work in double precision; scale the drawing \
+                     down"
                 )
             }
             Self::TooManyAttributes { line, column, attributes, limit } => write!(

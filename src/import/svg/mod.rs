@@ -316,7 +316,7 @@ fn check_points(drawing: &Drawing, limits: &Limits) -> Result<(), ImportError> {
         }
         let limit = limits.max_coordinate;
         if let Some(&value) = path.points.iter().flatten().find(|v| v.is_nan() || v.abs() > limit) {
-            return Err(ImportError::CoordinateTooLarge { element: element.clone(), value, limit });
+            return Err(ImportError::CoordinateTooLarge { element: element.clone(), attribute: None, value, limit });
         }
     }
     Ok(())
@@ -530,7 +530,8 @@ fn check_numbers(document: &Document, text: &str, limit: f64) -> Result<(), Impo
                 attribute.value().split(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '-' | '+')));
             if let Some(value) = tokens.filter_map(|t| t.parse::<f64>().ok()).find(|v| v.abs() > limit) {
                 let element = element_ref(node, &mut cursor);
-                return Err(ImportError::CoordinateTooLarge { element, value, limit });
+                let attribute = Some(attribute.name().to_string());
+                return Err(ImportError::CoordinateTooLarge { element, attribute, value, limit });
             }
         }
     }
