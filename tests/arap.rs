@@ -5,7 +5,9 @@
 //! its gradient are computed here from the finite-element form `sum_t A_t |J_t - R_t|^2`,
 //! not from the cotangent form the deformer uses. Runs natively and as wasm.
 
-use akap::deform::{ArapDeformer, ArapOptions, Deform, DeformError, DeformerOptions, Method, MethodOptions};
+use akap::deform::{
+    ArapDeformer, ArapOptions, Deform, DeformError, DeformerOptions, Method, MethodOptions, MlsOptions,
+};
 use akap::geometry::Point;
 use akap::shapes::{ellipse, gingerbread};
 use akap::{triangulate, Mesh, Outline, TriangulationOptions};
@@ -421,16 +423,20 @@ fn bad_input_is_refused_and_changes_nothing() {
 }
 
 #[test]
-fn both_methods_behind_one_interface() {
+fn every_method_behind_one_interface() {
     let mesh = bar_with_holes();
-    for options in [MethodOptions::Akap(DeformerOptions::default()), MethodOptions::Arap(ArapOptions::default())] {
+    for options in [
+        MethodOptions::Akap(DeformerOptions::default()),
+        MethodOptions::Arap(ArapOptions::default()),
+        MethodOptions::Mls(MlsOptions::default()),
+    ] {
         let mut deformer: Box<dyn Deform> = options.build(mesh.clone()).unwrap();
         assert_eq!(deformer.method_options(), options);
         deformer.set_handle_vertices(&[0, 30]).unwrap();
         let start = deformer.handle_positions();
         deformer.step(&[[0.0, 0.0], [0.05, 0.02]]).unwrap();
         let moved = deformer.handle_positions();
-        // Both move the dragged handle the right way and leave the pinned one near.
+        // Each moves the dragged handle the right way and leaves the pinned one near.
         assert!((moved[0][0] - start[0][0]).hypot(moved[0][1] - start[0][1]) < 0.01);
         assert!(moved[1][0] > start[1][0] && moved[1][1] > start[1][1]);
         let field = deformer.field().to_vec();
@@ -440,7 +446,7 @@ fn both_methods_behind_one_interface() {
         assert_eq!(deformer.positions(), mesh.positions());
         let other = match options.method() {
             Method::Akap => MethodOptions::Arap(ArapOptions::default()),
-            Method::Arap => MethodOptions::Akap(DeformerOptions::default()),
+            Method::Arap | Method::Mls => MethodOptions::Akap(DeformerOptions::default()),
         };
         assert!(matches!(deformer.set_method_options(other), Err(DeformError::WrongMethod { .. })));
     }

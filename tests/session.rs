@@ -199,7 +199,7 @@ fn bad_sessions_are_refused() {
         Err(SessionError::Options(DeformError::OptionValue { name: "lambda", .. }))
     ));
     assert!(matches!(edit("\"lambda\":100.0", "\"lambda\":[1]"), Err(SessionError::Json(_))));
-    assert!(matches!(edit("\"method\":\"akap\"", "\"method\":\"mls\""), Err(SessionError::Json(_))));
+    assert!(matches!(edit("\"method\":\"akap\"", "\"method\":\"bogus\""), Err(SessionError::Json(_))));
     assert!(matches!(edit("\"lambda\":100.0", "\"lambda\":-1.0"), Err(SessionError::Options(_))));
 
     let mut s = good.clone();

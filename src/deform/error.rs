@@ -132,6 +132,14 @@ pub enum DeformError {
         /// What would be accepted.
         expected: String,
     },
+    /// The handles do not determine the method's map (MLS's affine variant with fewer than
+    /// three handles, or all on one line).
+    TooFewHandles {
+        /// The method.
+        method: Method,
+        /// What it needs.
+        needed: &'static str,
+    },
     /// Options of another method were given; the method is chosen when the deformer is made.
     WrongMethod {
         /// The deformer's method.
@@ -202,6 +210,9 @@ impl fmt::Display for DeformError {
                 write!(f, "option {name} applies to method \"{owner}\" only, not to \"{method}\"")
             }
             Self::OptionValue { name, found, expected } => write!(f, "option {name} must be {expected}, not {found}"),
+            Self::TooFewHandles { method, needed } => {
+                write!(f, "method {method} needs {needed}; add handles or choose another variant")
+            }
             Self::WrongMethod { current, given } => write!(
                 f,
                 "the deformer uses method {current}, options for {given} were given; \

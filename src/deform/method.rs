@@ -8,7 +8,7 @@ use std::fmt;
 
 use super::error::DeformError;
 use super::metrics::Metrics;
-use super::options::{methods, ArapOptions, DeformerOptions, MethodOptions};
+use super::options::{methods, ArapOptions, DeformerOptions, MethodOptions, MlsOptions};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 

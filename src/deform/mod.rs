@@ -15,9 +15,11 @@
 //!   poses, connectivity, sizes);
 //! - [`akap`]: the [`Deformer`] of the paper (eqs. (3), (4), (6), (14)-(16)) in three files:
 //!   the Killing matrix, the spiral step, the solver;
-//! - [`arap`]: the [`ArapDeformer`] (Liu et al. 2008 elements energy, local/global).
+//! - [`arap`]: the [`ArapDeformer`] (Liu et al. 2008 elements energy, local/global);
+//! - [`mls`]: the [`MlsDeformer`] (Schaefer et al. 2006, rigid, similarity or affine
+//!   moving least squares, in closed form).
 //!
-//! A new method is one more file beside `akap` and `arap` (declared here), its options
+//! A new method is one more file beside `akap`, `arap` and `mls` (declared here), its options
 //! struct in [`options`] and one more line in the list of methods there (see
 //! `ARCHITECTURE.md`, "How to add a method").
 
@@ -27,6 +29,7 @@ mod error;
 pub(crate) mod handles;
 pub mod method;
 pub mod metrics;
+pub mod mls;
 pub mod options;
 pub(crate) mod pattern;
 pub mod settings;
@@ -36,7 +39,9 @@ pub use arap::{ArapDeformer, IterationReport};
 pub use error::DeformError;
 pub use method::{Clock, Deform, Orders, Timings};
 pub use metrics::Metrics;
+pub use mls::MlsDeformer;
 pub use options::{
-    Access, ArapOptions, DeformerOptions, Integrator, Method, MethodOptions, Setting, Settings, LAMBDA_RANGE,
+    Access, ArapOptions, DeformerOptions, Integrator, Method, MethodOptions, MlsOptions, MlsVariant, Setting, Settings,
+    LAMBDA_RANGE, MLS_ALPHA_RANGE,
 };
 pub use settings::SettingValue;

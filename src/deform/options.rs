@@ -21,6 +21,8 @@ macro_rules! methods {
             Akap("akap", DeformerOptions),
             /// As-rigid-as-possible local/global iterations.
             Arap("arap", ArapOptions),
+            /// Moving least squares (Schaefer et al. 2006): rigid, similarity or affine.
+            Mls("mls", MlsOptions),
         }
     };
 }
@@ -36,7 +38,7 @@ macro_rules! method_enums {
         }
 
         impl Method {
-            /// The name the JavaScript API and sessions use: `"akap"` or `"arap"`.
+            /// The name the JavaScript API and sessions use: `"akap"`, `"arap"` or `"mls"`.
             pub fn name(self) -> &'static str {
                 match self {
                     $(Self::$variant => $name,)*
@@ -238,6 +240,67 @@ impl ArapOptions {
     pub fn until_converged(mut self, tolerance: f64, max_iterations: usize) -> Self {
         self.tolerance = tolerance;
         self.iterations = max_iterations;
+        self
+    }
+}
+
+/// Which maps moving least squares fits at each point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MlsVariant {
+    /// Rigid motions (the paper's eq. 8; its recommended one, and the default).
+    #[default]
+    Rigid,
+    /// Similarities: rotation, uniform scale, translation (eq. 6).
+    Similarity,
+    /// Affine maps (eq. 5); needs three handles not all on one line.
+    Affine,
+}
+
+/// The values [`MlsOptions::alpha`] may take: 0.1 to 4. The weights are
+/// `1 / d^(2 alpha)`: towards 0 every handle counts alike and the map tends to one global
+/// fit; large powers make each point follow its nearest handle (and `d^(-8)` is already
+/// steep enough for any use).
+pub const MLS_ALPHA_RANGE: RangeInclusive<f64> = 0.1..=4.0;
+
+/// Moving least squares' settings ([`super::MlsDeformer`]), with builders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MlsOptions {
+    /// The maps fitted.
+    pub variant: MlsVariant,
+    /// The weights' falloff: `w_i = 1 / |p_i - v|^(2 alpha)`, in [`MLS_ALPHA_RANGE`]
+    /// (default 1, the paper's).
+    pub alpha: f64,
+}
+
+impl Default for MlsOptions {
+    fn default() -> Self {
+        Self { variant: MlsVariant::Rigid, alpha: 1.0 }
+    }
+}
+
+impl Settings for MlsOptions {
+    const SETTINGS: &'static [Setting<Self>] = &[
+        Setting {
+            name: "variant",
+            access: Access::Word(
+                &["rigid", "similarity", "affine"],
+                |o| o.variant as usize,
+                |o, i| o.variant = [MlsVariant::Rigid, MlsVariant::Similarity, MlsVariant::Affine][i],
+            ),
+        },
+        Setting { name: "alpha", access: Access::Number(|o| o.alpha, |o, x| o.alpha = x) },
+    ];
+}
+
+impl MlsOptions {
+    /// Sets the variant.
+    pub fn with_variant(mut self, variant: MlsVariant) -> Self {
+        self.variant = variant;
+        self
+    }
+    /// Sets alpha.
+    pub fn with_alpha(mut self, alpha: f64) -> Self {
+        self.alpha = alpha;
         self
     }
 }

@@ -243,11 +243,12 @@ mod tests {
             over(Some(Method::Arap), "iterations", SettingValue::Number(1001.0)),
             Err(DeformError::InvalidOption { name: "iterations", .. })
         ));
-        assert_eq!(Method::from_name("mls"), Err(DeformError::UnknownMethod { name: "mls".into() }));
+        assert_eq!(Method::from_name("bogus"), Err(DeformError::UnknownMethod { name: "bogus".into() }));
+        assert_eq!(Method::from_name("mls"), Ok(Method::Mls));
         assert_eq!(
             MethodOptions::all_setting_names(),
-            ["lambda", "dirichlet", "integrator", "iterations"],
-            "AKAP's settings, then ARAP's"
+            ["lambda", "dirichlet", "integrator", "iterations", "variant", "alpha"],
+            "AKAP's settings, then ARAP's, then MLS's"
         );
     }
 }

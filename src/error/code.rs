@@ -244,7 +244,8 @@ impl DeformError {
             | Self::NonFiniteVelocity { .. }
             | Self::NonFinitePosition { .. }
             | Self::PositionOutOfRange { .. }
-            | Self::OrdersMismatch { .. } => ErrorCode::InvalidArgument,
+            | Self::OrdersMismatch { .. }
+            | Self::TooFewHandles { .. } => ErrorCode::InvalidArgument,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,
             Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,

@@ -29,6 +29,43 @@ describe("Deformer", () => {
     }
   });
 
+  it("moving least squares: handles given a rigid motion move the whole shape by it; bad steps change nothing", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.08 });
+    // MLS solves no system: no orders to compute.
+    expect(deformerOrders(mesh.positions, mesh.triangles, { method: "mls" })).toEqual([]);
+    const deformer = new Deformer(mesh.positions, mesh.triangles, { method: "mls" });
+    expect(deformer.method).toBe("mls");
+    deformer.setHandles([0, 40, 80]);
+    const [a, tx, ty] = [0.9, 0.3, -0.2];
+    const [s, c] = [Math.sin(a), Math.cos(a)];
+    const rigid = (x: number, y: number) => [c * x - s * y + tx, s * x + c * y + ty] as const;
+    const h = deformer.handlePositions();
+    const velocities: number[] = [];
+    for (let i = 0; i < h.length; i += 2) {
+      const [x, y] = rigid(h[i]!, h[i + 1]!);
+      velocities.push(x - h[i]!, y - h[i + 1]!);
+    }
+    deformer.step(velocities);
+    const p = deformer.positions();
+    for (let v = 0; v < mesh.vertexCount; v++) {
+      const [x, y] = rigid(mesh.positions[2 * v]!, mesh.positions[2 * v + 1]!);
+      expect(p[2 * v]!).toBeCloseTo(x, 10);
+      expect(p[2 * v + 1]!).toBeCloseTo(y, 10);
+    }
+    // The affine variant with two handles: the map is not determined; nothing moves.
+    deformer.setOptions({ variant: "affine" });
+    deformer.setHandles([0, 40]);
+    let code = "";
+    try {
+      deformer.step([0.1, 0, 0, 0.1]);
+    } catch (e) {
+      code = (e as { code: string }).code;
+    }
+    expect(code).toBe("invalid-argument");
+    expect(deformer.positions()).toEqual(p);
+    deformer.free();
+  });
+
   it("rotates the shape rigidly when the handles follow an infinitesimal rotation", () => {
     const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.08 });
     const deformer = new Deformer(mesh.positions, mesh.triangles);

@@ -167,16 +167,19 @@ export function meshFromArrays(positions: Coordinates, triangles: Indices): Mesh
 
 /**
  * Options of the {@link Deformer}: a `method` and its settings. `lambda`, `dirichlet` and
- * `integrator` apply to AKAP only, `iterations` to ARAP only (giving one to the other
- * method throws, code `invalid-option`).
+ * `integrator` apply to AKAP only, `iterations` to ARAP only, `variant` and `alpha` to MLS
+ * only (giving one to another method throws, code `invalid-option`).
  */
 export interface DeformerOptions {
   /**
    * `"akap"` (default): As-Killing-As-Possible vector fields, the paper's method.
    * `"arap"`: as-rigid-as-possible local/global iterations, for comparison; each step
    * moves every handle's target by its velocity and iterates from the current pose.
+   * `"mls"`: moving least squares (Schaefer et al. 2006), the classic image warp: every
+   * vertex of the rest mesh goes through the map that best takes the handles' rest points
+   * to their targets, weighted by closeness; closed form, no history.
    */
-  method?: "akap" | "arap";
+  method?: Method;
   /** AKAP: weight of the soft handle constraints, from 1e-6 to 1e10 (default 100). */
   lambda?: number;
   /** AKAP: whether the Dirichlet re-solve runs (default true). */
@@ -189,7 +192,18 @@ export interface DeformerOptions {
    * vertices natively, growing with the mesh); a frame needs far fewer.
    */
   iterations?: number;
+  /**
+   * MLS: the maps fitted at each point: `"rigid"` (default, the paper's choice),
+   * `"similarity"` (with uniform scale) or `"affine"` (needs three handles not all on one
+   * line; a step with fewer throws, code `invalid-argument`).
+   */
+  variant?: "rigid" | "similarity" | "affine";
+  /** MLS: the weights' falloff, `1 / distance^(2 alpha)`, from 0.1 to 4 (default 1). */
+  alpha?: number;
 }
+
+/** The deformation methods (see {@link DeformerOptions.method}). */
+export type Method = "akap" | "arap" | "mls";
 
 /**
  * Distortion of the current pose against the rest pose (2 for a rigid motion; `Infinity`,
@@ -277,8 +291,8 @@ export class Deformer {
   }
 
   /** The method in use. */
-  get method(): "akap" | "arap" {
-    return this.#raw.method as "akap" | "arap";
+  get method(): Method {
+    return this.#raw.method as Method;
   }
 
   /** One handle on each of these vertices, replacing the current handles. */

@@ -26,11 +26,12 @@ export const METHODS = {
     options: { method: "akap", dirichlet: false, integrator: "linear" },
   },
   arap: { label: "ARAP (10 iterations per step)", options: { method: "arap", iterations: 10 } },
+  mls: { label: "Moving least squares (rigid)", options: { method: "mls", variant: "rigid", alpha: 1 } },
   defop: { label: "Trained (DefOp)", options: { method: "akap", dirichlet: true, integrator: "spiral" } },
 } as const satisfies Record<string, { label: string; options: DeformerOptions }>;
 
 /**
- * A preset of the widget: a deformation method (`"akap"` or `"arap"`, the core's
+ * A preset of the widget: a deformation method (`"akap"`, `"arap"` or `"mls"`, the core's
  * `DeformerOptions.method`) with settings, named by its key in {@link METHODS}.
  */
 export type MethodPreset = keyof typeof METHODS;
@@ -209,6 +210,7 @@ export function methodOptions(method: MethodPreset, lambda: number): DeformerOpt
 /** The widget method (and lambda) that deformer options describe, e.g. a session's. */
 export function widgetMethod(options: DeformerOptions, lambda: number): { method: MethodPreset; lambda: number } {
   if (options.method === "arap") return { method: "arap", lambda };
+  if (options.method === "mls") return { method: "mls", lambda };
   const dirichlet = options.dirichlet ?? true;
   const integrator = options.integrator ?? "spiral";
   const found = (Object.keys(METHODS) as MethodPreset[]).find((key) => {

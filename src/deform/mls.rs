@@ -1,0 +1,305 @@
+//! Moving least squares deformation (Schaefer, McPhail and Warren 2006, "Image deformation
+//! using moving least squares"), in its closed forms: every vertex `v` moves by the map
+//! that best takes the handles' rest points `p_i` to their targets `q_i` in the
+//! least-squares sense weighted by `w_i = 1 / |p_i - v|^(2 alpha)`, among the affine maps
+//! (eq. 5), the similarities (eq. 6) or the rigid motions (eq. 8). Each step is one
+//! evaluation at every vertex of the rest mesh: no solve, no history, O(vertices x handles).
+//!
+//! In complex numbers (points `x + i y`), with the weighted centroids `p*`, `q*` and
+//! `p^_i = p_i - p*`, `q^_i = q_i - q*`: the similarity is `f(v) = (v - p*) c + q*` with
+//! `c = sum w_i conj(p^_i) q^_i / sum w_i |p^_i|^2`, and the rigid map is
+//! `f(v) = (v - p*) c/|c| + q*`, the paper's `|v - p*| f_r / |f_r|` (its `f_r` is `(v - p*)`
+//! times a positive multiple of `c`). The affine map solves the 2 x 2 normal equations of
+//! eq. 5. A vertex on a handle's rest point goes to that handle's target (the weight is
+//! infinite there); with one handle the map is the translation, which every variant
+//! reproduces.
+
+use super::error::DeformError;
+use super::handles::{self, check_connected, check_pose, check_velocities, in_range, HandlePoint};
+use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
+use super::metrics::{metrics, Metrics};
+use super::options::{Method, MethodOptions, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
+use crate::geometry::Point;
+use crate::mesh::Mesh;
+
+/// The moving-least-squares deformer of one mesh.
+#[derive(Debug, Clone)]
+pub struct MlsDeformer {
+    mesh: Mesh,
+    options: MlsOptions,
+    handles: Vec<HandlePoint>,
+    positions: Vec<Point>,
+    field: Vec<[f64; 2]>,
+    timings: Timings,
+    clock: Clock,
+}
+
+impl MlsDeformer {
+    /// A deformer for a connected mesh.
+    pub fn new(mesh: Mesh, options: MlsOptions) -> Result<Self, DeformError> {
+        check_options(&options)?;
+        check_connected(&mesh)?;
+        let n = mesh.vertex_count();
+        let positions = mesh.positions().to_vec();
+        Ok(Self {
+            mesh,
+            options,
+            handles: Vec::new(),
+            positions,
+            field: vec![[0.0; 2]; n],
+            timings: Timings::default(),
+            clock: default_clock,
+        })
+    }
+
+    /// The settings.
+    pub fn options(&self) -> MlsOptions {
+        self.options
+    }
+
+    /// Changes the settings (the next step uses them).
+    pub fn set_options(&mut self, options: MlsOptions) -> Result<(), DeformError> {
+        check_options(&options)?;
+        self.options = options;
+        Ok(())
+    }
+
+    /// One handle on each of these vertices, replacing any handles.
+    pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        self.handles = handles::at_vertices(&self.mesh, vertices)?;
+        Ok(())
+    }
+
+    /// Handles at points in triangles, replacing any handles.
+    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.handles = handles::in_triangles(&self.mesh, triangles, barycentric)?;
+        Ok(())
+    }
+
+    /// Current positions of the handle points.
+    pub fn handle_positions(&self) -> Vec<Point> {
+        self.handles.iter().map(|h| h.position(&self.positions)).collect()
+    }
+
+    /// One step: each handle's target is its current position plus its velocity, and every
+    /// vertex moves to the MLS map of its rest position for those targets. With no handles
+    /// nothing moves. Refused, changing nothing, for bad velocities, for an affine map the
+    /// handles do not determine (fewer than three, or all on one line) and for a result
+    /// beyond the coordinate limit.
+    pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+        check_velocities(velocities, self.handles.len())?;
+        if self.handles.is_empty() {
+            self.field.fill([0.0; 2]);
+            return Ok(());
+        }
+        let start = (self.clock)();
+        let rest: Vec<Point> = self.handles.iter().map(|h| h.position(self.mesh.positions())).collect();
+        let targets: Vec<Point> =
+            self.handle_positions().iter().zip(velocities).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect();
+        let map = Map { rest: &rest, targets: &targets, alpha: self.options.alpha, variant: self.options.variant };
+        let mut next = Vec::with_capacity(self.positions.len());
+        for &v in self.mesh.positions() {
+            next.push(map.at(v).ok_or(DeformError::TooFewHandles {
+                method: Method::Mls,
+                needed: "three handles not all on one line for the affine map",
+            })?);
+        }
+        if !in_range(&next) {
+            return Err(DeformError::NonFiniteResult);
+        }
+        for ((f, p), q) in self.field.iter_mut().zip(&self.positions).zip(&next) {
+            *f = [q[0] - p[0], q[1] - p[1]];
+        }
+        self.positions = next;
+        self.timings = Timings { integration: (self.clock)() - start, ..Timings::default() };
+        Ok(())
+    }
+
+    /// Current vertex positions.
+    pub fn positions(&self) -> &[Point] {
+        &self.positions
+    }
+
+    /// Puts the mesh into a given pose; handles stay. (The next step maps the rest mesh
+    /// again, for targets taken from this pose.)
+    pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
+        check_pose(positions, self.positions.len())?;
+        self.positions.copy_from_slice(positions);
+        self.field.fill([0.0; 2]);
+        Ok(())
+    }
+
+    /// Back to the rest pose; handles stay.
+    pub fn reset(&mut self) {
+        self.positions.copy_from_slice(self.mesh.positions());
+        self.field.fill([0.0; 2]);
+    }
+}
+
+/// The MLS map of one set of handles.
+struct Map<'a> {
+    rest: &'a [Point],
+    targets: &'a [Point],
+    alpha: f64,
+    variant: MlsVariant,
+}
+
+impl Map<'_> {
+    /// Where `v` goes; `None` when the affine map is not determined there.
+    fn at(&self, v: Point) -> Option<Point> {
+        // On a handle's rest point the weight is infinite: the targets of the handles there.
+        let mut weights = Vec::with_capacity(self.rest.len());
+        let (mut on, mut on_sum) = (0usize, [0.0; 2]);
+        for (p, q) in self.rest.iter().zip(self.targets) {
+            let d2 = (p[0] - v[0]) * (p[0] - v[0]) + (p[1] - v[1]) * (p[1] - v[1]);
+            let w = libm::pow(d2, -self.alpha);
+            if d2 == 0.0 || !w.is_finite() {
+                on += 1;
+                on_sum = [on_sum[0] + q[0], on_sum[1] + q[1]];
+            }
+            weights.push(w);
+        }
+        if on > 0 {
+            return Some([on_sum[0] / on as f64, on_sum[1] / on as f64]);
+        }
+        let total: f64 = weights.iter().sum();
+        // Weighted means taken from the first point, so that points all at one place have
+        // exactly that mean (then the hatted points are exactly 0: a translation).
+        let centroid = |points: &[Point]| {
+            let o = points[0];
+            let mut c = [0.0; 2];
+            for (p, w) in points.iter().zip(&weights) {
+                c = [c[0] + w * (p[0] - o[0]), c[1] + w * (p[1] - o[1])];
+            }
+            [o[0] + c[0] / total, o[1] + c[1] / total]
+        };
+        let (ps, qs) = (centroid(self.rest), centroid(self.targets));
+        let d = [v[0] - ps[0], v[1] - ps[1]];
+        // Weighted sums of the hatted points: sum w p^ p^T (a, b; b, c), sum w p^ q^T (the
+        // affine map's), and sum w conj(p^) q^ (the similarity's).
+        let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+        let mut pq = [[0.0; 2]; 2];
+        for ((p, q), w) in self.rest.iter().zip(self.targets).zip(&weights) {
+            let (ph, qh) = ([p[0] - ps[0], p[1] - ps[1]], [q[0] - qs[0], q[1] - qs[1]]);
+            a += w * ph[0] * ph[0];
+            b += w * ph[0] * ph[1];
+            c += w * ph[1] * ph[1];
+            for (i, row) in pq.iter_mut().enumerate() {
+                for (j, entry) in row.iter_mut().enumerate() {
+                    *entry += w * ph[i] * qh[j];
+                }
+            }
+        }
+        let moved = match self.variant {
+            MlsVariant::Affine => {
+                // f(v) = (v - p*) M + q* with M = (sum w p^T p^)^-1 sum w p^T q^ (row vectors).
+                let det = a * c - b * b;
+                // Singular (or NaN) when the handles lie on one line.
+                if det.abs().partial_cmp(&(1e-12 * (a + c) * (a + c))) != Some(std::cmp::Ordering::Greater) {
+                    return None;
+                }
+                let inverse = [[c / det, -b / det], [-b / det, a / det]];
+                let m = |i: usize, j: usize| inverse[i][0] * pq[0][j] + inverse[i][1] * pq[1][j];
+                [d[0] * m(0, 0) + d[1] * m(1, 0), d[0] * m(0, 1) + d[1] * m(1, 1)]
+            }
+            MlsVariant::Similarity | MlsVariant::Rigid => {
+                // conj(p^) q^ summed: real part p.q, imaginary part p x q.
+                let (re, im) = (pq[0][0] + pq[1][1], pq[0][1] - pq[1][0]);
+                let mu = a + c;
+                let (cr, ci) = match self.variant {
+                    _ if mu == 0.0 => (1.0, 0.0),
+                    MlsVariant::Rigid => {
+                        let r = libm::hypot(re, im);
+                        if r == 0.0 {
+                            (1.0, 0.0)
+                        } else {
+                            (re / r, im / r)
+                        }
+                    }
+                    _ => (re / mu, im / mu),
+                };
+                [d[0] * cr - d[1] * ci, d[0] * ci + d[1] * cr]
+            }
+        };
+        Some([moved[0] + qs[0], moved[1] + qs[1]])
+    }
+}
+
+fn check_options(options: &MlsOptions) -> Result<(), DeformError> {
+    if !MLS_ALPHA_RANGE.contains(&options.alpha) {
+        return Err(DeformError::InvalidOption {
+            name: "alpha",
+            value: options.alpha,
+            expected: "a number from 0.1 to 4",
+        });
+    }
+    Ok(())
+}
+
+impl Deform for MlsDeformer {
+    fn method_options(&self) -> MethodOptions {
+        MethodOptions::Mls(self.options)
+    }
+    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
+        match options {
+            MethodOptions::Mls(options) => self.set_options(options),
+            other => Err(DeformError::WrongMethod { current: Method::Mls, given: other.method() }),
+        }
+    }
+    fn set_clock(&mut self, clock: Clock) {
+        self.clock = clock;
+    }
+    fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        MlsDeformer::set_handle_vertices(self, vertices)
+    }
+    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        MlsDeformer::set_handle_points(self, triangles, barycentric)
+    }
+    fn handle_count(&self) -> usize {
+        self.handles.len()
+    }
+    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
+        handles::as_points(self.handles.iter())
+    }
+    fn handle_positions(&self) -> Vec<Point> {
+        MlsDeformer::handle_positions(self)
+    }
+    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+        MlsDeformer::step(self, velocities)
+    }
+    fn positions(&self) -> &[Point] {
+        &self.positions
+    }
+    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
+        MlsDeformer::set_positions(self, positions)
+    }
+    fn field(&self) -> &[[f64; 2]] {
+        &self.field
+    }
+    fn metrics(&self) -> Metrics {
+        metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
+    }
+    fn timings(&self) -> Timings {
+        self.timings
+    }
+    fn reset(&mut self) {
+        MlsDeformer::reset(self);
+    }
+}
+
+impl Build for MlsOptions {
+    fn check(&self) -> Result<(), DeformError> {
+        check_options(self)
+    }
+    /// MLS solves no linear system.
+    fn orders(&self, _mesh: &Mesh) -> Orders {
+        Orders { systems: Vec::new() }
+    }
+    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
+        orders.check(&[])?;
+        Ok(Box::new(MlsDeformer::new(mesh, self)?))
+    }
+}
