@@ -246,30 +246,35 @@ test("the embedding example shows two widgets that work independently", async ({
   await expect(page.locator("#log")).toContainText("element: 2 handles");
 });
 
-test("switching to ARAP keeps the pose and handles, and ARAP poses the shape too", async ({ page }) => {
-  await page.setViewportSize({ width: 900, height: 700 });
-  await open(page);
-  await pinAndDrag(page, -30, 40);
-  const posed = await positions(page);
-  await page.getByRole("combobox", { name: "Method" }).selectOption("arap");
-  expect(await positions(page)).toEqual(posed);
-  expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
-  const { toCss } = await mapping(page);
-  const h = await handles(page);
-  const [x, y] = toCss(h[2]!, h[3]!);
-  await page.mouse.move(x, y);
-  await page.mouse.down();
-  await page.mouse.move(x - 40, y + 30, { steps: 8 });
-  await page.mouse.up();
-  await idle(page);
-  const after = await handles(page);
-  const [ax, ay] = toCss(after[2]!, after[3]!);
-  expect(Math.hypot(ax - (x - 40), ay - (y + 30))).toBeLessThan(1);
-  const [px, py] = toCss(after[0]!, after[1]!);
-  const [qx, qy] = toCss(h[0]!, h[1]!);
-  expect(Math.hypot(px - qx, py - qy)).toBeLessThan(0.5);
-  expectDrawnLikeTheMesh(await coverage(page));
-});
+for (const [method, label] of [
+  ["arap", "ARAP"],
+  ["mls", "moving least squares"],
+] as const) {
+  test(`switching to ${label} keeps the pose and handles, and ${label} poses the shape too`, async ({ page }) => {
+    await page.setViewportSize({ width: 900, height: 700 });
+    await open(page);
+    await pinAndDrag(page, -30, 40);
+    const posed = await positions(page);
+    await page.getByRole("combobox", { name: "Method" }).selectOption(method);
+    expect(await positions(page)).toEqual(posed);
+    expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
+    const { toCss } = await mapping(page);
+    const h = await handles(page);
+    const [x, y] = toCss(h[2]!, h[3]!);
+    await page.mouse.move(x, y);
+    await page.mouse.down();
+    await page.mouse.move(x - 40, y + 30, { steps: 8 });
+    await page.mouse.up();
+    await idle(page);
+    const after = await handles(page);
+    const [ax, ay] = toCss(after[2]!, after[3]!);
+    expect(Math.hypot(ax - (x - 40), ay - (y + 30))).toBeLessThan(1);
+    const [px, py] = toCss(after[0]!, after[1]!);
+    const [qx, qy] = toCss(h[0]!, h[1]!);
+    expect(Math.hypot(px - qx, py - qy)).toBeLessThan(0.5);
+    expectDrawnLikeTheMesh(await coverage(page));
+  });
+}
 
 test("a file opened through the picker becomes the shape, and it poses", async ({ page }) => {
   await page.setViewportSize({ width: 900, height: 700 });
