@@ -21,8 +21,8 @@ export async function pose(): Promise<Metrics> {
   deformer.setHandles([0, 42]);
   deformer.step([0, 0, 0.01, 0.02]);
   const positions: Float64Array = deformer.positions();
-  // @ts-expect-error the method is "akap" or "arap"
-  deformer.setOptions({ method: "mls" });
+  // @ts-expect-error the method is "akap", "arap" or "mls"
+  deformer.setOptions({ method: "fem" });
   // @ts-expect-error positions are numbers
   void new Deformer("0 0 1 0 0 1", [0, 1, 2]);
   const module: WebAssembly.Module = compiledModule();
@@ -34,7 +34,7 @@ export async function pose(): Promise<Metrics> {
 export async function embed(element: HTMLElement): Promise<Widget> {
   const options: WidgetOptions = { shape: "gingerbread", vertices: 1200, hud: false, wasm: "/akap_bg.wasm" };
   // @ts-expect-error there is no such method
-  const wrong: WidgetOptions = { method: "cauchy-green" };
+  const wrong: WidgetOptions = { method: "fem" };
   void wrong;
   const widget = await mount(element, options);
   const count: number = widget.vertexCount;
