@@ -1,17 +1,18 @@
-// Per-frame timings of the AKAP deformer compiled to wasm, in Node: a scripted drag of
-// the built-in figure's raised hand with both feet pinned, at several mesh sizes.
+// Per-frame timings of a deformer compiled to wasm (AKAP by default), in Node: a scripted
+// drag of the built-in figure's raised hand with both feet pinned, at several mesh sizes.
 // Prints median and 95th percentile milliseconds per stage (assembly, each of the two
-// numeric factorisations, the solves, the spiral step) and per frame.
-//   npm run build && node scripts/bench-deformer.mjs [vertices ...]
+// numeric factorisations, the solves, the spiral step; MLS's evaluation is its
+// "spiral" column, the stage that moves the vertices) and per frame.
+//   npm run build && node scripts/bench-deformer.mjs [--method akap|arap|mls] [vertices ...]
 import process from "node:process";
 import { performance } from "node:perf_hooks";
 import { Deformer, defaultShape, init, triangulate } from "../www/lib/index.js";
 
 await init();
-const sizes = process.argv
-  .slice(2)
-  .map(Number)
-  .filter((n) => n > 0);
+const args = process.argv.slice(2);
+const methodAt = args.indexOf("--method");
+const method = methodAt >= 0 ? args.splice(methodAt, 2)[1] : "akap";
+const sizes = args.map(Number).filter((n) => n > 0);
 const targets = sizes.length ? sizes : [1000, 5000, 10000, 50000];
 const frames = 60;
 // Frames stepped before timing starts (the first steps of a fresh deformer run code the
@@ -35,15 +36,15 @@ const stat = (values, q) => {
 const shape = defaultShape();
 const area = ringArea(shape.outer) - shape.holes.reduce((s, h) => s + ringArea(h), 0);
 console.log(
-  `Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
+  `Method ${method}. Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
     "factorisation 1 and 2: step 1's " +
     "(soft constraints) and step 2's (Dirichlet) numeric factorisations.",
 );
 console.log("");
 console.log(
-  `| vertices | triangles | setup ms | assembly | factorisation 1 | factorisation 2 | solves | spiral | frame |`,
+  `| vertices | triangles | handles | setup ms | assembly | factorisation 1 | factorisation 2 | solves | spiral | frame |`,
 );
-console.log(`|---|---|---|---|---|---|---|---|---|`);
+console.log(`|---|---|---|---|---|---|---|---|---|---|`);
 for (const target of targets) {
   // Refinement makes about 1.7x the triangles the area bound alone asks for.
   const h = Math.sqrt((1.7 * area) / (2 * target) / (Math.sqrt(3) / 4));
@@ -58,7 +59,7 @@ for (const target of targets) {
     if (d < best) [best, hand] = [d, v];
   }
   const start = performance.now();
-  const deformer = new Deformer(mesh.positions, mesh.triangles);
+  const deformer = new Deformer(mesh.positions, mesh.triangles, { method });
   deformer.setHandles([...feet, hand]);
   const setup = performance.now() - start;
   const velocities = new Float64Array(2 * (feet.length + 1));
@@ -80,6 +81,8 @@ for (const target of targets) {
   }
   const cell = (k) => `${stat(stages[k], 0.5).toFixed(2)} / ${stat(stages[k], 0.95).toFixed(2)}`;
   const columns = ["assembly", "soft", "dirichlet", "solve", "integration", "frame"].map(cell).join(" | ");
-  console.log(`| ${mesh.vertexCount} | ${mesh.triangleCount} | ${setup.toFixed(0)} | ${columns} |`);
+  console.log(
+    `| ${mesh.vertexCount} | ${mesh.triangleCount} | ${feet.length + 1} | ${setup.toFixed(0)} | ${columns} |`,
+  );
   deformer.free();
 }
