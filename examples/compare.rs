@@ -16,7 +16,7 @@
 use std::fmt::Write as _;
 
 use akap::deform::metrics::{deformation_gradient, singular_values};
-use akap::deform::{ArapOptions, Deform, DeformerOptions, Integrator, MethodOptions, MlsOptions};
+use akap::deform::{ArapOptions, CauchyGreenOptions, Deform, DeformerOptions, Integrator, MethodOptions, MlsOptions};
 use akap::geometry::Point;
 use akap::session::{replay, replay_to_targets, Replay, Session};
 use akap::Mesh;
@@ -55,6 +55,11 @@ fn variants(recorded: DeformerOptions) -> Vec<Variant> {
             label: "moving least squares, rigid (alpha 1)",
             short: "MLS rigid",
             options: MethodOptions::Mls(MlsOptions::default()),
+        },
+        Variant {
+            label: "Cauchy-Green, point to point (64-vertex cage, smoothness 1e-3)",
+            short: "Cauchy-Green",
+            options: MethodOptions::CauchyGreen(CauchyGreenOptions::default()),
         },
     ]
 }

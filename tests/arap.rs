@@ -6,7 +6,8 @@
 //! not from the cotangent form the deformer uses. Runs natively and as wasm.
 
 use akap::deform::{
-    ArapDeformer, ArapOptions, Deform, DeformError, DeformerOptions, Method, MethodOptions, MlsOptions,
+    ArapDeformer, ArapOptions, CauchyGreenOptions, Deform, DeformError, DeformerOptions, Method, MethodOptions,
+    MlsOptions,
 };
 use akap::geometry::Point;
 use akap::shapes::{ellipse, gingerbread};
@@ -429,6 +430,7 @@ fn every_method_behind_one_interface() {
         MethodOptions::Akap(DeformerOptions::default()),
         MethodOptions::Arap(ArapOptions::default()),
         MethodOptions::Mls(MlsOptions::default()),
+        MethodOptions::CauchyGreen(CauchyGreenOptions::default()),
     ] {
         let mut deformer: Box<dyn Deform> = options.build(mesh.clone()).unwrap();
         assert_eq!(deformer.method_options(), options);
@@ -446,7 +448,7 @@ fn every_method_behind_one_interface() {
         assert_eq!(deformer.positions(), mesh.positions());
         let other = match options.method() {
             Method::Akap => MethodOptions::Arap(ArapOptions::default()),
-            Method::Arap | Method::Mls => MethodOptions::Akap(DeformerOptions::default()),
+            Method::Arap | Method::Mls | Method::CauchyGreen => MethodOptions::Akap(DeformerOptions::default()),
         };
         assert!(matches!(deformer.set_method_options(other), Err(DeformError::WrongMethod { .. })));
     }

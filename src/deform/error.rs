@@ -140,6 +140,13 @@ pub enum DeformError {
         /// What it needs.
         needed: &'static str,
     },
+    /// A Cauchy-Green cage that cannot be used: given with too few points, points that are
+    /// not finite, edges that meet or the shape not strictly inside; or no automatic cage of
+    /// the vertex count asked for fits.
+    InvalidCage {
+        /// What is wrong.
+        reason: String,
+    },
     /// Options of another method were given; the method is chosen when the deformer is made.
     WrongMethod {
         /// The deformer's method.
@@ -213,6 +220,7 @@ impl fmt::Display for DeformError {
             Self::TooFewHandles { method, needed } => {
                 write!(f, "method {method} needs {needed}; add handles or choose another variant")
             }
+            Self::InvalidCage { reason } => write!(f, "the cage cannot be used: {reason}"),
             Self::WrongMethod { current, given } => write!(
                 f,
                 "the deformer uses method {current}, options for {given} were given; \

@@ -8,7 +8,7 @@ use std::fmt;
 
 use super::error::DeformError;
 use super::metrics::Metrics;
-use super::options::{methods, ArapOptions, DeformerOptions, MethodOptions, MlsOptions};
+use super::options::{methods, ArapOptions, CauchyGreenOptions, DeformerOptions, MethodOptions, MlsOptions};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 
@@ -141,7 +141,8 @@ pub trait Deform: fmt::Debug {
     /// triangle and barycentric coordinates each (a handle set on a vertex is weight 1 at
     /// that corner of a triangle using it).
     fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>);
-    /// Current positions of the handle points.
+    /// Current positions of the handle points (Cauchy-Green: the handles' targets, which
+    /// the shape's points under them meet in the least-squares sense).
     fn handle_positions(&self) -> Vec<Point>;
     /// One step with a velocity per handle, in handle order.
     fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError>;

@@ -1,6 +1,6 @@
-//! Deformation: the As-Killing-As-Possible deformer, the ARAP deformer it is compared with,
-//! and what every method shares. Each file stands on the ones before it and none imports a
-//! later one:
+//! Deformation: the As-Killing-As-Possible deformer, the methods it is compared with (ARAP,
+//! moving least squares, Cauchy-Green) and what every method shares. Each file stands on
+//! the ones before it and none imports a later one:
 //!
 //! - [`options`]: the list of methods, [`Method`], [`MethodOptions`] and each method's
 //!   options (plain data);
@@ -17,14 +17,18 @@
 //!   the Killing matrix, the spiral step, the solver;
 //! - [`arap`]: the [`ArapDeformer`] (Liu et al. 2008 elements energy, local/global);
 //! - [`mls`]: the [`MlsDeformer`] (Schaefer et al. 2006, rigid, similarity or affine
-//!   moving least squares, in closed form).
+//!   moving least squares, in closed form);
+//! - [`cauchy`]: the [`CauchyGreenDeformer`] (Weber et al. 2009, point-to-point
+//!   Cauchy-Green coordinates on a cage) in three files: the coordinates, the cage, the
+//!   fit.
 //!
-//! A new method is one more file beside `akap`, `arap` and `mls` (declared here), its options
+//! A new method is one more file beside `akap`, `arap`, `mls` and `cauchy` (declared here), its options
 //! struct in [`options`] and one more line in the list of methods there (see
 //! `ARCHITECTURE.md`, "How to add a method").
 
 pub mod akap;
 pub mod arap;
+pub mod cauchy;
 mod error;
 pub(crate) mod handles;
 pub mod method;
@@ -36,12 +40,13 @@ pub mod settings;
 
 pub use akap::Deformer;
 pub use arap::{ArapDeformer, IterationReport};
+pub use cauchy::CauchyGreenDeformer;
 pub use error::DeformError;
 pub use method::{Clock, Deform, Orders, Timings};
 pub use metrics::Metrics;
 pub use mls::MlsDeformer;
 pub use options::{
-    Access, ArapOptions, DeformerOptions, Integrator, Method, MethodOptions, MlsOptions, MlsVariant, Setting, Settings,
-    LAMBDA_RANGE, MLS_ALPHA_RANGE,
+    Access, ArapOptions, CauchyGreenOptions, DeformerOptions, Integrator, Method, MethodOptions, MlsOptions,
+    MlsVariant, Setting, Settings, CAGE_VERTICES_RANGE, LAMBDA_RANGE, MLS_ALPHA_RANGE, SMOOTHNESS_RANGE,
 };
 pub use settings::SettingValue;

@@ -23,6 +23,9 @@ macro_rules! methods {
             Arap("arap", ArapOptions),
             /// Moving least squares (Schaefer et al. 2006): rigid, similarity or affine.
             Mls("mls", MlsOptions),
+            /// Point-to-point Cauchy-Green coordinates (Weber et al. 2009): a conformal map
+            /// from a cage.
+            CauchyGreen("cauchy-green", CauchyGreenOptions),
         }
     };
 }
@@ -38,7 +41,8 @@ macro_rules! method_enums {
         }
 
         impl Method {
-            /// The name the JavaScript API and sessions use: `"akap"`, `"arap"` or `"mls"`.
+            /// The name the JavaScript API and sessions use: `"akap"`, `"arap"`, `"mls"` or
+            /// `"cauchy-green"`.
             pub fn name(self) -> &'static str {
                 match self {
                     $(Self::$variant => $name,)*
@@ -301,6 +305,58 @@ impl MlsOptions {
     /// Sets alpha.
     pub fn with_alpha(mut self, alpha: f64) -> Self {
         self.alpha = alpha;
+        self
+    }
+}
+
+/// The cage sizes [`CauchyGreenOptions::cage`] may ask for: 8 to 1000 vertices. Fewer cannot
+/// follow a shape; the set-up grows with the cage's vertices times the mesh's (coordinates
+/// at every vertex) and with their cube (the dense smoothness matrix), and a cage of a
+/// thousand vertices is already finer than any shape the app meshes needs.
+pub const CAGE_VERTICES_RANGE: RangeInclusive<usize> = 8..=1000;
+
+/// The values [`CauchyGreenOptions::smoothness`] may take: 1e-8 to 1e4. The smoothness term
+/// is scaled by the cube of the cage's size, so the weight is dimensionless: below the
+/// range handles are met to rounding and the map is as wild as the cage allows (and the
+/// dense system loses its precision); above, the map is a similarity fitted to the handles.
+pub const SMOOTHNESS_RANGE: RangeInclusive<f64> = 1e-8..=1e4;
+
+/// Point-to-point Cauchy-Green settings ([`super::CauchyGreenDeformer`]), with builders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CauchyGreenOptions {
+    /// The automatic cage's vertex count, in [`CAGE_VERTICES_RANGE`] (default 64): the map's
+    /// degrees of freedom. Ignored while a cage given with `set_cage` is in use.
+    pub cage: usize,
+    /// The weight of the smoothness term, in [`SMOOTHNESS_RANGE`] (default 1e-5): the map's
+    /// cage values minimise `sum_k |f(p_k) - q_k|^2 + smoothness D^3 sum_e sum_(t = 1/4, 3/4)
+    /// |e|/2 |f''(z_e(t))|^2`, handles `p_k` to targets `q_k`, `D` the diagonal of the
+    /// cage's bounding box, `e` its edges and `z_e(t)` the points at a quarter and three
+    /// quarters along them.
+    pub smoothness: f64,
+}
+
+impl Default for CauchyGreenOptions {
+    fn default() -> Self {
+        Self { cage: 64, smoothness: 1e-5 }
+    }
+}
+
+impl Settings for CauchyGreenOptions {
+    const SETTINGS: &'static [Setting<Self>] = &[
+        Setting { name: "cage", access: Access::Whole(|o| o.cage, |o, n| o.cage = n) },
+        Setting { name: "smoothness", access: Access::Number(|o| o.smoothness, |o, x| o.smoothness = x) },
+    ];
+}
+
+impl CauchyGreenOptions {
+    /// Sets the automatic cage's vertex count.
+    pub fn with_cage(mut self, vertices: usize) -> Self {
+        self.cage = vertices;
+        self
+    }
+    /// Sets the smoothness weight.
+    pub fn with_smoothness(mut self, smoothness: f64) -> Self {
+        self.smoothness = smoothness;
         self
     }
 }

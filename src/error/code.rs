@@ -245,7 +245,8 @@ impl DeformError {
             | Self::NonFinitePosition { .. }
             | Self::PositionOutOfRange { .. }
             | Self::OrdersMismatch { .. }
-            | Self::TooFewHandles { .. } => ErrorCode::InvalidArgument,
+            | Self::TooFewHandles { .. }
+            | Self::InvalidCage { .. } => ErrorCode::InvalidArgument,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,
             Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,

@@ -18,7 +18,7 @@ mod error;
 pub mod mesh_file;
 pub mod raster;
 mod regions;
-mod simplify;
+pub(crate) mod simplify;
 pub mod svg;
 mod union;
 pub mod vector;
