@@ -153,8 +153,9 @@ export async function coverage(page: Page, positions?: number[], which: Which = 
   );
 }
 
-export function expectDrawnLikeTheMesh(c: Coverage): void {
-  expect(c.maskPixels).toBeGreaterThan(0.05 * c.width * c.height);
+/** The drawing covers the mesh's triangles, and the mesh at least `minShare` of the canvas. */
+export function expectDrawnLikeTheMesh(c: Coverage, minShare = 0.05): void {
+  expect(c.maskPixels).toBeGreaterThan(minShare * c.width * c.height);
   expect(c.stray).toBeLessThan(0.002 * c.maskPixels);
   expect(c.missing).toBeLessThan(0.002 * c.maskPixels);
 }

@@ -249,6 +249,7 @@ test("the embedding example shows two widgets that work independently", async ({
 for (const [method, label] of [
   ["arap", "ARAP"],
   ["mls", "moving least squares"],
+  ["cauchy-green", "Cauchy-Green"],
 ] as const) {
   test(`switching to ${label} keeps the pose and handles, and ${label} poses the shape too`, async ({ page }) => {
     await page.setViewportSize({ width: 900, height: 700 });
@@ -272,7 +273,9 @@ for (const [method, label] of [
     const [px, py] = toCss(after[0]!, after[1]!);
     const [qx, qy] = toCss(h[0]!, h[1]!);
     expect(Math.hypot(px - qx, py - qy)).toBeLessThan(0.5);
-    expectDrawnLikeTheMesh(await coverage(page));
+    // Cauchy-Green with two handles is the similarity through them, so the whole shape
+    // shrinks as they come closer.
+    expectDrawnLikeTheMesh(await coverage(page), method === "cauchy-green" ? 0.02 : 0.05);
   });
 }
 

@@ -66,6 +66,33 @@ describe("Deformer", () => {
     deformer.free();
   });
 
+  it("Cauchy-Green: two handles give the similarity that takes them to their targets; a bad cage count changes nothing", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.08 });
+    expect(deformerOrders(mesh.positions, mesh.triangles, { method: "cauchy-green" })).toEqual([]);
+    const deformer = new Deformer(mesh.positions, mesh.triangles, { method: "cauchy-green", cage: 48 });
+    expect(deformer.method).toBe("cauchy-green");
+    deformer.setHandles([0, 40]);
+    // z -> a z + b with a = 1.2 e^(0.5 i), b = 0.3 - 0.1 i.
+    const [ar, ai] = [1.2 * Math.cos(0.5), 1.2 * Math.sin(0.5)];
+    const similar = (x: number, y: number) => [ar * x - ai * y + 0.3, ai * x + ar * y - 0.1] as const;
+    const h = deformer.handlePositions();
+    const velocities: number[] = [];
+    for (let i = 0; i < h.length; i += 2) {
+      const [x, y] = similar(h[i]!, h[i + 1]!);
+      velocities.push(x - h[i]!, y - h[i + 1]!);
+    }
+    deformer.step(velocities);
+    const p = deformer.positions();
+    for (let v = 0; v < mesh.vertexCount; v++) {
+      const [x, y] = similar(mesh.positions[2 * v]!, mesh.positions[2 * v + 1]!);
+      expect(p[2 * v]!).toBeCloseTo(x, 9);
+      expect(p[2 * v + 1]!).toBeCloseTo(y, 9);
+    }
+    expect(() => deformer.setOptions({ cage: 4 })).toThrow(/option cage is 4, expected a whole number from 8 to 1000/);
+    expect(deformer.positions()).toEqual(p);
+    deformer.free();
+  });
+
   it("rotates the shape rigidly when the handles follow an infinitesimal rotation", () => {
     const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.08 });
     const deformer = new Deformer(mesh.positions, mesh.triangles);

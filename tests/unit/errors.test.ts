@@ -109,7 +109,7 @@ describe("a misspelt option is refused by every options object", () => {
   // Each call succeeds with the key spelt right (checked first), and throws naming the
   // misspelt key and listing the known ones otherwise.
   const triangulation = "maxArea, targetEdgeLength, minAngle, maxVertices";
-  const deformer = "method, lambda, dirichlet, integrator, iterations, variant, alpha";
+  const deformer = "method, lambda, dirichlet, integrator, iterations, variant, alpha, cage, smoothness";
   const svgImport = "tolerance, minArea, strokes, maxPoints, maxBytes";
   const tracing = "mode, alphaThreshold, colourThreshold, tolerance, minArea, maxPoints, maxPixels";
   const { positions, triangles } = grid;
@@ -183,7 +183,7 @@ describe("a misspelt option is refused by every options object", () => {
       ],
       [
         () => new api.Deformer(positions, triangles, { method: "fem" as never }),
-        'option method is "fem", expected "akap", "arap" or "mls"',
+        'option method is "fem", expected "akap", "arap", "mls" or "cauchy-green"',
       ],
       [
         () => api.traceImage(image, 16, 16, { mode: 3 as never }),

@@ -21,7 +21,7 @@ export async function pose(): Promise<Metrics> {
   deformer.setHandles([0, 42]);
   deformer.step([0, 0, 0.01, 0.02]);
   const positions: Float64Array = deformer.positions();
-  // @ts-expect-error the method is "akap", "arap" or "mls"
+  // @ts-expect-error the method is "akap", "arap", "mls" or "cauchy-green"
   deformer.setOptions({ method: "fem" });
   // @ts-expect-error positions are numbers
   void new Deformer("0 0 1 0 0 1", [0, 1, 2]);

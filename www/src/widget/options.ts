@@ -27,12 +27,17 @@ export const METHODS = {
   },
   arap: { label: "ARAP (10 iterations per step)", options: { method: "arap", iterations: 10 } },
   mls: { label: "Moving least squares (rigid)", options: { method: "mls", variant: "rigid", alpha: 1 } },
+  "cauchy-green": {
+    label: "Cauchy-Green (conformal)",
+    options: { method: "cauchy-green", cage: 64, smoothness: 1e-5 },
+  },
   defop: { label: "Trained (DefOp)", options: { method: "akap", dirichlet: true, integrator: "spiral" } },
 } as const satisfies Record<string, { label: string; options: DeformerOptions }>;
 
 /**
- * A preset of the widget: a deformation method (`"akap"`, `"arap"` or `"mls"`, the core's
- * `DeformerOptions.method`) with settings, named by its key in {@link METHODS}.
+ * A preset of the widget: a deformation method (`"akap"`, `"arap"`, `"mls"` or
+ * `"cauchy-green"`, the core's `DeformerOptions.method`) with settings, named by its key
+ * in {@link METHODS}.
  */
 export type MethodPreset = keyof typeof METHODS;
 
@@ -211,6 +216,7 @@ export function methodOptions(method: MethodPreset, lambda: number): DeformerOpt
 export function widgetMethod(options: DeformerOptions, lambda: number): { method: MethodPreset; lambda: number } {
   if (options.method === "arap") return { method: "arap", lambda };
   if (options.method === "mls") return { method: "mls", lambda };
+  if (options.method === "cauchy-green") return { method: "cauchy-green", lambda };
   const dirichlet = options.dirichlet ?? true;
   const integrator = options.integrator ?? "spiral";
   const found = (Object.keys(METHODS) as MethodPreset[]).find((key) => {
