@@ -2,8 +2,11 @@
 // drag of the built-in figure's raised hand with both feet pinned, at several mesh sizes.
 // Prints median and 95th percentile milliseconds per stage (assembly, each of the two
 // numeric factorisations, the solves, the spiral step; MLS's evaluation is its
-// "spiral" column, the stage that moves the vertices) and per frame.
-//   npm run build && node scripts/bench-deformer.mjs [--method akap|arap|mls] [vertices ...]
+// "spiral" column, the stage that moves the vertices; Cauchy-Green's small solve is its
+// "solves" and its product with the coordinates its "spiral") and per frame. `--set
+// name=value` (repeatable) passes a setting of the method, e.g. `--set cage=300`.
+//   npm run build && node scripts/bench-deformer.mjs [--method akap|arap|mls|cauchy-green]
+//     [--set name=value ...] [vertices ...]
 import process from "node:process";
 import { performance } from "node:perf_hooks";
 import { Deformer, defaultShape, init, triangulate } from "../www/lib/index.js";
@@ -12,6 +15,11 @@ await init();
 const args = process.argv.slice(2);
 const methodAt = args.indexOf("--method");
 const method = methodAt >= 0 ? args.splice(methodAt, 2)[1] : "akap";
+const settings = {};
+for (let at = args.indexOf("--set"); at >= 0; at = args.indexOf("--set")) {
+  const [name, value] = args.splice(at, 2)[1].split("=");
+  settings[name] = Number.isNaN(Number(value)) ? value : Number(value);
+}
 const sizes = args.map(Number).filter((n) => n > 0);
 const targets = sizes.length ? sizes : [1000, 5000, 10000, 50000];
 const frames = 60;
@@ -36,7 +44,7 @@ const stat = (values, q) => {
 const shape = defaultShape();
 const area = ringArea(shape.outer) - shape.holes.reduce((s, h) => s + ringArea(h), 0);
 console.log(
-  `Method ${method}. Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
+  `Method ${method}${Object.keys(settings).length ? ` ${JSON.stringify(settings)}` : ""}. Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
     "factorisation 1 and 2: step 1's " +
     "(soft constraints) and step 2's (Dirichlet) numeric factorisations.",
 );
@@ -59,7 +67,7 @@ for (const target of targets) {
     if (d < best) [best, hand] = [d, v];
   }
   const start = performance.now();
-  const deformer = new Deformer(mesh.positions, mesh.triangles, { method });
+  const deformer = new Deformer(mesh.positions, mesh.triangles, { method, ...settings });
   deformer.setHandles([...feet, hand]);
   const setup = performance.now() - start;
   const velocities = new Float64Array(2 * (feet.length + 1));

@@ -273,6 +273,11 @@ fn bad_cages_options_and_velocities_change_nothing() {
     assert!(matches!(deformer.step(&[[1e300, 0.0], [0.0, 0.0]]), Err(DeformError::NonFiniteResult)));
     assert!(deformer.step(&[[0.0, 0.0]]).is_err());
     assert_eq!((deformer.positions(), deformer.cage(), deformer.handle_positions()), (&pose[..], &cage[..], targets));
+    // Coordinates beyond the budget (2^25 vertex and cage pairs) are refused before any is
+    // computed.
+    let large = grid_mesh(200, 170);
+    let error = CauchyGreenDeformer::new(large, CauchyGreenOptions::default().with_cage(1000)).unwrap_err();
+    assert!(matches!(error, DeformError::OutOfMemory { .. }), "{error}");
     // A cage given clockwise is used counter-clockwise.
     let clockwise: Vec<Point> = outside.iter().rev().copied().collect();
     deformer.set_cage(Some(&clockwise)).unwrap();

@@ -49,6 +49,11 @@ use crate::sparse::FactorError;
 type C64 = Complex<f64>;
 const ZERO: C64 = Complex { re: 0.0, im: 0.0 };
 
+/// The most coordinates (mesh vertices times cage vertices) a deformer keeps: 2^25, 512 MB,
+/// a few seconds of set-up in wasm. Beyond, it is refused as out of memory (a coarser mesh
+/// or a smaller cage fits).
+const MAX_COORDINATES: usize = 1 << 25;
+
 /// The Cauchy-Green deformer of one mesh.
 #[derive(Debug, Clone)]
 pub struct CauchyGreenDeformer {
@@ -81,11 +86,13 @@ struct Cage {
 impl Cage {
     fn new(mesh: &Mesh, points: Vec<Point>, given: bool) -> Result<Self, DeformError> {
         let n = points.len();
-        let entries = mesh.vertex_count().checked_mul(n).ok_or(DeformError::OutOfMemory { bytes: usize::MAX })?;
+        let entries = mesh.vertex_count().saturating_mul(n);
+        let bytes = entries.saturating_mul(std::mem::size_of::<C64>());
+        if entries > MAX_COORDINATES {
+            return Err(DeformError::OutOfMemory { bytes });
+        }
         let mut at_vertices = Vec::new();
-        at_vertices
-            .try_reserve_exact(entries)
-            .map_err(|_| DeformError::OutOfMemory { bytes: entries.saturating_mul(std::mem::size_of::<C64>()) })?;
+        at_vertices.try_reserve_exact(entries).map_err(|_| DeformError::OutOfMemory { bytes })?;
         at_vertices.resize(entries, ZERO);
         for (row, &v) in at_vertices.chunks_exact_mut(n).zip(mesh.positions()) {
             coordinates(&points, v, row);
@@ -99,14 +106,10 @@ impl Cage {
             let weight = size * size * size * libm::hypot(b[0] - a[0], b[1] - a[1]) / 2.0;
             for t in [0.25, 0.75] {
                 second_derivative(&points, [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])], &mut d);
-                for (r, dr) in d.iter().enumerate() {
-                    let left = dr.conj() * weight;
-                    for (entry, dc) in smoothness[r * n..(r + 1) * n].iter_mut().zip(&d) {
-                        *entry += left * dc;
-                    }
-                }
+                add_outer_product(&mut smoothness, &d, weight);
             }
         }
+        mirror_upper(&mut smoothness, n);
         Ok(Self { points, given, at_vertices, smoothness })
     }
 
@@ -137,13 +140,9 @@ impl Fit {
         }
         let mut matrix: Vec<C64> = cage.smoothness.iter().map(|s| s * smoothness).collect();
         for row in rows.chunks_exact(n) {
-            for (a, ra) in row.iter().enumerate() {
-                let left = ra.conj();
-                for (entry, rb) in matrix[a * n..(a + 1) * n].iter_mut().zip(row) {
-                    *entry += left * rb;
-                }
-            }
+            add_outer_product(&mut matrix, row, 1.0);
         }
+        mirror_upper(&mut matrix, n);
         let factor = cholesky(matrix, n).map_err(DeformError::Factor)?;
         Ok(Self::Solve { rows, factor })
     }
@@ -173,6 +172,27 @@ impl Fit {
                 solve(factor, n, &mut f);
                 f
             }
+        }
+    }
+}
+
+/// Adds `weight conj(d) d^T` to the upper triangle of the Hermitian `n x n` `matrix` (the
+/// lower triangle is [`mirror_upper`]'s to fill: half the work).
+fn add_outer_product(matrix: &mut [C64], d: &[C64], weight: f64) {
+    let n = d.len();
+    for (r, dr) in d.iter().enumerate() {
+        let left = dr.conj() * weight;
+        for (entry, dc) in matrix[r * n + r..(r + 1) * n].iter_mut().zip(&d[r..]) {
+            *entry += left * dc;
+        }
+    }
+}
+
+/// Fills the lower triangle of a Hermitian matrix from its upper one.
+fn mirror_upper(matrix: &mut [C64], n: usize) {
+    for r in 0..n {
+        for c in 0..r {
+            matrix[r * n + c] = matrix[c * n + r].conj();
         }
     }
 }
