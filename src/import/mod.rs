@@ -20,7 +20,7 @@ pub mod raster;
 mod regions;
 pub(crate) mod simplify;
 pub mod svg;
-mod union;
+pub(crate) mod union;
 pub mod vector;
 pub mod warp;
 

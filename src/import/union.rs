@@ -7,15 +7,29 @@
 //! error near 1e-9) and computes the arrangement exactly on it. A region is a list of
 //! simple rings oriented by the engine (outer boundaries one way, holes the other), so
 //! regions can be summed under the non-zero rule: their union is where the sum is not zero.
+//! It also offsets outlines, for the cages of Cauchy-Green deformation.
 
 use i_overlay::core::fill_rule::FillRule as Rule;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::float::simplify::SimplifyShape;
 use i_overlay::float::single::SingleFloatOverlay;
+use i_overlay::mesh::float::outline::offset::OutlineOffset;
+use i_overlay::mesh::float::style::{LineJoin, OutlineStyle};
 
 use crate::geometry::{polygon_area, Point};
 use crate::import::vector::FillRule;
 use crate::outline::Outline;
+
+/// The outer contour of the simple ring `ring` grown by `margin` (round joins, arcs in
+/// steps of at most half a radian; concavities narrower than `2 margin` close up), the
+/// largest if the result has several pieces. `None` if nothing is left.
+pub(crate) fn grown(ring: &[Point], margin: f64) -> Option<Vec<Point>> {
+    let style = OutlineStyle::new(margin).line_join(LineJoin::Round(0.5));
+    ring.outline(&style)
+        .into_iter()
+        .filter_map(|shape| shape.into_iter().next())
+        .max_by(|a, b| polygon_area(a).abs().total_cmp(&polygon_area(b).abs()))
+}
 
 /// A filled region: parts, each an outer ring followed by its holes.
 pub(crate) type Region = Vec<Vec<Vec<Point>>>;

@@ -2,9 +2,9 @@
 //! automatically from the mesh's outer outline (offset outward, then simplified to at most
 //! the vertex count asked for), or given by the caller and checked.
 //!
-//! The automatic cage offsets the outline by a margin `d` (round joins, with i_overlay, the
-//! engine of the SVG importer's unions), keeps the outer contour of the result (concavities
-//! narrower than `2 d` close up), simplifies it with a tolerance of `d / 2` without breaking
+//! The automatic cage offsets the outline by a margin `d` (`import::union::grown`: round
+//! joins, with i_overlay), keeps the outer contour of the result (concavities narrower than
+//! `2 d` close up), simplifies it with a tolerance of `d / 2` without breaking
 //! its topology (`import::simplify`), which keeps its corners, and then splits the longest
 //! edges until it has the vertices asked for: they are the map's degrees of freedom, so a
 //! bar's cage needs more than its eight corners. The margin starts at half the spacing of
@@ -13,14 +13,12 @@
 //! share cage edges) and grows by half until the simplified contour has no more vertices
 //! than asked for and encloses the shape without touching it.
 
-use i_overlay::mesh::float::outline::offset::OutlineOffset;
-use i_overlay::mesh::float::style::{LineJoin, OutlineStyle};
-
 use super::super::error::DeformError;
 use crate::geometry::{
     bounding_box, distance, point_in_polygon, polygon_area, segments_intersect, Point, MAX_COORDINATE,
 };
 use crate::import::simplify::simplify_rings;
+use crate::import::union::grown;
 use crate::mesh::Mesh;
 use crate::sweep::{sweep, Find};
 
@@ -51,14 +49,7 @@ pub(crate) fn automatic(mesh: &Mesh, vertices: usize) -> Result<Vec<Point>, Defo
 /// The outline offset by `margin` and simplified, counter-clockwise, if it has at most
 /// `max_vertices`.
 fn around(outline: &[Point], margin: f64, max_vertices: usize) -> Option<Vec<Point>> {
-    let style = OutlineStyle::new(margin).line_join(LineJoin::Round(0.5));
-    let shapes = outline.outline(&style);
-    // The outer contour of the largest piece (the offset of one simple ring is one piece,
-    // possibly with holes where a concavity closed around empty space).
-    let offset = shapes
-        .into_iter()
-        .filter_map(|shape| shape.into_iter().next())
-        .max_by(|a, b| polygon_area(a).abs().total_cmp(&polygon_area(b).abs()))?;
+    let offset = grown(outline, margin)?;
     let simplified = simplify_rings(&[offset], &[None], margin / 2.0, 1 << 26)?.pop()?;
     if simplified.len() < 3 || simplified.len() > max_vertices {
         return None;
