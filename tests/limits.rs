@@ -2,7 +2,7 @@
 //! poses beyond the coordinate limit, lengths counted in the caller's numbers, collapsed
 //! poses, and the same deformation at every scale. Runs natively and as wasm.
 
-use akap::deform::{ArapOptions, Deform, DeformError, DeformerOptions, MethodOptions};
+use akap::deform::{ArapOptions, CauchyGreenOptions, Deform, DeformError, DeformerOptions, MethodOptions, MlsOptions};
 use akap::geometry::{scale_by_power_of_two, Point, MAX_COORDINATE};
 use akap::shapes::gingerbread;
 use akap::{triangulate, Mesh, TriangulationOptions};
@@ -17,11 +17,13 @@ fn scaled_mesh(mesh: &Mesh, f: impl Fn(f64) -> f64) -> Mesh {
     Mesh::new(mesh.positions().iter().map(|p| p.map(&f)).collect(), mesh.triangles().to_vec()).unwrap()
 }
 
-fn methods() -> [MethodOptions; 3] {
+fn methods() -> [MethodOptions; 5] {
     [
         MethodOptions::Akap(DeformerOptions::default()),
         MethodOptions::Akap(DeformerOptions::default().with_dirichlet(false)),
         MethodOptions::Arap(ArapOptions::default()),
+        MethodOptions::Mls(MlsOptions::default()),
+        MethodOptions::CauchyGreen(CauchyGreenOptions::default()),
     ]
 }
 
@@ -114,14 +116,18 @@ fn every_method_deforms_the_same_at_every_scale() {
             assert!((a.angle_distortion - b.angle_distortion).abs() < 1e-12 * b.angle_distortion, "{a:?} {b:?}");
         }
         // At 1e-300 and 1e200 the mesh itself is rounded, but the pose is the same to the
-        // precision of its coordinates.
+        // precision of its coordinates. (Cauchy-Green's automatic cage is an offset that
+        // i_overlay computes with directions in fixed point, about 1e-5 of the margin; the
+        // offsets of a mesh and of its rounded copy differ by that, and so do the maps.
+        // Measured: 1.3e-5 on this figure, about 3 across; scaling by powers of two is exact.)
+        let tolerance = if matches!(method, MethodOptions::CauchyGreen(_)) { 1e-4 } else { 1e-10 };
         for factor in [1e-300, 1e200] {
             let s = |x: f64| x * factor;
             let mut scaled = method.build(scaled_mesh(&unit_mesh, s)).unwrap();
             pose(scaled.as_mut(), s);
             for (p, q) in scaled.positions().iter().zip(unit.positions()) {
                 let d = (p[0] / factor - q[0]).hypot(p[1] / factor - q[1]);
-                assert!(d < 1e-10, "{method:?} at {factor}: {p:?} vs {q:?}");
+                assert!(d < tolerance, "{method:?} at {factor}: {p:?} vs {q:?}");
             }
         }
     }

@@ -19,13 +19,18 @@ use super::handles::{self, check_connected, check_pose, check_velocities, in_ran
 use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
 use super::options::{Method, MethodOptions, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
-use crate::geometry::Point;
+use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
 /// The moving-least-squares deformer of one mesh.
 #[derive(Debug, Clone)]
 pub struct MlsDeformer {
     mesh: Mesh,
+    /// The mesh's positions times `2^exponent` (largest coordinate in [1, 2)), where the
+    /// map is evaluated: MLS commutes with scaling, and there the weights `1 / d^(2 alpha)`
+    /// neither overflow nor underflow at any scale of the mesh.
+    unit: Vec<Point>,
+    exponent: i32,
     options: MlsOptions,
     handles: Vec<HandlePoint>,
     positions: Vec<Point>,
@@ -41,8 +46,12 @@ impl MlsDeformer {
         check_connected(&mesh)?;
         let n = mesh.vertex_count();
         let positions = mesh.positions().to_vec();
+        let exponent = normalising_exponent(mesh.positions().iter().copied());
+        let unit = mesh.positions().iter().map(|p| p.map(|x| scale_by_power_of_two(x, exponent))).collect();
         Ok(Self {
             mesh,
+            unit,
+            exponent,
             options,
             handles: Vec::new(),
             positions,
@@ -93,17 +102,23 @@ impl MlsDeformer {
             return Ok(());
         }
         let start = (self.clock)();
-        let rest: Vec<Point> = self.handles.iter().map(|h| h.position(self.mesh.positions())).collect();
-        let targets: Vec<Point> =
-            self.handle_positions().iter().zip(velocities).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect();
+        let k = self.exponent;
+        let rest: Vec<Point> = self.handles.iter().map(|h| h.position(&self.unit)).collect();
+        let targets: Vec<Point> = self
+            .handle_positions()
+            .iter()
+            .zip(velocities)
+            .map(|(p, v)| [p[0] + v[0], p[1] + v[1]].map(|x| scale_by_power_of_two(x, k)))
+            .collect();
         let map = Map { rest: &rest, targets: &targets, alpha: self.options.alpha, variant: self.options.variant };
         let mut next = Vec::with_capacity(self.positions.len());
         let mut weights = Vec::with_capacity(rest.len());
-        for &v in self.mesh.positions() {
-            next.push(map.at(v, &mut weights).ok_or(DeformError::TooFewHandles {
+        for &v in &self.unit {
+            let q = map.at(v, &mut weights).ok_or(DeformError::TooFewHandles {
                 method: Method::Mls,
                 needed: "three handles not all on one line for the affine map",
-            })?);
+            })?;
+            next.push(q.map(|x| scale_by_power_of_two(x, -k)));
         }
         if !in_range(&next) {
             return Err(DeformError::NonFiniteResult);

@@ -31,8 +31,9 @@ const ATTEMPTS: usize = 30;
 
 /// A counter-clockwise cage of `vertices` vertices around the mesh's outer outline,
 /// touching nothing.
-pub(crate) fn automatic(mesh: &Mesh, vertices: usize) -> Result<Vec<Point>, DeformError> {
-    let outline = outer_outline(mesh);
+/// `positions` are the mesh's vertices (or those scaled alike).
+pub(crate) fn automatic(mesh: &Mesh, positions: &[Point], vertices: usize) -> Result<Vec<Point>, DeformError> {
+    let outline = outer_outline(mesh, positions);
     let perimeter: f64 = (0..outline.len()).map(|i| distance(outline[i], outline[(i + 1) % outline.len()])).sum();
     let mut margin = FIRST_MARGIN * perimeter / vertices as f64;
     for _ in 0..ATTEMPTS {
@@ -84,7 +85,8 @@ fn subdivided(ring: Vec<Point>, vertices: usize) -> Vec<Point> {
 /// finite and within the coordinate limit, no repeated consecutive points, edges that do
 /// not meet (but consecutive ones at their shared point), and the mesh's outer outline
 /// strictly inside (no edge of the outline touching the cage).
-pub(crate) fn checked(mesh: &Mesh, cage: &[Point]) -> Result<Vec<Point>, DeformError> {
+/// `positions` are the mesh's vertices (or those scaled alike, with the cage).
+pub(crate) fn checked(mesh: &Mesh, positions: &[Point], cage: &[Point]) -> Result<Vec<Point>, DeformError> {
     let invalid = |reason: String| Err(DeformError::InvalidCage { reason });
     if cage.len() < 3 {
         return invalid(format!("it has {} points, at least 3 are needed", cage.len()));
@@ -104,15 +106,14 @@ pub(crate) fn checked(mesh: &Mesh, cage: &[Point]) -> Result<Vec<Point>, DeformE
         None => return invalid("it has too many edges to check".into()),
     }
     let cage = counter_clockwise(cage.to_vec());
-    if !encloses(&cage, &outer_outline(mesh)) {
+    if !encloses(&cage, &outer_outline(mesh, positions)) {
         return invalid("the shape is not strictly inside it (the cage crosses or touches the shape)".into());
     }
     Ok(cage)
 }
 
 /// The mesh's outer boundary loop, counter-clockwise (its holes lie inside it).
-fn outer_outline(mesh: &Mesh) -> Vec<Point> {
-    let positions = mesh.positions();
+fn outer_outline(mesh: &Mesh, positions: &[Point]) -> Vec<Point> {
     let rings: Vec<Vec<Point>> =
         mesh.boundary_loops().iter().map(|ring| ring.iter().map(|&v| positions[v as usize]).collect()).collect();
     // Boundary loops run with the shape on their left: the outer one counter-clockwise, with
@@ -161,10 +162,10 @@ mod tests {
     fn the_automatic_cage_encloses_the_shape_with_its_vertex_count() {
         let mesh = grid_mesh(20, 4);
         for vertices in [8, 16, 64] {
-            let cage = automatic(&mesh, vertices).unwrap();
+            let cage = automatic(&mesh, mesh.positions(), vertices).unwrap();
             assert_eq!(cage.len(), vertices);
             assert!(polygon_area(&cage) > mesh.area());
-            assert!(checked(&mesh, &cage).is_ok());
+            assert!(checked(&mesh, mesh.positions(), &cage).is_ok());
         }
     }
 }

@@ -42,7 +42,7 @@ use super::handles::{self, check_connected, check_pose, check_velocities, diagon
 use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
 use super::options::{CauchyGreenOptions, Method, MethodOptions, CAGE_VERTICES_RANGE, SMOOTHNESS_RANGE};
-use crate::geometry::{bounding_box, Point};
+use crate::geometry::{bounding_box, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::FactorError;
 
@@ -58,6 +58,11 @@ const MAX_COORDINATES: usize = 1 << 25;
 #[derive(Debug, Clone)]
 pub struct CauchyGreenDeformer {
     mesh: Mesh,
+    /// The mesh's positions times `2^exponent` (largest coordinate in [1, 2)): the
+    /// coordinates, the cage and the fit are computed on them (the coordinates are the same
+    /// at every scale), so that no length overflows or underflows.
+    unit: Vec<Point>,
+    exponent: i32,
     options: CauchyGreenOptions,
     cage: Cage,
     handles: Vec<HandlePoint>,
@@ -73,7 +78,10 @@ pub struct CauchyGreenDeformer {
 /// What depends on the cage alone.
 #[derive(Debug, Clone)]
 struct Cage {
+    /// In the deformer's unit scale.
     points: Vec<Point>,
+    /// In the mesh's scale.
+    actual: Vec<Point>,
     /// Given by the caller (not rebuilt when the options change).
     given: bool,
     /// The coordinates of every mesh vertex, a row of one per cage vertex each.
@@ -84,9 +92,11 @@ struct Cage {
 }
 
 impl Cage {
-    fn new(mesh: &Mesh, points: Vec<Point>, given: bool) -> Result<Self, DeformError> {
+    /// The cage `points` around the mesh vertices `unit`, both in the unit scale, and
+    /// `2^exponent` that scale.
+    fn new(unit: &[Point], points: Vec<Point>, exponent: i32, given: bool) -> Result<Self, DeformError> {
         let n = points.len();
-        let entries = mesh.vertex_count().saturating_mul(n);
+        let entries = unit.len().saturating_mul(n);
         let bytes = entries.saturating_mul(std::mem::size_of::<C64>());
         if entries > MAX_COORDINATES {
             return Err(DeformError::OutOfMemory { bytes });
@@ -94,7 +104,7 @@ impl Cage {
         let mut at_vertices = Vec::new();
         at_vertices.try_reserve_exact(entries).map_err(|_| DeformError::OutOfMemory { bytes })?;
         at_vertices.resize(entries, ZERO);
-        for (row, &v) in at_vertices.chunks_exact_mut(n).zip(mesh.positions()) {
+        for (row, &v) in at_vertices.chunks_exact_mut(n).zip(unit) {
             coordinates(&points, v, row);
         }
         let (lo, hi) = bounding_box(points.iter().copied()).expect("a cage has points");
@@ -110,7 +120,8 @@ impl Cage {
             }
         }
         mirror_upper(&mut smoothness, n);
-        Ok(Self { points, given, at_vertices, smoothness })
+        let actual = points.iter().map(|p| p.map(|x| scale_by_power_of_two(x, -exponent))).collect();
+        Ok(Self { points, actual, given, at_vertices, smoothness })
     }
 
     fn len(&self) -> usize {
@@ -159,7 +170,7 @@ impl Fit {
                     true => ZERO,
                     false => complex(mean(targets)) - complex(mean(rest)),
                 };
-                cage.points.iter().map(|&z| complex(z) + shift).collect()
+                cage.actual.iter().map(|&z| complex(z) + shift).collect()
             }
             Self::Solve { rows, factor } => {
                 let n = cage.len();
@@ -236,12 +247,16 @@ impl CauchyGreenDeformer {
     pub fn new(mesh: Mesh, options: CauchyGreenOptions) -> Result<Self, DeformError> {
         check_options(&options)?;
         check_connected(&mesh)?;
-        let cage = Cage::new(&mesh, cage::automatic(&mesh, options.cage)?, false)?;
+        let exponent = normalising_exponent(mesh.positions().iter().copied());
+        let unit: Vec<Point> = mesh.positions().iter().map(|p| p.map(|x| scale_by_power_of_two(x, exponent))).collect();
+        let cage = Cage::new(&unit, cage::automatic(&mesh, &unit, options.cage)?, exponent, false)?;
         let positions = mesh.positions().to_vec();
         let n = mesh.vertex_count();
         Ok(Self {
-            cage_image: cage.points.clone(),
+            cage_image: cage.actual.clone(),
             mesh,
+            unit,
+            exponent,
             options,
             cage,
             handles: Vec::new(),
@@ -264,12 +279,12 @@ impl CauchyGreenDeformer {
     pub fn set_options(&mut self, options: CauchyGreenOptions) -> Result<(), DeformError> {
         check_options(&options)?;
         let cage = match options.cage != self.options.cage && !self.cage.given {
-            true => Some(Cage::new(&self.mesh, cage::automatic(&self.mesh, options.cage)?, false)?),
+            true => Some(self.automatic_cage(options.cage)?),
             false => None,
         };
         let fit = self.fit_for(cage.as_ref().unwrap_or(&self.cage), &self.handles, options.smoothness)?;
         if let Some(cage) = cage {
-            self.cage_image = cage.points.clone();
+            self.cage_image = cage.actual.clone();
             self.cage = cage;
         }
         self.options = options;
@@ -279,7 +294,11 @@ impl CauchyGreenDeformer {
 
     /// The cage, counter-clockwise, in the rest pose.
     pub fn cage(&self) -> &[Point] {
-        &self.cage.points
+        &self.cage.actual
+    }
+
+    fn automatic_cage(&self, vertices: usize) -> Result<Cage, DeformError> {
+        Cage::new(&self.unit, cage::automatic(&self.mesh, &self.unit, vertices)?, self.exponent, false)
     }
 
     /// Where the last step took the cage's vertices (the cage values; the rest cage after
@@ -295,18 +314,22 @@ impl CauchyGreenDeformer {
     /// pose stays until the next step.
     pub fn set_cage(&mut self, cage: Option<&[Point]>) -> Result<(), DeformError> {
         let cage = match cage {
-            Some(points) => Cage::new(&self.mesh, cage::checked(&self.mesh, points)?, true)?,
-            None => Cage::new(&self.mesh, cage::automatic(&self.mesh, self.options.cage)?, false)?,
+            Some(points) => {
+                let scaled: Vec<Point> =
+                    points.iter().map(|p| p.map(|x| scale_by_power_of_two(x, self.exponent))).collect();
+                Cage::new(&self.unit, cage::checked(&self.mesh, &self.unit, &scaled)?, self.exponent, true)?
+            }
+            None => self.automatic_cage(self.options.cage)?,
         };
         self.fit = self.fit_for(&cage, &self.handles, self.options.smoothness)?;
-        self.cage_image = cage.points.clone();
+        self.cage_image = cage.actual.clone();
         self.cage = cage;
         Ok(())
     }
 
     fn fit_for(&self, cage: &Cage, handles: &[HandlePoint], smoothness: f64) -> Result<Fit, DeformError> {
-        let rest: Vec<Point> = handles.iter().map(|h| h.position(self.mesh.positions())).collect();
-        Fit::new(cage, &rest, smoothness, diagonal(self.mesh.positions()))
+        let rest: Vec<Point> = handles.iter().map(|h| h.position(&self.unit)).collect();
+        Fit::new(cage, &rest, smoothness, diagonal(&self.unit))
     }
 
     /// One handle on each of these vertices, replacing any handles.
@@ -372,7 +395,9 @@ impl CauchyGreenDeformer {
             })
             .collect();
         let image: Vec<Point> = f.iter().map(|z| [z.re, z.im]).collect();
-        if !in_range(&next) || !in_range(&image) || next.iter().flatten().any(|x| x.is_nan()) {
+        // (The cage lies outside the shape: its image may go beyond the limits where the
+        // shape's does not.)
+        if !in_range(&next) || next.iter().flatten().any(|x| x.is_nan()) {
             return Err(DeformError::NonFiniteResult);
         }
         for ((d, p), q) in self.field.iter_mut().zip(&self.positions).zip(&next) {
@@ -404,7 +429,7 @@ impl CauchyGreenDeformer {
     pub fn reset(&mut self) {
         self.positions.copy_from_slice(self.mesh.positions());
         self.targets = self.handles.iter().map(|h| h.position(self.mesh.positions())).collect();
-        self.cage_image.clone_from(&self.cage.points);
+        self.cage_image.clone_from(&self.cage.actual);
         self.field.fill([0.0; 2]);
     }
 }
