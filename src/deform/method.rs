@@ -158,6 +158,12 @@ pub trait Deform: fmt::Debug {
     fn soft_field(&self) -> &[[f64; 2]] {
         self.field()
     }
+    /// The polygon the method deforms the shape through, where it has one, as the last step
+    /// left it: Cauchy-Green's cage (the cage values; its rest cage after a reset). `None`
+    /// for methods without one.
+    fn cage_image(&self) -> Option<&[Point]> {
+        None
+    }
     /// Distortion of the current pose against the rest pose.
     fn metrics(&self) -> Metrics;
     /// Stage timings of the last step.

@@ -161,6 +161,12 @@ impl JsDeformer {
         self.inner.soft_field().iter().flatten().copied().collect()
     }
 
+    /// The deformed cage of Cauchy-Green (its vertices as the last step left them),
+    /// interleaved; `undefined` for the methods without a cage.
+    pub fn cage(&self) -> Option<Vec<f64>> {
+        self.inner.cage_image().map(|cage| cage.iter().flatten().copied().collect())
+    }
+
     /// Current positions of the handle points, interleaved.
     #[wasm_bindgen(js_name = handlePositions)]
     pub fn handle_positions(&self) -> Vec<f64> {

@@ -71,6 +71,19 @@ describe("Deformer", () => {
     expect(deformerOrders(mesh.positions, mesh.triangles, { method: "cauchy-green" })).toEqual([]);
     const deformer = new Deformer(mesh.positions, mesh.triangles, { method: "cauchy-green", cage: 48 });
     expect(deformer.method).toBe("cauchy-green");
+    // The cage: 48 vertices, every vertex of the mesh inside it (even-odd crossings).
+    const rest = deformer.cage()!;
+    expect(rest.length).toBe(96);
+    const inside = (x: number, y: number) => {
+      let odd = false;
+      for (let i = 0, j = rest.length - 2; i < rest.length; j = i, i += 2) {
+        const [ax, ay, bx, by] = [rest[i]!, rest[i + 1]!, rest[j]!, rest[j + 1]!];
+        if (ay > y !== by > y && x < ax + ((y - ay) / (by - ay)) * (bx - ax)) odd = !odd;
+      }
+      return odd;
+    };
+    for (let v = 0; v < mesh.vertexCount; v++)
+      expect(inside(mesh.positions[2 * v]!, mesh.positions[2 * v + 1]!)).toBe(true);
     deformer.setHandles([0, 40]);
     // z -> a z + b with a = 1.2 e^(0.5 i), b = 0.3 - 0.1 i.
     const [ar, ai] = [1.2 * Math.cos(0.5), 1.2 * Math.sin(0.5)];
@@ -88,6 +101,16 @@ describe("Deformer", () => {
       expect(p[2 * v]!).toBeCloseTo(x, 9);
       expect(p[2 * v + 1]!).toBeCloseTo(y, 9);
     }
+    // The cage follows the same similarity.
+    const moved = deformer.cage()!;
+    for (let i = 0; i < rest.length; i += 2) {
+      const [x, y] = similar(rest[i]!, rest[i + 1]!);
+      expect(moved[i]!).toBeCloseTo(x, 9);
+      expect(moved[i + 1]!).toBeCloseTo(y, 9);
+    }
+    const akap = new Deformer(mesh.positions, mesh.triangles);
+    expect(akap.cage()).toBeUndefined();
+    akap.free();
     expect(() => deformer.setOptions({ cage: 4 })).toThrow(/option cage is 4, expected a whole number from 8 to 1000/);
     expect(deformer.positions()).toEqual(p);
     deformer.free();

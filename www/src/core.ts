@@ -365,6 +365,15 @@ export class Deformer {
     return this.#raw.softField();
   }
 
+  /**
+   * Cauchy-Green's cage as the last step deformed it (the polygon whose Cauchy integral
+   * the map is; the rest cage until the first step), xy-interleaved; `undefined` for the
+   * other methods.
+   */
+  cage(): Float64Array | undefined {
+    return this.#raw.cage();
+  }
+
   /** Current positions of the handle points, xy-interleaved. */
   handlePositions(): Float64Array {
     return this.#raw.handlePositions();

@@ -495,6 +495,9 @@ impl Deform for CauchyGreenDeformer {
     fn field(&self) -> &[[f64; 2]] {
         &self.field
     }
+    fn cage_image(&self) -> Option<&[Point]> {
+        Some(&self.cage_image)
+    }
     fn metrics(&self) -> Metrics {
         metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
     }

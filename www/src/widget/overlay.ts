@@ -1,7 +1,8 @@
 /**
  * The 2D overlay above the mesh: the outline, flipped triangles, the velocity field of the
- * last frame (arrows, as in the paper's Figure 4) and the handles; for a trained rig, its
- * training discs, handles outside them marked, and the ground truth's outline as a ghost.
+ * last frame (arrows, as in the paper's Figure 4), Cauchy-Green's cage and the handles; for
+ * a trained rig, its training discs, handles outside them marked, and the ground truth's
+ * outline as a ghost.
  */
 import { doubledArea } from "./geometry.js";
 import { toPixel, type View } from "./view.js";
@@ -30,6 +31,8 @@ export interface OverlayScene {
   regions?: readonly { x: number; y: number; r: number }[];
   /** Positions (2 per vertex) whose outline is drawn dashed over the pose: the ground truth. */
   ghost?: ArrayLike<number>;
+  /** Cauchy-Green's deformed cage (2 per vertex), drawn as a thin dashed polygon. */
+  cage?: ArrayLike<number>;
 }
 
 /** Handle radius in CSS pixels. */
@@ -101,6 +104,22 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
     ctx.strokeStyle = "rgba(40, 120, 200, 0.6)";
     ctx.lineWidth = ratio;
     ctx.stroke();
+  }
+
+  if (scene.cage && scene.cage.length >= 6) {
+    const c = scene.cage;
+    ctx.beginPath();
+    for (let i = 0; i + 1 < c.length; i += 2) {
+      const [x, y] = toPixel(view, c[i]!, c[i + 1]!);
+      if (i === 0) ctx.moveTo(x, y);
+      else ctx.lineTo(x, y);
+    }
+    ctx.closePath();
+    ctx.setLineDash([3 * ratio, 3 * ratio]);
+    ctx.strokeStyle = "rgba(90, 60, 140, 0.7)";
+    ctx.lineWidth = ratio;
+    ctx.stroke();
+    ctx.setLineDash([]);
   }
 
   if (scene.field) drawField(ctx, p, scene.field, view, ratio);

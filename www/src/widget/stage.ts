@@ -125,7 +125,7 @@ export class Stage {
 
   /**
    * The overlay on `ctx`: outline, flipped triangles, and with `withHandles` the handles,
-   * the field, a rig's discs and its ghost.
+   * the field, a rig's discs and its ghost, and Cauchy-Green's cage.
    */
   drawOverlay(
     ctx: CanvasRenderingContext2D,
@@ -137,6 +137,7 @@ export class Stage {
     const { deformer, shape } = posing;
     const positions = deformer.positionsView();
     const at = withHandles ? deformer.handlePositions() : new Float64Array(0);
+    const cage = withHandles ? deformer.cage() : undefined;
     const paper = settings.paperMode;
     const rig = withHandles && posing.posingWithRig ? posing.rig : undefined;
     const radius = settings.region ? rig?.radius : undefined;
@@ -157,7 +158,7 @@ export class Stage {
       ? Array.from({ length: rest.length / 2 }, (_, i) => ({ x: rest[2 * i]!, y: rest[2 * i + 1]!, r: radius! }))
       : undefined;
     const scene = {
-      // Re-read: handlePositions() may have grown the memory and detached the view.
+      // Re-read: handlePositions() and cage() may have grown the memory and detached the view.
       positions: positions.length > 0 ? positions : deformer.positionsView(),
       triangles: shape.mesh.triangles,
       boundaryEdges: shape.mesh.boundaryEdges,
@@ -166,6 +167,7 @@ export class Stage {
       showFlipped: settings.flipped,
       regions,
       ghost: rig && settings.compare ? extras.ghost : undefined,
+      cage,
     };
     drawOverlay(ctx, scene, this.camera.view, this.ratio);
   }
