@@ -91,21 +91,6 @@ fn worst_angle(mesh: &Mesh, positions: &[Point]) -> f64 {
         .fold(2.0, f64::max)
 }
 
-/// Where the shape is under each handle (Cauchy-Green's handle positions are its targets,
-/// which the shape meets in the least-squares sense only).
-fn shape_points_under_handles(deformer: &dyn Deform) -> Vec<Point> {
-    let (triangles, weights) = deformer.handle_points();
-    let (corners, positions) = (deformer.mesh().triangles(), deformer.positions());
-    triangles
-        .iter()
-        .zip(&weights)
-        .map(|(&t, w)| {
-            let c = corners[t as usize].map(|v| positions[v as usize]);
-            [0, 1].map(|i| w[0] * c[0][i] + w[1] * c[1][i] + w[2] * c[2][i])
-        })
-        .collect()
-}
-
 /// Table 1 of the paper on our sessions: E_area and E_angle of Cauchy-Green, converged ARAP
 /// and AKAP on the bent bar and the two cartoons, the paper's values beside them, and the
 /// rigid MLS row of its inset.
@@ -154,7 +139,7 @@ fn outcome(deformer: &dyn Deform, replay: &Replay) -> Outcome {
     Outcome {
         worst_angle: worst_angle(deformer.mesh(), deformer.positions()),
         positions: deformer.positions().to_vec(),
-        handles: shape_points_under_handles(deformer),
+        handles: deformer.shape_under_handles(),
         targets: replay.targets.last().cloned().unwrap_or_default(),
         area: m.area_distortion,
         angle: m.angle_distortion,

@@ -144,6 +144,21 @@ pub trait Deform: fmt::Debug {
     /// Current positions of the handle points (Cauchy-Green: the handles' targets, which
     /// the shape's points under them meet in the least-squares sense).
     fn handle_positions(&self) -> Vec<Point>;
+    /// Where the shape is under each handle in the current pose (the handles' points of the
+    /// mesh placed on the current positions): [`Deform::handle_positions`] for every
+    /// method but Cauchy-Green, whose handle positions are its targets.
+    fn shape_under_handles(&self) -> Vec<Point> {
+        let (triangles, weights) = self.handle_points();
+        let (corners, positions) = (self.mesh().triangles(), self.positions());
+        triangles
+            .iter()
+            .zip(&weights)
+            .map(|(&t, w)| {
+                let c = corners[t as usize].map(|v| positions[v as usize]);
+                [0, 1].map(|i| w[0] * c[0][i] + w[1] * c[1][i] + w[2] * c[2][i])
+            })
+            .collect()
+    }
     /// One step with a velocity per handle, in handle order.
     fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError>;
     /// Current vertex positions.

@@ -245,10 +245,11 @@ mod tests {
         ));
         assert_eq!(Method::from_name("bogus"), Err(DeformError::UnknownMethod { name: "bogus".into() }));
         assert_eq!(Method::from_name("mls"), Ok(Method::Mls));
+        assert_eq!(Method::from_name("cauchy-green"), Ok(Method::CauchyGreen));
         assert_eq!(
             MethodOptions::all_setting_names(),
-            ["lambda", "dirichlet", "integrator", "iterations", "variant", "alpha"],
-            "AKAP's settings, then ARAP's, then MLS's"
+            ["lambda", "dirichlet", "integrator", "iterations", "variant", "alpha", "cage", "smoothness"],
+            "AKAP's settings, then ARAP's, MLS's and Cauchy-Green's"
         );
     }
 }

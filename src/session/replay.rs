@@ -118,17 +118,7 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
         let goal = replay.targets.last().expect("a step was replayed");
         // The shape's points under the handles (Cauchy-Green's handle positions are its
         // targets, which it meets in the least-squares sense only).
-        let deformer = slot.get();
-        let (triangles, weights) = deformer.handle_points();
-        let (corners, positions) = (deformer.mesh().triangles(), deformer.positions());
-        let handles: Vec<Point> = triangles
-            .iter()
-            .zip(&weights)
-            .map(|(&t, w)| {
-                let c = corners[t as usize].map(|v| positions[v as usize]);
-                [0, 1].map(|i| w[0] * c[0][i] + w[1] * c[1][i] + w[2] * c[2][i])
-            })
-            .collect();
+        let handles = slot.get().shape_under_handles();
         let total: f64 = handles.iter().zip(goal).map(|(p, t)| libm::hypot(p[0] - t[0], p[1] - t[1])).sum();
         replay.handle_error = Some(if handles.is_empty() { 0.0 } else { total / handles.len() as f64 });
     }

@@ -125,7 +125,7 @@ export class Stage {
 
   /**
    * The overlay on `ctx`: outline, flipped triangles, and with `withHandles` the handles,
-   * the field, a rig's discs and its ghost, and Cauchy-Green's cage.
+   * the field, a rig's discs and its ghost, and with the wireframe Cauchy-Green's cage.
    */
   drawOverlay(
     ctx: CanvasRenderingContext2D,
@@ -137,7 +137,8 @@ export class Stage {
     const { deformer, shape } = posing;
     const positions = deformer.positionsView();
     const at = withHandles ? deformer.handlePositions() : new Float64Array(0);
-    const cage = withHandles ? deformer.cage() : undefined;
+    // Cauchy-Green's cage is structure, like the triangles: shown with the wireframe.
+    const cage = withHandles && settings.wireframe ? deformer.cage() : undefined;
     const paper = settings.paperMode;
     const rig = withHandles && posing.posingWithRig ? posing.rig : undefined;
     const radius = settings.region ? rig?.radius : undefined;
