@@ -250,11 +250,20 @@ fn bad_cages_options_and_velocities_change_nothing() {
     deformer.step(&[[0.0, 0.0], [0.5, 0.5]]).unwrap();
     let (pose, cage, targets) = (deformer.positions().to_vec(), deformer.cage().to_vec(), deformer.handle_positions());
     let outside = [[-1.0, -1.0], [17.0, -1.0], [17.0, 5.0], [-1.0, 5.0]];
-    let bad: [(&str, Vec<Point>); 5] = [
+    let bad: [(&str, Vec<Point>); 6] = [
         ("through the shape", vec![[-1.0, -1.0], [8.0, -1.0], [8.0, 2.0], [-1.0, 2.0]]),
         ("crossing itself", vec![[-1.0, -1.0], [17.0, 5.0], [17.0, -1.0], [-1.0, 5.0]]),
         ("not finite", vec![[-1.0, -1.0], [f64::NAN, -1.0], [17.0, 5.0], [-1.0, 5.0]]),
         ("two points", vec![[-1.0, -1.0], [17.0, 5.0]]),
+        (
+            "too many points",
+            (0..1001)
+                .map(|k| {
+                    let t = k as f64 * std::f64::consts::TAU / 1001.0;
+                    [8.0 + 20.0 * t.cos(), 2.0 + 20.0 * t.sin()]
+                })
+                .collect(),
+        ),
         ("repeated points", vec![outside[0], outside[1], outside[1], outside[2], outside[3]]),
     ];
     for (what, points) in bad {

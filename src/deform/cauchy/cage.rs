@@ -14,6 +14,7 @@
 //! than asked for and encloses the shape without touching it.
 
 use super::super::error::DeformError;
+use super::super::options::CAGE_VERTICES_RANGE;
 use crate::geometry::{
     bounding_box, distance, point_in_polygon, polygon_area, segments_intersect, Point, MAX_COORDINATE,
 };
@@ -81,15 +82,16 @@ fn subdivided(ring: Vec<Point>, vertices: usize) -> Vec<Point> {
     cage
 }
 
-/// A cage given by the caller, checked and turned counter-clockwise: at least three points,
+/// A cage given by the caller, checked and turned counter-clockwise: 3 to 1000 points (the
+/// largest automatic cage; the smoothness matrix is dense),
 /// finite and within the coordinate limit, no repeated consecutive points, edges that do
 /// not meet (but consecutive ones at their shared point), and the mesh's outer outline
 /// strictly inside (no edge of the outline touching the cage).
 /// `positions` are the mesh's vertices (or those scaled alike, with the cage).
 pub(crate) fn checked(mesh: &Mesh, positions: &[Point], cage: &[Point]) -> Result<Vec<Point>, DeformError> {
     let invalid = |reason: String| Err(DeformError::InvalidCage { reason });
-    if cage.len() < 3 {
-        return invalid(format!("it has {} points, at least 3 are needed", cage.len()));
+    if cage.len() < 3 || cage.len() > *CAGE_VERTICES_RANGE.end() {
+        return invalid(format!("it has {} points, from 3 to {} are allowed", cage.len(), CAGE_VERTICES_RANGE.end()));
     }
     if let Some(i) = cage.iter().position(|p| !p.iter().all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE)) {
         return invalid(format!("point {i} is not finite or beyond ±{MAX_COORDINATE:e}"));
