@@ -132,17 +132,20 @@ impl Cage {
 /// How the cage values follow the targets, for one handle set and smoothness.
 #[derive(Debug, Clone)]
 enum Fit {
-    /// No handles, or all at one point: a translation.
-    Translation,
+    /// No handles, or all at one point (`rest`, their mean, in the mesh's scale): a
+    /// translation.
+    Translation { rest: Point },
     /// The handles' coordinates (`m x n`) and the Cholesky factor `L` (lower, `n x n`) of
     /// the normal equations' matrix.
     Solve { rows: Vec<C64>, factor: Vec<C64> },
 }
 
 impl Fit {
-    fn new(cage: &Cage, rest: &[Point], smoothness: f64, size: f64) -> Result<Self, DeformError> {
-        if handles::distinct_points(rest, 1e-12 * size) < 2 {
-            return Ok(Self::Translation);
+    /// The fit for handles at `rest` (in the unit scale, `2^exponent` the mesh's).
+    fn new(cage: &Cage, rest: &[Point], exponent: i32, smoothness: f64) -> Result<Self, DeformError> {
+        if handles::distinct_points(rest, 1e-12 * diagonal(&cage.points)) < 2 {
+            let mean = mean(rest).map_or([0.0; 2], |p| p.map(|x| scale_by_power_of_two(x, -exponent)));
+            return Ok(Self::Translation { rest: mean });
         }
         let n = cage.len();
         let mut rows = vec![ZERO; rest.len() * n];
@@ -159,20 +162,13 @@ impl Fit {
     }
 
     /// The cage values for the targets.
-    fn cage_values(&self, cage: &Cage, rest: &[Point], targets: &[Point]) -> Vec<C64> {
-        match self {
-            Self::Translation => {
-                let mean = |points: &[Point]| {
-                    let sum = points.iter().fold([0.0; 2], |s, p| [s[0] + p[0], s[1] + p[1]]);
-                    [sum[0] / points.len() as f64, sum[1] / points.len() as f64]
-                };
-                let shift = match targets.is_empty() {
-                    true => ZERO,
-                    false => complex(mean(targets)) - complex(mean(rest)),
-                };
+    fn cage_values(&self, cage: &Cage, targets: &[Point]) -> Vec<C64> {
+        match *self {
+            Self::Translation { rest } => {
+                let shift = mean(targets).map_or(ZERO, |q| complex(q) - complex(rest));
                 cage.actual.iter().map(|&z| complex(z) + shift).collect()
             }
-            Self::Solve { rows, factor } => {
+            Self::Solve { ref rows, ref factor } => {
                 let n = cage.len();
                 let mut f = vec![ZERO; n];
                 for (row, &q) in rows.chunks_exact(n).zip(targets) {
@@ -185,6 +181,12 @@ impl Fit {
             }
         }
     }
+}
+
+/// The mean of `points`, if there are any.
+fn mean(points: &[Point]) -> Option<Point> {
+    let sum = points.iter().fold([0.0; 2], |s, p| [s[0] + p[0], s[1] + p[1]]);
+    (!points.is_empty()).then(|| [sum[0] / points.len() as f64, sum[1] / points.len() as f64])
 }
 
 /// Adds `weight conj(d) d^T` to the upper triangle of the Hermitian `n x n` `matrix` (the
@@ -242,8 +244,7 @@ fn solve(l: &[C64], n: usize, b: &mut [C64]) {
 }
 
 impl CauchyGreenDeformer {
-    /// A deformer for a connected mesh, with an automatic cage of at most `options.cage`
-    /// vertices.
+    /// A deformer for a connected mesh, with an automatic cage of `options.cage` vertices.
     pub fn new(mesh: Mesh, options: CauchyGreenOptions) -> Result<Self, DeformError> {
         check_options(&options)?;
         check_connected(&mesh)?;
@@ -260,7 +261,7 @@ impl CauchyGreenDeformer {
             options,
             cage,
             handles: Vec::new(),
-            fit: Fit::Translation,
+            fit: Fit::Translation { rest: [0.0; 2] },
             targets: Vec::new(),
             positions,
             field: vec![[0.0; 2]; n],
@@ -329,7 +330,7 @@ impl CauchyGreenDeformer {
 
     fn fit_for(&self, cage: &Cage, handles: &[HandlePoint], smoothness: f64) -> Result<Fit, DeformError> {
         let rest: Vec<Point> = handles.iter().map(|h| h.position(&self.unit)).collect();
-        Fit::new(cage, &rest, smoothness, diagonal(&self.unit))
+        Fit::new(cage, &rest, self.exponent, smoothness)
     }
 
     /// One handle on each of these vertices, replacing any handles.
@@ -381,8 +382,7 @@ impl CauchyGreenDeformer {
         let start = (self.clock)();
         let targets: Vec<Point> =
             self.targets.iter().zip(velocities).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect();
-        let rest: Vec<Point> = self.handles.iter().map(|h| h.position(self.mesh.positions())).collect();
-        let f = self.fit.cage_values(&self.cage, &rest, &targets);
+        let f = self.fit.cage_values(&self.cage, &targets);
         let solved = (self.clock)();
         let n = self.cage.len();
         let next: Vec<Point> = self
