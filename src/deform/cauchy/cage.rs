@@ -1,6 +1,6 @@
 //! The cage of Cauchy-Green deformation: a simple polygon around the shape. Built
-//! automatically from the mesh's outer outline (offset outward, then simplified to at most
-//! the vertex count asked for), or given by the caller and checked.
+//! automatically from the mesh's outer outline (offset outward, simplified, and its edges
+//! split to the vertex count asked for), or given by the caller and checked.
 //!
 //! The automatic cage offsets the outline by a margin `d` (`import::union::grown`: round
 //! joins, with i_overlay), keeps the outer contour of the result (concavities narrower than
@@ -31,8 +31,7 @@ const GROWTH: f64 = 1.5;
 const ATTEMPTS: usize = 30;
 
 /// A counter-clockwise cage of `vertices` vertices around the mesh's outer outline,
-/// touching nothing.
-/// `positions` are the mesh's vertices (or those scaled alike).
+/// touching nothing. `positions` are the mesh's vertices (or those scaled alike).
 pub(crate) fn automatic(mesh: &Mesh, positions: &[Point], vertices: usize) -> Result<Vec<Point>, DeformError> {
     let outline = outer_outline(mesh, positions);
     let perimeter: f64 = (0..outline.len()).map(|i| distance(outline[i], outline[(i + 1) % outline.len()])).sum();
@@ -86,8 +85,8 @@ fn subdivided(ring: Vec<Point>, vertices: usize) -> Vec<Point> {
 /// largest automatic cage; the smoothness matrix is dense),
 /// finite and within the coordinate limit, no repeated consecutive points, edges that do
 /// not meet (but consecutive ones at their shared point), and the mesh's outer outline
-/// strictly inside (no edge of the outline touching the cage).
-/// `positions` are the mesh's vertices (or those scaled alike, with the cage).
+/// strictly inside (no edge of the outline touching the cage). `positions` are the mesh's
+/// vertices (or those scaled alike, with the cage).
 pub(crate) fn checked(mesh: &Mesh, positions: &[Point], cage: &[Point]) -> Result<Vec<Point>, DeformError> {
     let invalid = |reason: String| Err(DeformError::InvalidCage { reason });
     if cage.len() < 3 || cage.len() > *CAGE_VERTICES_RANGE.end() {
