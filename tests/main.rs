@@ -24,6 +24,7 @@ mod mls;
 mod pose_obj;
 mod session;
 mod sparse;
+mod stiffness;
 mod triangulation;
 #[cfg(target_arch = "wasm32")]
 mod wasm_api;

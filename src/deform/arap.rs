@@ -45,7 +45,9 @@ use std::sync::Arc;
 use sprs::CsMat;
 
 use super::error::{out_of_memory, DeformError};
-use super::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
+use super::handles::{
+    self, check_connected, check_pose, check_stiffness, check_velocities, diagonal, in_range, HandlePoint,
+};
 use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
 pub use super::options::{ArapOptions, MAX_CONVERGENCE_ITERATIONS, MAX_ITERATIONS};
@@ -97,8 +99,12 @@ pub struct ArapDeformer {
     /// normal doubles, multiplied by directly.
     unit: i32,
     /// Per triangle, the cotangent of the rest angle at corner k, which weights the edge
-    /// opposite it, from `v[k + 1]` to `v[k + 2]`.
+    /// opposite it, from `v[k + 1]` to `v[k + 2]`, times the triangle's stiffness.
     cot: Vec<[f64; 3]>,
+    /// The cotangents of the rest mesh (stiffness 1).
+    rest_cot: Vec<[f64; 3]>,
+    /// Each triangle's stiffness, if set.
+    stiffness: Option<Vec<f64>>,
     /// Per triangle, the rest edge vectors `x[v[k + 1]] - x[v[k + 2]]`, scaled by `2^unit`.
     rest_edges: Vec<[Point; 3]>,
     /// The cotangent Laplacian on the pattern of `matrix` (full symmetric CSC storage).
@@ -133,6 +139,31 @@ pub struct ArapDeformer {
     rhs_y: Vec<f64>,
 }
 
+/// The cotangent Laplacian of the per-triangle weights `cot` on the pattern (`nnz`
+/// entries, `triangle_slots` per triangle, `diagonal(v)` the slot of `(v, v)` for the `n`
+/// vertices), and the handles' penalty weight for it: [`PENALTY`] times its mean diagonal
+/// entry.
+fn laplacian_of(
+    cot: &[[f64; 3]],
+    triangle_slots: &[[usize; 9]],
+    nnz: usize,
+    n: usize,
+    diagonal: impl Fn(usize) -> usize,
+) -> (Vec<f64>, f64) {
+    let mut laplacian = vec![0.0; nnz];
+    for (c, s) in cot.iter().zip(triangle_slots) {
+        for (k, &weight) in c.iter().enumerate() {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            laplacian[s[3 * i + i]] += weight;
+            laplacian[s[3 * j + j]] += weight;
+            laplacian[s[3 * i + j]] -= weight;
+            laplacian[s[3 * j + i]] -= weight;
+        }
+    }
+    let diagonal_sum: f64 = (0..n).map(|v| laplacian[diagonal(v)]).sum();
+    (laplacian, PENALTY * diagonal_sum / n as f64)
+}
+
 impl ArapDeformer {
     /// Prepares a deformer for a connected mesh: cotangent weights, the Laplacian, its
     /// ordering and symbolic analysis, and every buffer.
@@ -162,13 +193,12 @@ impl ArapDeformer {
         let all_slots = pattern.triangle_slots(&mesh);
         let mut cot = Vec::with_capacity(m);
         let mut rest_edges = Vec::with_capacity(m);
-        let mut laplacian = vec![0.0; pattern.nnz()];
         // Cotangents and rest edges from the mesh scaled by `2^unit` (exact): free of
         // overflow and underflow at any scale, and the rest edges in the units the local and
         // global steps work in.
         // (Clamped: a validated mesh never needs it, and 2^unit and 2^-unit are then normal.)
         let unit = normalising_exponent(x.iter().copied()).clamp(-1022, 1022);
-        for (t, s) in mesh.triangles().iter().zip(&all_slots) {
+        for t in mesh.triangles() {
             let p = t.map(|v| x[v as usize].map(|c| scale_by_power_of_two(c, unit)));
             let mut c = [0.0; 3];
             let mut e = [[0.0; 2]; 3];
@@ -177,18 +207,10 @@ impl ArapDeformer {
                 c[k] = (a[0] * b[0] + a[1] * b[1]) / (a[0] * b[1] - a[1] * b[0]);
                 e[k] = sub(p[(k + 1) % 3], p[(k + 2) % 3]);
             }
-            for (k, &weight) in c.iter().enumerate() {
-                let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-                laplacian[s[3 * i + i]] += weight;
-                laplacian[s[3 * j + j]] += weight;
-                laplacian[s[3 * i + j]] -= weight;
-                laplacian[s[3 * j + i]] -= weight;
-            }
             cot.push(c);
             rest_edges.push(e);
         }
-        let diagonal_sum: f64 = (0..n).map(|v| laplacian[slot(v, v)]).sum();
-        let penalty = PENALTY * diagonal_sum / n as f64;
+        let (laplacian, penalty) = laplacian_of(&cot, &all_slots, pattern.nnz(), n, |v| slot(v, v));
 
         let matrix = pattern.matrix(laplacian.clone());
         let best = Symbolic::analyse(matrix.view(), &Ordering::Given(orders.systems[0].clone()))
@@ -199,6 +221,8 @@ impl ArapDeformer {
             clock: default_clock,
             unit,
             size: diagonal(x),
+            rest_cot: cot.clone(),
+            stiffness: None,
             cot,
             rest_edges,
             laplacian,
@@ -279,9 +303,49 @@ impl ArapDeformer {
         Ok(())
     }
 
+    /// Sets each triangle's stiffness, the factor on its element energy (its cotangent
+    /// weights times it): stiff regions bend less. One value per triangle, each in
+    /// [`STIFFNESS_RANGE`](super::STIFFNESS_RANGE); `None` is 1 everywhere, exactly the unpainted deformer. The
+    /// Laplacian and the handles' penalty are rebuilt (the pattern and its analysis stay),
+    /// and the next step factors anew. Refused, changing nothing, for a wrong length or a
+    /// value out of range.
+    pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        check_stiffness(stiffness, self.mesh.triangle_count())?;
+        self.stiffness = stiffness.map(<[f64]>::to_vec);
+        self.cot = match stiffness {
+            None => self.rest_cot.clone(),
+            Some(values) => self.rest_cot.iter().zip(values).map(|(c, s)| c.map(|x| x * s)).collect(),
+        };
+        let diagonal = |v: usize| self.slot_of(v);
+        let (laplacian, penalty) =
+            laplacian_of(&self.cot, &self.triangle_slots, self.laplacian.len(), self.positions.len(), diagonal);
+        self.laplacian = laplacian;
+        self.penalty = penalty;
+        self.assemble_matrix();
+        self.factored = false;
+        Ok(())
+    }
+
+    /// The slot of the diagonal entry `(v, v)` in `matrix`'s data.
+    fn slot_of(&self, v: usize) -> usize {
+        let (start, end) = (self.matrix.indptr().index(v), self.matrix.indptr().index(v + 1));
+        start + self.matrix.indices()[start..end].binary_search(&v).expect("the diagonal is in the pattern")
+    }
+
     /// Builds the matrix of a new handle set (its factorisation waits for the next step)
     /// and sets the targets to the handles' current positions.
     fn install(&mut self, handles: Vec<Handle>) {
+        self.handles = handles;
+        self.assemble_matrix();
+        self.targets = self.handle_positions();
+        self.next_targets = self.targets.clone();
+        self.factored = false;
+    }
+
+    /// The Laplacian plus the penalties of the handles, with pinned rows and columns
+    /// replaced by the identity (and their couplings kept aside).
+    fn assemble_matrix(&mut self) {
+        let handles = &self.handles;
         self.pin_count.fill(0);
         for h in handles.iter().filter(|h| h.pinned != NONE) {
             self.pin_count[h.pinned] += 1;
@@ -313,10 +377,6 @@ impl ArapDeformer {
                 }
             }
         }
-        self.handles = handles;
-        self.targets = self.handle_positions();
-        self.next_targets = self.targets.clone();
-        self.factored = false;
     }
 
     /// Number of handles.
@@ -617,6 +677,12 @@ impl Deform for ArapDeformer {
     }
     fn field(&self) -> &[[f64; 2]] {
         ArapDeformer::field(self)
+    }
+    fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        ArapDeformer::set_stiffness(self, stiffness)
+    }
+    fn stiffness(&self) -> Option<&[f64]> {
+        self.stiffness.as_deref()
     }
     fn metrics(&self) -> Metrics {
         ArapDeformer::metrics(self)

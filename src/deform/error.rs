@@ -140,6 +140,21 @@ pub enum DeformError {
         /// What it needs.
         needed: &'static str,
     },
+    /// A triangle's stiffness is not a number within `STIFFNESS_RANGE`.
+    InvalidStiffness {
+        /// Which triangle.
+        triangle: usize,
+        /// The value given.
+        value: f64,
+    },
+    /// The method does not have what was asked of it (stiffness for MLS and Cauchy-Green,
+    /// which have no per-triangle energy).
+    Unsupported {
+        /// The method.
+        method: Method,
+        /// What it lacks.
+        what: &'static str,
+    },
     /// A Cauchy-Green cage that cannot be used: given with too few points, points that are
     /// not finite, edges that meet or the shape not strictly inside; or no automatic cage of
     /// the vertex count asked for fits.
@@ -219,6 +234,14 @@ impl fmt::Display for DeformError {
             Self::OptionValue { name, found, expected } => write!(f, "option {name} must be {expected}, not {found}"),
             Self::TooFewHandles { method, needed } => {
                 write!(f, "method {method} needs {needed}; add handles or choose another variant")
+            }
+            Self::InvalidStiffness { triangle, value } => write!(
+                f,
+                "the stiffness of triangle {triangle} is {}, expected a number from 0.001 to 1000",
+                Number(*value)
+            ),
+            Self::Unsupported { method, what } => {
+                write!(f, "method {method} has no {what}; choose \"akap\" or \"arap\" for it")
             }
             Self::InvalidCage { reason } => write!(f, "the cage cannot be used: {reason}"),
             Self::WrongMethod { current, given } => write!(

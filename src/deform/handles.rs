@@ -4,6 +4,7 @@
 //! connectivity, results within the coordinate limits, and the size of a shape.
 
 use super::error::DeformError;
+use super::options::STIFFNESS_RANGE;
 use crate::geometry::{bounding_box, Point, MAX_COORDINATE};
 use crate::mesh::{Mesh, MeshPoint};
 
@@ -206,6 +207,25 @@ pub(crate) fn check_velocities(velocities: &[[f64; 2]], handle_count: usize) -> 
 /// Whether every position of a step's result is finite and within ±[`MAX_COORDINATE`].
 pub(crate) fn in_range(positions: &[[f64; 2]]) -> bool {
     positions.iter().flatten().all(|x| x.abs() <= MAX_COORDINATE)
+}
+
+/// Checks per-triangle stiffness: one value per triangle, each in [`STIFFNESS_RANGE`]
+/// (`None`, 1 everywhere, always passes).
+pub(crate) fn check_stiffness(stiffness: Option<&[f64]>, triangle_count: usize) -> Result<(), DeformError> {
+    let Some(values) = stiffness else { return Ok(()) };
+    if values.len() != triangle_count {
+        return Err(DeformError::Length {
+            what: "stiffness",
+            expected: triangle_count,
+            found: values.len(),
+            per: 1,
+            items: "triangles",
+        });
+    }
+    match values.iter().position(|x| !STIFFNESS_RANGE.contains(x)) {
+        Some(triangle) => Err(DeformError::InvalidStiffness { triangle, value: values[triangle] }),
+        None => Ok(()),
+    }
 }
 
 #[cfg(test)]

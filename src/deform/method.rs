@@ -72,14 +72,22 @@ impl MethodOptions {
     /// Puts these options into effect on `deformer`, as the bindings' `setOptions`, the
     /// widget's method list and session replay do: options of its method change its
     /// settings; another method's replace it with a deformer of that method on the same
-    /// mesh (its set-up runs), with the pose and the handles carried over and the clock
-    /// reset to the default. On error `deformer` is unchanged.
+    /// mesh (its set-up runs), with the pose, the handles and the stiffness (where the new
+    /// method has it) carried over and the clock reset to the default. On error `deformer`
+    /// is unchanged.
     pub fn apply(self, deformer: &mut Box<dyn Deform>) -> Result<(), DeformError> {
         if self.method() == deformer.method_options().method() {
             return deformer.set_method_options(self);
         }
         let mut next = self.build(deformer.mesh().clone())?;
         next.set_positions(deformer.positions())?;
+        // Stiffness carries over to the methods that have it.
+        if let Some(stiffness) = deformer.stiffness() {
+            match next.set_stiffness(Some(stiffness)) {
+                Ok(()) | Err(DeformError::Unsupported { .. }) => {}
+                Err(other) => return Err(other),
+            }
+        }
         let (triangles, barycentric) = deformer.handle_points();
         next.set_handle_points(&triangles, &barycentric)?;
         *deformer = next;
@@ -172,6 +180,20 @@ pub trait Deform: fmt::Debug {
     /// displacement.
     fn soft_field(&self) -> &[[f64; 2]] {
         self.field()
+    }
+    /// Sets each triangle's stiffness, the factor on its energy (stiff regions bend less;
+    /// one value per triangle in [`super::STIFFNESS_RANGE`], `None` for 1 everywhere):
+    /// AKAP weighs its Killing energy, ARAP its element energy. Methods without a
+    /// per-triangle energy (MLS, Cauchy-Green) refuse it ([`DeformError::Unsupported`]).
+    fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        match stiffness {
+            None => Ok(()),
+            Some(_) => Err(DeformError::Unsupported { method: self.method_options().method(), what: "stiffness" }),
+        }
+    }
+    /// Each triangle's stiffness, if set.
+    fn stiffness(&self) -> Option<&[f64]> {
+        None
     }
     /// The polygon the method deforms the shape through, where it has one, as the last step
     /// left it: Cauchy-Green's cage (the cage values; its rest cage after a reset). `None`

@@ -48,5 +48,6 @@ pub use mls::MlsDeformer;
 pub use options::{
     Access, ArapOptions, CauchyGreenOptions, DeformerOptions, Integrator, Method, MethodOptions, MlsOptions,
     MlsVariant, Setting, Settings, CAGE_VERTICES_RANGE, LAMBDA_RANGE, MLS_ALPHA_RANGE, SMOOTHNESS_RANGE,
+    STIFFNESS_RANGE,
 };
 pub use settings::SettingValue;

@@ -138,6 +138,11 @@ pub enum Integrator {
 ///   1e12, 1e-2 at 1e16), and at 1e308 the penalties overflow.
 pub const LAMBDA_RANGE: RangeInclusive<f64> = 1e-6..=1e10;
 
+/// The values a triangle's stiffness may take ([`super::Deformer::set_stiffness`]): 1e-3 to
+/// 1e3, a million from the softest to the stiffest, so that the Killing matrix's entries
+/// stay within the range `LAMBDA_RANGE` was measured for.
+pub const STIFFNESS_RANGE: RangeInclusive<f64> = 1e-3..=1e3;
+
 /// AKAP's settings ([`super::Deformer`]), with builders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DeformerOptions {

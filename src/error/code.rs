@@ -246,7 +246,9 @@ impl DeformError {
             | Self::PositionOutOfRange { .. }
             | Self::OrdersMismatch { .. }
             | Self::TooFewHandles { .. }
-            | Self::InvalidCage { .. } => ErrorCode::InvalidArgument,
+            | Self::InvalidCage { .. }
+            | Self::InvalidStiffness { .. }
+            | Self::Unsupported { .. } => ErrorCode::InvalidArgument,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,
             Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,

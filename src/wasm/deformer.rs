@@ -148,6 +148,17 @@ impl JsDeformer {
         Ok(self.inner.set_positions(&pairs(&positions, "positions")?)?)
     }
 
+    /// Each triangle's stiffness (`Float64Array`, one per triangle, 0.001 to 1000), or 1
+    /// everywhere with `undefined`: AKAP and ARAP only.
+    #[wasm_bindgen(js_name = setStiffness)]
+    pub fn set_stiffness(&mut self, stiffness: JsValue) -> Result<(), BindingError> {
+        if stiffness.is_undefined() {
+            return Ok(self.inner.set_stiffness(None)?);
+        }
+        let values = read::float64s(&stiffness, "stiffness", max_coordinates())?;
+        Ok(self.inner.set_stiffness(Some(&values))?)
+    }
+
     /// The last velocity field after the Dirichlet step (`U_opt`; ARAP: the last step's
     /// displacement), interleaved.
     pub fn field(&self) -> Vec<f64> {

@@ -116,6 +116,36 @@ describe("Deformer", () => {
     deformer.free();
   });
 
+  it("stiffness: 1 everywhere is the unpainted pose, bad values throw and change nothing, MLS refuses it", () => {
+    const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.08 });
+    const triangleCount = mesh.triangles.length / 3;
+    const pose = (stiffness: number[] | undefined) => {
+      const deformer = new Deformer(mesh.positions, mesh.triangles);
+      deformer.setStiffness(stiffness);
+      deformer.setHandles([0, 40]);
+      deformer.step([0, 0, 0.05, 0.02]);
+      const p = deformer.positions();
+      deformer.free();
+      return p;
+    };
+    expect(pose(new Array<number>(triangleCount).fill(1))).toEqual(pose(undefined));
+    expect(pose(new Array<number>(triangleCount).fill(50))).not.toEqual(pose(undefined));
+    const deformer = new Deformer(mesh.positions, mesh.triangles, { method: "arap" });
+    const bad = new Array<number>(triangleCount).fill(1);
+    bad[3] = 0;
+    expect(() => deformer.setStiffness(bad)).toThrow("the stiffness of triangle 3 is 0, expected a number from 0.001 to 1000");
+    expect(() => deformer.setStiffness([1, 2])).toThrow(/stiffness has 2 numbers/);
+    deformer.setOptions({ method: "mls" });
+    let code = "";
+    try {
+      deformer.setStiffness(new Array<number>(triangleCount).fill(2));
+    } catch (e) {
+      code = (e as { code: string }).code;
+    }
+    expect(code).toBe("invalid-argument");
+    deformer.free();
+  });
+
   it("rotates the shape rigidly when the handles follow an infinitesimal rotation", () => {
     const mesh = triangulate(defaultShape(), { targetEdgeLength: 0.08 });
     const deformer = new Deformer(mesh.positions, mesh.triangles);

@@ -350,6 +350,17 @@ export class Deformer {
     return this.#view;
   }
 
+  /**
+   * Each triangle's stiffness, the factor on its energy (one per triangle, from 0.001 to
+   * 1000; stiff regions bend less), or 1 everywhere with `undefined`. AKAP weighs its
+   * Killing energy by it, ARAP its element energy; `"mls"` and `"cauchy-green"` have no
+   * per-triangle energy and throw (code `invalid-argument`). Kept when switching between
+   * AKAP and ARAP. Bad values throw and change nothing.
+   */
+  setStiffness(stiffness: Coordinates | undefined): void {
+    this.#raw.setStiffness(stiffness === undefined ? undefined : toFloat64(stiffness, "stiffness"));
+  }
+
   /** Puts the mesh into a given pose (xy-interleaved, length 2n); handles stay. */
   setPositions(positions: Coordinates): void {
     this.#raw.setPositions(toFloat64(positions, "positions"));

@@ -27,7 +27,9 @@ use sprs::CsMat;
 use super::killing::KillingMatrix;
 use super::spiral::{linear_step, spiral_step};
 use crate::deform::error::{out_of_memory, DeformError};
-use crate::deform::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
+use crate::deform::handles::{
+    self, check_connected, check_pose, check_stiffness, check_velocities, diagonal, in_range, HandlePoint,
+};
 use crate::deform::method::{default_clock, Build, Clock, Deform, Orders, Timings};
 use crate::deform::metrics::{metrics, Metrics};
 use crate::deform::options::{DeformerOptions, Integrator, Method, MethodOptions, LAMBDA_RANGE};
@@ -193,6 +195,17 @@ impl Deformer {
     pub fn set_options(&mut self, options: DeformerOptions) -> Result<(), DeformError> {
         check_options(&options)?;
         self.options = options;
+        Ok(())
+    }
+
+    /// Sets each triangle's stiffness, the factor on its Killing energy (the paper's area
+    /// weight of eqs. (5)-(6) times it): stiff regions bend less. One value per triangle,
+    /// each in [`STIFFNESS_RANGE`](crate::deform::STIFFNESS_RANGE); `None` is 1 everywhere, exactly the unpainted deformer.
+    /// The pattern is unchanged, so nothing is analysed again; the next step assembles with
+    /// it. Refused, changing nothing, for a wrong length or a value out of range.
+    pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        check_stiffness(stiffness, self.mesh.triangle_count())?;
+        self.killing.set_stiffness(stiffness.map(<[f64]>::to_vec));
         Ok(())
     }
 
@@ -485,6 +498,12 @@ impl Deform for Deformer {
     }
     fn soft_field(&self) -> &[[f64; 2]] {
         Deformer::soft_field(self)
+    }
+    fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        Deformer::set_stiffness(self, stiffness)
+    }
+    fn stiffness(&self) -> Option<&[f64]> {
+        self.killing.stiffness()
     }
     fn metrics(&self) -> Metrics {
         Deformer::metrics(self)

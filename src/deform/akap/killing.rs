@@ -32,6 +32,9 @@ pub struct KillingMatrix {
     /// `(2 v_i + k, 2 v_j)` for k = 0, 1 (`[t][3 i + j][0]`) and `(2 v_i + k, 2 v_j + 1)`
     /// (`[t][3 i + j][1]`); row k = 1 is the slot after row k = 0.
     slots: Vec<[[usize; 2]; 9]>,
+    /// Each triangle's stiffness, the factor on its energy (`None`: 1 everywhere, and no
+    /// multiplication at all).
+    stiffness: Option<Vec<f64>>,
 }
 
 impl KillingMatrix {
@@ -54,7 +57,7 @@ impl KillingMatrix {
             .collect();
         let nnz = pattern.nnz();
         let matrix = pattern.matrix(vec![0.0; nnz]);
-        Self { matrix, triangles: mesh.triangles().to_vec(), slots }
+        Self { matrix, triangles: mesh.triangles().to_vec(), slots, stiffness: None }
     }
 
     /// Recomputes the values, `K = P^T P` of eqs. (6)-(7), for vertex positions `positions`
@@ -66,9 +69,13 @@ impl KillingMatrix {
     pub fn assemble(&mut self, positions: &[Point]) {
         let data = self.matrix.data_mut();
         data.fill(0.0);
-        for (t, slots) in self.triangles.iter().zip(&self.slots) {
+        for (f, (t, slots)) in self.triangles.iter().zip(&self.slots).enumerate() {
             let corners = [positions[t[0] as usize], positions[t[1] as usize], positions[t[2] as usize]];
-            let Some((h, g)) = scaled_gradients(corners) else { continue };
+            let Some((mut h, g)) = scaled_gradients(corners) else { continue };
+            if let Some(stiffness) = &self.stiffness {
+                // The energy's factor on this face: `h = 2A g` carries the area weight.
+                h = h.map(|hi| hi.map(|x| x * stiffness[f]));
+            }
             // A R^T R entry by entry: for vertices (i, j), with h = 2A g,
             //   (u1_i, u1_j): A (4 gx_i gx_j + 2 gy_i gy_j) = 2 h_x,i g_x,j + h_y,i g_y,j
             //   (u2_i, u1_j): 2A gx_i gy_j                   = h_x,i g_y,j
@@ -86,6 +93,17 @@ impl KillingMatrix {
                 }
             }
         }
+    }
+
+    /// Sets each triangle's stiffness (one per triangle, checked by the caller), or 1
+    /// everywhere with `None`. The next [`Self::assemble`] uses it.
+    pub fn set_stiffness(&mut self, stiffness: Option<Vec<f64>>) {
+        self.stiffness = stiffness;
+    }
+
+    /// Each triangle's stiffness, if set.
+    pub fn stiffness(&self) -> Option<&[f64]> {
+        self.stiffness.as_deref()
     }
 
     /// The matrix (full symmetric storage, CSC).
