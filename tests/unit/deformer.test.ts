@@ -133,7 +133,9 @@ describe("Deformer", () => {
     const deformer = new Deformer(mesh.positions, mesh.triangles, { method: "arap" });
     const bad = new Array<number>(triangleCount).fill(1);
     bad[3] = 0;
-    expect(() => deformer.setStiffness(bad)).toThrow("the stiffness of triangle 3 is 0, expected a number from 0.001 to 1000");
+    expect(() => deformer.setStiffness(bad)).toThrow(
+      "the stiffness of triangle 3 is 0, expected a number from 0.001 to 1000",
+    );
     expect(() => deformer.setStiffness([1, 2])).toThrow(/stiffness has 2 numbers/);
     deformer.setOptions({ method: "mls" });
     let code = "";
