@@ -200,9 +200,10 @@ impl Deformer {
 
     /// Sets each triangle's stiffness, the factor on its Killing energy (the paper's area
     /// weight of eqs. (5)-(6) times it): stiff regions bend less. One value per triangle,
-    /// each in [`STIFFNESS_RANGE`](crate::deform::STIFFNESS_RANGE); `None` is 1 everywhere, exactly the unpainted deformer.
-    /// The pattern is unchanged, so nothing is analysed again; the next step assembles with
-    /// it. Refused, changing nothing, for a wrong length or a value out of range.
+    /// each in [`STIFFNESS_RANGE`](crate::deform::STIFFNESS_RANGE); `None` is 1
+    /// everywhere, exactly the unpainted deformer. The pattern is unchanged, so nothing is
+    /// analysed again; the next step assembles with it. Refused, changing nothing, for a
+    /// wrong length or a value out of range.
     pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
         check_stiffness(stiffness, self.mesh.triangle_count())?;
         self.killing.set_stiffness(stiffness.map(<[f64]>::to_vec));
