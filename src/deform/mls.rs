@@ -19,7 +19,7 @@ use super::handles::{self, check_connected, check_pose, check_velocities, in_ran
 use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
 use super::options::{Method, MethodOptions, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
-use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
+use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
 /// The moving-least-squares deformer of one mesh.
@@ -46,7 +46,9 @@ impl MlsDeformer {
         check_connected(&mesh)?;
         let n = mesh.vertex_count();
         let positions = mesh.positions().to_vec();
-        let exponent = normalising_exponent(mesh.positions().iter().copied());
+        // (Clamped: a validated mesh never needs it, and 2^exponent and 2^-exponent are then
+        // normal, multiplied by directly in a step, as ARAP does.)
+        let exponent = normalising_exponent(mesh.positions().iter().copied()).clamp(-1022, 1022);
         let unit = mesh.positions().iter().map(|p| p.map(|x| scale_by_power_of_two(x, exponent))).collect();
         Ok(Self {
             mesh,
@@ -102,13 +104,13 @@ impl MlsDeformer {
             return Ok(());
         }
         let start = (self.clock)();
-        let k = self.exponent;
+        let (down, up) = (power_of_two(self.exponent), power_of_two(-self.exponent));
         let rest: Vec<Point> = self.handles.iter().map(|h| h.position(&self.unit)).collect();
         let targets: Vec<Point> = self
             .handle_positions()
             .iter()
             .zip(velocities)
-            .map(|(p, v)| [p[0] + v[0], p[1] + v[1]].map(|x| scale_by_power_of_two(x, k)))
+            .map(|(p, v)| [p[0] + v[0], p[1] + v[1]].map(|x| x * down))
             .collect();
         let map = Map { rest: &rest, targets: &targets, alpha: self.options.alpha, variant: self.options.variant };
         let mut next = Vec::with_capacity(self.positions.len());
@@ -118,7 +120,7 @@ impl MlsDeformer {
                 method: Method::Mls,
                 needed: "three handles not all on one line for the affine map",
             })?;
-            next.push(q.map(|x| scale_by_power_of_two(x, -k)));
+            next.push(q.map(|x| x * up));
         }
         if !in_range(&next) {
             return Err(DeformError::NonFiniteResult);
