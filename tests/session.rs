@@ -59,6 +59,7 @@ fn json_round_trips_every_double_exactly() {
             .iter()
             .flat_map(|e| match e {
                 Event::Step(v) | Event::Positions(v) | Event::Handles { barycentric: v, .. } => v.clone(),
+                Event::Stiffness(v) => v.clone().unwrap_or_default(),
                 Event::Reset(_) | Event::Options(_) => Vec::new(),
             })
             .map(f64::to_bits)
@@ -334,6 +335,98 @@ fn positions_and_options_events_replay_as_the_calls_they_record() {
 }
 
 #[test]
+fn stiffness_events_replay_as_the_calls_they_record() {
+    let (mesh, _) = bar_and_shear();
+    let triangles = mesh.triangle_count();
+    // The left half of the triangles 50x stiffer, one 0.001: values of the whole range.
+    let painted: Vec<f64> = (0..triangles)
+        .map(|t| {
+            if t == 3 {
+                0.001
+            } else if t < triangles / 2 {
+                50.0
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let handles = (vec![0u32, 5], vec![[1.0, 0.0, 0.0], [0.2, 0.3, 0.5]]);
+    let v = |k: f64| vec![0.0, 0.0, 0.02 * k, 0.03];
+    let mut s = small_session();
+    s.events = vec![
+        Event::Handles { triangles: handles.0.clone(), barycentric: handles.1.concat() },
+        Event::Stiffness(Some(painted.clone())),
+        Event::Step(v(1.0)),
+        Event::Stiffness(None),
+        Event::Step(v(2.0)),
+        Event::Stiffness(Some(painted.clone())),
+        Event::Step(v(3.0)),
+    ];
+    let text = s.to_json();
+    assert!(text.contains("{\"stiffness\":null}") && text.contains("{\"stiffness\":[50.0,"), "{text}");
+    let s = Session::from_json(&text).unwrap();
+    let mut replayed = s.recorded_deformer().unwrap();
+    replay(&s, &mut replayed).unwrap();
+
+    let pairs = |flat: &[f64]| flat.as_chunks::<2>().0.to_vec();
+    let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    d.set_handle_points(&handles.0, &handles.1).unwrap();
+    d.set_stiffness(Some(&painted)).unwrap();
+    d.step(&pairs(&v(1.0))).unwrap();
+    d.set_stiffness(None).unwrap();
+    d.step(&pairs(&v(2.0))).unwrap();
+    d.set_stiffness(Some(&painted)).unwrap();
+    d.step(&pairs(&v(3.0))).unwrap();
+    let bits = |p: &[Point]| p.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(replayed.positions()), bits(d.positions()));
+    assert_eq!(replayed.stiffness(), Some(&painted[..]));
+    // The painting matters: without it the pose differs.
+    let mut plain = small_session();
+    plain.events = s.events.iter().filter(|e| !matches!(e, Event::Stiffness(_))).cloned().collect();
+    let mut unpainted = plain.recorded_deformer().unwrap();
+    replay(&plain, &mut unpainted).unwrap();
+    assert_ne!(bits(unpainted.positions()), bits(d.positions()));
+
+    // A compared method without stiffness passes over the events; the recorded method
+    // refuses one it cannot take, as the deformer does.
+    let targets = replay(&s, &mut s.recorded_deformer().unwrap()).unwrap().targets;
+    let mut mls = MethodOptions::Mls(Default::default()).build(mesh.clone()).unwrap();
+    replay_to_targets(&s, &targets, mls.as_mut()).unwrap();
+    let mut under_mls = s.clone();
+    under_mls.options = RecordedOptions::of(MethodOptions::Mls(Default::default()));
+    let mut deformer = under_mls.recorded_deformer().unwrap();
+    let error = replay(&under_mls, &mut deformer).unwrap_err();
+    assert!(error.to_string().starts_with("event 1: method mls has no stiffness"), "{error}");
+
+    // Reading checks the length and the range, naming the event.
+    let refused = |events: Vec<Event>| {
+        let mut bad = small_session();
+        bad.events = events;
+        Session::from_json(&bad.to_json()).unwrap_err().to_string()
+    };
+    assert_eq!(
+        refused(vec![Event::Stiffness(Some(vec![1.0; triangles - 1]))]),
+        format!(
+            "event 0: stiffness has {} numbers, expected {triangles} (1 for each of the {triangles} triangles)",
+            triangles - 1
+        )
+    );
+    let mut high = painted.clone();
+    high[7] = 1000.5;
+    assert_eq!(
+        refused(vec![Event::Reset(true), Event::Stiffness(Some(high))]),
+        "event 1: the stiffness of triangle 7 is 1000.5, expected a number from 0.001 to 1000"
+    );
+    let mut plain_options = s.clone();
+    plain_options.options = RecordedOptions::default();
+    let v1 = plain_options.to_json().replace("\"version\": 2", "\"version\": 1");
+    assert_eq!(
+        Session::from_json(&v1).unwrap_err().to_string(),
+        "a version-1 session cannot have a stiffness event; version 2 sessions can"
+    );
+}
+
+#[test]
 fn inline_meshes_and_arap_sessions_round_trip_and_replay() {
     let (mesh, _) = bar_and_shear();
     let options = MethodOptions::Arap(ArapOptions::default().with_iterations(4));
@@ -461,6 +554,7 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
             Event::Positions(_) => "positions",
             Event::Options(_) => "options",
             Event::Reset(_) => "reset",
+            Event::Stiffness(_) => "stiffness",
         })
         .collect();
     for kind in ["handles", "step", "options", "reset"] {
@@ -537,13 +631,28 @@ mod bindings {
         let foreign = r.options(js("return { lambda: 5 }"));
         assert_eq!(message(foreign), "option lambda applies to method \"akap\" only, not to \"arap\"");
         r.options(js("return { method: 'akap', lambda: 5 }")).unwrap();
+        let triangle_count = mesh.triangle_count();
+        let stiff = vec![7.0; triangle_count];
+        r.stiffness(Float64Array::from(&stiff[..]).into()).unwrap();
+        let short = r.stiffness(Float64Array::from(&stiff[1..]).into());
+        assert_eq!(
+            message(short),
+            format!(
+                "stiffness has {} numbers, expected {triangle_count} (1 for each of the {triangle_count} triangles)",
+                triangle_count - 1
+            )
+        );
+        assert!(message(r.stiffness(Float64Array::from(&[0.0; 1][..]).into())).starts_with("stiffness has 1 numbers"));
+        r.stiffness(JsValue::UNDEFINED).unwrap();
         r.reset();
-        assert_eq!(r.event_count(), 4);
+        assert_eq!(r.event_count(), 6);
         let session = Session::from_json(&r.to_json().unwrap()).unwrap();
         assert!(session.shape.is_none());
         assert_eq!(session.mesh().unwrap().positions(), mesh.positions());
         assert_eq!(session.events[1], akap::session::Event::Step(vec![0.0, -0.0, 0.01, 0.02]));
         assert!(matches!(session.events[1], akap::session::Event::Step(ref v) if v[1].is_sign_negative()));
+        assert_eq!(session.events[3], akap::session::Event::Stiffness(Some(stiff)));
+        assert_eq!(session.events[4], akap::session::Event::Stiffness(None));
 
         let dragon =
             JsSessionRecorder::new(arap.clone(), js("return { name: 'dragon' }"), positions.clone(), triangles.clone());

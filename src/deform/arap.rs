@@ -681,6 +681,9 @@ impl Deform for ArapDeformer {
     fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
         ArapDeformer::set_stiffness(self, stiffness)
     }
+    fn has_stiffness(&self) -> bool {
+        true
+    }
     fn stiffness(&self) -> Option<&[f64]> {
         self.stiffness.as_deref()
     }

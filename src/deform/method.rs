@@ -195,6 +195,10 @@ pub trait Deform: fmt::Debug {
     fn stiffness(&self) -> Option<&[f64]> {
         None
     }
+    /// Whether the method takes per-triangle stiffness ([`Deform::set_stiffness`]).
+    fn has_stiffness(&self) -> bool {
+        false
+    }
     /// The polygon the method deforms the shape through, where it has one, as the last step
     /// left it: Cauchy-Green's cage (the cage values; its rest cage after a reset). `None`
     /// for methods without one.

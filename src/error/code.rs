@@ -218,7 +218,8 @@ impl ImportError {
             | Self::NoShapes { .. }
             | Self::EmptyImage
             | Self::Syntax { .. }
-            | Self::TextureCoordinates { .. } => ErrorCode::Import,
+            | Self::TextureCoordinates { .. }
+            | Self::Stiffness { .. } => ErrorCode::Import,
             Self::ImageSize { .. } | Self::Length { .. } | Self::NonFinite { .. } => ErrorCode::InvalidArgument,
             Self::NonFiniteResult { .. } => ErrorCode::Overflow,
             Self::InvalidOption { .. } => ErrorCode::InvalidOption,

@@ -136,6 +136,11 @@ pub enum ImportError {
         /// What is wrong.
         message: String,
     },
+    /// A mesh file's per-triangle stiffness is the wrong length or out of range.
+    Stiffness {
+        /// What is wrong.
+        message: String,
+    },
     /// The mesh in the file is invalid (the same rules and errors as [`crate::Mesh::new`]).
     Mesh(MeshError),
     /// More points than the limit ([`crate::import::Limits::max_points`]).
@@ -250,6 +255,7 @@ impl fmt::Display for ImportError {
                 write!(f, "{format} error at line {line}, column {column}: {message}")
             }
             Self::TextureCoordinates { message } => write!(f, "texture coordinates: {message}"),
+            Self::Stiffness { message } => write!(f, "stiffness: {message}"),
             Self::Mesh(e) => e.fmt(f),
             Self::TooManyPoints { what, needed: Some(needed), limit } => write!(
                 f,

@@ -1,5 +1,6 @@
 //! Mesh files: our JSON (`{ "positions": [x0, y0, ...], "triangles": [a0, b0, c0, ...],
-//! "uvs": [u0, v0, ...] }`, `uvs` optional) and Wavefront OBJ (`v`, `vt`, `f` with polygons
+//! "uvs": [u0, v0, ...], "stiffness": [s0, s1, ...] }`, `uvs` (per vertex) and `stiffness`
+//! (per triangle, the painted factor on its energy, in [`STIFFNESS_RANGE`]) optional) and Wavefront OBJ (`v`, `vt`, `f` with polygons
 //! fanned into triangles, negative indices, comments). Both are read into a validated
 //! [`Mesh`] (the same rules and errors as [`Mesh::new`]) and written back so that a round
 //! trip gives the same numbers. Readers and writers share one set of [`Limits`]: the
@@ -12,11 +13,14 @@
 //! Wavefront OBJ's (see [`crate::import::warp::texture_coordinates`]): `u` from the image's
 //! left edge, `v` up from its bottom edge, `(0, 0)` at the bottom-left corner and `(1, 1)`
 //! at the top-right. They are read and written as the numbers they are, never flipped.
+//!
+//! OBJ has no place for per-triangle values, so stiffness travels in JSON only.
 
 use std::fmt::Write;
 
 use serde::{Deserialize, Serialize};
 
+use crate::deform::STIFFNESS_RANGE;
 use crate::error::Number;
 use crate::geometry::Point;
 use crate::import::{ImportError, Limits};
@@ -29,6 +33,8 @@ pub struct MeshFile {
     pub mesh: Mesh,
     /// One `[u, v]` per vertex (v up from the image's bottom edge), or `None`.
     pub uvs: Option<Vec<Point>>,
+    /// One stiffness per triangle (JSON only), or `None` (1 everywhere).
+    pub stiffness: Option<Vec<f64>>,
 }
 
 #[derive(Deserialize, Serialize)]
@@ -38,6 +44,8 @@ struct JsonMesh {
     triangles: Vec<u32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     uvs: Option<Vec<f64>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    stiffness: Option<Vec<f64>>,
 }
 
 fn check_size(text: &str, limits: &Limits, what: &'static str) -> Result<(), ImportError> {
@@ -70,6 +78,19 @@ fn check_writable(
 fn check_written(text: String, limits: &Limits, what: &'static str) -> Result<String, ImportError> {
     Limits::check(text.len(), limits.max_bytes, what, "bytes")?;
     Ok(text)
+}
+
+/// Checks stiffness against the mesh: one value per triangle, each in [`STIFFNESS_RANGE`].
+fn check_stiffness(stiffness: &[f64], triangles: usize) -> Result<(), ImportError> {
+    let (low, high) = (*STIFFNESS_RANGE.start(), *STIFFNESS_RANGE.end());
+    let message = if stiffness.len() != triangles {
+        format!("{} numbers for {triangles} triangles; one per triangle is needed", stiffness.len())
+    } else if let Some(t) = stiffness.iter().position(|s| !STIFFNESS_RANGE.contains(s)) {
+        format!("triangle {t} has {}, expected a number from {} to {}", Number(stiffness[t]), Number(low), Number(high))
+    } else {
+        return Ok(());
+    };
+    Err(ImportError::Stiffness { message })
 }
 
 /// Checks texture coordinates against the mesh: one finite pair per vertex.
@@ -126,23 +147,34 @@ pub fn read_json(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
             Some(pairs)
         }
     };
-    Ok(MeshFile { mesh, uvs })
+    if let Some(stiffness) = &parsed.stiffness {
+        check_stiffness(stiffness, mesh.triangle_count())?;
+    }
+    Ok(MeshFile { mesh, uvs, stiffness: parsed.stiffness })
 }
 
-/// Writes our JSON mesh format (numbers in their shortest exact form). Refuses, like
+/// Writes our JSON mesh format (numbers in their shortest exact form), with `uvs` and
+/// `stiffness` when given (checked as [`read_json`] checks them). Refuses, like
 /// [`read_json`] with the same `limits`, a mesh with more vertices or triangles than they
 /// allow or a text longer than `max_bytes`.
 ///
 /// ```
 /// use akap::import::{mesh_file::{read_json, write_json}, Limits};
 /// let mesh = akap::Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1e-300]], vec![[0, 1, 2]])?;
-/// let text = write_json(&mesh, None, &Limits::default())?;
+/// let text = write_json(&mesh, None, None, &Limits::default())?;
 /// assert_eq!(text, r#"{"positions":[0.0,0.0,1.0,0.0,0.0,1e-300],"triangles":[0,1,2]}"#);
+/// let stiff = write_json(&mesh, None, Some(&[100.0]), &Limits::default())?;
+/// assert_eq!(read_json(&stiff, &Limits::default())?.stiffness, Some(vec![100.0]));
 /// assert_eq!(read_json(&text, &Limits::default())?.mesh, mesh);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn write_json(mesh: &Mesh, uvs: Option<&[Point]>, limits: &Limits) -> Result<String, ImportError> {
-    write_json_pose(mesh.positions(), mesh.triangles(), uvs, limits)
+pub fn write_json(
+    mesh: &Mesh,
+    uvs: Option<&[Point]>,
+    stiffness: Option<&[f64]>,
+    limits: &Limits,
+) -> Result<String, ImportError> {
+    write_json_pose(mesh.positions(), mesh.triangles(), uvs, stiffness, limits)
 }
 
 /// Writes `triangles` at `positions` (a pose of a mesh) as [`write_json`] writes a mesh,
@@ -152,13 +184,18 @@ pub fn write_json_pose(
     positions: &[Point],
     triangles: &[[u32; 3]],
     uvs: Option<&[Point]>,
+    stiffness: Option<&[f64]>,
     limits: &Limits,
 ) -> Result<String, ImportError> {
     check_writable(positions, triangles, uvs, limits)?;
+    if let Some(stiffness) = stiffness {
+        check_stiffness(stiffness, triangles.len())?;
+    }
     let json = JsonMesh {
         positions: positions.iter().flatten().copied().collect(),
         triangles: triangles.iter().flatten().copied().collect(),
         uvs: uvs.map(|u| u.iter().flatten().copied().collect()),
+        stiffness: stiffness.map(<[f64]>::to_vec),
     };
     // Arrays of finite numbers and indices always serialise.
     check_written(serde_json::to_string(&json).expect("a mesh serialises to JSON"), limits, "the JSON text")
@@ -359,7 +396,7 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
         }
     };
     let mesh = Mesh::new(positions, triangles)?;
-    Ok(MeshFile { mesh, uvs })
+    Ok(MeshFile { mesh, uvs, stiffness: None })
 }
 
 /// Writes a Wavefront OBJ: `v x y 0` per vertex, `vt u v` per vertex when `uvs` are given

@@ -11,6 +11,7 @@
 //!               { "step": [0, 0, 0.01, 0.02] },
 //!               { "positions": [0, 0, 1, 0, 0.5, 1] },
 //!               { "options": { "method": "arap", "iterations": 10 } },
+//!               { "stiffness": [1, 1, 100, 100, 1] },
 //!               { "reset": true } ] }
 //! ```
 //!
@@ -30,7 +31,11 @@
 //! numbers per vertex; handles stay); `options` changes the options as the widget's method
 //! list does (over the current options when it names the same method or none; another
 //! method gets a new deformer on the same mesh with the pose and handles carried over);
-//! `reset` (`true`; `false` does nothing) returns to the rest pose.
+//! `reset` (`true`; `false` does nothing) returns to the rest pose; `stiffness` paints
+//! every triangle's stiffness (one number per triangle, [`crate::deform::STIFFNESS_RANGE`]),
+//! or `null` for 1 everywhere, for the methods that have it (AKAP, ARAP: a stiffness event
+//! under another method is refused on replay as the deformer refuses it, and passed over by
+//! [`replay_to_targets`], whose method is a comparison's).
 //!
 //! Version 1, the first sessions (`tests/sessions/*.json`), had only a built-in shape, AKAP
 //! options and `handles`, `step` and `reset` events; it is still read (a version-1 file using
@@ -50,6 +55,7 @@ use serde::{Deserialize, Serialize};
 
 pub use replay::{replay, replay_to_targets, Replay};
 
+use crate::deform::handles::check_stiffness;
 use crate::deform::settings::is_whole;
 use crate::deform::{Deform, DeformError, DeformerOptions, Method, MethodOptions, SettingValue};
 use crate::mesh::{Mesh, MeshError};
@@ -301,6 +307,8 @@ pub enum Event {
     Options(RecordedOptions),
     /// Back to the rest pose (when `true`).
     Reset(bool),
+    /// Each triangle's stiffness (one number per triangle), or `null` for 1 everywhere.
+    Stiffness(Option<Vec<f64>>),
 }
 
 /// Why a session could not be read or replayed.
@@ -470,6 +478,7 @@ impl Session {
         self.events.iter().find_map(|e| match e {
             Event::Positions(_) => Some("a positions event"),
             Event::Options(_) => Some("an options event"),
+            Event::Stiffness(_) => Some("a stiffness event"),
             _ => None,
         })
     }
@@ -478,7 +487,8 @@ impl Session {
     /// the inline mesh's array lengths, the options of the header and of every `options`
     /// event (ranges, and options of the method in use at that point), and every event's
     /// array lengths (3 barycentric coordinates per handle, 2 velocity components per
-    /// handle of the handles in place, 2 numbers per vertex). Triangle indices, barycentric
+    /// handle of the handles in place, 2 numbers per vertex), and stiffness (one value per
+    /// triangle, each in range). Triangle indices, barycentric
     /// coordinates and velocities are checked by the deformer on replay.
     pub fn check(&self) -> Result<(), SessionError> {
         let counts = self.mesh.counts();
@@ -513,6 +523,8 @@ impl Session {
                     return Err(length("positions", 2 * counts.vertex_count, p.len(), 2, "vertices"))
                 }
                 Event::Options(o) => options = o.over(options, Some(index))?,
+                Event::Stiffness(s) => check_stiffness(s.as_deref(), counts.triangle_count)
+                    .map_err(|error| SessionError::Event { index, error })?,
                 _ => {}
             }
         }

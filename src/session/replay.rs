@@ -31,6 +31,7 @@ pub fn replay(session: &Session, deformer: &mut Box<dyn Deform>) -> Result<Repla
 /// of a [`replay`] with the recorded deformer): each step's velocity is the target minus
 /// the handle's current position in `deformer`. `options` events are passed over: the
 /// method compared keeps its settings. `positions` events put it into the recorded pose.
+/// `stiffness` events paint it, or are passed over by a method without stiffness.
 pub fn replay_to_targets(
     session: &Session,
     targets: &[Vec<Point>],
@@ -61,7 +62,7 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
     let mut last_was_step = false;
     for (index, event) in session.events.iter().enumerate() {
         let refused = |error| SessionError::Event { index, error };
-        last_was_step &= matches!(event, Event::Reset(false) | Event::Options(_));
+        last_was_step &= matches!(event, Event::Reset(false) | Event::Options(_) | Event::Stiffness(_));
         match event {
             Event::Handles { triangles, barycentric } => {
                 let (weights, rest) = barycentric.as_chunks::<3>();
@@ -109,6 +110,14 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
                 let Slot::Recorded(deformer) = &mut slot else { continue };
                 let options = recorded.over(deformer.method_options(), Some(index))?;
                 options.apply(deformer).map_err(refused)?;
+            }
+            Event::Stiffness(values) => {
+                let compared = matches!(slot, Slot::Compared(_));
+                match slot.get().set_stiffness(values.as_deref()) {
+                    // A compared method without stiffness poses the shape as it can.
+                    Err(DeformError::Unsupported { .. }) if compared => {}
+                    result => result.map_err(refused)?,
+                }
             }
             Event::Reset(true) => slot.get().reset(),
             Event::Reset(false) => {}

@@ -34,6 +34,16 @@ pub fn deformer_orders(positions: JsValue, triangles: JsValue, options: JsValue)
 }
 
 /// Most handles a deformer takes: one per vertex of the largest mesh.
+/// Checks per-triangle stiffness for a mesh of `triangle_count` triangles, as
+/// `Deformer.setStiffness` does: one value per triangle (`Float64Array`), each from 0.001 to
+/// 1000. For callers that keep stiffness while a method without it poses.
+#[wasm_bindgen(js_name = checkStiffness)]
+pub fn check_stiffness(stiffness: JsValue, triangle_count: JsValue) -> Result<(), BindingError> {
+    let count = read::count(&triangle_count, "triangleCount", max_coordinates())?;
+    let values = read::float64s(&stiffness, "stiffness", max_coordinates())?;
+    Ok(crate::deform::handles::check_stiffness(Some(&values), count)?)
+}
+
 fn max_handles() -> usize {
     limits().max_vertices
 }
@@ -157,6 +167,12 @@ impl JsDeformer {
         }
         let values = read::float64s(&stiffness, "stiffness", max_coordinates())?;
         Ok(self.inner.set_stiffness(Some(&values))?)
+    }
+
+    /// Whether the method takes per-triangle stiffness (AKAP and ARAP).
+    #[wasm_bindgen(getter, js_name = hasStiffness)]
+    pub fn has_stiffness(&self) -> bool {
+        self.inner.has_stiffness()
     }
 
     /// The last velocity field after the Dirichlet step (`U_opt`; ARAP: the last step's

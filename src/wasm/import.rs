@@ -125,6 +125,11 @@ impl JsMeshFile {
     pub fn uvs(&self) -> Option<Vec<f64>> {
         self.file.uvs.as_ref().map(|uvs| uvs.iter().flatten().copied().collect())
     }
+
+    /// Per-triangle stiffness (JSON files only), or undefined.
+    pub fn stiffness(&self) -> Option<Vec<f64>> {
+        self.file.stiffness.clone()
+    }
 }
 
 /// Reads a Wavefront OBJ mesh (xy plane) from a string.
@@ -174,11 +179,22 @@ pub fn mesh_to_obj(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Resu
     Ok(mesh_file::write_obj_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits())?)
 }
 
-/// Writes a mesh, or a pose of one (flipped triangles as they are), in our JSON format.
+/// Writes a mesh, or a pose of one (flipped triangles as they are), in our JSON format,
+/// with its `uvs` and per-triangle `stiffness` (`Float64Array`s) when given.
 #[wasm_bindgen]
-pub fn mesh_to_json(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, BindingError> {
+pub fn mesh_to_json(
+    positions: JsValue,
+    triangles: JsValue,
+    uvs: JsValue,
+    stiffness: JsValue,
+) -> Result<String, BindingError> {
     let m = to_write(&positions, &triangles, &uvs)?;
-    Ok(mesh_file::write_json_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits())?)
+    let stiffness = if stiffness.is_undefined() || stiffness.is_null() {
+        None
+    } else {
+        Some(read::float64s(&stiffness, "stiffness", max_indices())?)
+    };
+    Ok(mesh_file::write_json_pose(&m.positions, &m.triangles, m.uvs.as_deref(), stiffness.as_deref(), &limits())?)
 }
 
 /// Texture coordinates (u, v interleaved) of positions (`Float64Array`) in a traced

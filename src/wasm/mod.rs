@@ -23,7 +23,7 @@ mod read;
 mod session;
 
 pub use defop::{ground_truth, JsDefOp, JsDefOpSolver, JsDefOpTrainer};
-pub use deformer::{deformer_orders, JsDeformer};
+pub use deformer::{check_stiffness, deformer_orders, JsDeformer};
 pub use error::BindingError;
 pub use import::{
     import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json, mesh_to_obj, path_data,
@@ -35,6 +35,7 @@ pub use session::{session_json, session_mesh, JsSessionRecorder};
 use js_sys::{Array, Float64Array, Object, Reflect};
 use wasm_bindgen::prelude::*;
 
+use crate::deform::STIFFNESS_RANGE;
 use crate::error::ErrorCode;
 use crate::import::Limits;
 use crate::outline::Outline;
@@ -110,6 +111,7 @@ pub fn js_limits() -> Result<Object, BindingError> {
         ("points", (l.max_points as f64).into()),
         ("vertices", (l.max_vertices as f64).into()),
         ("sessionBytes", (crate::session::MAX_BYTES as f64).into()),
+        ("stiffness", Array::of2(&(*STIFFNESS_RANGE.start()).into(), &(*STIFFNESS_RANGE.end()).into()).into()),
     ])
 }
 

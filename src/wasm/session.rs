@@ -10,6 +10,7 @@ use super::error::BindingError;
 use super::mesh::{read_mesh, JsMesh};
 use super::read::{self, Options};
 use super::{limits, max_coordinates};
+use crate::deform::handles::check_stiffness;
 use crate::deform::MethodOptions;
 use crate::session::{Event, MeshCounts, RecordedOptions, Session, SessionMesh, ShapeSpec, MAX_BYTES};
 
@@ -120,6 +121,19 @@ impl JsSessionRecorder {
         options.check()?;
         self.options = options;
         self.session.events.push(Event::Options(RecordedOptions::of(options)));
+        Ok(())
+    }
+
+    /// Each triangle's stiffness (`Float64Array`, one per triangle, 0.001 to 1000), or 1
+    /// everywhere with `undefined`, as `Deformer.setStiffness` takes it.
+    pub fn stiffness(&mut self, stiffness: JsValue) -> Result<(), BindingError> {
+        let values = if stiffness.is_undefined() {
+            None
+        } else {
+            Some(read::float64s(&stiffness, "stiffness", max_coordinates())?)
+        };
+        check_stiffness(values.as_deref(), self.session.mesh.triangle_count)?;
+        self.session.events.push(Event::Stiffness(values));
         Ok(())
     }
 

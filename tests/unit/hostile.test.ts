@@ -153,7 +153,7 @@ describe("the bindings survive anything as arguments", () => {
     property(1, (x) => raw.mesh_from_obj(a(x, 0)).free());
     property(1, (x) => raw.mesh_from_json(a(x, 0)).free());
     property(3, (x) => raw.mesh_to_obj(a(x, 0), a(x, 1), a(x, 2)));
-    property(3, (x) => raw.mesh_to_json(a(x, 0), a(x, 1), a(x, 2)));
+    property(4, (x) => raw.mesh_to_json(a(x, 0), a(x, 1), a(x, 2), a(x, 3)));
     property(3, (x) => raw.texture_coordinates(a(x, 0), a(x, 1), a(x, 2)));
     property(3, (x) => new raw.PointMapper(a(x, 0), a(x, 1), a(x, 2)).free());
     const mapper = new raw.PointMapper(grid.positions, grid.triangles, Float64Array.of(0.5, 0.5, 9, 9));
@@ -171,6 +171,8 @@ describe("the bindings survive anything as arguments", () => {
       property(2, (x) => deformer.setHandlePoints(a(x, 0), a(x, 1)));
       property(1, (x) => deformer.step(a(x, 0)));
       property(1, (x) => deformer.setPositions(a(x, 0)));
+      property(1, (x) => deformer.setStiffness(a(x, 0)));
+      property(2, (x) => raw.checkStiffness(a(x, 0), a(x, 1)));
       // Still a working deformer: a translation of both handles moves the grid rigidly.
       deformer.reset();
       deformer.setOptions(method === "akap" ? { lambda: 100 } : { iterations: 10 });

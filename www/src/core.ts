@@ -361,6 +361,11 @@ export class Deformer {
     this.#raw.setStiffness(stiffness === undefined ? undefined : toFloat64(stiffness, "stiffness"));
   }
 
+  /** Whether the method takes {@link Deformer.setStiffness} (AKAP and ARAP). */
+  get hasStiffness(): boolean {
+    return this.#raw.hasStiffness;
+  }
+
   /** Puts the mesh into a given pose (xy-interleaved, length 2n); handles stay. */
   setPositions(positions: Coordinates): void {
     this.#raw.setPositions(toFloat64(positions, "positions"));
@@ -419,6 +424,16 @@ export class Deformer {
   }
 }
 
+/**
+ * Checks per-triangle stiffness for a mesh of `triangleCount` triangles as
+ * {@link Deformer.setStiffness} does (one value per triangle, each from 0.001 to 1000),
+ * throwing the same `Error`; for keeping stiffness while a method without it poses.
+ */
+export function checkStiffness(stiffness: Coordinates, triangleCount: number): void {
+  assertLoaded();
+  raw.checkStiffness(toFloat64(stiffness, "stiffness"), triangleCount);
+}
+
 /** The limits on what the functions take (the same in Rust, the bindings and the widget). */
 export interface Limits {
   /** Largest text file (SVG, OBJ, JSON), in bytes. */
@@ -431,6 +446,8 @@ export interface Limits {
   vertices: number;
   /** Largest recorded session (JSON), in bytes. */
   sessionBytes: number;
+  /** The range of per-triangle stiffness ({@link Deformer.setStiffness}): 0.001 to 1000. */
+  stiffness: [number, number];
 }
 
 /** The limits on inputs; bigger inputs are refused with an `Error` saying so. */

@@ -183,6 +183,8 @@ export function textureCoordinates(positions: Coordinates, width: number, height
 export interface MeshFileData extends MeshData {
   /** u and v interleaved, one pair per vertex. */
   uvs?: Float64Array;
+  /** One stiffness per triangle (JSON files only; see `Deformer.setStiffness`). */
+  stiffness?: Float64Array;
 }
 
 function readMeshFile(file: rawTypes.MeshFile): MeshFileData {
@@ -192,6 +194,8 @@ function readMeshFile(file: rawTypes.MeshFile): MeshFileData {
       const data: MeshFileData = readMesh(mesh);
       const uvs = file.uvs();
       if (uvs !== undefined) data.uvs = uvs;
+      const stiffness = file.stiffness();
+      if (stiffness !== undefined) data.stiffness = stiffness;
       return data;
     } finally {
       mesh.free();
@@ -211,7 +215,10 @@ export function meshFromObj(text: string): MeshFileData {
   return readMeshFile(raw.mesh_from_obj(text));
 }
 
-/** Reads our JSON mesh format: `{ "positions": [...], "triangles": [...], "uvs"?: [...] }`. */
+/**
+ * Reads our JSON mesh format: `{ "positions": [...], "triangles": [...], "uvs"?: [...],
+ * "stiffness"?: [...] }` (`stiffness`: one per triangle, from 0.001 to 1000).
+ */
 export function meshFromJson(text: string): MeshFileData {
   assertLoaded();
   return readMeshFile(raw.mesh_from_json(text));
@@ -227,6 +234,8 @@ export interface MeshToWrite {
   positions: Coordinates;
   triangles: Indices;
   uvs?: Coordinates;
+  /** One stiffness per triangle, written by {@link meshToJson} (OBJ has no place for it). */
+  stiffness?: Coordinates;
 }
 
 function writeArgs(mesh: MeshToWrite): [Float64Array, Uint32Array, Float64Array | undefined] {
@@ -240,10 +249,11 @@ export function meshToObj(mesh: MeshToWrite): string {
   return raw.mesh_to_obj(...writeArgs(mesh));
 }
 
-/** Writes a mesh or a pose of one in our JSON format. */
+/** Writes a mesh or a pose of one in our JSON format, with its uvs and stiffness when given. */
 export function meshToJson(mesh: MeshToWrite): string {
   assertLoaded();
-  return raw.mesh_to_json(...writeArgs(mesh));
+  const stiffness = mesh.stiffness === undefined ? undefined : toFloat64(mesh.stiffness, "stiffness");
+  return raw.mesh_to_json(...writeArgs(mesh), stiffness);
 }
 
 /**

@@ -503,6 +503,9 @@ impl Deform for Deformer {
     fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
         Deformer::set_stiffness(self, stiffness)
     }
+    fn has_stiffness(&self) -> bool {
+        true
+    }
     fn stiffness(&self) -> Option<&[f64]> {
         self.killing.stiffness()
     }

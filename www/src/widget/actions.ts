@@ -8,6 +8,7 @@ import { METHODS, type GalleryItem, type MethodPreset } from "./options.js";
 import { Cancelled } from "./setup.js";
 import { download } from "./export.js";
 import type { RigTrainOptions } from "./rig.js";
+import type { BrushSettings } from "./stiffness.js";
 import {
   buildToolbar,
   type DisplayToggles,
@@ -84,6 +85,8 @@ export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions
       host.succeeded();
     }),
     display: guard((options: DisplayToggles) => widget.setDisplay(options)),
+    brush: guard((tool: "pose" | "stiffness", brush: BrushSettings) => widget.setTool(tool, brush)),
+    clearStiffness: guard(() => widget.setStiffness(undefined)),
     train: (options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined) => {
       const run = async () => {
         const mesh = widget.mesh;

@@ -79,15 +79,17 @@ function escapeAttribute(text: string): string {
 
 /**
  * A shape in a pose (`positions`, a copy: the writer allocates in the memory a view of it
- * would see) as JSON or OBJ text, with its texture coordinates: the core's writers.
+ * would see) as JSON or OBJ text, with its texture coordinates, and in JSON its painted
+ * `stiffness` (OBJ has no place for it): the core's writers.
  */
 export function posedMesh(
   shape: { mesh: { triangles: Uint32Array }; uvs: ArrayLike<number> },
   positions: Float64Array,
   format: "json" | "obj",
+  stiffness?: Float64Array,
 ): string {
   const pose = { positions, triangles: shape.mesh.triangles, uvs: Float64Array.from(shape.uvs) };
-  return format === "json" ? meshToJson(pose) : meshToObj(pose);
+  return format === "json" ? meshToJson({ ...pose, ...(stiffness ? { stiffness } : {}) }) : meshToObj(pose);
 }
 
 /**

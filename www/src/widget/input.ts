@@ -1,6 +1,6 @@
 /**
- * The widget's input: pointer gestures on the shape (handles, and the view's pan and
- * zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan,
+ * The widget's input: pointer gestures on the shape (handles or the stiffness brush, and
+ * the view's pan and zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan,
  * and files dropped on the stage. What each gesture changes is the posing's and the
  * widget's; this file only routes.
  */
@@ -34,6 +34,12 @@ export interface InputHost {
   redo(): void;
   zoom(factor: number | "fit"): void;
   toggleDisplay(what: "wireframe" | "field"): void;
+  /** Turns the stiffness brush on or off (B). */
+  toggleBrush(): void;
+  /** Scales the brush's size ([ and ]). */
+  resizeBrush(factor: number): void;
+  /** Where the brush's outline is drawn (the pointer over the shape), or nowhere. */
+  brushAt(at: [number, number] | undefined): void;
   /** Opens or closes the help (toggles without an argument); whether it is open. */
   help(open?: boolean): void;
   helpOpen(): boolean;
@@ -90,6 +96,23 @@ export class WidgetInput {
         posing.endDragGesture();
         host.draw();
       },
+      painting: () => posing.settings.tool === "stiffness",
+      paint: (_pointerId, x, y, erase) => {
+        const { size, value } = posing.settings.brush;
+        if (posing.paint(x, y, (size * host.ratio()) / host.camera.view.scale, erase ? 1 : value)) {
+          posing.markChanged();
+        }
+        host.brushAt([x, y]);
+      },
+      paintEnd: () => {
+        try {
+          posing.flushStiffness();
+        } finally {
+          posing.endDragGesture();
+          host.draw();
+        }
+      },
+      hover: (at) => host.brushAt(at),
       panMode: () => this.#spaceHeld,
       pan: (dx, dy) => {
         host.camera.pan(dx * host.ratio(), dy * host.ratio());
@@ -184,6 +207,12 @@ export class WidgetInput {
         break;
       case "help":
         host.help();
+        break;
+      case "brush":
+        host.toggleBrush();
+        break;
+      case "brush-size":
+        host.resizeBrush(command.factor);
         break;
     }
   }

@@ -14,7 +14,11 @@ export type KeyCommand =
   | { kind: "toggle"; what: "wireframe" | "field" }
   | { kind: "fit" }
   | { kind: "zoom"; factor: number }
-  | { kind: "help" };
+  | { kind: "help" }
+  /** The stiffness brush on or off. */
+  | { kind: "brush" }
+  /** The brush's size times `factor`. */
+  | { kind: "brush-size"; factor: number };
 
 export interface KeyPress {
   key: string;
@@ -29,6 +33,8 @@ export type KeyFocus = "text" | "control" | "other";
 
 /** Zoom step of the + and - keys. */
 export const ZOOM_STEP = 1.25;
+/** Brush size step of the [ and ] keys. */
+export const BRUSH_STEP = 1.25;
 
 /** The command of a key press, or undefined for keys the widget leaves alone. */
 export function keyCommand(e: KeyPress, focus: KeyFocus = "other"): KeyCommand | undefined {
@@ -56,6 +62,9 @@ export function keyCommand(e: KeyPress, focus: KeyFocus = "other"): KeyCommand |
   if (key === "+" || key === "=") return { kind: "zoom", factor: ZOOM_STEP };
   if (key === "-") return { kind: "zoom", factor: 1 / ZOOM_STEP };
   if (key === "?") return { kind: "help" };
+  if (key === "b") return { kind: "brush" };
+  if (key === "[") return { kind: "brush-size", factor: 1 / BRUSH_STEP };
+  if (key === "]") return { kind: "brush-size", factor: BRUSH_STEP };
   return undefined;
 }
 
@@ -89,6 +98,11 @@ export const HELP: readonly { keys: string; does: string }[] = [
   { keys: "F or 0", does: "fit the shape in view" },
   { keys: "W", does: "wireframe" },
   { keys: "V", does: "velocity field arrows" },
+  {
+    keys: "B; drag on the shape",
+    does: "stiffness brush: paint stiff (blue) or soft (orange) regions; Alt-drag erases; B again to pose",
+  },
+  { keys: "[ and ]", does: "brush smaller, larger" },
   {
     keys: "Train (toolbar)",
     does:

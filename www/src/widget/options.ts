@@ -2,9 +2,10 @@
  * The widget's options, its methods and their deformer settings, and the events it sends:
  * what pages (and the custom element) see of the widget's configuration.
  */
-import type { DeformerOptions, Metrics, Outline, Timings, WasmSource } from "../core.js";
+import { limits, type DeformerOptions, type Metrics, type Outline, type Timings, type WasmSource } from "../core.js";
 import { coded } from "../internal/arrays.js";
 import type { RigTrainOptions } from "./rig.js";
+import { BRUSH_SIZE_RANGE, DEFAULT_BRUSH, type BrushSettings } from "./stiffness.js";
 
 /**
  * The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8),
@@ -91,6 +92,13 @@ export interface WidgetOptions {
   field?: boolean;
   /** Highlight flipped triangles (default true). */
   flipped?: boolean;
+  /**
+   * What a press on the shape does: `"pose"` (the default) adds and drags handles;
+   * `"stiffness"` paints stiffness with the brush (Alt-drag erases). Key B toggles.
+   */
+  tool?: WidgetTool;
+  /** The stiffness brush: radius in CSS pixels (2 to 400, default 24) and the value painted (0.001 to 1000, default 100). */
+  brush?: Partial<BrushSettings>;
   /** Longest handle move per substep, as a fraction of the shape's size (default 0.02). */
   maxStep?: number;
   /** Most substeps per animation frame (default 8); longer moves continue next frame. */
@@ -103,10 +111,16 @@ export interface WidgetOptions {
   storageKey?: string;
 }
 
+/** What a press on the shape does: pose with handles, or paint stiffness. */
+export type WidgetTool = "pose" | "stiffness";
+
 /** The settings a widget runs with (its options that can change while it runs). */
 export type WidgetSettings = Required<
-  Omit<WidgetOptions, "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm" | "operator">
->;
+  Omit<
+    WidgetOptions,
+    "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm" | "operator" | "brush"
+  >
+> & { brush: BrushSettings };
 
 /** A file the toolbar offers beside the built-in shapes. */
 export interface GalleryItem {
@@ -162,6 +176,8 @@ export const WIDGET_OPTIONS = [
   "maxStep",
   "maxSubsteps",
   "storageKey",
+  "tool",
+  "brush",
 ] as const satisfies readonly (keyof WidgetOptions)[];
 // Every option of the interface is in the list (a compile-time check).
 const everyOption: Record<Exclude<keyof WidgetOptions, (typeof WIDGET_OPTIONS)[number]>, never> = {};
@@ -195,7 +211,12 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     flipped: options.flipped ?? true,
     maxStep: options.maxStep ?? DEFAULTS.maxStep,
     maxSubsteps: options.maxSubsteps ?? DEFAULTS.maxSubsteps,
+    tool: options.tool ?? "pose",
+    brush: brushSettings(DEFAULT_BRUSH, options.brush ?? {}),
   };
+  if (settings.tool !== "pose" && settings.tool !== "stiffness") {
+    throw coded(new Error(`unknown tool "${String(settings.tool)}"; the tools are pose, stiffness`), "invalid-option");
+  }
   if (!Object.hasOwn(METHODS, settings.method)) {
     throw new Error(`unknown method "${settings.method}"; the methods are ${Object.keys(METHODS).join(", ")}`);
   }
@@ -203,6 +224,31 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     throw new Error("maxStep must be above 0 and maxSubsteps at least 1");
   }
   return settings;
+}
+
+/**
+ * `brush` over `base`, checked: a size (CSS pixels) within {@link BRUSH_SIZE_RANGE} and a
+ * value within the core's stiffness range (`limits().stiffness`); throws (code `invalid-option`)
+ * naming the bad one or an unknown key.
+ */
+export function brushSettings(base: BrushSettings, brush: Partial<BrushSettings>): BrushSettings {
+  const unknown = Object.keys(brush).find((key) => key !== "size" && key !== "value");
+  if (unknown !== undefined) {
+    throw coded(new Error(`unknown brush option \`${unknown}\`; the options are size, value`), "invalid-option");
+  }
+  const next = { ...base, ...brush };
+  const [low, high] = BRUSH_SIZE_RANGE;
+  if (!(next.size >= low && next.size <= high)) {
+    throw coded(new Error(`brush size ${next.size} is outside ${low} to ${high} pixels`), "invalid-option");
+  }
+  const [least, most] = limits().stiffness;
+  if (!(next.value >= least && next.value <= most)) {
+    throw coded(
+      new Error(`brush value ${next.value} is outside the stiffness range ${least} to ${most}`),
+      "invalid-option",
+    );
+  }
+  return next;
 }
 
 /** Deformer options of a widget method; lambda applies to the AKAP variants (and DefOp's AKAP) only. */

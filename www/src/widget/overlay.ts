@@ -1,10 +1,12 @@
 /**
- * The 2D overlay above the mesh: the outline, flipped triangles, the velocity field of the
+ * The 2D overlay above the mesh: painted stiffness as a tint and the brush's outline, the
+ * outline, flipped triangles, the velocity field of the
  * last frame (arrows, as in the paper's Figure 4), Cauchy-Green's cage and the handles; for
  * a trained rig, its training discs, handles outside them marked, and the ground truth's
  * outline as a ghost.
  */
 import { doubledArea } from "./geometry.js";
+import { stiffnessTint } from "./stiffness.js";
 import { toPixel, type View } from "./view.js";
 
 export interface OverlayHandle {
@@ -33,6 +35,10 @@ export interface OverlayScene {
   ghost?: ArrayLike<number>;
   /** Cauchy-Green's deformed cage (2 per vertex), drawn as a thin dashed polygon. */
   cage?: ArrayLike<number>;
+  /** Painted stiffness (one per triangle), drawn as a tint. */
+  stiffness?: ArrayLike<number>;
+  /** The brush's outline: centre and radius in shape units. */
+  brush?: { x: number; y: number; r: number };
 }
 
 /** Handle radius in CSS pixels. */
@@ -45,6 +51,8 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
   ctx.clearRect(0, 0, ctx.canvas.width, ctx.canvas.height);
   const p = scene.positions;
   const at = (v: number): [number, number] => toPixel(view, p[2 * v]!, p[2 * v + 1]!);
+
+  if (scene.stiffness) drawStiffness(ctx, scene.triangles, scene.stiffness, at);
 
   if (scene.showFlipped) {
     ctx.beginPath();
@@ -124,6 +132,18 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
 
   if (scene.field) drawField(ctx, p, scene.field, view, ratio);
 
+  if (scene.brush) {
+    const [x, y] = toPixel(view, scene.brush.x, scene.brush.y);
+    ctx.beginPath();
+    ctx.arc(x, y, scene.brush.r * view.scale, 0, 2 * Math.PI);
+    ctx.strokeStyle = "rgba(255, 255, 255, 0.9)";
+    ctx.lineWidth = 3 * ratio;
+    ctx.stroke();
+    ctx.strokeStyle = "rgba(20, 40, 90, 0.9)";
+    ctx.lineWidth = ratio;
+    ctx.stroke();
+  }
+
   for (const h of scene.handles) {
     const [x, y] = toPixel(view, h.x, h.y);
     const [tx, ty] = toPixel(view, h.targetX, h.targetY);
@@ -153,6 +173,37 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
       ctx.stroke();
       ctx.setLineDash([]);
     }
+  }
+}
+
+/** Triangles tinted by their stiffness, one path per distinct value. */
+function drawStiffness(
+  ctx: CanvasRenderingContext2D,
+  triangles: ArrayLike<number>,
+  stiffness: ArrayLike<number>,
+  at: (v: number) => [number, number],
+): void {
+  const byTint = new Map<string, number[]>();
+  for (let f = 0; f < stiffness.length; f++) {
+    const tint = stiffnessTint(stiffness[f]!);
+    if (tint === undefined) continue;
+    let faces = byTint.get(tint);
+    if (!faces) byTint.set(tint, (faces = []));
+    faces.push(f);
+  }
+  for (const [tint, faces] of byTint) {
+    ctx.beginPath();
+    for (const f of faces) {
+      const [ax, ay] = at(triangles[3 * f]!);
+      const [bx, by] = at(triangles[3 * f + 1]!);
+      const [cx, cy] = at(triangles[3 * f + 2]!);
+      ctx.moveTo(ax, ay);
+      ctx.lineTo(bx, by);
+      ctx.lineTo(cx, cy);
+      ctx.closePath();
+    }
+    ctx.fillStyle = tint;
+    ctx.fill();
   }
 }
 

@@ -37,6 +37,8 @@ export interface SavedWork {
   positions: Float64Array;
   atRest: boolean;
   handles: { point: MeshPoint; target: [number, number] }[];
+  /** Painted stiffness, one per triangle (absent: none). */
+  stiffness?: Float64Array;
 }
 
 const DATABASE = "akap";
@@ -148,7 +150,7 @@ export async function textureCanvas(document: Document, blob: Blob): Promise<HTM
 export function savedWork(
   settings: SavedSettings,
   shape: Shape,
-  pose: { positions: Float64Array; atRest: boolean; handles: SavedWork["handles"] },
+  pose: SavedPose,
   texture: Blob | undefined,
 ): SavedWork {
   const s = settings;
@@ -169,6 +171,8 @@ export function savedWork(
       region: s.region,
       compare: s.compare,
       training: { ...s.training },
+      tool: s.tool,
+      brush: { ...s.brush },
     },
     shape: shape.spec
       ? { kind: "builtin", spec: { ...shape.spec } }
@@ -184,6 +188,7 @@ export function savedWork(
     positions: pose.positions,
     atRest: pose.atRest,
     handles: pose.handles,
+    ...(pose.stiffness ? { stiffness: pose.stiffness } : {}),
   };
 }
 
@@ -219,8 +224,11 @@ export async function savedShape(
 export interface WorkSource {
   settings: SavedSettings;
   shape: Shape;
-  pose(): { positions: Float64Array; atRest: boolean; handles: SavedWork["handles"] };
+  pose(): SavedPose;
 }
+
+/** The pose part of the work: positions, handles and painted stiffness. */
+export type SavedPose = Pick<SavedWork, "positions" | "atRest" | "handles" | "stiffness">;
 
 /**
  * Saves the work a moment after the last change (a change only asks; the save comes
@@ -242,7 +250,10 @@ export async function restoreWork(
   if (!Object.hasOwn(METHODS, method)) throw new Error(`unknown method ${method}`);
   const before = { snapshot: posing.snapshot(), settings: { ...settings } };
   try {
+    // Work saved before the brush existed has no brush settings: the current ones stay.
     Object.assign(settings, saved.settings);
+    settings.brush = { ...(saved.settings.brush ?? before.settings.brush) };
+    settings.tool = saved.settings.tool ?? before.settings.tool;
     posing.install(restored);
     posing.restore({
       ...saved,

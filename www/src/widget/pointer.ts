@@ -5,6 +5,9 @@
  * or pen on an existing handle removes it, as does a double-click. Each pointer has its
  * own record, so several fingers drag several handles at once.
  *
+ * With the stiffness brush on, a press on the shape paints instead (with Alt, erases) until
+ * it is released; the pointer's place, pressed or not, is reported for the brush's outline.
+ *
  * The view: a press on the background, a middle-button press or any press while Space is
  * held pans; two fingers that are not both on handles pan and pinch-zoom (a finger that
  * had just added a handle gives it back when the second finger arrives); the wheel zooms
@@ -35,6 +38,14 @@ export interface PointerHost {
   removeAt(x: number, y: number): void;
   /** A press off the shape: clears the selection unless `additive`, ends the gesture. */
   pressedOff(additive: boolean): void;
+  /** Whether presses on the shape paint stiffness instead of posing (the brush is on). */
+  painting(): boolean;
+  /** A brush stroke (one per pointer) begins or goes on at a shape point; `erase` with Alt. */
+  paint(pointerId: number, x: number, y: number, erase: boolean): void;
+  /** The brush stroke of the pointer ends. */
+  paintEnd(pointerId: number): void;
+  /** Where a mouse or pen is over the overlay (shape units), undefined once it leaves. */
+  hover(at: [number, number] | undefined): void;
   /** Whether presses pan the view instead of posing (Space is held). */
   panMode(): boolean;
   /** Moves the view by (dx, dy) CSS pixels. */
@@ -51,8 +62,8 @@ const STILL_PIXELS = 6;
 const PINCH_WINDOW_MS = 350;
 
 interface Press {
-  /** Drags a handle, or moves the view. */
-  kind: "handle" | "view";
+  /** Drags a handle, paints, or moves the view. */
+  kind: "handle" | "paint" | "view";
   touch: boolean;
   start: [number, number];
   last: [number, number];
@@ -73,6 +84,7 @@ export class PointerInput {
     this.#listeners = [
       ["pointerdown", (e) => this.#down(e as PointerEvent)],
       ["pointermove", (e) => this.#move(e as PointerEvent)],
+      ["pointerleave", () => this.#host.hover(undefined)],
       ["pointerup", (e) => this.#up(e as PointerEvent)],
       ["pointercancel", (e) => this.#up(e as PointerEvent)],
       ["dblclick", (e) => this.#host.removeAt(...this.#shape(e as MouseEvent))],
@@ -104,6 +116,12 @@ export class PointerInput {
       return;
     }
     const [x, y] = this.#shape(e);
+    if (host.painting() && !(touch && this.#pinchWith())) {
+      host.beginGesture();
+      host.paint(e.pointerId, x, y, e.altKey);
+      this.#begin(e, { kind: "paint", touch, start: client, last: client, timer: undefined, added: 0 });
+      return;
+    }
     let index = host.handleAt(x, y);
     const existed = index >= 0;
     if (touch && !existed && this.#pinchWith()) {
@@ -164,12 +182,17 @@ export class PointerInput {
   }
 
   #move(e: PointerEvent): void {
+    if (e.pointerType !== "touch") this.#host.hover(this.#shape(e));
     const press = this.#presses.get(e.pointerId);
     if (!press) return;
     const previous = press.last;
     press.last = [e.clientX, e.clientY];
     if (press.kind === "handle") {
       this.#host.drag(e.pointerId, ...this.#shape(e));
+      return;
+    }
+    if (press.kind === "paint") {
+      this.#host.paint(e.pointerId, ...this.#shape(e), e.altKey);
       return;
     }
     const views = [...this.#presses.values()].filter((p) => p.kind === "view");
@@ -194,6 +217,7 @@ export class PointerInput {
     this.#presses.delete(e.pointerId);
     if (this.#element.hasPointerCapture(e.pointerId)) this.#element.releasePointerCapture(e.pointerId);
     if (press.kind === "handle") this.#host.release(e.pointerId);
+    if (press.kind === "paint") this.#host.paintEnd(e.pointerId);
   }
 
   #wheel(e: WheelEvent): void {

@@ -10,13 +10,14 @@
  * with smaller velocities. With the "defop" method and a trained {@link Rig} that fits the
  * shape and handles, a frame is instead one evaluation of the rig at the handles' targets.
  */
-import { Deformer, type DeformerOptions, type Timings } from "../core.js";
+import { Deformer, checkStiffness, type DeformerOptions, type Timings } from "../core.js";
 import { PointMapper } from "../import.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
 import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset, type WidgetSettings } from "./options.js";
 import { locate, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, type Session, type SessionEvent } from "./session.js";
+import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
 import type { Rig } from "./rig.js";
 import type { Shape } from "./shape.js";
 import type { Loaded } from "./sources.js";
@@ -48,6 +49,8 @@ export interface Snapshot {
   positions: Float64Array;
   atRest: boolean;
   handles: { point: MeshPoint; target: [number, number] }[];
+  /** The painted stiffness, one per triangle (a copy), or undefined for none. */
+  stiffness?: Float64Array | undefined;
 }
 
 /** What the posing tells the page. */
@@ -84,6 +87,14 @@ export class Posing {
   rig: Rig | undefined;
   /** Milliseconds of the last frame's rig evaluation (0 when the frame stepped the deformer). */
   evaluationMs = 0;
+  /**
+   * Each triangle's painted stiffness, or undefined for none (1 everywhere). It belongs to
+   * the shape: kept across methods, and given to the deformer whenever its method takes
+   * stiffness (AKAP and ARAP; {@link Deformer.hasStiffness}).
+   */
+  stiffness: Float64Array | undefined;
+  /** Painted since the deformer (and the recording) last had the painting. */
+  #stiffnessPending = false;
   /** The rig's last pose and the targets it was for (skipped when they have not moved). */
   #rigPose: Float64Array | undefined;
   #rigTargets: Float64Array | undefined;
@@ -123,6 +134,8 @@ export class Posing {
     this.deformer = deformer;
     this.#rigTargets = undefined;
     this.shape = shape;
+    this.stiffness = undefined;
+    this.#stiffnessPending = false;
     this.recorder.stop();
     this.#host.adopted(shape, deformer, refit);
   }
@@ -139,6 +152,8 @@ export class Posing {
     // throws, changing nothing, for a bad lambda.
     this.deformer.setOptions(options);
     this.record({ options });
+    // A method without stiffness dropped it; one with it gets the painting back.
+    if (this.stiffness) this.#sendStiffness();
     this.showMethod(method, lambda);
   }
 
@@ -162,6 +177,7 @@ export class Posing {
    */
   carryOver(shape: Shape, orders: Uint32Array[] | undefined): void {
     const old = { shape: this.shape, positions: this.deformer.positions(), atRest: this.atRest };
+    const stiffness = carryStiffness(this.stiffness, old.shape.mesh, shape.mesh, 0.05 * shape.size);
     const handles = this.handles.map((h) => ({
       rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
       target: h.target,
@@ -184,8 +200,65 @@ export class Posing {
         locate(rest, triangles, at[0], at[1], 0.05 * shape.size);
       if (point) this.handles.push({ ...newHandle(point), target: [...target] });
     }
+    this.stiffness = stiffness;
+    if (stiffness) this.#sendStiffness();
     this.applyHandles();
     this.#host.poseChanged();
+  }
+
+  // ---------------------------------------------------------------- stiffness
+
+  /**
+   * Paints every triangle (one value per triangle, checked as the core checks it), or none
+   * with undefined; the deformer gets it at once when its method takes stiffness. Throws,
+   * changing nothing, for bad values.
+   */
+  setStiffness(values: Float64Array | undefined): void {
+    if (values) checkStiffness(values, this.shape.mesh.triangleCount);
+    const previous = this.stiffness;
+    this.stiffness = values?.slice();
+    try {
+      this.#sendStiffness();
+    } catch (error) {
+      this.stiffness = previous;
+      throw error;
+    }
+  }
+
+  /**
+   * One dab of the brush at (x, y) in the pose on screen: `value` on the triangles whose
+   * centroids are within `radius` (shape units). The deformer gets the painting before the
+   * next step or when the stroke ends ({@link flushStiffness}), so a stroke is one change.
+   * Returns whether anything changed.
+   */
+  paint(x: number, y: number, radius: number, value: number): boolean {
+    const { stiffness, changed } = paintStiffness(
+      this.stiffness,
+      this.deformer.positionsView(),
+      this.shape.mesh.triangles,
+      x,
+      y,
+      radius,
+      value,
+    );
+    if (!changed) return false;
+    this.stiffness = stiffness;
+    this.#stiffnessPending = true;
+    return true;
+  }
+
+  /** Gives the deformer (and the recording) the painting if the brush changed it since. */
+  flushStiffness(): void {
+    if (this.#stiffnessPending) this.#sendStiffness();
+  }
+
+  #sendStiffness(): void {
+    this.#stiffnessPending = false;
+    if (!this.deformer.hasStiffness) return;
+    // An all-1 painting is none: the deformer is then exactly the unpainted one.
+    const values = unpainted(this.stiffness) ? undefined : this.stiffness;
+    this.deformer.setStiffness(values);
+    this.record({ stiffness: values?.slice() });
   }
 
   // ---------------------------------------------------------------- handles
@@ -290,6 +363,7 @@ export class Posing {
       positions: this.deformer.positions(),
       atRest: this.atRest,
       handles: this.handles.map((h) => ({ point: h.point, target: [...h.target] })),
+      stiffness: this.stiffness?.slice(),
     };
   }
 
@@ -309,6 +383,8 @@ export class Posing {
     this.deformer.setPositions(snapshot.positions);
     this.record({ positions: snapshot.positions });
     this.atRest = snapshot.atRest;
+    this.stiffness = snapshot.stiffness?.slice();
+    this.#sendStiffness();
     this.handles = snapshot.handles.map((h) => ({ ...newHandle(h.point), target: [...h.target] }));
     this.applyHandles();
     this.#host.poseChanged();
@@ -370,6 +446,7 @@ export class Posing {
    */
   advance(timings: Timings): number {
     this.evaluationMs = 0;
+    this.flushStiffness();
     const n = this.handles.length;
     if (n === 0) return 0;
     if (this.posingWithRig) return this.#evaluateRig(this.rig!);
@@ -485,6 +562,8 @@ export class Posing {
   startRecording(): void {
     const start: SessionEvent[] = this.atRest ? [{ reset: true }] : [{ positions: this.deformer.positions() }];
     if (this.handles.length > 0) start.push(this.handlesEvent());
+    this.flushStiffness();
+    if (this.deformer.hasStiffness && !unpainted(this.stiffness)) start.push({ stiffness: this.stiffness!.slice() });
     const { mesh, spec } = this.shape;
     this.recorder.start({ shape: spec, mesh, options: this.deformerOptions() }, start);
     this.#host.historyChanged();
@@ -515,6 +594,7 @@ export class Posing {
         this.install(shape);
       }
       this.applyOptions(session.data.options);
+      this.apply({ stiffness: undefined });
       this.apply({ reset: true });
       this.apply({ handles: { triangles: [], barycentric: [] } });
       let steps = 0;
@@ -553,6 +633,11 @@ export class Posing {
       this.atRest = false;
     } else if ("options" in event) {
       this.applyOptions(event.options);
+    } else if ("stiffness" in event) {
+      const values = event.stiffness ?? undefined;
+      this.deformer.setStiffness(values);
+      this.stiffness = values === undefined ? undefined : Float64Array.from(values);
+      this.#stiffnessPending = false;
     } else {
       this.deformer.reset();
       this.atRest = true;

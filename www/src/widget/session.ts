@@ -18,6 +18,7 @@
  *               { "step": [vx0, vy0, vx1, vy1, ...] },
  *               { "positions": [.. 2 per vertex ..] },
  *               { "options": { "method": "arap", "iterations": 10 } },
+ *               { "stiffness": [.. 1 per triangle ..] },
  *               { "reset": true } ] }
  * ```
  * `shape` names a built-in shape and how it was triangulated; a session of another shape
@@ -57,6 +58,7 @@ export type SessionEvent =
   | { step: Coordinates }
   | { positions: Coordinates }
   | { options: DeformerOptions }
+  | { stiffness: Coordinates | undefined | null }
   | { reset: true };
 
 /** A session's JSON, parsed. */
@@ -165,5 +167,7 @@ function add(recorder: rawTypes.SessionRecorder, event: SessionEvent): void {
   } else if ("step" in event) recorder.step(toFloat64(event.step, "velocities"));
   else if ("positions" in event) recorder.positions(toFloat64(event.positions, "positions"));
   else if ("options" in event) recorder.options(event.options);
-  else recorder.reset();
+  else if ("stiffness" in event) {
+    recorder.stiffness(event.stiffness == null ? undefined : toFloat64(event.stiffness, "stiffness"));
+  } else recorder.reset();
 }

@@ -37,7 +37,14 @@ export type Loaded =
       /** The SVG's filled paths, for exporting the art deformed as vectors. */
       vector?: VectorPath[];
     }
-  | { kind: "mesh"; name: string; mesh: MeshData; uvs: Float64Array | undefined };
+  | {
+      kind: "mesh";
+      name: string;
+      mesh: MeshData;
+      uvs: Float64Array | undefined;
+      /** Painted stiffness, one per triangle (JSON meshes). */
+      stiffness?: Float64Array;
+    };
 
 export type FileKind = "svg" | "image" | "obj" | "json";
 
@@ -86,7 +93,7 @@ async function read(file: Blob, name: string): Promise<Loaded> {
     }
     case "json": {
       const mesh = meshFromJson(await file.text());
-      return { kind: "mesh", name, mesh, uvs: mesh.uvs };
+      return { kind: "mesh", name, mesh, uvs: mesh.uvs, ...(mesh.stiffness ? { stiffness: mesh.stiffness } : {}) };
     }
   }
 }

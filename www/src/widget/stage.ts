@@ -21,6 +21,8 @@ import { toPixel } from "./view.js";
 export interface Extras {
   field?: Float64Array;
   ghost?: Float64Array;
+  /** The pointer over the shape while the brush is on (shape units): its outline is drawn there. */
+  brushAt?: [number, number] | undefined;
 }
 
 /**
@@ -158,6 +160,15 @@ export class Stage {
     const regions = rest
       ? Array.from({ length: rest.length / 2 }, (_, i) => ({ x: rest[2 * i]!, y: rest[2 * i + 1]!, r: radius! }))
       : undefined;
+    // Painted stiffness shows while the brush is on, and with the wireframe (structure).
+    const painting = settings.tool === "stiffness";
+    const stiffness = withHandles && (painting || settings.wireframe) ? posing.stiffness : undefined;
+    const brushAt = withHandles && painting ? extras.brushAt : undefined;
+    const brush = brushAt && {
+      x: brushAt[0],
+      y: brushAt[1],
+      r: (settings.brush.size * this.ratio) / this.camera.view.scale,
+    };
     const scene = {
       // Re-read: handlePositions() and cage() may have grown the memory and detached the view.
       positions: positions.length > 0 ? positions : deformer.positionsView(),
@@ -169,6 +180,8 @@ export class Stage {
       regions,
       ghost: rig && settings.compare ? extras.ghost : undefined,
       cage,
+      stiffness,
+      brush,
     };
     drawOverlay(ctx, scene, this.camera.view, this.ratio);
   }

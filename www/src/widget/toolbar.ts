@@ -1,10 +1,11 @@
 /**
  * The widget's toolbar: shape, density, method and lambda; display toggles; undo, redo,
- * reset, clear; record, replay, save and load sessions; exports; a trained rig's training
+ * reset, clear; the stiffness brush; record, replay, save and load sessions; exports; a trained rig's training
  * (energy, basis, samples, radius), files and display. Every control has a label and is
  * reachable with the keyboard.
  */
 import type { RigTrainOptions } from "./rig.js";
+import { BRUSH_SIZE_RANGE, BRUSH_VALUES, type BrushSettings } from "./stiffness.js";
 
 /** The display toggles. */
 export interface DisplayToggles {
@@ -30,6 +31,10 @@ export interface ToolbarActions {
   part(index: number): void;
   method(method: string, lambda: number): void;
   display(options: DisplayToggles): void;
+  /** The stiffness brush on (`"stiffness"`) or off (`"pose"`), and what it paints. */
+  brush(tool: "pose" | "stiffness", brush: BrushSettings): void;
+  /** Every triangle back to stiffness 1. */
+  clearStiffness(): void;
   /** Train a rig; `radiusPercent` of the shape's bounding-box diagonal, undefined for the default. */
   train(options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined): void;
   saveRig(): void;
@@ -55,6 +60,8 @@ export interface ToolbarSettings extends DisplayToggles {
   lambda: number;
   hud: boolean;
   training: RigTrainOptions;
+  tool: "pose" | "stiffness";
+  brush: BrushSettings;
 }
 
 export interface Toolbar {
@@ -225,6 +232,31 @@ export function buildToolbar(
   const hud = checkbox(view, "HUD", s.hud, () => actions.hud(hud.checked));
   hud.name = "hud";
 
+  const stiffnessGroup = group("Stiffness");
+  const setBrush = (): void =>
+    actions.brush(brushOn.checked ? "stiffness" : "pose", {
+      size: Number(brushSize.value),
+      value: Number(brushValue.value),
+    });
+  const brushOn = checkbox(stiffnessGroup, "Brush (B)", s.tool === "stiffness", setBrush);
+  brushOn.name = "brush";
+  brushOn.parentElement!.title = "Paint stiffness on the shape: stiff regions bend less (Alt-drag erases)";
+  const brushValue = select(
+    BRUSH_VALUES.map((v) => ({
+      value: String(v),
+      label: v === 1 ? "×1 (erase)" : v < 1 ? `×${v} (softer)` : `×${v}`,
+    })),
+    String(s.brush.value),
+  );
+  brushValue.name = "brush-value";
+  labelled(stiffnessGroup, "Paint ", brushValue);
+  const brushSize = number(s.brush.size, BRUSH_SIZE_RANGE[0], BRUSH_SIZE_RANGE[1], 1);
+  brushSize.name = "brush-size";
+  labelled(stiffnessGroup, "Size px ", brushSize);
+  brushValue.addEventListener("change", setBrush);
+  brushSize.addEventListener("change", setBrush);
+  button(stiffnessGroup, "Clear", "Every triangle back to stiffness 1", actions.clearStiffness, "clear-stiffness");
+
   const rigGroup = group("Trained rig");
   const energy = select(
     [
@@ -369,6 +401,15 @@ export function buildToolbar(
       spatial.value = String(settings.training.spatial ?? 0);
       method.value = settings.method;
       lambda.value = String(settings.lambda);
+      brushOn.checked = settings.tool === "stiffness";
+      brushSize.value = String(settings.brush.size);
+      if (!BRUSH_VALUES.some((v) => String(v) === brushValue.value && v === settings.brush.value)) {
+        // A value set through the API that the list lacks is shown as one more choice.
+        const value = String(settings.brush.value);
+        if (!Array.from(brushValue.options).some((o) => o.value === value))
+          brushValue.append(new Option(`×${value}`, value));
+        brushValue.value = value;
+      }
     },
   };
 }

@@ -26,12 +26,14 @@ import { posedMesh, posedSvg } from "./export.js";
 import {
   DEFAULTS,
   METHODS,
+  brushSettings,
   widgetSettings,
   type GalleryItem,
   type MethodPreset,
   type PoseDetail,
   type WidgetOptions,
   type WidgetSettings,
+  type WidgetTool,
 } from "./options.js";
 import { WorkKeeper, WorkStore, restoreWork, savedShape, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
@@ -57,10 +59,19 @@ import {
 import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
+import { BRUSH_SIZE_RANGE, unpainted, type BrushSettings } from "./stiffness.js";
 import type { Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
 
-export { METHODS, type GalleryItem, type MethodPreset, type PoseDetail, type WidgetOptions } from "./options.js";
+export {
+  METHODS,
+  type GalleryItem,
+  type MethodPreset,
+  type PoseDetail,
+  type WidgetOptions,
+  type WidgetTool,
+} from "./options.js";
+export type { BrushSettings } from "./stiffness.js";
 export type { RigInfo, WidgetTrainOptions } from "./rigging.js";
 
 /** Frames without input after which the loop stops even if pins have not settled. */
@@ -91,6 +102,8 @@ export class Widget {
   #metrics: Metrics = { areaDistortion: 2, angleDistortion: 2, flipped: 0 };
   #destroyed = false;
   #idleWaiters: (() => void)[] = [];
+  /** Where the brush's outline is drawn (the pointer over the shape), if anywhere. */
+  #brushAt: [number, number] | undefined;
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
     this.target = target;
@@ -295,6 +308,67 @@ export class Widget {
   /** Changes the method and/or lambda. */
   setMethod(method: MethodPreset, lambda = this.#settings.lambda): void {
     this.#posing.setMethod(method, lambda);
+  }
+
+  // ---------------------------------------------------------------- stiffness
+
+  /** What a press on the shape does: pose, or paint stiffness with the brush. */
+  get tool(): WidgetTool {
+    return this.#settings.tool;
+  }
+
+  /** The brush's size (CSS pixels) and the value it paints. */
+  get brush(): BrushSettings {
+    return { ...this.#settings.brush };
+  }
+
+  /**
+   * Turns the stiffness brush on (`"stiffness"`) or off (`"pose"`) and/or changes it;
+   * throws (code `invalid-option`), changing nothing, for an unknown tool or a brush out of
+   * range.
+   */
+  setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
+    if (tool !== "pose" && tool !== "stiffness") throw new Error(`unknown tool "${String(tool)}"`);
+    this.#settings.brush = brushSettings(this.#settings.brush, brush);
+    this.#settings.tool = tool;
+    this.#toolbar?.sync(this.#settings);
+    if (tool === "stiffness" && !this.#posing.deformer.hasStiffness) {
+      this.#stage.status.info(
+        `${METHODS[this.#settings.method].label} has no stiffness: the painting is kept, and used by AKAP and ARAP.`,
+      );
+    }
+    this.#draw();
+  }
+
+  /** Each triangle's painted stiffness (a copy), or undefined when none is painted. */
+  stiffness(): Float64Array | undefined {
+    const s = this.#posing.stiffness;
+    return unpainted(s) ? undefined : s!.slice();
+  }
+
+  /**
+   * Paints every triangle (one value per triangle, 0.001 to 1000; undefined for none), as
+   * one undoable step; throws, changing nothing, for bad values. Used by AKAP and ARAP; kept
+   * (and shown) under the other methods.
+   */
+  setStiffness(values: ArrayLike<number> | undefined): void {
+    const copy = values === undefined ? undefined : Float64Array.from(values);
+    this.#gesture(() => this.#posing.setStiffness(copy));
+  }
+
+  /**
+   * One dab of the brush at the shape point (x, y) in the pose on screen, as a stroke of
+   * one point: `value` (default the brush's) on the triangles whose centroids lie within
+   * `radius` shape units (default the brush's size on screen). Undoable.
+   */
+  paintAt(x: number, y: number, value = this.#settings.brush.value, radius?: number): void {
+    brushSettings(this.#settings.brush, { value });
+    const r = radius ?? (this.#settings.brush.size * this.#stage.ratio) / this.#stage.camera.view.scale;
+    if (!(r > 0)) throw new RangeError(`the brush radius must be above 0, not ${r}`);
+    this.#gesture(() => {
+      this.#posing.paint(x, y, r, value);
+      this.#posing.flushStiffness();
+    });
   }
 
   /** Zooms the view by `factor` about its centre, or fits the pose on screen into it (`"fit"`). */
@@ -543,7 +617,7 @@ export class Widget {
 
   /** The current pose as JSON (`positions`, `triangles`, `uvs`) or OBJ text. */
   exportMesh(format: "json" | "obj"): string {
-    return posedMesh(this.#posing.shape, this.#posing.deformer.positions(), format);
+    return posedMesh(this.#posing.shape, this.#posing.deformer.positions(), format, this.stiffness());
   }
 
   /** The pose as an SVG document: an imported SVG's own paths moved with the mesh, else the outline. */
@@ -567,7 +641,7 @@ export class Widget {
     const shape = meshOutline(builtinShape(name), name, DEFAULTS.vertices, DEFAULTS.minAngle);
     this.#gesture(() => {
       Object.assign(this.#settings, { vertices: DEFAULTS.vertices, minAngle: DEFAULTS.minAngle });
-      Object.assign(this.#settings, { wireframe: false, field: false, flipped: true, paperMode: false });
+      Object.assign(this.#settings, { wireframe: false, field: false, flipped: true, paperMode: false, tool: "pose" });
       this.#posing.showMethod(DEFAULTS.method, DEFAULTS.lambda);
       this.#posing.parts = undefined;
       this.#posing.install(shape);
@@ -622,6 +696,7 @@ export class Widget {
     this.#gesture(() => {
       this.#posing.parts = loaded.kind === "outlines" ? { loaded, index } : undefined;
       this.#posing.install(prepared.shape, prepared.orders);
+      if (loaded.kind === "mesh" && loaded.stiffness) this.#posing.setStiffness(loaded.stiffness);
     });
     if (loaded.kind === "outlines" && loaded.parts.length > 1) {
       this.#stage.status.info(
@@ -767,6 +842,7 @@ export class Widget {
     this.#stage.render(this.#posing, this.#settings, {
       field: this.#lastField,
       ghost: this.#rigging.comparison?.positions,
+      brushAt: this.#brushAt,
     });
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
     this.#keeper?.changed();
@@ -796,6 +872,16 @@ export class Widget {
       toggleDisplay: (what) => {
         this.setDisplay({ [what]: !this.#settings[what] });
         this.#toolbar?.sync(this.#settings);
+      },
+      toggleBrush: () => this.setTool(this.#settings.tool === "stiffness" ? "pose" : "stiffness"),
+      resizeBrush: (factor) => {
+        const [low, high] = BRUSH_SIZE_RANGE;
+        const size = Math.round(Math.min(high, Math.max(low, this.#settings.brush.size * factor)));
+        this.setTool(this.#settings.tool, { size });
+      },
+      brushAt: (at) => {
+        this.#brushAt = at;
+        if (this.#settings.tool === "stiffness") this.#draw();
       },
       help: (open) => this.#toggleHelp(open),
       helpOpen: () => this.#stage.help.open,
