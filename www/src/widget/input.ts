@@ -4,6 +4,7 @@
  * and files dropped on the stage. What each gesture changes is the posing's and the
  * widget's; this file only routes.
  */
+import type { Brush } from "./brush.js";
 import type { Camera } from "./camera.js";
 import { keyCommand, keyFocus } from "./keys.js";
 import { HANDLE_RADIUS } from "./overlay.js";
@@ -34,12 +35,8 @@ export interface InputHost {
   redo(): void;
   zoom(factor: number | "fit"): void;
   toggleDisplay(what: "wireframe" | "field"): void;
-  /** Turns the stiffness brush on or off (B). */
-  toggleBrush(): void;
-  /** Scales the brush's size ([ and ]). */
-  resizeBrush(factor: number): void;
-  /** Where the brush's outline is drawn (the pointer over the shape), or nowhere. */
-  brushAt(at: [number, number] | undefined): void;
+  /** The stiffness brush: on and off (B), its size ([ and ]), its outline at the pointer. */
+  readonly brush: Brush;
   /** Opens or closes the help (toggles without an argument); whether it is open. */
   help(open?: boolean): void;
   helpOpen(): boolean;
@@ -102,7 +99,7 @@ export class WidgetInput {
         if (posing.paint(x, y, (size * host.ratio()) / host.camera.view.scale, erase ? 1 : value)) {
           posing.markChanged();
         }
-        host.brushAt([x, y]);
+        host.brush.hover([x, y]);
       },
       paintEnd: () => {
         try {
@@ -112,7 +109,7 @@ export class WidgetInput {
           host.draw();
         }
       },
-      hover: (at) => host.brushAt(at),
+      hover: (at) => host.brush.hover(at),
       panMode: () => this.#spaceHeld,
       pan: (dx, dy) => {
         host.camera.pan(dx * host.ratio(), dy * host.ratio());
@@ -209,10 +206,10 @@ export class WidgetInput {
         host.help();
         break;
       case "brush":
-        host.toggleBrush();
+        host.brush.toggle();
         break;
       case "brush-size":
-        host.resizeBrush(command.factor);
+        host.brush.resize(command.factor);
         break;
     }
   }

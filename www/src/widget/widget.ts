@@ -26,7 +26,6 @@ import { posedMesh, posedSvg } from "./export.js";
 import {
   DEFAULTS,
   METHODS,
-  brushSettings,
   widgetSettings,
   type GalleryItem,
   type MethodPreset,
@@ -59,7 +58,8 @@ import {
 import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
-import { BRUSH_SIZE_RANGE, unpainted, type BrushSettings } from "./stiffness.js";
+import { Brush } from "./brush.js";
+import { unpainted, type BrushSettings } from "./stiffness.js";
 import type { Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
 
@@ -102,8 +102,7 @@ export class Widget {
   #metrics: Metrics = { areaDistortion: 2, angleDistortion: 2, flipped: 0 };
   #destroyed = false;
   #idleWaiters: (() => void)[] = [];
-  /** Where the brush's outline is drawn (the pointer over the shape), if anywhere. */
-  #brushAt: [number, number] | undefined;
+  readonly #brush: Brush;
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
     this.target = target;
@@ -171,6 +170,14 @@ export class Widget {
     this.#root.append(this.#stage.element);
     this.#root.dataset.renderer = this.#stage.renderer.kind;
 
+    this.#brush = new Brush({
+      settings: this.#settings,
+      posing: this.#posing,
+      stage: this.#stage,
+      toolbar: this.#toolbar,
+      draw: () => this.#draw(),
+      gesture: (change) => this.#gesture(change),
+    });
     this.#input = this.#bindInput();
     this.#resizeObserver = new ResizeObserver(() => this.#resize());
     target.append(this.#host);
@@ -328,16 +335,7 @@ export class Widget {
    * range.
    */
   setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
-    if (tool !== "pose" && tool !== "stiffness") throw new Error(`unknown tool "${String(tool)}"`);
-    this.#settings.brush = brushSettings(this.#settings.brush, brush);
-    this.#settings.tool = tool;
-    this.#toolbar?.sync(this.#settings);
-    if (tool === "stiffness" && !this.#posing.deformer.hasStiffness) {
-      this.#stage.status.info(
-        `${METHODS[this.#settings.method].label} has no stiffness: the painting is kept, and used by AKAP and ARAP.`,
-      );
-    }
-    this.#draw();
+    this.#brush.setTool(tool, brush);
   }
 
   /** Each triangle's painted stiffness (a copy), or undefined when none is painted. */
@@ -362,13 +360,7 @@ export class Widget {
    * `radius` shape units (default the brush's size on screen). Undoable.
    */
   paintAt(x: number, y: number, value = this.#settings.brush.value, radius?: number): void {
-    brushSettings(this.#settings.brush, { value });
-    const r = radius ?? (this.#settings.brush.size * this.#stage.ratio) / this.#stage.camera.view.scale;
-    if (!(r > 0)) throw new RangeError(`the brush radius must be above 0, not ${r}`);
-    this.#gesture(() => {
-      this.#posing.paint(x, y, r, value);
-      this.#posing.flushStiffness();
-    });
+    this.#brush.paintAt(x, y, value, radius);
   }
 
   /** Zooms the view by `factor` about its centre, or fits the pose on screen into it (`"fit"`). */
@@ -842,7 +834,7 @@ export class Widget {
     this.#stage.render(this.#posing, this.#settings, {
       field: this.#lastField,
       ghost: this.#rigging.comparison?.positions,
-      brushAt: this.#brushAt,
+      brushAt: this.#brush.at,
     });
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
     this.#keeper?.changed();
@@ -873,16 +865,7 @@ export class Widget {
         this.setDisplay({ [what]: !this.#settings[what] });
         this.#toolbar?.sync(this.#settings);
       },
-      toggleBrush: () => this.setTool(this.#settings.tool === "stiffness" ? "pose" : "stiffness"),
-      resizeBrush: (factor) => {
-        const [low, high] = BRUSH_SIZE_RANGE;
-        const size = Math.round(Math.min(high, Math.max(low, this.#settings.brush.size * factor)));
-        this.setTool(this.#settings.tool, { size });
-      },
-      brushAt: (at) => {
-        this.#brushAt = at;
-        if (this.#settings.tool === "stiffness") this.#draw();
-      },
+      brush: this.#brush,
       help: (open) => this.#toggleHelp(open),
       helpOpen: () => this.#stage.help.open,
       dropped: (file) => this.loadFile(file).catch((error: unknown) => this.#showError(error)),

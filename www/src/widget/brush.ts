@@ -1,0 +1,84 @@
+/**
+ * The widget's stiffness brush: which tool a press on the shape uses (pose or paint), the
+ * brush's size and value, where its outline is drawn, and the dabs the API makes. What a
+ * dab paints is {@link Posing.paint}'s; this file is the page side of it.
+ */
+import { METHODS, brushSettings, type WidgetSettings, type WidgetTool } from "./options.js";
+import type { Posing } from "./posing.js";
+import type { Stage } from "./stage.js";
+import { BRUSH_SIZE_RANGE, type BrushSettings } from "./stiffness.js";
+import type { Toolbar } from "./toolbar.js";
+
+/** What the brush needs of the widget. */
+export interface BrushHost {
+  readonly settings: WidgetSettings;
+  readonly posing: Posing;
+  readonly stage: Stage;
+  readonly toolbar: Toolbar | undefined;
+  draw(): void;
+  /** Runs one undoable change. */
+  gesture(change: () => void): void;
+}
+
+export class Brush {
+  /** Where the brush's outline is drawn (the pointer over the shape, shape units), if anywhere. */
+  at: [number, number] | undefined;
+  readonly #host: BrushHost;
+
+  constructor(host: BrushHost) {
+    this.#host = host;
+  }
+
+  /**
+   * Turns the brush on (`"stiffness"`) or off (`"pose"`) and/or changes it; throws (code
+   * `invalid-option`), changing nothing, for an unknown tool or a brush out of range.
+   */
+  setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
+    const { settings, posing, stage, toolbar } = this.#host;
+    if (tool !== "pose" && tool !== "stiffness") throw new Error(`unknown tool "${String(tool)}"`);
+    settings.brush = brushSettings(settings.brush, brush);
+    settings.tool = tool;
+    toolbar?.sync(settings);
+    if (tool === "stiffness" && !posing.deformer.hasStiffness) {
+      stage.status.info(
+        `${METHODS[settings.method].label} has no stiffness: the painting is kept, and used by AKAP and ARAP.`,
+      );
+    }
+    this.#host.draw();
+  }
+
+  /** The brush on or off (B). */
+  toggle(): void {
+    this.setTool(this.#host.settings.tool === "stiffness" ? "pose" : "stiffness");
+  }
+
+  /** The brush's size times `factor`, within its range ([ and ]). */
+  resize(factor: number): void {
+    const [low, high] = BRUSH_SIZE_RANGE;
+    const size = Math.round(Math.min(high, Math.max(low, this.#host.settings.brush.size * factor)));
+    this.setTool(this.#host.settings.tool, { size });
+  }
+
+  /** The pointer is over the shape at `at` (or gone): the outline follows it. */
+  hover(at: [number, number] | undefined): void {
+    this.at = at;
+    if (this.#host.settings.tool === "stiffness") this.#host.draw();
+  }
+
+  /** The brush's radius in shape units: its size in CSS pixels at the current zoom. */
+  radius(): number {
+    const { stage, settings } = this.#host;
+    return (settings.brush.size * stage.ratio) / stage.camera.view.scale;
+  }
+
+  /** One dab at (x, y) as a stroke of one point (see `Widget.paintAt`). */
+  paintAt(x: number, y: number, value: number, radius = this.radius()): void {
+    const { posing, settings } = this.#host;
+    brushSettings(settings.brush, { value });
+    if (!(radius > 0)) throw new RangeError(`the brush radius must be above 0, not ${radius}`);
+    this.#host.gesture(() => {
+      posing.paint(x, y, radius, value);
+      posing.flushStiffness();
+    });
+  }
+}
