@@ -87,6 +87,7 @@ export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions
     display: guard((options: DisplayToggles) => widget.setDisplay(options)),
     brush: guard((tool: "pose" | "stiffness", brush: BrushSettings) => widget.setTool(tool, brush)),
     clearStiffness: guard(() => widget.setStiffness(undefined)),
+    reorder: guard((step: 1 | -1) => (step > 0 ? widget.bringForward() : widget.sendBack())),
     train: (options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined) => {
       const run = async () => {
         const mesh = widget.mesh;

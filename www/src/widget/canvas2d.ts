@@ -37,6 +37,10 @@ export class Canvas2dRenderer implements MeshRenderer {
     this.#uvs = uvs;
   }
 
+  setTriangles(triangles: Uint32Array): void {
+    this.#triangles = triangles;
+  }
+
   setTexture(image: TexImageSource): void {
     this.#texture = drawable(this.#ctx.canvas.ownerDocument, image);
   }

@@ -4,6 +4,8 @@
  */
 import { PointMapper, meshToJson, meshToObj, pathData, type VectorPath } from "../import.js";
 import { boundaryLoops } from "./geometry.js";
+import { drawOrder, type Layering } from "./layers.js";
+import { locate } from "./picking.js";
 import { bounds } from "./view.js";
 
 /** The fill of exported shapes and of vector art whose colour the importer does not know. */
@@ -80,30 +82,57 @@ function escapeAttribute(text: string): string {
 /**
  * A shape in a pose (`positions`, a copy: the writer allocates in the memory a view of it
  * would see) as JSON or OBJ text, with its texture coordinates, and in JSON its painted
- * `stiffness` (OBJ has no place for it): the core's writers.
+ * `stiffness` (OBJ has no place for it): the core's writers. With a depth order (`layers`)
+ * the triangles are written back to front, as they are drawn (and the stiffness with them).
  */
 export function posedMesh(
   shape: { mesh: { triangles: Uint32Array }; uvs: ArrayLike<number> },
   positions: Float64Array,
   format: "json" | "obj",
-  stiffness?: Float64Array,
+  extras: { stiffness?: Float64Array | undefined; layers?: Layering | undefined } = {},
 ): string {
-  const pose = { positions, triangles: shape.mesh.triangles, uvs: Float64Array.from(shape.uvs) };
-  return format === "json" ? meshToJson({ ...pose, ...(stiffness ? { stiffness } : {}) }) : meshToObj(pose);
+  const { triangles, order } = backToFront(shape.mesh.triangles, extras.layers);
+  const pose = { positions, triangles, uvs: Float64Array.from(shape.uvs) };
+  if (format === "obj") return meshToObj(pose);
+  const stiffness = extras.stiffness && order.map((t) => extras.stiffness![t]!);
+  return meshToJson({ ...pose, ...(stiffness ? { stiffness } : {}) });
+}
+
+/** The triangles in drawing order, and the original index of each. */
+function backToFront(
+  triangles: Uint32Array,
+  layers: Layering | undefined,
+): { triangles: Uint32Array; order: number[] } {
+  const order = Array.from({ length: triangles.length / 3 }, (_, t) => t);
+  if (!layers) return { triangles, order };
+  order.sort((a, b) => layers.triangles[a]! - layers.triangles[b]! || a - b);
+  return { triangles: drawOrder(triangles, layers), order };
 }
 
 /**
  * The SVG of a shape in a pose: an imported SVG's own paths, their points carried through the
- * mesh (vector art stays vector), or else the posed outline.
+ * mesh (vector art stays vector), or else the posed outline. With a depth order (`layers`)
+ * the paths are written back to front, each in the layer of the triangle under the middle of
+ * its points at rest (the outline is one path, filled where any part is).
  */
 export function posedSvg(
   mesh: { positions: Float64Array; triangles: Uint32Array; boundaryEdges: ArrayLike<number> },
   vector: readonly VectorPath[] | undefined,
   positions: Float64Array,
+  layers?: Layering,
 ): string {
   if (!vector) return outlineSvg(positions, mesh.boundaryEdges);
+  const layer = (path: VectorPath): number => {
+    if (!layers) return 0;
+    const p = path.points;
+    const b = bounds(p);
+    const middle = locate(mesh.positions, mesh.triangles, (b.minX + b.maxX) / 2, (b.minY + b.maxY) / 2, Infinity);
+    return middle ? layers.triangles[middle.triangle]! : 0;
+  };
+  const ordered = vector.map((path, i) => ({ path, i, layer: layer(path) }));
+  ordered.sort((a, b) => a.layer - b.layer || a.i - b.i);
   return vectorSvg(
-    vector.map((path) => {
+    ordered.map(({ path }) => {
       const mapper = new PointMapper(mesh.positions, mesh.triangles, path.points);
       try {
         return { path, points: mapper.map(positions) };

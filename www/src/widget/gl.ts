@@ -20,6 +20,8 @@ export interface MeshRenderer {
   readonly kind: "webgl2" | "2d";
   /** Triangles (3 indices each), every edge once (2 each), texture coordinates (2 per vertex). */
   setMesh(triangles: Uint32Array, edges: Uint32Array, uvs: Float32Array): void;
+  /** The same triangles in another drawing order (back to front: depth order). */
+  setTriangles(triangles: Uint32Array): void;
   setTexture(image: TexImageSource): void;
   draw(positions: ArrayLike<number>, view: View, options: RenderOptions): void;
   destroy(): void;
@@ -110,6 +112,13 @@ export class GlRenderer implements MeshRenderer {
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, edges, gl.STATIC_DRAW);
     this.#triangleCount = triangles.length;
     this.#edgeCount = edges.length;
+  }
+
+  setTriangles(triangles: Uint32Array): void {
+    const gl = this.#gl;
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.#triangleBuffer);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, triangles, gl.STATIC_DRAW);
+    this.#triangleCount = triangles.length;
   }
 
   setTexture(image: TexImageSource): void {

@@ -35,6 +35,8 @@ export interface InputHost {
   redo(): void;
   zoom(factor: number | "fit"): void;
   toggleDisplay(what: "wireframe" | "field"): void;
+  /** The selected handles' parts to the front (1) or the back (-1). */
+  reorder(step: 1 | -1): void;
   /** The stiffness brush: on and off (B), its size ([ and ]), its outline at the pointer. */
   readonly brush: Brush;
   /** Opens or closes the help (toggles without an argument); whether it is open. */
@@ -204,6 +206,9 @@ export class WidgetInput {
         break;
       case "help":
         host.help();
+        break;
+      case "layer":
+        host.reorder(command.step);
         break;
       case "brush":
         host.brush.toggle();

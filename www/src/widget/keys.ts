@@ -18,7 +18,9 @@ export type KeyCommand =
   /** The stiffness brush on or off. */
   | { kind: "brush" }
   /** The brush's size times `factor`. */
-  | { kind: "brush-size"; factor: number };
+  | { kind: "brush-size"; factor: number }
+  /** The selected handles' parts in front of the others (1) or behind them (-1). */
+  | { kind: "layer"; step: 1 | -1 };
 
 export interface KeyPress {
   key: string;
@@ -44,6 +46,8 @@ export function keyCommand(e: KeyPress, focus: KeyFocus = "other"): KeyCommand |
   if (focus === "control" && (key === " " || key === "enter")) return undefined;
   if (mod && key === "z") return { kind: e.shiftKey ? "redo" : "undo" };
   if (mod && key === "y") return { kind: "redo" };
+  if (mod && key === "]") return { kind: "layer", step: 1 };
+  if (mod && key === "[") return { kind: "layer", step: -1 };
   if (mod || e.altKey) return undefined;
   if (key === "delete" || key === "backspace") return { kind: "delete" };
   const step = e.shiftKey ? 10 : 1;
@@ -62,6 +66,8 @@ export function keyCommand(e: KeyPress, focus: KeyFocus = "other"): KeyCommand |
   if (key === "+" || key === "=") return { kind: "zoom", factor: ZOOM_STEP };
   if (key === "-") return { kind: "zoom", factor: 1 / ZOOM_STEP };
   if (key === "?") return { kind: "help" };
+  if (key === "pageup") return { kind: "layer", step: 1 };
+  if (key === "pagedown") return { kind: "layer", step: -1 };
   if (key === "b") return { kind: "brush" };
   if (key === "[") return { kind: "brush-size", factor: 1 / BRUSH_STEP };
   if (key === "]") return { kind: "brush-size", factor: BRUSH_STEP };
@@ -103,6 +109,10 @@ export const HELP: readonly { keys: string; does: string }[] = [
     does: "stiffness brush: paint stiff (blue) or soft (orange) regions; Alt-drag erases; B again to pose",
   },
   { keys: "[ and ]", does: "brush smaller, larger" },
+  {
+    keys: "Ctrl+] or Page Up, Ctrl+[ or Page Down",
+    does: "bring the selected handle's part in front of the others, send it behind (a dragged part comes to the front by itself)",
+  },
   {
     keys: "Train (toolbar)",
     does:

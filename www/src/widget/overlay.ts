@@ -6,6 +6,7 @@
  * outline as a ghost.
  */
 import { doubledArea } from "./geometry.js";
+import type { Layering } from "./layers.js";
 import { stiffnessTint } from "./stiffness.js";
 import { toPixel, type View } from "./view.js";
 
@@ -35,6 +36,8 @@ export interface OverlayScene {
   ghost?: ArrayLike<number>;
   /** Cauchy-Green's deformed cage (2 per vertex), drawn as a thin dashed polygon. */
   cage?: ArrayLike<number>;
+  /** The depth order of the parts: each layer's outline is hidden where a layer in front covers it. */
+  layers?: Layering | undefined;
   /** Painted stiffness (one per triangle), drawn as a tint. */
   stiffness?: ArrayLike<number>;
   /** The brush's outline: centre and radius in shape units. */
@@ -51,6 +54,8 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
   ctx.clearRect(0, 0, ctx.canvas.width, ctx.canvas.height);
   const p = scene.positions;
   const at = (v: number): [number, number] => toPixel(view, p[2 * v]!, p[2 * v + 1]!);
+
+  drawOutline(ctx, scene, at, ratio);
 
   if (scene.stiffness) drawStiffness(ctx, scene.triangles, scene.stiffness, at);
 
@@ -71,19 +76,7 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
     ctx.fill();
   }
 
-  ctx.beginPath();
   const e = scene.boundaryEdges;
-  for (let i = 0; i + 1 < e.length; i += 2) {
-    const [ax, ay] = at(e[i]!);
-    const [bx, by] = at(e[i + 1]!);
-    ctx.moveTo(ax, ay);
-    ctx.lineTo(bx, by);
-  }
-  ctx.strokeStyle = "#5a2d0c";
-  ctx.lineWidth = 2 * ratio;
-  ctx.lineJoin = "round";
-  ctx.stroke();
-
   if (scene.ghost) {
     const g = scene.ghost;
     ctx.beginPath();
@@ -173,6 +166,49 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
       ctx.stroke();
       ctx.setLineDash([]);
     }
+  }
+}
+
+/**
+ * The outline: the boundary edges, layer by layer from the back; before each layer's
+ * edges are drawn, what its triangles cover of the outlines behind is erased.
+ */
+function drawOutline(
+  ctx: CanvasRenderingContext2D,
+  scene: OverlayScene,
+  at: (v: number) => [number, number],
+  ratio: number,
+): void {
+  const { boundaryEdges: e, triangles: t, layers } = scene;
+  ctx.strokeStyle = "#5a2d0c";
+  ctx.lineWidth = 2 * ratio;
+  ctx.lineJoin = "round";
+  for (const layer of layers?.order ?? [0]) {
+    if (layers && layer !== layers.order[0]) {
+      ctx.beginPath();
+      for (let f = 0; f < layers.triangles.length; f++) {
+        if (layers.triangles[f] !== layer) continue;
+        const [ax, ay] = at(t[3 * f]!);
+        const [bx, by] = at(t[3 * f + 1]!);
+        const [cx, cy] = at(t[3 * f + 2]!);
+        ctx.moveTo(ax, ay);
+        ctx.lineTo(bx, by);
+        ctx.lineTo(cx, cy);
+        ctx.closePath();
+      }
+      ctx.globalCompositeOperation = "destination-out";
+      ctx.fill();
+      ctx.globalCompositeOperation = "source-over";
+    }
+    ctx.beginPath();
+    for (let i = 0; i + 1 < e.length; i += 2) {
+      if (layers && layers.edges[i / 2] !== layer) continue;
+      const [ax, ay] = at(e[i]!);
+      const [bx, by] = at(e[i + 1]!);
+      ctx.moveTo(ax, ay);
+      ctx.lineTo(bx, by);
+    }
+    ctx.stroke();
   }
 }
 

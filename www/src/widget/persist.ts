@@ -6,12 +6,11 @@
  */
 import { builtinShape, meshFromArrays, triangulate } from "../core.js";
 import type { VectorPath } from "../import.js";
-import type { MeshPoint } from "./picking.js";
 import type { ShapeSpec } from "./session.js";
 import { shapeFromMesh, type Shape } from "./shape.js";
 import type { ToolbarSettings } from "./toolbar.js";
 import { METHODS, type MethodPreset, type WidgetSettings } from "./options.js";
-import type { Posing } from "./posing.js";
+import type { HandleState, Posing } from "./posing.js";
 
 /** Settings that come back with the work: those the toolbar shows. */
 export type SavedSettings = ToolbarSettings;
@@ -36,7 +35,7 @@ export interface SavedWork {
   shape: SavedShape;
   positions: Float64Array;
   atRest: boolean;
-  handles: { point: MeshPoint; target: [number, number] }[];
+  handles: HandleState[];
   /** Painted stiffness, one per triangle (absent: none). */
   stiffness?: Float64Array;
 }

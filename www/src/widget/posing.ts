@@ -32,7 +32,17 @@ export interface Handle {
   grab: [number, number];
   /** Paper mode: pointer motion not yet turned into steps. */
   pending: [number, number];
+  /**
+   * Depth order of the part of the shape nearest to this handle (higher is in front; see
+   * `layers.ts`). Grabbing a handle brings its part to the front unless `ordered`.
+   */
+  layer: number;
+  /** The user set this handle's layer (Bring forward, Send back): grabbing keeps it. */
+  ordered: boolean;
 }
+
+/** What a snapshot keeps of a handle (no layer in work saved before depth order: layer 0). */
+export type HandleState = Pick<Handle, "point" | "target"> & Partial<Pick<Handle, "layer" | "ordered">>;
 
 /** The parts of an imported file (largest first) and the one shown. */
 export interface Parts {
@@ -48,7 +58,7 @@ export interface Snapshot {
   lambda: number;
   positions: Float64Array;
   atRest: boolean;
-  handles: { point: MeshPoint; target: [number, number] }[];
+  handles: HandleState[];
   /** The painted stiffness, one per triangle (a copy), or undefined for none. */
   stiffness?: Float64Array | undefined;
 }
@@ -181,6 +191,8 @@ export class Posing {
     const handles = this.handles.map((h) => ({
       rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
       target: h.target,
+      layer: h.layer,
+      ordered: h.ordered,
     }));
     this.adopt(shape, orders, false);
     this.handles = [];
@@ -194,11 +206,11 @@ export class Posing {
     }
     this.atRest = old.atRest;
     const { positions: rest, triangles } = shape.mesh;
-    for (const { rest: at, target } of handles) {
+    for (const { rest: at, target, layer, ordered } of handles) {
       const point =
         locate(rest, triangles, at[0], at[1], 1e-6 * shape.size) ??
         locate(rest, triangles, at[0], at[1], 0.05 * shape.size);
-      if (point) this.handles.push({ ...newHandle(point), target: [...target] });
+      if (point) this.handles.push({ ...newHandle(point), target: [...target], layer, ordered });
     }
     this.stiffness = stiffness;
     if (stiffness) this.#sendStiffness();
@@ -317,6 +329,11 @@ export class Posing {
     if (handle.pointerId !== undefined) return false;
     if (!additive && !handle.selected) this.handles.forEach((h) => (h.selected = false));
     handle.selected = additive ? !handle.selected : true;
+    // The part being dragged comes to the front, unless the user ordered it.
+    if (!handle.ordered) {
+      const front = Math.max(...this.handles.filter((h) => h !== handle).map((h) => h.layer));
+      if (handle.layer <= front) handle.layer = front + 1;
+    }
     const p = this.deformer.handlePositions();
     handle.pointerId = pointerId;
     handle.grab = [p[2 * index]! - x, p[2 * index + 1]! - y];
@@ -348,6 +365,26 @@ export class Posing {
     this.endDragGesture();
   }
 
+  /**
+   * Brings the selected handles' parts in front of every other part (`step` 1) or behind
+   * them (-1), keeping their order among themselves; they keep that place when grabbed.
+   * False when no handle is selected.
+   */
+  reorder(step: 1 | -1): boolean {
+    const selected = this.handles.filter((h) => h.selected);
+    const others = this.handles.filter((h) => !h.selected).map((h) => h.layer);
+    if (selected.length === 0) return false;
+    const layers = selected.map((h) => h.layer);
+    const [low, high] = [Math.min(...layers), Math.max(...layers)];
+    const shift = others.length === 0 ? 0 : step > 0 ? Math.max(...others) + 1 - low : Math.min(...others) - 1 - high;
+    for (const h of selected) {
+      h.layer += shift;
+      h.ordered = true;
+    }
+    this.#host.schedule();
+    return true;
+  }
+
   get dragging(): boolean {
     return this.handles.some((h) => h.pointerId !== undefined);
   }
@@ -362,7 +399,7 @@ export class Posing {
       lambda: this.settings.lambda,
       positions: this.deformer.positions(),
       atRest: this.atRest,
-      handles: this.handles.map((h) => ({ point: h.point, target: [...h.target] })),
+      handles: this.handles.map((h) => ({ point: h.point, target: [...h.target], layer: h.layer, ordered: h.ordered })),
       stiffness: this.stiffness?.slice(),
     };
   }
@@ -385,7 +422,13 @@ export class Posing {
     this.atRest = snapshot.atRest;
     this.stiffness = snapshot.stiffness?.slice();
     this.#sendStiffness();
-    this.handles = snapshot.handles.map((h) => ({ ...newHandle(h.point), target: [...h.target] }));
+    this.handles = snapshot.handles.map((h) => ({
+      ...newHandle(h.point),
+      target: [...h.target],
+      // Work saved before layers existed has none: one layer.
+      layer: h.layer ?? 0,
+      ordered: h.ordered ?? false,
+    }));
     this.applyHandles();
     this.#host.poseChanged();
   }
@@ -651,5 +694,14 @@ export class Posing {
 
 /** A handle at a mesh point, not held, not selected; its target is the caller's to set. */
 export function newHandle(point: MeshPoint): Handle {
-  return { point, target: [0, 0], selected: false, pointerId: undefined, grab: [0, 0], pending: [0, 0] };
+  return {
+    point,
+    target: [0, 0],
+    selected: false,
+    pointerId: undefined,
+    grab: [0, 0],
+    pending: [0, 0],
+    layer: 0,
+    ordered: false,
+  };
 }

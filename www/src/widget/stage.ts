@@ -12,7 +12,9 @@ import { HelpPanel } from "./help.js";
 import { Hud } from "./hud.js";
 import type { WidgetSettings } from "./options.js";
 import { drawOverlay, type OverlayHandle } from "./overlay.js";
+import { drawOrder, layering, type Layering } from "./layers.js";
 import type { Posing } from "./posing.js";
+import type { Shape } from "./shape.js";
 import { BusyIndicator, StatusLine } from "./status.js";
 import { WIDGET_CSS } from "./style.js";
 import { toPixel } from "./view.js";
@@ -61,6 +63,8 @@ export class Stage {
   readonly hud: Hud;
   readonly help: HelpPanel;
   readonly #overlayContext: CanvasRenderingContext2D;
+  /** The depth order last given to the renderer, and what it was computed for. */
+  #layers: { shape: Shape; key: string; layers: Layering | undefined } | undefined;
   /** Device pixels per CSS pixel. */
   ratio = 1;
 
@@ -113,8 +117,29 @@ export class Stage {
     return rect.width;
   }
 
+  /**
+   * The depth order the handles give the shape, computed again when the shape, the
+   * handles or their layers change; the renderer draws the triangles back to front.
+   */
+  layering(posing: Posing): Layering | undefined {
+    const key = posing.handles.map((h) => `${h.point.triangle}/${h.point.barycentric.join()}/${h.layer}`).join(";");
+    if (this.#layers?.shape !== posing.shape || this.#layers.key !== key) {
+      const { positions, triangles, boundaryEdges } = posing.shape.mesh;
+      const layers = layering(positions, triangles, boundaryEdges, posing.handles);
+      if (layers || this.#layers?.layers) this.renderer.setTriangles(drawOrder(triangles, layers));
+      this.#layers = { shape: posing.shape, key, layers };
+    }
+    return this.#layers.layers;
+  }
+
+  /** The renderer has the mesh's triangles in their own order (a new mesh was set). */
+  meshSet(): void {
+    this.#layers = undefined;
+  }
+
   /** Draws the pose now: the mesh, then the overlay (with the last field and a rig's ghost, if any). */
   render(posing: Posing, settings: WidgetSettings, extras: Extras): void {
+    this.layering(posing);
     this.renderer.draw(posing.deformer.positionsView(), this.camera.view, {
       wireframe: settings.wireframe,
       pixelRatio: this.ratio,
@@ -170,6 +195,7 @@ export class Stage {
       r: (settings.brush.size * this.ratio) / this.camera.view.scale,
     };
     const scene = {
+      layers: this.layering(posing),
       // Re-read: handlePositions() and cage() may have grown the memory and detached the view.
       positions: positions.length > 0 ? positions : deformer.positionsView(),
       triangles: shape.mesh.triangles,

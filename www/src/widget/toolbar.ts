@@ -35,6 +35,8 @@ export interface ToolbarActions {
   brush(tool: "pose" | "stiffness", brush: BrushSettings): void;
   /** Every triangle back to stiffness 1. */
   clearStiffness(): void;
+  /** The selected handles' parts in front of the others (1) or behind them (-1). */
+  reorder(step: 1 | -1): void;
   /** Train a rig; `radiusPercent` of the shape's bounding-box diagonal, undefined for the default. */
   train(options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined): void;
   saveRig(): void;
@@ -328,6 +330,20 @@ export function buildToolbar(
   button(edit, "?", "Gestures and keys (?)", actions.help, "help");
   const tidy = group("Handles");
   button(tidy, "Clear handles", "Remove every handle", actions.clear);
+  button(
+    tidy,
+    "Forward",
+    "Bring the selected handle's part in front of the others (Ctrl+] or Page Up)",
+    () => actions.reorder(1),
+    "bring-forward",
+  );
+  button(
+    tidy,
+    "Back",
+    "Send the selected handle's part behind the others (Ctrl+[ or Page Down)",
+    () => actions.reorder(-1),
+    "send-back",
+  );
   if (actions.startOver) {
     button(tidy, "Start over", "Forget the saved work and start again with the default shape", actions.startOver);
   }

@@ -317,6 +317,34 @@ export class Widget {
     this.#posing.setMethod(method, lambda);
   }
 
+  // ---------------------------------------------------------------- depth order
+
+  /**
+   * Brings the selected handles' parts in front of every other part (each part of the
+   * shape belongs to its nearest handle); they stay there when dragged. Undoable; false
+   * when no handle is selected.
+   */
+  bringForward(): boolean {
+    return this.#reorder(1);
+  }
+
+  /** Sends the selected handles' parts behind every other part (see {@link bringForward}). */
+  sendBack(): boolean {
+    return this.#reorder(-1);
+  }
+
+  /** Each handle's layer, in handle order (higher is in front). */
+  handleLayers(): number[] {
+    return this.#posing.handles.map((h) => h.layer);
+  }
+
+  #reorder(step: 1 | -1): boolean {
+    let moved = false;
+    if (this.#posing.handles.some((h) => h.selected)) this.#gesture(() => (moved = this.#posing.reorder(step)));
+    else this.#stage.status.info("Select a handle first (click it) to bring its part forward or send it back.");
+    return moved;
+  }
+
   // ---------------------------------------------------------------- stiffness
 
   /** What a press on the shape does: pose, or paint stiffness with the brush. */
@@ -607,15 +635,22 @@ export class Widget {
     return posing.deformer.positions();
   }
 
-  /** The current pose as JSON (`positions`, `triangles`, `uvs`) or OBJ text. */
+  /**
+   * The current pose as JSON (`positions`, `triangles`, `uvs`, `stiffness` if painted) or
+   * OBJ text; triangles back to front when parts are in depth order.
+   */
   exportMesh(format: "json" | "obj"): string {
-    return posedMesh(this.#posing.shape, this.#posing.deformer.positions(), format, this.stiffness());
+    const layers = this.#stage.layering(this.#posing);
+    return posedMesh(this.#posing.shape, this.#posing.deformer.positions(), format, {
+      stiffness: this.stiffness(),
+      layers,
+    });
   }
 
   /** The pose as an SVG document: an imported SVG's own paths moved with the mesh, else the outline. */
   exportSvg(): string {
     const { deformer, shape } = this.#posing;
-    return posedSvg(shape.mesh, shape.vector, deformer.positions());
+    return posedSvg(shape.mesh, shape.vector, deformer.positions(), this.#stage.layering(this.#posing));
   }
 
   /** The rendered image (the shape and its outline, no handles) as a PNG. */
@@ -708,6 +743,7 @@ export class Widget {
   #adopted(shape: Shape, deformer: Deformer, refit: boolean): void {
     this.#lastField = undefined;
     this.#stage.renderer.setMesh(shape.mesh.triangles, shape.edges, shape.uvs);
+    this.#stage.meshSet();
     const texture = shape.texture ?? this.#baseTexture;
     if (texture) this.#stage.renderer.setTexture(texture);
     if (refit) this.#stage.camera.reset(shape.mesh.positions, this.#stage.glCanvas.width, this.#stage.glCanvas.height);
@@ -866,6 +902,7 @@ export class Widget {
         this.#toolbar?.sync(this.#settings);
       },
       brush: this.#brush,
+      reorder: (step) => (step > 0 ? this.bringForward() : this.sendBack()),
       help: (open) => this.#toggleHelp(open),
       helpOpen: () => this.#stage.help.open,
       dropped: (file) => this.loadFile(file).catch((error: unknown) => this.#showError(error)),
