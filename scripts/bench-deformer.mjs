@@ -5,8 +5,11 @@
 // "spiral" column, the stage that moves the vertices; Cauchy-Green's small solve is its
 // "solves" and its product with the coordinates its "spiral") and per frame. `--set
 // name=value` (repeatable) passes a setting of the method, e.g. `--set cage=300`.
+// `--guard` steps with `stepWithoutFoldovers` instead of `step` (the drag flips nothing, so
+// this times the guard's own cost: a checkpoint and the orientation check each frame);
+// compare runs with and without it interleaved, the machine's noise being larger.
 //   npm run build && node scripts/bench-deformer.mjs [--method akap|arap|mls|cauchy-green]
-//     [--set name=value ...] [vertices ...]
+//     [--set name=value ...] [--guard] [vertices ...]
 import process from "node:process";
 import { performance } from "node:perf_hooks";
 import { Deformer, defaultShape, init, triangulate } from "../www/lib/index.js";
@@ -15,6 +18,9 @@ await init();
 const args = process.argv.slice(2);
 const methodAt = args.indexOf("--method");
 const method = methodAt >= 0 ? args.splice(methodAt, 2)[1] : "akap";
+const guardAt = args.indexOf("--guard");
+const guard = guardAt >= 0;
+if (guard) args.splice(guardAt, 1);
 const settings = {};
 for (let at = args.indexOf("--set"); at >= 0; at = args.indexOf("--set")) {
   const [name, value] = args.splice(at, 2)[1].split("=");
@@ -44,7 +50,7 @@ const stat = (values, q) => {
 const shape = defaultShape();
 const area = ringArea(shape.outer) - shape.holes.reduce((s, h) => s + ringArea(h), 0);
 console.log(
-  `Method ${method}${Object.keys(settings).length ? ` ${JSON.stringify(settings)}` : ""}. Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
+  `Method ${method}${Object.keys(settings).length ? ` ${JSON.stringify(settings)}` : ""}${guard ? ", guarded (stepWithoutFoldovers)" : ""}. Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
     "factorisation 1 and 2: step 1's " +
     "(soft constraints) and step 2's (Dirichlet) numeric factorisations.",
 );
@@ -71,13 +77,19 @@ for (const target of targets) {
   deformer.setHandles([...feet, hand]);
   const setup = performance.now() - start;
   const velocities = new Float64Array(2 * (feet.length + 1));
-  const stages = { assembly: [], soft: [], dirichlet: [], solve: [], integration: [], frame: [] };
+  const stages = { assembly: [], soft: [], dirichlet: [], solve: [], integration: [], frame: [], outside: [] };
+  // Guarded frames that took more than the one plain step.
+  let split = 0;
   for (let f = -warmup; f < frames; f++) {
     const t = (f / frames) * 2 * Math.PI;
     velocities[2 * feet.length] = 0.01 * Math.cos(t);
     velocities[2 * feet.length + 1] = 0.01 * Math.sin(t);
     const t0 = performance.now();
-    deformer.step(velocities);
+    if (guard) {
+      if (deformer.stepWithoutFoldovers(velocities).attempts > 1) split++;
+    } else {
+      deformer.step(velocities);
+    }
     if (f < 0) continue;
     stages.frame.push(performance.now() - t0);
     const timings = deformer.timings();
@@ -86,11 +98,16 @@ for (const target of targets) {
     stages.dirichlet.push(timings.dirichletFactorisation);
     stages.solve.push(timings.solve);
     stages.integration.push(timings.integration);
+    // The frame's time outside the timed stages: the call and, guarded, the guard's own work.
+    const inside = timings.assembly + timings.factorisation + timings.solve + timings.integration;
+    stages.outside.push(stages.frame.at(-1) - inside);
   }
   const cell = (k) => `${stat(stages[k], 0.5).toFixed(2)} / ${stat(stages[k], 0.95).toFixed(2)}`;
   const columns = ["assembly", "soft", "dirichlet", "solve", "integration", "frame"].map(cell).join(" | ");
   console.log(
     `| ${mesh.vertexCount} | ${mesh.triangleCount} | ${feet.length + 1} | ${setup.toFixed(0)} | ${columns} |`,
   );
+  console.log(`(outside the stages: ${cell("outside")} ms a frame)`);
+  if (split > 0) console.log(`(guarded: ${split} of ${frames + warmup} frames were split or clamped)`);
   deformer.free();
 }

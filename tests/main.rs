@@ -11,6 +11,7 @@ mod defop_ground_truth;
 mod defop_train;
 mod deformer;
 mod errors;
+mod foldover;
 mod gallery;
 mod hostile;
 mod import_mesh;

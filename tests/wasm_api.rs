@@ -291,3 +291,32 @@ fn every_code_reaches_javascript_with_its_message() {
     }
     js("delete Error.prototype.code");
 }
+
+#[test]
+fn a_step_without_foldovers_reports_its_plain_steps_and_refuses_bad_input_as_errors() {
+    use akap::wasm::JsDeformer;
+    // One triangle, a handle on every vertex, MLS: the apex pushed down through the base by
+    // 3 is stopped at 2^-16 above it, after 1/4, 1/16 and 1365/4096 of a sixteenth of the
+    // push (tests/foldover.rs derives these by hand).
+    let (positions, triangles) = (f64s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]), u32s(&[0, 1, 2]));
+    let mut deformer = JsDeformer::new(positions, triangles, options(r#"{"method": "mls"}"#)).unwrap();
+    deformer.set_handles(u32s(&[0, 1, 2])).unwrap();
+    let push = f64s(&[0.0, 0.0, 0.0, 0.0, 0.0, -3.0]);
+    let getter = js("return { get maxSplits() { throw new Error('getter says no') } }");
+    let array = js("return new Proxy(new Float64Array(6), { get() { throw new Error('no elements') } })");
+    assert!(message(deformer.step_without_foldovers(push.clone(), getter)).contains("getter says no"));
+    assert!(
+        message(deformer.step_without_foldovers(array, JsValue::UNDEFINED)).contains("velocities could not be read")
+    );
+    let text = message(deformer.step_without_foldovers(push.clone(), options(r#"{"clampTrials": 31}"#)));
+    assert_eq!(text, "option clampTrials is 31, expected a whole number from 0 to 30");
+    assert_eq!(deformer.positions(), [0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
+
+    let report = deformer.step_without_foldovers(push, JsValue::UNDEFINED).unwrap();
+    let get = |key: &str| Reflect::get(&report, &key.into()).unwrap();
+    let steps: Vec<f64> = get("steps").dyn_into::<Array>().unwrap().iter().map(|s| s.as_f64().unwrap()).collect();
+    assert_eq!(steps, [0.25, 0.0625, 0.0625 * 1365.0 / 4096.0]);
+    assert_eq!(get("clamped").as_bool(), Some(true));
+    assert_eq!(get("attempts").as_f64(), Some(19.0));
+    assert_eq!(deformer.positions(), [0.0, 0.0, 1.0, 0.0, 0.0, 2f64.powi(-16)]);
+}

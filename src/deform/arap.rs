@@ -48,7 +48,8 @@ use super::error::{out_of_memory, DeformError};
 use super::handles::{
     self, check_connected, check_pose, check_stiffness, check_velocities, diagonal, in_range, HandlePoint,
 };
-use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
+pub use super::method::IterationReport;
+use super::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
 pub use super::options::{ArapOptions, MAX_CONVERGENCE_ITERATIONS, MAX_ITERATIONS};
 use super::options::{Method, MethodOptions};
@@ -64,17 +65,6 @@ const PENALTY: f64 = 1e6;
 
 /// A weight this close to 1 puts a handle on a vertex (a hard constraint).
 const AT_VERTEX: f64 = 1e-12;
-
-/// How the last call of [`ArapDeformer::step`] or [`ArapDeformer::iterate`] ended.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct IterationReport {
-    /// Iterations run.
-    pub iterations: usize,
-    /// The largest distance a vertex moved in the last iteration.
-    pub last_move: f64,
-    /// Whether `last_move` reached the tolerance.
-    pub converged: bool,
-}
 
 /// A handle point and how it holds the mesh.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -686,6 +676,38 @@ impl Deform for ArapDeformer {
     }
     fn stiffness(&self) -> Option<&[f64]> {
         self.stiffness.as_deref()
+    }
+    /// Positions, targets, the rotations the next local step starts from (kept where a
+    /// triangle's `S` has no rotational part), the field, the report and the timings. The
+    /// factor is not saved: it changes only with the handles or the stiffness, and a restore
+    /// after the first step of a handle set keeps the factor that step made, the same one.
+    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
+        checkpoint.begin(Method::Arap);
+        copy_into(&mut checkpoint.positions, &self.positions);
+        copy_into(&mut checkpoint.targets, &self.targets);
+        copy_into(&mut checkpoint.rotations, &self.rotations);
+        copy_into(&mut checkpoint.field, &self.field);
+        checkpoint.report = self.report;
+        checkpoint.timings = self.timings;
+    }
+    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
+        let (n, m) = (self.positions.len(), self.rotations.len());
+        checkpoint.check(
+            Method::Arap,
+            &[
+                (checkpoint.positions.len(), n),
+                (checkpoint.field.len(), n),
+                (checkpoint.targets.len(), self.targets.len()),
+                (checkpoint.rotations.len(), m),
+            ],
+        )?;
+        self.positions.copy_from_slice(&checkpoint.positions);
+        self.targets.copy_from_slice(&checkpoint.targets);
+        self.rotations.copy_from_slice(&checkpoint.rotations);
+        self.field.copy_from_slice(&checkpoint.field);
+        self.report = checkpoint.report;
+        self.timings = checkpoint.timings;
+        Ok(())
     }
     fn metrics(&self) -> Metrics {
         ArapDeformer::metrics(self)

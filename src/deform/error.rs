@@ -162,6 +162,14 @@ pub enum DeformError {
         /// What is wrong.
         reason: String,
     },
+    /// A checkpoint restored to a deformer that did not save it: saved by another method,
+    /// for other sizes (vertices, handles, triangles), or never saved into.
+    ForeignCheckpoint {
+        /// The deformer's method.
+        method: Method,
+        /// The method that saved the checkpoint, if any.
+        saved: Option<Method>,
+    },
     /// Options of another method were given; the method is chosen when the deformer is made.
     WrongMethod {
         /// The deformer's method.
@@ -244,6 +252,19 @@ impl fmt::Display for DeformError {
                 write!(f, "method {method} has no {what}; choose \"akap\" or \"arap\" for it")
             }
             Self::InvalidCage { reason } => write!(f, "the cage cannot be used: {reason}"),
+            Self::ForeignCheckpoint { method, saved } => match saved {
+                Some(saved) if saved != method => write!(
+                    f,
+                    "the checkpoint was saved by a deformer of method {saved}, not {method}; restore a checkpoint \
+                     to the deformer that saved it"
+                ),
+                Some(_) => write!(
+                    f,
+                    "the checkpoint was saved for another mesh or handle set; restore a checkpoint to the \
+                     deformer that saved it, before its handles change"
+                ),
+                None => write!(f, "the checkpoint holds nothing; save into it first"),
+            },
             Self::WrongMethod { current, given } => write!(
                 f,
                 "the deformer uses method {current}, options for {given} were given; \

@@ -8,7 +8,7 @@ use std::fmt;
 
 use super::error::DeformError;
 use super::metrics::Metrics;
-use super::options::{methods, ArapOptions, CauchyGreenOptions, DeformerOptions, MethodOptions, MlsOptions};
+use super::options::{methods, ArapOptions, CauchyGreenOptions, DeformerOptions, Method, MethodOptions, MlsOptions};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 
@@ -205,12 +205,114 @@ pub trait Deform: fmt::Debug {
     fn cage_image(&self) -> Option<&[Point]> {
         None
     }
+    /// Saves the state steps change (see [`Checkpoint`]) into `checkpoint`, replacing what
+    /// it held and reusing its buffers.
+    fn save_checkpoint(&self, checkpoint: &mut Checkpoint);
+    /// Puts back the state saved in `checkpoint`: the next step then gives exactly the bits
+    /// it would have given had nothing happened since the save (for the handles, options
+    /// and stiffness in place; changing those is not undone). Refused with
+    /// [`DeformError::ForeignCheckpoint`], changing nothing, for a checkpoint saved by a
+    /// deformer of another method or of other sizes (vertices, handles, triangles).
+    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError>;
+    /// A new checkpoint of the current state ([`Deform::save_checkpoint`] into a fresh one).
+    fn checkpoint(&self) -> Checkpoint {
+        let mut checkpoint = Checkpoint::new();
+        self.save_checkpoint(&mut checkpoint);
+        checkpoint
+    }
     /// Distortion of the current pose against the rest pose.
     fn metrics(&self) -> Metrics;
     /// Stage timings of the last step.
     fn timings(&self) -> Timings;
     /// Back to the rest pose; handles stay.
     fn reset(&mut self);
+}
+
+/// How the last call of ARAP's [`step`](super::ArapDeformer::step) or
+/// [`iterate`](super::ArapDeformer::iterate) ended.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct IterationReport {
+    /// Iterations run.
+    pub iterations: usize,
+    /// The largest distance a vertex moved in the last iteration.
+    pub last_move: f64,
+    /// Whether `last_move` reached the tolerance.
+    pub converged: bool,
+}
+
+/// The state a deformer's steps change, saved by [`Deform::save_checkpoint`] and put back by
+/// [`Deform::restore_checkpoint`], so that a step can be undone exactly (the guarded step of
+/// [`super::foldover`] does). One type for every method, each filling the buffers it has:
+/// every method its positions, field and timings; AKAP its soft field; ARAP its targets,
+/// the rotations its next local step starts from and its [`IterationReport`]; Cauchy-Green
+/// its targets and deformed cage. What only handles, options and stiffness change (the
+/// handle set, matrices, factors, cages) is not in it.
+///
+/// Keep one and save into it again: saving reuses its buffers, so once they have grown to
+/// the deformer's sizes it allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct Checkpoint {
+    /// The method that saved it; `None` until something is saved.
+    pub(crate) method: Option<Method>,
+    pub(crate) positions: Vec<Point>,
+    pub(crate) field: Vec<[f64; 2]>,
+    pub(crate) soft_field: Vec<[f64; 2]>,
+    pub(crate) targets: Vec<Point>,
+    pub(crate) rotations: Vec<[f64; 2]>,
+    pub(crate) cage_image: Vec<Point>,
+    pub(crate) report: IterationReport,
+    pub(crate) timings: Timings,
+}
+
+impl Checkpoint {
+    /// An empty checkpoint, to save into.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The method that saved it, if any.
+    pub fn method(&self) -> Option<Method> {
+        self.method
+    }
+
+    /// The vertex positions saved (empty until something is saved).
+    pub fn positions(&self) -> &[Point] {
+        &self.positions
+    }
+
+    /// Starts a save by `method`: every buffer emptied (keeping its room), the report and
+    /// timings cleared.
+    pub(crate) fn begin(&mut self, method: Method) {
+        self.method = Some(method);
+        let buffers = [
+            &mut self.positions,
+            &mut self.field,
+            &mut self.soft_field,
+            &mut self.targets,
+            &mut self.rotations,
+            &mut self.cage_image,
+        ];
+        for buffer in buffers {
+            buffer.clear();
+        }
+        self.report = IterationReport::default();
+        self.timings = Timings::default();
+    }
+
+    /// Checks that `method` saved this checkpoint with buffers of the given lengths (each
+    /// pair: the length saved, the length the deformer has now), so that a restore fits.
+    pub(crate) fn check(&self, method: Method, lengths: &[(usize, usize)]) -> Result<(), DeformError> {
+        if self.method != Some(method) || lengths.iter().any(|(saved, now)| saved != now) {
+            return Err(DeformError::ForeignCheckpoint { method, saved: self.method });
+        }
+        Ok(())
+    }
+}
+
+/// `buffer` becomes a copy of `values`, in its own room when that suffices.
+pub(crate) fn copy_into<T: Copy>(buffer: &mut Vec<T>, values: &[T]) {
+    buffer.clear();
+    buffer.extend_from_slice(values);
 }
 
 /// Milliseconds spent in each stage of the last step.

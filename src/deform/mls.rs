@@ -16,7 +16,7 @@
 
 use super::error::DeformError;
 use super::handles::{self, check_connected, check_pose, check_velocities, in_range, HandlePoint};
-use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
+use super::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
 use super::options::{Method, MethodOptions, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
 use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
@@ -300,6 +300,22 @@ impl Deform for MlsDeformer {
     }
     fn field(&self) -> &[[f64; 2]] {
         &self.field
+    }
+    /// Positions, field and timings: a step maps the rest mesh for targets taken from the
+    /// positions, and keeps nothing else.
+    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
+        checkpoint.begin(Method::Mls);
+        copy_into(&mut checkpoint.positions, &self.positions);
+        copy_into(&mut checkpoint.field, &self.field);
+        checkpoint.timings = self.timings;
+    }
+    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
+        let n = self.positions.len();
+        checkpoint.check(Method::Mls, &[(checkpoint.positions.len(), n), (checkpoint.field.len(), n)])?;
+        self.positions.copy_from_slice(&checkpoint.positions);
+        self.field.copy_from_slice(&checkpoint.field);
+        self.timings = checkpoint.timings;
+        Ok(())
     }
     fn metrics(&self) -> Metrics {
         metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())

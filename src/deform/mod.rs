@@ -9,7 +9,9 @@
 //!   written alike by the bindings, sessions and the command line;
 //! - [`metrics`]: area and angle distortion and flipped triangles (Table 1);
 //! - [`method`]: the [`Deform`] trait every deformer implements, [`MethodOptions::build`],
-//!   [`Orders`], [`Timings`] and [`Clock`];
+//!   [`Orders`], [`Timings`], [`Clock`] and the [`Checkpoint`] a step is undone with;
+//! - [`foldover`]: the guarded step that never flips a triangle ([`FoldoverStepper`],
+//!   [`step_without_foldovers`]): a step that would is split, then clamped;
 //! - `pattern`: the sparsity pattern of both deformers' matrices, a block per vertex pair;
 //! - `handles`: the checks and helpers every deformer shares (handle points, velocities,
 //!   poses, connectivity, sizes);
@@ -30,6 +32,7 @@ pub mod akap;
 pub mod arap;
 pub mod cauchy;
 mod error;
+pub mod foldover;
 pub(crate) mod handles;
 pub mod method;
 pub mod metrics;
@@ -39,10 +42,11 @@ pub(crate) mod pattern;
 pub mod settings;
 
 pub use akap::Deformer;
-pub use arap::{ArapDeformer, IterationReport};
+pub use arap::ArapDeformer;
 pub use cauchy::CauchyGreenDeformer;
 pub use error::DeformError;
-pub use method::{Clock, Deform, Orders, Timings};
+pub use foldover::{step_without_foldovers, FoldoverGuard, FoldoverStepper, GuardedStep};
+pub use method::{Checkpoint, Clock, Deform, IterationReport, Orders, Timings};
 pub use metrics::Metrics;
 pub use mls::MlsDeformer;
 pub use options::{

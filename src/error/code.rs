@@ -249,7 +249,8 @@ impl DeformError {
             | Self::TooFewHandles { .. }
             | Self::InvalidCage { .. }
             | Self::InvalidStiffness { .. }
-            | Self::Unsupported { .. } => ErrorCode::InvalidArgument,
+            | Self::Unsupported { .. }
+            | Self::ForeignCheckpoint { .. } => ErrorCode::InvalidArgument,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,
             Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,

@@ -10,13 +10,16 @@ use super::error::BindingError;
 use super::mesh::read_mesh;
 use super::read::{self, Options};
 use super::{limits, max_coordinates, object, pairs};
-use crate::deform::{Deform, Method, MethodOptions, Orders, SettingValue};
+use crate::deform::foldover::{MAX_CLAMP_TRIALS, MAX_SPLITS};
+use crate::deform::{Deform, FoldoverGuard, FoldoverStepper, Method, MethodOptions, Orders, SettingValue};
 
 /// A deformer for one mesh: AKAP (`crate::deform::Deformer`) or ARAP
 /// (`crate::deform::ArapDeformer`), chosen by the `method` option.
 #[wasm_bindgen(js_name = Deformer)]
 pub struct JsDeformer {
     inner: Box<dyn Deform>,
+    /// The buffers of `stepWithoutFoldovers`, kept from frame to frame.
+    stepper: FoldoverStepper,
 }
 
 /// The fill-reducing orders a deformer of the method in `options` needs for this mesh (the
@@ -60,7 +63,7 @@ impl JsDeformer {
         let mesh = read_mesh(&positions, &triangles)?;
         let mut inner = options.build(mesh)?;
         inner.set_clock(performance_now);
-        Ok(Self { inner })
+        Ok(Self { inner, stepper: FoldoverStepper::default() })
     }
 
     /// The constructor with the fill-reducing orders computed beforehand by
@@ -85,7 +88,7 @@ impl JsDeformer {
             .collect::<Result<Vec<_>, BindingError>>()?;
         let mut inner = options.build_with_orders(mesh, &Orders { systems })?;
         inner.set_clock(performance_now);
-        Ok(Self { inner })
+        Ok(Self { inner, stepper: FoldoverStepper::default() })
     }
 
     /// Changes some options; the others keep their values. A different `method` switches
@@ -134,6 +137,30 @@ impl JsDeformer {
     pub fn step(&mut self, velocities: JsValue) -> Result<(), BindingError> {
         let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
         Ok(self.inner.step(&pairs(&velocities, "velocities")?)?)
+    }
+
+    /// One step that turns no triangle over (`crate::deform::foldover`): the plain step
+    /// when it flips none, else halves down to `2^-maxSplits` of the velocities, the first
+    /// such piece that still flips clamped to its largest flip-free fraction found by
+    /// `clampTrials` bisections, and the step ending there. `options`: `{ maxSplits?,
+    /// clampTrials? }` (whole numbers, 0 to 10 and 0 to 30; default 4 and 12). Returns
+    /// `{ steps, clamped, attempts }`: `steps` the fraction of the velocities each plain
+    /// step taken moved by, in order (`[1]` for a step that flipped nothing; `step` with
+    /// `velocities[i] * fraction` each replays it to the bit), `clamped` whether the step
+    /// ended short, `attempts` the plain steps tried. On error the deformer is unchanged.
+    #[wasm_bindgen(js_name = stepWithoutFoldovers)]
+    pub fn step_without_foldovers(&mut self, velocities: JsValue, options: JsValue) -> Result<Object, BindingError> {
+        let guard = foldover_guard(&options)?;
+        let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
+        let velocities = pairs(&velocities, "velocities")?;
+        self.stepper.set_guard(guard)?;
+        let report = self.stepper.step(self.inner.as_mut(), &velocities)?;
+        let steps: Array = report.steps.iter().map(|&f| JsValue::from_f64(f)).collect();
+        object(&[
+            ("steps", steps.into()),
+            ("clamped", report.clamped.into()),
+            ("attempts", (report.attempts as f64).into()),
+        ])
     }
 
     /// A copy of the current positions, x and y interleaved.
@@ -240,6 +267,19 @@ impl JsDeformer {
     pub fn reset(&mut self) {
         self.inner.reset();
     }
+}
+
+/// Reads `{ maxSplits?, clampTrials? }` over the defaults.
+fn foldover_guard(value: &JsValue) -> Result<FoldoverGuard, BindingError> {
+    let given = Options::read(value, "foldover", &["maxSplits", "clampTrials"])?;
+    let mut guard = FoldoverGuard::default();
+    if let Some(n) = given.count("maxSplits", MAX_SPLITS as usize)? {
+        guard.max_splits = n as u32;
+    }
+    if let Some(n) = given.count("clampTrials", MAX_CLAMP_TRIALS as usize)? {
+        guard.clamp_trials = n as u32;
+    }
+    Ok(guard)
 }
 
 /// The deformer options' names: `method`, then every method's settings.

@@ -246,6 +246,38 @@ export interface Timings {
   integration: number;
 }
 
+/** Limits of {@link Deformer.stepWithoutFoldovers}. */
+export interface FoldoverOptions {
+  /**
+   * Halvings: a step that would flip a triangle is split into two halves, each guarded the
+   * same way, down to pieces of `2^-maxSplits` of the velocities; a whole number from 0 to
+   * 10 (default 4: sixteenths).
+   */
+  maxSplits?: number;
+  /**
+   * Bisection trials that clamp a smallest piece that still flips to its largest flip-free
+   * fraction (to `2^-clampTrials` of the piece); a whole number from 0 to 30 (default 12;
+   * with 0 such a piece is not taken).
+   */
+  clampTrials?: number;
+}
+
+/** What {@link Deformer.stepWithoutFoldovers} did. */
+export interface GuardedStep {
+  /**
+   * The plain steps taken, in order, each as the fraction of the velocities it moved by:
+   * `[1]` when the step flipped nothing (it was then exactly {@link Deformer.step}),
+   * otherwise powers of two and, last when `clamped`, the clamp's fraction; empty when
+   * nothing could be taken. Calling `step` with `velocities[i] * fraction` for each, in
+   * order, replays the guarded step to the bit: record those to replay it.
+   */
+  steps: number[];
+  /** Whether a smallest piece still flipped and was clamped: the step ended short. */
+  clamped: boolean;
+  /** Plain steps tried, the undone ones included (1 when nothing flipped): its cost. */
+  attempts: number;
+}
+
 /**
  * As-Killing-As-Possible (or, with `method: "arap"`, as-rigid-as-possible) deformation of
  * one mesh. Give it handles (vertices, or points inside triangles), then call
@@ -327,6 +359,21 @@ export class Deformer {
   /** One step: two velocity components per handle, in handle order. */
   step(velocities: Coordinates): void {
     this.#raw.step(toFloat64(velocities, "velocities"));
+  }
+
+  /**
+   * One step that turns no triangle over: a triangle positively oriented before it stays
+   * so (triangles already turned over or collapsed are ignored). The plain {@link step}
+   * when it flips none, bit for bit; otherwise two half steps, each guarded alike, down
+   * to `2^-maxSplits` of the velocities, and the first such piece that still flips is
+   * clamped to the largest flip-free fraction a bisection finds, the step ending there
+   * (the handles then lag their targets; ask for the rest in the next frame). Any method;
+   * AKAP and ARAP, whose steps have history, go on along another path, while MLS and
+   * Cauchy-Green, functions of the targets, stop where the way to them first flips a
+   * triangle. Bad input throws and leaves the deformer as it was.
+   */
+  stepWithoutFoldovers(velocities: Coordinates, options: FoldoverOptions = {}): GuardedStep {
+    return this.#raw.stepWithoutFoldovers(toFloat64(velocities, "velocities"), options) as GuardedStep;
   }
 
   /** A copy of the current positions, xy-interleaved. */

@@ -30,7 +30,7 @@ use crate::deform::error::{out_of_memory, DeformError};
 use crate::deform::handles::{
     self, check_connected, check_pose, check_stiffness, check_velocities, diagonal, in_range, HandlePoint,
 };
-use crate::deform::method::{default_clock, Build, Clock, Deform, Orders, Timings};
+use crate::deform::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
 use crate::deform::metrics::{metrics, Metrics};
 use crate::deform::options::{DeformerOptions, Integrator, Method, MethodOptions, LAMBDA_RANGE};
 use crate::geometry::{in_comfortable_range, normalising_exponent, scale_by_power_of_two, Point};
@@ -508,6 +508,25 @@ impl Deform for Deformer {
     }
     fn stiffness(&self) -> Option<&[f64]> {
         self.killing.stiffness()
+    }
+    /// Positions, both fields and the timings: every other buffer a step reads is
+    /// assembled afresh from the positions in each step.
+    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
+        checkpoint.begin(Method::Akap);
+        copy_into(&mut checkpoint.positions, &self.positions);
+        copy_into(&mut checkpoint.field, as_pairs(&self.field));
+        copy_into(&mut checkpoint.soft_field, as_pairs(&self.soft_field));
+        checkpoint.timings = self.timings;
+    }
+    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
+        let n = self.positions.len();
+        let saved = [checkpoint.positions.len(), checkpoint.field.len(), checkpoint.soft_field.len()];
+        checkpoint.check(Method::Akap, &saved.map(|len| (len, n)))?;
+        self.positions.copy_from_slice(&checkpoint.positions);
+        self.field.copy_from_slice(checkpoint.field.as_flattened());
+        self.soft_field.copy_from_slice(checkpoint.soft_field.as_flattened());
+        self.timings = checkpoint.timings;
+        Ok(())
     }
     fn metrics(&self) -> Metrics {
         Deformer::metrics(self)

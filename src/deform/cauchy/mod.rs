@@ -39,7 +39,7 @@ pub use coordinates::{coordinates, second_derivative};
 use self::coordinates::complex;
 use super::error::DeformError;
 use super::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
-use super::method::{default_clock, Build, Clock, Deform, Orders, Timings};
+use super::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
 use super::options::{CauchyGreenOptions, Method, MethodOptions, CAGE_VERTICES_RANGE, SMOOTHNESS_RANGE};
 use crate::geometry::{bounding_box, normalising_exponent, scale_by_power_of_two, Point};
@@ -497,6 +497,34 @@ impl Deform for CauchyGreenDeformer {
     }
     fn cage_image(&self) -> Option<&[Point]> {
         Some(&self.cage_image)
+    }
+    /// Positions, targets (apart from the positions: [`CauchyGreenDeformer::set_positions`]
+    /// would reset them), the deformed cage, field and timings.
+    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
+        checkpoint.begin(Method::CauchyGreen);
+        copy_into(&mut checkpoint.positions, &self.positions);
+        copy_into(&mut checkpoint.targets, &self.targets);
+        copy_into(&mut checkpoint.cage_image, &self.cage_image);
+        copy_into(&mut checkpoint.field, &self.field);
+        checkpoint.timings = self.timings;
+    }
+    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
+        let n = self.positions.len();
+        checkpoint.check(
+            Method::CauchyGreen,
+            &[
+                (checkpoint.positions.len(), n),
+                (checkpoint.field.len(), n),
+                (checkpoint.targets.len(), self.targets.len()),
+                (checkpoint.cage_image.len(), self.cage_image.len()),
+            ],
+        )?;
+        self.positions.copy_from_slice(&checkpoint.positions);
+        self.targets.copy_from_slice(&checkpoint.targets);
+        self.cage_image.copy_from_slice(&checkpoint.cage_image);
+        self.field.copy_from_slice(&checkpoint.field);
+        self.timings = checkpoint.timings;
+        Ok(())
     }
     fn metrics(&self) -> Metrics {
         metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
