@@ -60,10 +60,11 @@ for (const [what, end] of [
   ["the raised hand across the body past the far hip", [950, 700]],
   ["the head down onto the hips", [620, 560]],
 ] as const) {
-  test(`AKAP follows ${what}, however the triangles fold`, async ({ page }) => {
+  test(`with No foldovers off, AKAP follows ${what}, however the triangles fold`, async ({ page }) => {
     // Both used to fail partway ("matrix is not positive definite") and stick for good.
     await page.setViewportSize({ width: 1280, height: 800 });
     await open(page);
+    await page.getByRole("checkbox", { name: "No foldovers" }).uncheck();
     const errors = await collectErrors(page);
     const points = await figurePoints(page);
     for (const foot of points.feet) await page.mouse.click(...foot);
@@ -88,6 +89,46 @@ for (const [what, end] of [
     }
     // Folded triangles are shown, and counted for what is on screen.
     expect(await page.evaluate(() => window.akapDemo!.widget.metrics.flipped)).toBeGreaterThan(0);
+  });
+
+  test(`with No foldovers (the default), ${what} ends with no triangle folded`, async ({ page }) => {
+    await page.setViewportSize({ width: 1280, height: 800 });
+    await open(page, "?hud=true");
+    const errors = await collectErrors(page);
+    // Whether any frame stopped short (the akap-pose event says so, as the HUD does).
+    await page.evaluate(() => {
+      const w = window as unknown as { clamped: boolean };
+      w.clamped = false;
+      document.getElementById("app")!.addEventListener("akap-pose", (e) => {
+        w.clamped ||= (e as CustomEvent<{ clamped: boolean }>).detail.clamped;
+      });
+    });
+    const points = await figurePoints(page);
+    for (const foot of points.feet) await page.mouse.click(...foot);
+    const start = what.includes("hand") ? points.hand : points.head;
+    const { toCss } = await mapping(page);
+    await page.mouse.move(...start);
+    await page.mouse.down();
+    for (let k = 1; k <= 40; k++) {
+      await page.mouse.move(start[0] + ((end[0] - start[0]) * k) / 40, start[1] + ((end[1] - start[1]) * k) / 40);
+    }
+    await page.mouse.up();
+    await idle(page);
+    expect(await errors()).toEqual([]);
+    expect(await page.evaluate(() => window.akapDemo!.widget.metrics.flipped)).toBe(0);
+    // The handle went a good way toward the pointer, where the shape let it; the pins stayed.
+    const h = await handles(page);
+    const [x, y] = toCss(h[4]!, h[5]!);
+    const travelled = Math.hypot(x - start[0], y - start[1]);
+    expect(travelled).toBeGreaterThan(0.3 * Math.hypot(end[0] - start[0], end[1] - start[1]));
+    for (const [i, foot] of points.feet.entries()) {
+      const [fx, fy] = toCss(h[2 * i]!, h[2 * i + 1]!);
+      expect(Math.hypot(fx - foot[0], fy - foot[1])).toBeLessThan(1);
+    }
+    // Where it stopped short, the HUD said so.
+    if (Math.hypot(x - end[0], y - end[1]) > 1) {
+      expect(await page.evaluate(() => (window as unknown as { clamped: boolean }).clamped)).toBe(true);
+    }
   });
 }
 
@@ -241,7 +282,9 @@ test("the HUD checkbox shows a HUD that started hidden, with the figures of the 
   await expect(hud).toBeHidden();
   await page.getByRole("checkbox", { name: "HUD" }).check();
   await expect(hud).toBeVisible();
-  // Fold triangles over: the HUD counts them; after Undo it shows the rest pose's figures.
+  // Fold triangles over (No foldovers off): the HUD counts them; after Undo it shows the
+  // rest pose's figures.
+  await page.getByRole("checkbox", { name: "No foldovers" }).uncheck();
   const points = await figurePoints(page);
   for (const foot of points.feet) await page.mouse.click(...foot);
   await dragMouse(page, points.head, [620, 560], 30);

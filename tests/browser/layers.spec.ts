@@ -120,6 +120,8 @@ test("the arm dragged across the torso is drawn above it, and below it after Sen
   await idle(page);
   expect(await page.evaluate(() => window.akapDemo!.widget.handleLayers())).toEqual([0, 1, 2]);
 
+  // No foldovers (the default): the swing folds no triangle.
+  expect(await page.evaluate(() => window.akapDemo!.widget.metrics.flipped)).toBe(0);
   const at = await overlap(page);
   expect(at, "the arm lies over the torso somewhere").toBeDefined();
   const above = await colour(page, at!);

@@ -58,6 +58,22 @@ describe("layering", () => {
     const back = original.filter((f) => layers.triangles[f] === 0);
     expect(original.slice(0, back.length)).toEqual([...back].sort((a, b) => a - b));
     expect(drawOrder(t, undefined)).toBe(t);
+    // Each layer's outline loops enclose exactly its triangles: equal signed areas at rest.
+    const area = (a: number, b: number, c: number) =>
+      ((p[2 * b]! - p[2 * a]!) * (p[2 * c + 1]! - p[2 * a + 1]!) -
+        (p[2 * c]! - p[2 * a]!) * (p[2 * b + 1]! - p[2 * a + 1]!)) /
+      2;
+    layers.order.forEach((layer, index) => {
+      let triangles = 0;
+      for (let f = 0; f < t.length / 3; f++)
+        if (layers.triangles[f] === layer) triangles += area(t[3 * f]!, t[3 * f + 1]!, t[3 * f + 2]!);
+      let loops = 0;
+      for (const loop of layers.outlines[index]!) {
+        for (let i = 1; i + 1 < loop.length; i++) loops += area(loop[0]!, loop[i]!, loop[i + 1]!);
+      }
+      expect(loops).toBeCloseTo(triangles, 12);
+      expect(triangles).toBeGreaterThan(1);
+    });
   });
 });
 

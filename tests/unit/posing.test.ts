@@ -71,6 +71,30 @@ describe("Posing", () => {
     expect(posing.advance(noTimings())).toBeGreaterThan(0);
   });
 
+  it("with No foldovers an extreme drag folds nothing, stops short, and its recording replays to the same bits", async () => {
+    const { posing } = posed(600);
+    const rest = posing.deformer.positions();
+    const hand = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
+    const target: [number, number] = [hand[0] - 0.8, hand[1] - 1.3];
+    posing.startRecording();
+    // The hand pulled down through the body, below the feet.
+    dragTo(posing, target);
+    expect(posing.deformer.metrics().flipped).toBe(0);
+    expect(posing.clamped).toBe(true);
+    const session = posing.stopRecording()!;
+    const pose = posing.deformer.positions();
+    // Without the guard the same drag folds triangles over.
+    const plain = posed(600).posing;
+    plain.settings.noFoldovers = false;
+    dragTo(plain, target);
+    expect(plain.deformer.metrics().flipped).toBeGreaterThan(0);
+    // The recording holds the plain steps the guard took: a replay repeats them exactly.
+    posing.reset();
+    expect(posing.deformer.positions()).toEqual(rest);
+    await posing.replay(session, posing.shape, async () => true);
+    expect(Array.from(posing.deformer.positions())).toEqual(Array.from(pose));
+  });
+
   it("re-meshing carries the pose and the handles over, at their places, as one undoable step", () => {
     const { posing } = posed(600);
     dragTo(posing, [0.9, 0.2]);

@@ -279,12 +279,6 @@ export interface GuardedStep {
 }
 
 /**
- * As-Killing-As-Possible (or, with `method: "arap"`, as-rigid-as-possible) deformation of
- * one mesh. Give it handles (vertices, or points inside triangles), then call
- * {@link Deformer.step} with a velocity per handle each frame. Bad input throws an `Error` and leaves the deformer as it was. Call
- * {@link Deformer.free} when done: the solver lives in WebAssembly memory.
- */
-/**
  * The fill-reducing orders a {@link Deformer} with these options needs for this mesh: the
  * bulk of its set-up (ordering the mesh's vertex graph, about two thirds of the time). Run
  * it in a worker and pass the result to the constructor to keep a page responsive.
@@ -302,6 +296,14 @@ export function deformerOrders(
   ) as Uint32Array[];
 }
 
+/**
+ * Deformation of one mesh by a method of {@link Method} (As-Killing-As-Possible by default;
+ * `"arap"`, `"mls"`, `"cauchy-green"`). Give it handles (vertices, or points inside
+ * triangles), then call {@link Deformer.step} (or {@link Deformer.stepWithoutFoldovers})
+ * with a velocity per handle each frame. Bad input throws an `Error` and leaves the
+ * deformer as it was. Call {@link Deformer.free} when done: the solver lives in WebAssembly
+ * memory.
+ */
 export class Deformer {
   #inner: rawTypes.Deformer | undefined;
   #view: Float64Array | undefined;

@@ -51,6 +51,38 @@ export function boundaryLoops(boundaryEdges: ArrayLike<number>): number[][] {
 }
 
 /**
+ * The outlines of the regions of triangles that share a label: for each label, the loops
+ * (see {@link boundaryLoops}) of its triangles' edges whose neighbour across is missing or
+ * labelled otherwise. Filling a region's loops (nonzero) covers what its triangles cover, with
+ * a few hundred edges instead of thousands of triangles (a canvas fills such a path far
+ * faster).
+ */
+export function regionOutlines(
+  triangles: ArrayLike<number>,
+  labels: ArrayLike<number>,
+  vertexCount: number,
+): Map<number, number[][]> {
+  const count = triangles.length / 3;
+  const byEdge = new Map<number, number>();
+  for (let t = 0; t < count; t++) {
+    for (let k = 0; k < 3; k++) byEdge.set(triangles[3 * t + k]! * vertexCount + triangles[3 * t + ((k + 1) % 3)]!, t);
+  }
+  const rims = new Map<number, number[]>();
+  for (let t = 0; t < count; t++) {
+    const label = labels[t]!;
+    for (let k = 0; k < 3; k++) {
+      const [a, b] = [triangles[3 * t + k]!, triangles[3 * t + ((k + 1) % 3)]!];
+      const twin = byEdge.get(b * vertexCount + a);
+      if (twin !== undefined && labels[twin] === label) continue;
+      let rim = rims.get(label);
+      if (!rim) rims.set(label, (rim = []));
+      rim.push(a, b);
+    }
+  }
+  return new Map([...rims].map(([label, rim]) => [label, boundaryLoops(rim)]));
+}
+
+/**
  * The square that {@link boxUvs} maps onto the unit square: a bounding box grown in its
  * shorter direction about its centre, `[x0, x0 + size] x [y0, y0 + size]` (size 1 for a
  * box of no size).

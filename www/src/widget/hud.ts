@@ -16,6 +16,8 @@ export interface FrameReport {
   metrics: Metrics;
   /** Milliseconds of a trained rig's evaluation, when the frame was posed by one. */
   evaluationMs?: number;
+  /** A step stopped short to keep triangles from folding over. */
+  clamped?: boolean;
 }
 
 const SPARK_FRAMES = 120;
@@ -132,6 +134,7 @@ export class Hud {
         : `rig evaluation ${e.toFixed(3)} ms (${e > 0 ? Math.round(1000 / e).toLocaleString("en") : "∞"} per second)`,
       `${this.#vertices} vertices, ${this.#triangles} triangles`,
       metricsLine(frame.metrics),
+      ...(frame.clamped ? ["no foldovers: stopped short, a further step would fold triangles"] : []),
       ...(this.#rig ? [this.#rig] : []),
     ].join("\n");
   }

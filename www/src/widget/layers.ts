@@ -7,6 +7,7 @@
  * texture correctly, where a depth buffer would cut it), and the outline of each layer is
  * hidden where a layer in front covers it.
  */
+import { regionOutlines } from "./geometry.js";
 import type { MeshPoint } from "./picking.js";
 
 /** Layers of a mesh's triangles and boundary edges, and the layers in use, back to front. */
@@ -17,6 +18,12 @@ export interface Layering {
   edges: Int32Array;
   /** The distinct layers, ascending (back to front). */
   order: number[];
+  /**
+   * Per layer of `order`, the closed loops of vertices around its part (the part on their
+   * left at rest): what it covers in any pose, drawn as a few hundred edges instead of its
+   * triangles.
+   */
+  outlines: number[][][];
 }
 
 /**
@@ -78,12 +85,14 @@ export function layering(
     triangleLayers[t] = owner[best]! >= 0 ? handles[owner[best]!]!.layer : 0;
     for (let k = 0; k < 3; k++) byEdge.set(triangles[3 * t + k]! * n + triangles[3 * t + ((k + 1) % 3)]!, t);
   }
+  const order = [...layers].sort((a, b) => a - b);
+  const regions = regionOutlines(triangles, triangleLayers, n);
   const edges = new Int32Array(boundaryEdges.length / 2);
   for (let e = 0; e < edges.length; e++) {
     const t = byEdge.get(boundaryEdges[2 * e]! * n + boundaryEdges[2 * e + 1]!);
     edges[e] = t === undefined ? 0 : triangleLayers[t]!;
   }
-  return { triangles: triangleLayers, edges, order: [...layers].sort((a, b) => a - b) };
+  return { triangles: triangleLayers, edges, order, outlines: order.map((layer) => regions.get(layer) ?? []) };
 }
 
 /** The triangles (3 indices each) back to front: stable by layer, as given without a layering. */

@@ -99,6 +99,11 @@ export interface WidgetOptions {
   tool?: WidgetTool;
   /** The stiffness brush: radius in CSS pixels (2 to 400, default 24) and the value painted (0.001 to 1000, default 100). */
   brush?: Partial<BrushSettings>;
+  /**
+   * Keep triangles from folding over (default true): a step that would flip one is split,
+   * and stopped short where even small pieces would (the HUD says so).
+   */
+  noFoldovers?: boolean;
   /** Longest handle move per substep, as a fraction of the shape's size (default 0.02). */
   maxStep?: number;
   /** Most substeps per animation frame (default 8); longer moves continue next frame. */
@@ -140,6 +145,8 @@ export interface PoseDetail {
   timings: Timings;
   /** Milliseconds of a trained rig's evaluation, when a rig posed the frame. */
   evaluationMs?: number;
+  /** A step stopped short to keep triangles from folding over (`noFoldovers`). */
+  clamped: boolean;
 }
 
 export const DEFAULTS = {
@@ -178,6 +185,7 @@ export const WIDGET_OPTIONS = [
   "storageKey",
   "tool",
   "brush",
+  "noFoldovers",
 ] as const satisfies readonly (keyof WidgetOptions)[];
 // Every option of the interface is in the list (a compile-time check).
 const everyOption: Record<Exclude<keyof WidgetOptions, (typeof WIDGET_OPTIONS)[number]>, never> = {};
@@ -211,6 +219,7 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     flipped: options.flipped ?? true,
     maxStep: options.maxStep ?? DEFAULTS.maxStep,
     maxSubsteps: options.maxSubsteps ?? DEFAULTS.maxSubsteps,
+    noFoldovers: options.noFoldovers ?? true,
     tool: options.tool ?? "pose",
     brush: brushSettings(DEFAULT_BRUSH, options.brush ?? {}),
   };

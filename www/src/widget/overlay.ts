@@ -38,8 +38,8 @@ export interface OverlayScene {
   cage?: ArrayLike<number>;
   /** The depth order of the parts: each layer's outline is hidden where a layer in front covers it. */
   layers?: Layering | undefined;
-  /** Painted stiffness (one per triangle), drawn as a tint. */
-  stiffness?: ArrayLike<number>;
+  /** Painted stiffness as regions of one value each (their outline loops), drawn as a tint. */
+  stiffness?: Map<number, number[][]> | undefined;
   /** The brush's outline: centre and radius in shape units. */
   brush?: { x: number; y: number; r: number };
 }
@@ -57,7 +57,7 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
 
   drawOutline(ctx, scene, at, ratio);
 
-  if (scene.stiffness) drawStiffness(ctx, scene.triangles, scene.stiffness, at);
+  if (scene.stiffness) drawStiffness(ctx, scene.stiffness, at);
 
   if (scene.showFlipped) {
     ctx.beginPath();
@@ -171,7 +171,8 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
 
 /**
  * The outline: the boundary edges, layer by layer from the back; before each layer's
- * edges are drawn, what its triangles cover of the outlines behind is erased.
+ * edges are drawn, what its part covers of the outlines behind is erased (its outline
+ * loops filled, not its many triangles).
  */
 function drawOutline(
   ctx: CanvasRenderingContext2D,
@@ -179,25 +180,19 @@ function drawOutline(
   at: (v: number) => [number, number],
   ratio: number,
 ): void {
-  const { boundaryEdges: e, triangles: t, layers } = scene;
+  const { boundaryEdges: e, layers } = scene;
   ctx.strokeStyle = "#5a2d0c";
   ctx.lineWidth = 2 * ratio;
   ctx.lineJoin = "round";
-  for (const layer of layers?.order ?? [0]) {
-    if (layers && layer !== layers.order[0]) {
+  for (const [index, layer] of (layers?.order ?? [0]).entries()) {
+    if (layers && index > 0) {
       ctx.beginPath();
-      for (let f = 0; f < layers.triangles.length; f++) {
-        if (layers.triangles[f] !== layer) continue;
-        const [ax, ay] = at(t[3 * f]!);
-        const [bx, by] = at(t[3 * f + 1]!);
-        const [cx, cy] = at(t[3 * f + 2]!);
-        ctx.moveTo(ax, ay);
-        ctx.lineTo(bx, by);
-        ctx.lineTo(cx, cy);
+      for (const loop of layers.outlines[index]!) {
+        loop.forEach((v, i) => (i === 0 ? ctx.moveTo(...at(v)) : ctx.lineTo(...at(v))));
         ctx.closePath();
       }
       ctx.globalCompositeOperation = "destination-out";
-      ctx.fill();
+      ctx.fill("nonzero");
       ctx.globalCompositeOperation = "source-over";
     }
     ctx.beginPath();
@@ -212,34 +207,22 @@ function drawOutline(
   }
 }
 
-/** Triangles tinted by their stiffness, one path per distinct value. */
+/** The painted regions tinted by their stiffness, one path per value. */
 function drawStiffness(
   ctx: CanvasRenderingContext2D,
-  triangles: ArrayLike<number>,
-  stiffness: ArrayLike<number>,
+  regions: Map<number, number[][]>,
   at: (v: number) => [number, number],
 ): void {
-  const byTint = new Map<string, number[]>();
-  for (let f = 0; f < stiffness.length; f++) {
-    const tint = stiffnessTint(stiffness[f]!);
+  for (const [value, loops] of regions) {
+    const tint = stiffnessTint(value);
     if (tint === undefined) continue;
-    let faces = byTint.get(tint);
-    if (!faces) byTint.set(tint, (faces = []));
-    faces.push(f);
-  }
-  for (const [tint, faces] of byTint) {
     ctx.beginPath();
-    for (const f of faces) {
-      const [ax, ay] = at(triangles[3 * f]!);
-      const [bx, by] = at(triangles[3 * f + 1]!);
-      const [cx, cy] = at(triangles[3 * f + 2]!);
-      ctx.moveTo(ax, ay);
-      ctx.lineTo(bx, by);
-      ctx.lineTo(cx, cy);
+    for (const loop of loops) {
+      loop.forEach((v, i) => (i === 0 ? ctx.moveTo(...at(v)) : ctx.lineTo(...at(v))));
       ctx.closePath();
     }
     ctx.fillStyle = tint;
-    ctx.fill();
+    ctx.fill("nonzero");
   }
 }
 

@@ -166,6 +166,7 @@ export function savedWork(
       field: s.field,
       flipped: s.flipped,
       paperMode: s.paperMode,
+      noFoldovers: s.noFoldovers,
       hud: s.hud,
       region: s.region,
       compare: s.compare,

@@ -95,6 +95,8 @@ export class Posing {
   replaying = false;
   /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
   rig: Rig | undefined;
+  /** Whether a step of the last frame stopped short to keep triangles from folding over. */
+  clamped = false;
   /** Milliseconds of the last frame's rig evaluation (0 when the frame stepped the deformer). */
   evaluationMs = 0;
   /**
@@ -102,7 +104,16 @@ export class Posing {
    * the shape: kept across methods, and given to the deformer whenever its method takes
    * stiffness (AKAP and ARAP; {@link Deformer.hasStiffness}).
    */
-  stiffness: Float64Array | undefined;
+  get stiffness(): Float64Array | undefined {
+    return this.#stiffness;
+  }
+  set stiffness(values: Float64Array | undefined) {
+    this.#stiffness = values;
+    this.stiffnessVersion++;
+  }
+  #stiffness: Float64Array | undefined;
+  /** Counts changes of the painting (the drawn tint is made again when it changes). */
+  stiffnessVersion = 0;
   /** Painted since the deformer (and the recording) last had the painting. */
   #stiffnessPending = false;
   /** The rig's last pose and the targets it was for (skipped when they have not moved). */
@@ -254,7 +265,7 @@ export class Posing {
       value,
     );
     if (!changed) return false;
-    this.stiffness = stiffness;
+    this.stiffness = stiffness; // the same array, painted: a new version
     this.#stiffnessPending = true;
     return true;
   }
@@ -489,6 +500,7 @@ export class Posing {
    */
   advance(timings: Timings): number {
     this.evaluationMs = 0;
+    this.clamped = false;
     this.flushStiffness();
     const n = this.handles.length;
     if (n === 0) return 0;
@@ -507,7 +519,7 @@ export class Posing {
       if (distance === 0) return 0;
       const count = Math.min(substepCount(distance, longest), maxSubsteps);
       const velocities = displacementVelocities(displacement, count);
-      for (let s = 0; s < count; s++) this.step(velocities, timings);
+      for (let s = 0; s < count && !this.clamped; s++) this.step(velocities, timings);
       current = this.deformer.handlePositions();
       // The handles end where the deformation took them; pins stay pins.
       this.handles.forEach((h, i) => {
@@ -525,12 +537,16 @@ export class Posing {
     const needed = substepCount(gap, longest);
     const count = Math.min(needed, maxSubsteps);
     const velocities = new Float64Array(2 * n);
-    for (let s = 0; s < count; s++) {
-      trackingVelocities(current, targets, needed - s, velocities);
+    let taken = 0;
+    for (; taken < count && !this.clamped; taken++) {
+      trackingVelocities(current, targets, needed - taken, velocities);
       this.step(velocities, timings);
       current = this.deformer.handlePositions();
     }
-    return count;
+    // Stopped short to keep the triangles unfolded: handles let go stay where they are
+    // (they would only stop short again), held ones keep their targets.
+    if (this.clamped) this.pinUnheld();
+    return taken;
   }
 
   /**
@@ -563,26 +579,39 @@ export class Posing {
 
   /**
    * One deformer step; a step that fails (the deformer is then unchanged) is tried again
-   * with smaller velocities before the error is passed on.
+   * with smaller velocities before the error is passed on. With `noFoldovers` (the
+   * default) the step is the core's guarded one: split where it would flip a triangle, and
+   * stopped short (`clamped`) where even small pieces would; each plain step it took is
+   * recorded as it was taken, so a replay repeats it bit for bit.
    */
   step(velocities: Float64Array, timings: Timings): void {
-    let taken = velocities;
+    const attempt = (v: Float64Array): Float64Array[] => {
+      if (!this.settings.noFoldovers) {
+        this.deformer.step(v);
+        return [v];
+      }
+      const report = this.deformer.stepWithoutFoldovers(v);
+      if (report.clamped) this.clamped = true;
+      // The core's own products: `step` with these repeats each piece to the bit.
+      return report.steps.map((fraction) => (fraction === 1 ? v : v.map((x) => x * fraction)));
+    };
+    let taken: Float64Array[] | undefined;
     try {
-      this.deformer.step(velocities);
+      taken = attempt(velocities);
     } catch (error) {
-      const smaller = RETRY_SCALES.map((f) => velocities.map((v) => v * f)).find((v) => {
+      for (const f of RETRY_SCALES) {
         try {
-          this.deformer.step(v);
-          return true;
+          taken = attempt(velocities.map((v) => v * f));
+          break;
         } catch {
-          return false;
+          // try smaller still
         }
-      });
-      if (!smaller) throw error;
-      taken = smaller;
+      }
+      if (!taken) throw error;
     }
+    if (taken.length === 0) return;
     this.atRest = false;
-    this.record({ step: taken });
+    for (const v of taken) this.record({ step: v });
     const t = this.deformer.timings();
     timings.assembly += t.assembly;
     timings.factorisation += t.factorisation;

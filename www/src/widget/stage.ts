@@ -12,6 +12,7 @@ import { HelpPanel } from "./help.js";
 import { Hud } from "./hud.js";
 import type { WidgetSettings } from "./options.js";
 import { drawOverlay, type OverlayHandle } from "./overlay.js";
+import { regionOutlines } from "./geometry.js";
 import { drawOrder, layering, type Layering } from "./layers.js";
 import type { Posing } from "./posing.js";
 import type { Shape } from "./shape.js";
@@ -65,6 +66,8 @@ export class Stage {
   readonly #overlayContext: CanvasRenderingContext2D;
   /** The depth order last given to the renderer, and what it was computed for. */
   #layers: { shape: Shape; key: string; layers: Layering | undefined } | undefined;
+  /** The painting's regions last drawn, and the painting they were made from. */
+  #tints: { shape: Shape; version: number; regions: Map<number, number[][]> } | undefined;
   /** Device pixels per CSS pixel. */
   ratio = 1;
 
@@ -132,6 +135,18 @@ export class Stage {
     return this.#layers.layers;
   }
 
+  /** The painted stiffness as regions of one value each (1 left out), made again when it changes. */
+  #tint(posing: Posing): Map<number, number[][]> | undefined {
+    const { stiffness, stiffnessVersion: version, shape } = posing;
+    if (!stiffness) return undefined;
+    if (this.#tints?.shape !== shape || this.#tints.version !== version) {
+      const regions = regionOutlines(shape.mesh.triangles, stiffness, shape.mesh.vertexCount);
+      regions.delete(1);
+      this.#tints = { shape, version, regions };
+    }
+    return this.#tints.regions;
+  }
+
   /** The renderer has the mesh's triangles in their own order (a new mesh was set). */
   meshSet(): void {
     this.#layers = undefined;
@@ -187,7 +202,7 @@ export class Stage {
       : undefined;
     // Painted stiffness shows while the brush is on, and with the wireframe (structure).
     const painting = settings.tool === "stiffness";
-    const stiffness = withHandles && (painting || settings.wireframe) ? posing.stiffness : undefined;
+    const stiffness = withHandles && (painting || settings.wireframe) ? this.#tint(posing) : undefined;
     const brushAt = withHandles && painting ? extras.brushAt : undefined;
     const brush = brushAt && {
       x: brushAt[0],

@@ -13,6 +13,8 @@ export interface DisplayToggles {
   field: boolean;
   flipped: boolean;
   paperMode: boolean;
+  /** Keep triangles from folding over (a posing option beside the display's). */
+  noFoldovers: boolean;
   region: boolean;
   compare: boolean;
 }
@@ -220,6 +222,7 @@ export function buildToolbar(
       field: field.checked,
       flipped: flipped.checked,
       paperMode: paper.checked,
+      noFoldovers: noFoldovers.checked,
       region: region.checked,
       compare: compare.checked,
     });
@@ -230,6 +233,10 @@ export function buildToolbar(
   const flipped = checkbox(view, "Flipped", s.flipped, display);
   flipped.name = "flipped";
   const paper = checkbox(view, "Paper mode", s.paperMode, display);
+  const noFoldovers = checkbox(methodGroup, "No foldovers", s.noFoldovers, display);
+  noFoldovers.name = "no-foldovers";
+  noFoldovers.parentElement!.title =
+    "Split a step that would flip a triangle, and stop short where even small pieces would";
   paper.name = "paper-mode";
   const hud = checkbox(view, "HUD", s.hud, () => actions.hud(hud.checked));
   hud.name = "hud";
@@ -409,6 +416,7 @@ export function buildToolbar(
       field.checked = settings.field;
       flipped.checked = settings.flipped;
       paper.checked = settings.paperMode;
+      noFoldovers.checked = settings.noFoldovers;
       region.checked = settings.region;
       compare.checked = settings.compare;
       energy.value = settings.training.energy ?? "sarap";

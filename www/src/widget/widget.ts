@@ -492,9 +492,14 @@ export class Widget {
     this.#gesture(() => this.#posing.carryOver(prepared.shape, prepared.orders));
   }
 
-  /** Display options; `region` and `compare` concern a trained rig (see {@link WidgetOptions}). */
+  /**
+   * Display options, and `paperMode` and `noFoldovers` of posing; `region` and `compare`
+   * concern a trained rig (see {@link WidgetOptions}).
+   */
   setDisplay(
-    options: Partial<Pick<WidgetSettings, "wireframe" | "field" | "flipped" | "paperMode" | "region" | "compare">>,
+    options: Partial<
+      Pick<WidgetSettings, "wireframe" | "field" | "flipped" | "paperMode" | "noFoldovers" | "region" | "compare">
+    >,
   ): void {
     Object.assign(this.#settings, options);
     if (options.field) this.#lastField = this.#posing.deformer.field();
@@ -839,8 +844,9 @@ export class Widget {
     if (substeps > 0) {
       const work = performance.now() - started;
       const evaluationMs = posing.evaluationMs > 0 ? posing.evaluationMs : undefined;
-      this.#stage.hud.report({ time, work, timings, substeps, metrics: this.#metrics, evaluationMs });
-      this.#emitPose(work, substeps, timings, evaluationMs);
+      const clamped = posing.clamped;
+      this.#stage.hud.report({ time, work, timings, substeps, metrics: this.#metrics, evaluationMs, clamped });
+      this.#emitPose(work, substeps, timings, evaluationMs, clamped);
     }
     if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
       this.#schedule();
@@ -943,8 +949,10 @@ export class Widget {
     steps = 0,
     timings: Timings = { assembly: 0, factorisation: 0, dirichletFactorisation: 0, solve: 0, integration: 0 },
     evaluationMs?: number,
+    clamped = false,
   ): void {
     const detail: PoseDetail = {
+      clamped,
       metrics: { ...this.#metrics },
       handleCount: this.#posing.handles.length,
       frameMs,
