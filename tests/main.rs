@@ -27,5 +27,6 @@ mod session;
 mod sparse;
 mod stiffness;
 mod triangulation;
+mod turning;
 #[cfg(target_arch = "wasm32")]
 mod wasm_api;

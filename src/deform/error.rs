@@ -71,6 +71,11 @@ pub enum DeformError {
         /// Which handle.
         handle: usize,
     },
+    /// A handle's turn is NaN or infinite.
+    NonFiniteTurn {
+        /// Index of the handle.
+        handle: usize,
+    },
     /// A factorisation failed: the mesh has collapsed or flipped triangles.
     Factor(FactorError),
     /// The step would put a vertex at a position that is not finite or beyond
@@ -205,6 +210,7 @@ impl fmt::Display for DeformError {
                 expected / per.max(&1)
             ),
             Self::NonFiniteVelocity { handle } => write!(f, "the velocity of handle {handle} is not a finite number"),
+            Self::NonFiniteTurn { handle } => write!(f, "the turn of handle {handle} is not a finite number"),
             Self::Factor(e) => write!(f, "the step failed, the mesh may have collapsed triangles: {e}"),
             Self::NonFiniteResult => write!(
                 f,
@@ -249,7 +255,8 @@ impl fmt::Display for DeformError {
                 Number(*value)
             ),
             Self::Unsupported { method, what } => {
-                write!(f, "method {method} has no {what}; choose \"akap\" or \"arap\" for it")
+                let with = if *what == "turning handles" { "\"akap\"" } else { "\"akap\" or \"arap\"" };
+                write!(f, "method {method} has no {what}; choose {with} for it")
             }
             Self::InvalidCage { reason } => write!(f, "the cage cannot be used: {reason}"),
             Self::ForeignCheckpoint { method, saved } => match saved {

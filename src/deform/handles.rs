@@ -209,6 +209,23 @@ pub(crate) fn in_range(positions: &[[f64; 2]]) -> bool {
     positions.iter().flatten().all(|x| x.abs() <= MAX_COORDINATE)
 }
 
+/// Checks turns: one per handle, each finite.
+pub(crate) fn check_turns(turns: &[f64], handle_count: usize) -> Result<(), DeformError> {
+    if turns.len() != handle_count {
+        return Err(DeformError::Length {
+            what: "turns",
+            expected: handle_count,
+            found: turns.len(),
+            per: 1,
+            items: "handles",
+        });
+    }
+    match turns.iter().position(|w| !w.is_finite()) {
+        Some(handle) => Err(DeformError::NonFiniteTurn { handle }),
+        None => Ok(()),
+    }
+}
+
 /// Checks per-triangle stiffness: one value per triangle, each in [`STIFFNESS_RANGE`]
 /// (`None`, 1 everywhere, always passes).
 pub(crate) fn check_stiffness(stiffness: Option<&[f64]>, triangle_count: usize) -> Result<(), DeformError> {

@@ -169,6 +169,17 @@ pub trait Deform: fmt::Debug {
     }
     /// One step with a velocity per handle, in handle order.
     fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError>;
+    /// One step in which handles also turn: `turns[i]` radians counter-clockwise about
+    /// handle `i`'s point, its neighbourhood following that rigid motion (AKAP; see
+    /// `deform::akap` and the README). All turns zero is exactly [`Deform::step`]; methods
+    /// without turning handles refuse other turns ([`DeformError::Unsupported`]).
+    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
+        crate::deform::handles::check_turns(turns, self.handle_count())?;
+        if turns.iter().any(|&w| w != 0.0) {
+            return Err(DeformError::Unsupported { method: self.method_options().method(), what: "turning handles" });
+        }
+        self.step(velocities)
+    }
     /// Current vertex positions.
     fn positions(&self) -> &[Point];
     /// Puts the mesh into a given pose; handles stay (ARAP: their targets move with them).

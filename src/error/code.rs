@@ -243,6 +243,7 @@ impl DeformError {
             | Self::InvalidBarycentric { .. }
             | Self::Length { .. }
             | Self::NonFiniteVelocity { .. }
+            | Self::NonFiniteTurn { .. }
             | Self::NonFinitePosition { .. }
             | Self::PositionOutOfRange { .. }
             | Self::OrdersMismatch { .. }

@@ -26,9 +26,10 @@ use sprs::CsMat;
 
 use super::killing::KillingMatrix;
 use super::spiral::{linear_step, spiral_step};
+use super::turning::{self, rigid_field, Neighbourhood};
 use crate::deform::error::{out_of_memory, DeformError};
 use crate::deform::handles::{
-    self, check_connected, check_pose, check_stiffness, check_velocities, diagonal, in_range, HandlePoint,
+    self, check_connected, check_pose, check_stiffness, check_turns, check_velocities, diagonal, in_range, HandlePoint,
 };
 use crate::deform::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
 use crate::deform::metrics::{metrics, Metrics};
@@ -92,6 +93,10 @@ pub struct Deformer {
     distinct_points: usize,
     /// Whether every handle weighs only on boundary vertices (then step 2 changes nothing).
     boundary_handles_only: bool,
+    /// Per handle, the vertices it carries when it turns ([`turning`]).
+    neighbourhoods: Vec<Neighbourhood>,
+    /// Scratch: the turning handles' velocities at their neighbourhoods' vertices.
+    turn_targets: Vec<[f64; 2]>,
     /// Last field of step 1 and of step 2, interleaved `u1 u2` per vertex.
     soft_field: Vec<f64>,
     field: Vec<f64>,
@@ -166,6 +171,8 @@ impl Deformer {
             penalty_slots: Vec::new(),
             distinct_points: 0,
             boundary_handles_only: true,
+            neighbourhoods: Vec::new(),
+            turn_targets: Vec::new(),
             soft_field: vec![0.0; 2 * n],
             field: vec![0.0; 2 * n],
             next_soft: vec![0.0; 2 * n],
@@ -246,6 +253,14 @@ impl Deformer {
         self.boundary_handles_only = handles.iter().all(|h| {
             h.vertices.iter().zip(h.weights).all(|(&v, w)| w == 0.0 || self.mesh.is_boundary_vertex(v as usize))
         });
+        let killing = &self.killing;
+        let diagonal = |v: usize| {
+            let block = killing.block_slots(v, v).expect("every vertex has its diagonal block");
+            [block[0][0], block[1][1]]
+        };
+        self.neighbourhoods = handles.iter().map(|h| Neighbourhood::of(&self.mesh, h, diagonal)).collect();
+        let most = self.neighbourhoods.iter().map(|n| n.vertices.len()).sum();
+        self.turn_targets = Vec::with_capacity(most);
         self.handles = handles;
     }
 
@@ -262,22 +277,52 @@ impl Deformer {
     /// One deformation step with a velocity per handle (in handle order).
     pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
         check_velocities(velocities, self.handles.len())?;
+        self.take_step(velocities, None)
+    }
+
+    /// One step in which handles also turn: `turns[i]` radians counter-clockwise about the
+    /// handle's point (see [`turning`]); all zero is exactly [`Self::step`]. A single
+    /// handle (or handles at one point) moves the whole shape by its rigid motion.
+    pub fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
+        check_velocities(velocities, self.handles.len())?;
+        check_turns(turns, self.handles.len())?;
+        if turns.iter().all(|&w| w == 0.0) {
+            return self.take_step(velocities, None);
+        }
+        self.take_step(velocities, Some(turns))
+    }
+
+    fn take_step(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>) -> Result<(), DeformError> {
         let clock = self.clock;
         let mut timings = Timings::default();
         if self.distinct_points < 2 {
-            // No handle: nothing moves. One handle point: the whole shape follows it rigidly.
+            // No handle: nothing moves. One handle point: the whole shape follows it rigidly
+            // (and turns with it).
             let mut mean = [0.0, 0.0];
             for v in velocities {
                 mean[0] += v[0] / velocities.len() as f64;
                 mean[1] += v[1] / velocities.len() as f64;
             }
-            for k in 0..self.mesh.vertex_count() {
-                self.next_soft[2 * k] = mean[0];
-                self.next_soft[2 * k + 1] = mean[1];
+            match turns {
+                None => {
+                    for k in 0..self.mesh.vertex_count() {
+                        self.next_soft[2 * k] = mean[0];
+                        self.next_soft[2 * k + 1] = mean[1];
+                    }
+                }
+                Some(turns) => {
+                    let omega = turns.iter().sum::<f64>() / turns.len() as f64;
+                    let c = self.handles[0].position(&self.positions);
+                    for (k, &p) in self.positions.iter().enumerate() {
+                        let u = rigid_field(mean, omega, c, p);
+                        self.next_soft[2 * k] = u[0];
+                        self.next_soft[2 * k + 1] = u[1];
+                    }
+                }
             }
             self.next_field.copy_from_slice(&self.next_soft);
         } else {
-            self.solve_fields(velocities, &mut timings)?;
+            self.solve_fields(velocities, turns, &mut timings)?;
         }
 
         let t_move = clock();
@@ -313,15 +358,28 @@ impl Deformer {
     /// (about 1e-75 to 1e75) are scaled by the power of two `2^e` that brings the largest
     /// component into [1, 2), and the fields scaled back: exact, and free of overflow
     /// (`lambda u` at large velocities) and underflow (tiny ones) at any scale.
-    fn solve_fields(&mut self, velocities: &[[f64; 2]], timings: &mut Timings) -> Result<(), DeformError> {
+    fn solve_fields(
+        &mut self,
+        velocities: &[[f64; 2]],
+        turns: Option<&[f64]>,
+        timings: &mut Timings,
+    ) -> Result<(), DeformError> {
         let clock = self.clock;
         let lambda = self.options.lambda;
-        let largest = velocities.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-        let e = if largest == 0.0 || in_comfortable_range(largest) {
-            0
-        } else {
-            normalising_exponent(velocities.iter().copied())
-        };
+        if let Some(turns) = turns {
+            turning::targets(
+                &self.handles,
+                &self.neighbourhoods,
+                &self.positions,
+                velocities,
+                turns,
+                &mut self.turn_targets,
+            );
+        }
+        let asked = || velocities.iter().chain(turns.map_or(&[][..], |_| &self.turn_targets[..]));
+        let largest = asked().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let e =
+            if largest == 0.0 || in_comfortable_range(largest) { 0 } else { normalising_exponent(asked().copied()) };
         let t0 = clock();
         self.killing.assemble(&self.positions);
         let k = self.killing.matrix().data();
@@ -329,7 +387,22 @@ impl Deformer {
         let data = &mut self.soft.values;
         let rhs = &mut self.next_soft;
         rhs.fill(0.0);
-        for ((h, slots), u) in self.handles.iter().zip(&self.penalty_slots).zip(velocities) {
+        let mut at_target = 0;
+        for (index, ((h, slots), u)) in self.handles.iter().zip(&self.penalty_slots).zip(velocities).enumerate() {
+            if turns.is_some_and(|turns| turns[index] != 0.0) {
+                // A turning handle: its neighbourhood asked to follow the rigid motion.
+                let n = &self.neighbourhoods[index];
+                let w = lambda / n.vertices.len() as f64;
+                for (&v, slot) in n.vertices.iter().zip(&n.slots) {
+                    let t = self.turn_targets[at_target].map(|x| scale_by_power_of_two(x, e));
+                    at_target += 1;
+                    data[slot[0]] += w;
+                    data[slot[1]] += w;
+                    rhs[2 * v as usize] += w * t[0];
+                    rhs[2 * v as usize + 1] += w * t[1];
+                }
+                continue;
+            }
             let u = u.map(|x| scale_by_power_of_two(x, e));
             for i in 0..3 {
                 for j in 0..3 {
@@ -346,7 +419,9 @@ impl Deformer {
         // boundary unknowns only, U0 already makes the interior gradient of E_K vanish, which
         // is step 2's condition, and step 2's solution is unique (K_II is positive definite):
         // U_opt = U0, so the second factorisation is skipped.
-        let dirichlet = self.options.dirichlet && !self.boundary_handles_only;
+        let turning_inside = turns
+            .is_some_and(|turns| turns.iter().zip(&self.neighbourhoods).any(|(&w, n)| w != 0.0 && !n.boundary_only));
+        let dirichlet = self.options.dirichlet && (!self.boundary_handles_only || turning_inside);
         let t1 = clock();
         self.soft.numeric.refactor_values(&self.soft.values)?;
         let t2 = clock();
@@ -369,7 +444,22 @@ impl Deformer {
         let rhs = &mut self.interior_rhs;
         rhs.fill(0.0);
         let u0: &[[f64; 2]] = as_pairs(&self.next_soft);
-        for (h, u) in self.handles.iter().zip(velocities) {
+        let mut at_target = 0;
+        for (index, (h, u)) in self.handles.iter().zip(velocities).enumerate() {
+            if turns.is_some_and(|turns| turns[index] != 0.0) {
+                let n = &self.neighbourhoods[index];
+                let w = lambda / n.vertices.len() as f64;
+                for &v in &n.vertices {
+                    let t = self.turn_targets[at_target].map(|x| scale_by_power_of_two(x, e));
+                    at_target += 1;
+                    let i = self.interior_index[v as usize];
+                    if i != NONE {
+                        rhs[2 * i] += w * (t[0] - u0[v as usize][0]);
+                        rhs[2 * i + 1] += w * (t[1] - u0[v as usize][1]);
+                    }
+                }
+                continue;
+            }
             let u = u.map(|x| scale_by_power_of_two(x, e));
             let mut at = [0.0, 0.0];
             for (&v, &w) in h.vertices.iter().zip(&h.weights) {
@@ -487,6 +577,9 @@ impl Deform for Deformer {
     }
     fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
         Deformer::step(self, velocities)
+    }
+    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
+        Deformer::step_turning(self, velocities, turns)
     }
     fn positions(&self) -> &[Point] {
         Deformer::positions(self)

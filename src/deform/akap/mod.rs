@@ -1,5 +1,5 @@
 //! As-Killing-As-Possible vector fields for planar deformation (Solomon, Ben-Chen,
-//! Butscher and Guibas, SGP 2011), in three files:
+//! Butscher and Guibas, SGP 2011), in four files:
 //!
 //! - [`killing`]: the Killing energy `E_K(U) = U^T K U` of a piecewise-linear field, eq. (6),
 //!   as a matrix with a fixed pattern and values per frame;
@@ -7,10 +7,12 @@
 //!   (Dirichlet re-solve, eq. (4)), and the move; its options are
 //!   [`super::DeformerOptions`];
 //! - [`spiral`]: the move along logarithmic spirals, eqs. (14)-(16) with eq. (15)'s sign
-//!   corrected (derived in its documentation), and the linear move.
+//!   corrected (derived in its documentation), and the linear move;
+//! - `turning`: turning handles, whose neighbourhoods are asked to follow a rigid motion.
 
 pub mod deformer;
 pub mod killing;
 pub mod spiral;
+mod turning;
 
 pub use deformer::Deformer;
