@@ -60,6 +60,7 @@ fn json_round_trips_every_double_exactly() {
             .flat_map(|e| match e {
                 Event::Step(v) | Event::Positions(v) | Event::Handles { barycentric: v, .. } => v.clone(),
                 Event::Stiffness(v) => v.clone().unwrap_or_default(),
+                Event::Turn { velocities, turns } => [&velocities[..], &turns[..]].concat(),
                 Event::Reset(_) | Event::Options(_) => Vec::new(),
             })
             .map(f64::to_bits)
@@ -555,6 +556,7 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
             Event::Options(_) => "options",
             Event::Reset(_) => "reset",
             Event::Stiffness(_) => "stiffness",
+            Event::Turn { .. } => "turn",
         })
         .collect();
     for kind in ["handles", "step", "options", "reset"] {

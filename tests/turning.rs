@@ -7,8 +7,9 @@
 //! handle pinned elsewhere turns its triangle by about omega; bad turns change nothing;
 //! methods without turning handles refuse them. Runs natively and as wasm.
 
-use akap::deform::{Deform, DeformError, Deformer, DeformerOptions, MethodOptions, MlsOptions};
+use akap::deform::{DeformError, Deformer, DeformerOptions, FoldoverGuard, FoldoverStepper, MethodOptions, MlsOptions};
 use akap::geometry::Point;
+use akap::session::{replay, Event, Session};
 use akap::shapes::grid_mesh;
 use akap::Mesh;
 #[cfg(target_arch = "wasm32")]
@@ -146,4 +147,45 @@ fn bad_turns_change_nothing_and_methods_without_them_refuse_them() {
     let error = mls.step_turning(&v, &[0.0, 0.2]).unwrap_err();
     assert_eq!(error.to_string(), "method mls has no turning handles; choose \"akap\" for it");
     mls.step_turning(&v, &[0.0, 0.0]).unwrap();
+}
+
+#[test]
+fn turn_events_and_guarded_turning_pieces_replay_to_the_same_bits() {
+    let mesh = mesh();
+    let handles = (vec![6u32, 120], vec![[1.0 / 3.0; 3], [0.2, 0.5, 0.3]]);
+    let make = || {
+        let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+        d.set_handle_points(&handles.0, &handles.1).unwrap();
+        d
+    };
+    // Hard turns, guarded: the stepper splits or clamps where a piece would fold.
+    let mut guarded = make();
+    let mut stepper = FoldoverStepper::new(FoldoverGuard::default()).unwrap();
+    let (v, turns) = ([[0.0, 0.0], [1.5, -0.5]], [0.0, 1.2]);
+    let mut events = vec![Event::Handles { triangles: handles.0.clone(), barycentric: handles.1.concat() }];
+    for _ in 0..6 {
+        let report = stepper.step_turning(&mut guarded, &v, &turns).unwrap().clone();
+        for f in report.steps {
+            events.push(Event::Turn {
+                velocities: v.iter().flat_map(|u| [u[0] * f, u[1] * f]).collect(),
+                turns: turns.iter().map(|w| w * f).collect(),
+            });
+        }
+    }
+    assert!(events.len() > 7, "some step was split: {} events", events.len());
+    assert_eq!(akap::deform::foldover::newly_flipped(mesh.positions(), guarded.positions(), mesh.triangles()), 0);
+    let mut s = Session::with_mesh(&mesh, MethodOptions::Akap(DeformerOptions::default()));
+    s.events = events;
+    let s = Session::from_json(&s.to_json()).unwrap();
+    let mut replayed = s.recorded_deformer().unwrap();
+    replay(&s, &mut replayed).unwrap();
+    let bits = |p: &[Point]| p.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(replayed.positions()), bits(guarded.positions()));
+    // A turn event with the wrong number of turns is refused on reading.
+    let mut bad = s.clone();
+    bad.events.push(Event::Turn { velocities: vec![0.0; 4], turns: vec![0.1] });
+    assert_eq!(
+        Session::from_json(&bad.to_json()).unwrap_err().to_string(),
+        format!("event {}: turns has 1 numbers, expected 2 (1 for each of the 2 handles)", bad.events.len() - 1)
+    );
 }

@@ -304,15 +304,17 @@ fn a_step_without_foldovers_reports_its_plain_steps_and_refuses_bad_input_as_err
     let push = f64s(&[0.0, 0.0, 0.0, 0.0, 0.0, -3.0]);
     let getter = js("return { get maxSplits() { throw new Error('getter says no') } }");
     let array = js("return new Proxy(new Float64Array(6), { get() { throw new Error('no elements') } })");
-    assert!(message(deformer.step_without_foldovers(push.clone(), getter)).contains("getter says no"));
     assert!(
-        message(deformer.step_without_foldovers(array, JsValue::UNDEFINED)).contains("velocities could not be read")
+        message(deformer.step_without_foldovers(push.clone(), getter, JsValue::UNDEFINED)).contains("getter says no")
     );
-    let text = message(deformer.step_without_foldovers(push.clone(), options(r#"{"clampTrials": 31}"#)));
+    assert!(message(deformer.step_without_foldovers(array, JsValue::UNDEFINED, JsValue::UNDEFINED))
+        .contains("velocities could not be read"));
+    let text =
+        message(deformer.step_without_foldovers(push.clone(), options(r#"{"clampTrials": 31}"#), JsValue::UNDEFINED));
     assert_eq!(text, "option clampTrials is 31, expected a whole number from 0 to 30");
     assert_eq!(deformer.positions(), [0.0, 0.0, 1.0, 0.0, 0.0, 1.0]);
 
-    let report = deformer.step_without_foldovers(push, JsValue::UNDEFINED).unwrap();
+    let report = deformer.step_without_foldovers(push, JsValue::UNDEFINED, JsValue::UNDEFINED).unwrap();
     let get = |key: &str| Reflect::get(&report, &key.into()).unwrap();
     let steps: Vec<f64> = get("steps").dyn_into::<Array>().unwrap().iter().map(|s| s.as_f64().unwrap()).collect();
     assert_eq!(steps, [0.25, 0.0625, 0.0625 * 1365.0 / 4096.0]);

@@ -129,6 +129,9 @@ pub struct FoldoverStepper {
     piece: Checkpoint,
     /// The velocities times the current fraction.
     scaled: Vec<[f64; 2]>,
+    /// The handles' turns of the step (empty: a step without turns), and times the fraction.
+    turns: Vec<f64>,
+    scaled_turns: Vec<f64>,
     /// Pieces still to take, as halvings (a piece is `2^-depth` of the step), last first.
     pending: Vec<u32>,
     report: GuardedStep,
@@ -157,12 +160,38 @@ impl FoldoverStepper {
     /// description). On error (bad velocities, or a plain step that fails) the deformer is
     /// back where it was and the error returned.
     pub fn step(&mut self, deformer: &mut dyn Deform, velocities: &[[f64; 2]]) -> Result<&GuardedStep, DeformError> {
+        self.turns.clear();
+        self.run(deformer, velocities)
+    }
+
+    /// [`Self::step`] of a step in which handles also turn ([`Deform::step_turning`]): each
+    /// piece turns them by the same fraction of `turns` as it moves them, so the report's
+    /// fractions replay with `step_turning(velocities * f, turns * f)`.
+    pub fn step_turning(
+        &mut self,
+        deformer: &mut dyn Deform,
+        velocities: &[[f64; 2]],
+        turns: &[f64],
+    ) -> Result<&GuardedStep, DeformError> {
+        self.turns.clear();
+        if turns.iter().any(|&w| w != 0.0) {
+            crate::deform::handles::check_turns(turns, deformer.handle_count())?;
+            self.turns.extend_from_slice(turns);
+        }
+        self.run(deformer, velocities)
+    }
+
+    fn run(&mut self, deformer: &mut dyn Deform, velocities: &[[f64; 2]]) -> Result<&GuardedStep, DeformError> {
         self.report.steps.clear();
         self.report.clamped = false;
         self.report.attempts = 1;
         deformer.save_checkpoint(&mut self.piece);
         // The plain step itself; a failed one leaves the deformer unchanged.
-        deformer.step(velocities)?;
+        if self.turns.is_empty() {
+            deformer.step(velocities)?;
+        } else {
+            deformer.step_turning(velocities, &self.turns)?;
+        }
         if !self.flipped(deformer) {
             self.report.steps.push(1.0);
             return Ok(&self.report);
@@ -243,7 +272,12 @@ impl FoldoverStepper {
         self.scaled.clear();
         self.scaled.extend(velocities.iter().map(|v| [v[0] * fraction, v[1] * fraction]));
         self.report.attempts += 1;
-        deformer.step(&self.scaled)
+        if self.turns.is_empty() {
+            return deformer.step(&self.scaled);
+        }
+        self.scaled_turns.clear();
+        self.scaled_turns.extend(self.turns.iter().map(|w| w * fraction));
+        deformer.step_turning(&self.scaled, &self.scaled_turns)
     }
 
     /// The largest fraction `t` of the piece `velocities * piece` that the bisection finds

@@ -12,6 +12,7 @@
 //!               { "positions": [0, 0, 1, 0, 0.5, 1] },
 //!               { "options": { "method": "arap", "iterations": 10 } },
 //!               { "stiffness": [1, 1, 100, 100, 1] },
+//!               { "turn": { "velocities": [0, 0, 0.01, 0], "turns": [0, 0.05] } },
 //!               { "reset": true } ] }
 //! ```
 //!
@@ -33,7 +34,9 @@
 //! method gets a new deformer on the same mesh with the pose and handles carried over);
 //! `reset` (`true`; `false` does nothing) returns to the rest pose; `stiffness` paints
 //! every triangle's stiffness (one number per triangle, [`crate::deform::STIFFNESS_RANGE`]),
-//! or `null` for 1 everywhere, for the methods that have it (AKAP, ARAP: a stiffness event
+//! or `null` for 1 everywhere; `turn` is a frame in which handles also turn (`velocities` as
+//! a `step`'s, `turns` one angle per handle in radians, counter-clockwise; AKAP only), for
+//! the methods that have it (AKAP, ARAP: a stiffness event
 //! under another method is refused on replay as the deformer refuses it, and passed over by
 //! [`replay_to_targets`], whose method is a comparison's).
 //!
@@ -309,6 +312,13 @@ pub enum Event {
     Reset(bool),
     /// Each triangle's stiffness (one number per triangle), or `null` for 1 everywhere.
     Stiffness(Option<Vec<f64>>),
+    /// One frame in which handles also turn ([`Deform::step_turning`]).
+    Turn {
+        /// x and y velocity of each handle.
+        velocities: Vec<f64>,
+        /// The turn of each handle, radians counter-clockwise.
+        turns: Vec<f64>,
+    },
 }
 
 /// Why a session could not be read or replayed.
@@ -479,6 +489,7 @@ impl Session {
             Event::Positions(_) => Some("a positions event"),
             Event::Options(_) => Some("an options event"),
             Event::Stiffness(_) => Some("a stiffness event"),
+            Event::Turn { .. } => Some("a turn event"),
             _ => None,
         })
     }
@@ -516,8 +527,11 @@ impl Session {
                     }
                     handles = triangles.len();
                 }
-                Event::Step(v) if v.len() != 2 * handles => {
+                Event::Step(v) | Event::Turn { velocities: v, .. } if v.len() != 2 * handles => {
                     return Err(length("velocities", 2 * handles, v.len(), 2, "handles"))
+                }
+                Event::Turn { turns, .. } if turns.len() != handles => {
+                    return Err(length("turns", handles, turns.len(), 1, "handles"))
                 }
                 Event::Positions(p) if p.len() != 2 * counts.vertex_count => {
                     return Err(length("positions", 2 * counts.vertex_count, p.len(), 2, "vertices"))
@@ -583,7 +597,7 @@ impl Session {
 
     /// Number of `step` events.
     pub fn step_count(&self) -> usize {
-        self.events.iter().filter(|e| matches!(e, Event::Step(_))).count()
+        self.events.iter().filter(|e| matches!(e, Event::Step(_) | Event::Turn { .. })).count()
     }
 }
 

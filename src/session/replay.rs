@@ -77,7 +77,11 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
                 }
                 slot.get().set_handle_points(triangles, weights).map_err(refused)?;
             }
-            Event::Step(flat) => {
+            Event::Step(flat) | Event::Turn { velocities: flat, .. } => {
+                let turns = match event {
+                    Event::Turn { turns, .. } => Some(turns),
+                    _ => None,
+                };
                 let deformer = slot.get();
                 let before = deformer.handle_positions();
                 let pairs = pairs(flat, "velocities", before.len(), "handles").map_err(refused)?;
@@ -95,7 +99,11 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
                         velocities.extend(before.iter().zip(&goal).map(|(p, t)| [t[0] - p[0], t[1] - p[1]]));
                     }
                 }
-                deformer.step(&velocities).map_err(refused)?;
+                match turns {
+                    None => deformer.step(&velocities),
+                    Some(turns) => deformer.step_turning(&velocities, turns),
+                }
+                .map_err(refused)?;
                 let t = deformer.timings();
                 replay.frame_ms.push(t.assembly + t.factorisation + t.solve + t.integration);
                 replay.targets.push(goal);

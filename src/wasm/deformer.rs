@@ -36,7 +36,6 @@ pub fn deformer_orders(positions: JsValue, triangles: JsValue, options: JsValue)
     Ok(list)
 }
 
-/// Most handles a deformer takes: one per vertex of the largest mesh.
 /// Checks per-triangle stiffness for a mesh of `triangle_count` triangles, as
 /// `Deformer.setStiffness` does: one value per triangle (`Float64Array`), each from 0.001 to
 /// 1000. For callers that keep stiffness while a method without it poses.
@@ -47,6 +46,7 @@ pub fn check_stiffness(stiffness: JsValue, triangle_count: JsValue) -> Result<()
     Ok(crate::deform::handles::check_stiffness(Some(&values), count)?)
 }
 
+/// Most handles a deformer takes: one per vertex of the largest mesh.
 fn max_handles() -> usize {
     limits().max_vertices
 }
@@ -149,18 +149,40 @@ impl JsDeformer {
     /// `velocities[i] * fraction` each replays it to the bit), `clamped` whether the step
     /// ended short, `attempts` the plain steps tried. On error the deformer is unchanged.
     #[wasm_bindgen(js_name = stepWithoutFoldovers)]
-    pub fn step_without_foldovers(&mut self, velocities: JsValue, options: JsValue) -> Result<Object, BindingError> {
+    ///
+    /// `turns` (`Float64Array`, one per handle, or `undefined`): handles also turn, as in
+    /// `stepTurning`; each piece turns them by its fraction of `turns`.
+    pub fn step_without_foldovers(
+        &mut self,
+        velocities: JsValue,
+        options: JsValue,
+        turns: JsValue,
+    ) -> Result<Object, BindingError> {
         let guard = foldover_guard(&options)?;
         let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
         let velocities = pairs(&velocities, "velocities")?;
+        let turns = if turns.is_undefined() { None } else { Some(read::float64s(&turns, "turns", max_handles())?) };
         self.stepper.set_guard(guard)?;
-        let report = self.stepper.step(self.inner.as_mut(), &velocities)?;
+        let report = match &turns {
+            None => self.stepper.step(self.inner.as_mut(), &velocities)?,
+            Some(turns) => self.stepper.step_turning(self.inner.as_mut(), &velocities, turns)?,
+        };
         let steps: Array = report.steps.iter().map(|&f| JsValue::from_f64(f)).collect();
         object(&[
             ("steps", steps.into()),
             ("clamped", report.clamped.into()),
             ("attempts", (report.attempts as f64).into()),
         ])
+    }
+
+    /// One step in which handles also turn: `velocities` as `step` takes them, `turns`
+    /// (`Float64Array`) one angle per handle, radians counter-clockwise about the handle's
+    /// point, its neighbourhood following that rigid motion (AKAP; all zero is `step`).
+    #[wasm_bindgen(js_name = stepTurning)]
+    pub fn step_turning(&mut self, velocities: JsValue, turns: JsValue) -> Result<(), BindingError> {
+        let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
+        let turns = read::float64s(&turns, "turns", max_handles())?;
+        Ok(self.inner.step_turning(&pairs(&velocities, "velocities")?, &turns)?)
     }
 
     /// A copy of the current positions, x and y interleaved.

@@ -103,6 +103,23 @@ impl JsSessionRecorder {
         Ok(())
     }
 
+    /// A step in which handles also turn: two velocity components and one turn per handle
+    /// (`Float64Array`s).
+    pub fn turn(&mut self, velocities: JsValue, turns: JsValue) -> Result<(), BindingError> {
+        let v = finite(read::float64s(&velocities, "velocities", 2 * limits().max_vertices)?, "velocities")?;
+        let turns = finite(read::float64s(&turns, "turns", limits().max_vertices)?, "turns")?;
+        if v.len() != 2 * self.handles || turns.len() != self.handles {
+            return Err(BindingError::argument(format!(
+                "velocities has {} numbers and turns {}; {} handles need 2 and 1 each",
+                v.len(),
+                turns.len(),
+                self.handles
+            )));
+        }
+        self.session.events.push(Event::Turn { velocities: v, turns });
+        Ok(())
+    }
+
     /// A pose: x and y of every vertex (`Float64Array`).
     pub fn positions(&mut self, positions: JsValue) -> Result<(), BindingError> {
         let p = finite(read::float64s(&positions, "positions", max_coordinates())?, "positions")?;
