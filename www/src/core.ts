@@ -364,6 +364,17 @@ export class Deformer {
   }
 
   /**
+   * One step in which handles also turn: `turns` has one angle per handle (radians,
+   * counter-clockwise about the handle's point), and the region around each turning handle
+   * follows that rigid motion (softly, as handles are held). One handle alone turns the
+   * whole shape rigidly about itself. All turns 0 is exactly {@link step}. AKAP only: the
+   * other methods throw (code `invalid-argument`) for a turn that is not 0.
+   */
+  stepTurning(velocities: Coordinates, turns: Coordinates): void {
+    this.#raw.stepTurning(toFloat64(velocities, "velocities"), toFloat64(turns, "turns"));
+  }
+
+  /**
    * One step that turns no triangle over: a triangle positively oriented before it stays
    * so (triangles already turned over or collapsed are ignored). The plain {@link step}
    * when it flips none, bit for bit; otherwise two half steps, each guarded alike, down
@@ -372,10 +383,16 @@ export class Deformer {
    * (the handles then lag their targets; ask for the rest in the next frame). Any method;
    * AKAP and ARAP, whose steps have history, go on along another path, while MLS and
    * Cauchy-Green, functions of the targets, stop where the way to them first flips a
-   * triangle. Bad input throws and leaves the deformer as it was.
+   * triangle. With `turns`, handles also turn as in {@link stepTurning}, each piece by its
+   * fraction of them (replay with `stepTurning(velocities * f, turns * f)`). Bad input throws
+   * and leaves the deformer as it was.
    */
-  stepWithoutFoldovers(velocities: Coordinates, options: FoldoverOptions = {}): GuardedStep {
-    return this.#raw.stepWithoutFoldovers(toFloat64(velocities, "velocities"), options) as GuardedStep;
+  stepWithoutFoldovers(velocities: Coordinates, options: FoldoverOptions = {}, turns?: Coordinates): GuardedStep {
+    return this.#raw.stepWithoutFoldovers(
+      toFloat64(velocities, "velocities"),
+      options,
+      turns === undefined ? undefined : toFloat64(turns, "turns"),
+    ) as GuardedStep;
   }
 
   /** A copy of the current positions, xy-interleaved. */

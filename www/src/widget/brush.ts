@@ -1,6 +1,7 @@
 /**
  * The widget's stiffness brush: which tool a press on the shape uses (pose or paint), the
- * brush's size and value, where its outline is drawn, and the dabs the API makes. What a
+ * brush's size and value, where its outline is drawn (the pointer's place, which also shows
+ * a selected handle's turning ring), and the dabs the API makes. What a
  * dab paints is {@link Posing.paint}'s; this file is the page side of it.
  */
 import { METHODS, brushSettings, type WidgetSettings, type WidgetTool } from "./options.js";
@@ -59,10 +60,15 @@ export class Brush {
     this.setTool(this.#host.settings.tool, { size });
   }
 
-  /** The pointer is over the shape at `at` (or gone): the outline follows it. */
+  /**
+   * The pointer is over the canvas at `at` (or gone): the brush's outline follows it, and a
+   * selected handle's turning ring shows when it comes near.
+   */
   hover(at: [number, number] | undefined): void {
     this.at = at;
-    if (this.#host.settings.tool === "stiffness") this.#host.draw();
+    if (this.#host.settings.tool === "stiffness" || this.#host.posing.handles.some((h) => h.selected)) {
+      this.#host.draw();
+    }
   }
 
   /** The brush's radius in shape units: its size in CSS pixels at the current zoom. */

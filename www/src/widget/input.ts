@@ -7,7 +7,7 @@
 import type { Brush } from "./brush.js";
 import type { Camera } from "./camera.js";
 import { keyCommand, keyFocus } from "./keys.js";
-import { HANDLE_RADIUS } from "./overlay.js";
+import { HANDLE_RADIUS, RING_RADIUS } from "./overlay.js";
 import { locate, nearestPoint } from "./picking.js";
 import { PointerInput } from "./pointer.js";
 import type { Posing } from "./posing.js";
@@ -68,6 +68,24 @@ export class WidgetInput {
         posing.markChanged();
         host.succeeded();
         return posing.handles.length - 1;
+      },
+      ringAt: (x, y) => {
+        const p = posing.deformer.handlePositions();
+        const px = host.ratio() / host.camera.view.scale;
+        return posing.handles.findIndex((h, i) => {
+          const d = Math.hypot(p[2 * i]! - x, p[2 * i + 1]! - y) / px;
+          return h.selected && Math.abs(d - RING_RADIUS * HANDLE_RADIUS) <= 0.6 * HANDLE_RADIUS;
+        });
+      },
+      grabTurn: (index, pointerId, x, y) => {
+        const grabbed = posing.grabTurn(index, pointerId, x, y);
+        if (grabbed) host.draw();
+        return grabbed;
+      },
+      turn: (pointerId, x, y) => {
+        posing.dragTurn(pointerId, x, y);
+        posing.markChanged();
+        host.moved();
       },
       grab: (index, pointerId, x, y, additive) => {
         const grabbed = posing.grab(index, pointerId, x, y, additive);

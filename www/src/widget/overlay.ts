@@ -18,6 +18,10 @@ export interface OverlayHandle {
   targetY: number;
   selected: boolean;
   dragged: boolean;
+  /** Show the turning ring (a selected handle the pointer is near, or one turning). */
+  ring?: boolean;
+  /** How far the handle has turned in this gesture (radians), while it turns. */
+  turned?: number | undefined;
   /** Outside the region a trained rig was trained on (it extrapolates there). */
   outside?: boolean;
 }
@@ -46,6 +50,8 @@ export interface OverlayScene {
 
 /** Handle radius in CSS pixels. */
 export const HANDLE_RADIUS = 7;
+/** The turning ring round a selected handle, in handle radii. */
+export const RING_RADIUS = 2.6;
 /** Most arrows drawn for the field. */
 const MAX_ARROWS = 400;
 
@@ -150,6 +156,7 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
       ctx.stroke();
       ctx.setLineDash([]);
     }
+    if (h.ring) drawRing(ctx, x, y, ratio, h.turned);
     ctx.beginPath();
     ctx.arc(x, y, (h.dragged ? 1.3 : 1) * HANDLE_RADIUS * ratio, 0, 2 * Math.PI);
     ctx.fillStyle = h.selected ? "#ffd34d" : "#ffffff";
@@ -205,6 +212,32 @@ function drawOutline(
     }
     ctx.stroke();
   }
+}
+
+/**
+ * The turning ring round a selected handle: a thin circle with a knob, and while the handle
+ * turns, the arc it has turned through.
+ */
+function drawRing(ctx: CanvasRenderingContext2D, x: number, y: number, ratio: number, turned?: number): void {
+  const r = RING_RADIUS * HANDLE_RADIUS * ratio;
+  ctx.beginPath();
+  ctx.arc(x, y, r, 0, 2 * Math.PI);
+  ctx.strokeStyle = "rgba(29, 53, 87, 0.55)";
+  ctx.lineWidth = 1.5 * ratio;
+  ctx.stroke();
+  if (turned) {
+    // Canvas y points down: a counter-clockwise turn on screen is a negative angle here.
+    ctx.beginPath();
+    ctx.arc(x, y, r, 0, -turned, turned > 0);
+    ctx.strokeStyle = "#c0392b";
+    ctx.lineWidth = 3 * ratio;
+    ctx.stroke();
+  }
+  const angle = -(turned ?? 0);
+  ctx.beginPath();
+  ctx.arc(x + r * Math.cos(angle), y + r * Math.sin(angle), 0.45 * HANDLE_RADIUS * ratio, 0, 2 * Math.PI);
+  ctx.fillStyle = "#1d3557";
+  ctx.fill();
 }
 
 /** The painted regions tinted by their stiffness, one path per value. */

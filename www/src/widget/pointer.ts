@@ -5,6 +5,9 @@
  * or pen on an existing handle removes it, as does a double-click. Each pointer has its
  * own record, so several fingers drag several handles at once.
  *
+ * A press on the ring round the selected handle, or an Alt-press on a handle, turns the
+ * handle (and the region about it) as the pointer goes round it.
+ *
  * With the stiffness brush on, a press on the shape paints instead (with Alt, erases) until
  * it is released; the pointer's place, pressed or not, is reported for the brush's outline.
  *
@@ -38,6 +41,12 @@ export interface PointerHost {
   removeAt(x: number, y: number): void;
   /** A press off the shape: clears the selection unless `additive`, ends the gesture. */
   pressedOff(additive: boolean): void;
+  /** The selected handle whose turning ring is at a shape point, or -1. */
+  ringAt(x: number, y: number): number;
+  /** Starts turning a handle from a shape point; false if another pointer holds it. */
+  grabTurn(index: number, pointerId: number, x: number, y: number): boolean;
+  /** The pointer turning a handle moved to a shape point. */
+  turn(pointerId: number, x: number, y: number): void;
   /** Whether presses on the shape paint stiffness instead of posing (the brush is on). */
   painting(): boolean;
   /** A brush stroke (one per pointer) begins or goes on at a shape point; `erase` with Alt. */
@@ -62,8 +71,8 @@ const STILL_PIXELS = 6;
 const PINCH_WINDOW_MS = 350;
 
 interface Press {
-  /** Drags a handle, paints, or moves the view. */
-  kind: "handle" | "paint" | "view";
+  /** Drags a handle, turns one, paints, or moves the view. */
+  kind: "handle" | "turn" | "paint" | "view";
   touch: boolean;
   start: [number, number];
   last: [number, number];
@@ -123,6 +132,13 @@ export class PointerInput {
       return;
     }
     let index = host.handleAt(x, y);
+    const ring = index < 0 ? host.ringAt(x, y) : -1;
+    if ((index >= 0 && e.altKey) || ring >= 0) {
+      host.beginGesture();
+      if (!host.grabTurn(Math.max(index, ring), e.pointerId, x, y)) return;
+      this.#begin(e, { kind: "turn", touch, start: client, last: client, timer: undefined, added: 0 });
+      return;
+    }
     const existed = index >= 0;
     if (touch && !existed && this.#pinchWith()) {
       this.#begin(e, { kind: "view", touch, start: client, last: client, timer: undefined, added: 0 });
@@ -195,6 +211,10 @@ export class PointerInput {
       this.#host.paint(e.pointerId, ...this.#shape(e), e.altKey);
       return;
     }
+    if (press.kind === "turn") {
+      this.#host.turn(e.pointerId, ...this.#shape(e));
+      return;
+    }
     const views = [...this.#presses.values()].filter((p) => p.kind === "view");
     if (views.length < 2) {
       this.#host.pan(press.last[0] - previous[0], press.last[1] - previous[1]);
@@ -216,7 +236,7 @@ export class PointerInput {
     clearTimeout(press.timer);
     this.#presses.delete(e.pointerId);
     if (this.#element.hasPointerCapture(e.pointerId)) this.#element.releasePointerCapture(e.pointerId);
-    if (press.kind === "handle") this.#host.release(e.pointerId);
+    if (press.kind === "handle" || press.kind === "turn") this.#host.release(e.pointerId);
     if (press.kind === "paint") this.#host.paintEnd(e.pointerId);
   }
 

@@ -39,6 +39,11 @@ export interface Handle {
   layer: number;
   /** The user set this handle's layer (Bring forward, Send back): grabbing keeps it. */
   ordered: boolean;
+  /** How far the handle is to turn, and has turned, radians counter-clockwise (this gesture). */
+  turn: number;
+  turned: number;
+  /** While a pointer turns the handle: the pointer's last angle about it (unwrapped), and `turn` when it began. */
+  turning: { angle: number; start: number } | undefined;
 }
 
 /** What a snapshot keeps of a handle (no layer in work saved before depth order: layer 0). */
@@ -81,6 +86,8 @@ export interface PosingHost {
 
 /** A failed step is tried again with its velocities scaled by these, in turn. */
 const RETRY_SCALES = [0.5, 0.25, 0.125];
+/** Largest turn of a handle in one substep, radians. */
+const MAX_TURN_STEP = 0.1;
 
 export class Posing {
   readonly settings: WidgetSettings;
@@ -361,9 +368,39 @@ export class Posing {
     handle.target = next;
   }
 
+  /**
+   * Starts turning a handle with a pointer at the shape point (x, y): the handle stays where
+   * it is and turns as the pointer goes round it. False if another pointer holds it.
+   */
+  grabTurn(index: number, pointerId: number, x: number, y: number): boolean {
+    const handle = this.handles[index]!;
+    if (handle.pointerId !== undefined) return false;
+    this.handles.forEach((h) => (h.selected = h === handle));
+    const p = this.deformer.handlePositions();
+    handle.pointerId = pointerId;
+    handle.target = [p[2 * index]!, p[2 * index + 1]!];
+    handle.turning = { angle: Math.atan2(y - p[2 * index + 1]!, x - p[2 * index]!), start: handle.turn };
+    return true;
+  }
+
+  /** The pointer turning a handle moved to (x, y): the handle's turn follows its angle. */
+  dragTurn(pointerId: number, x: number, y: number): void {
+    const handle = this.handles.find((h) => h.pointerId === pointerId && h.turning);
+    if (!handle) return;
+    const angle = Math.atan2(y - handle.target[1], x - handle.target[0]);
+    // The change since the last move, wrapped to (-pi, pi]: turns add up past a full circle.
+    let delta = angle - handle.turning!.angle;
+    delta -= 2 * Math.PI * Math.round(delta / (2 * Math.PI));
+    handle.turning = { ...handle.turning!, angle: handle.turning!.angle + delta };
+    handle.turn += delta;
+  }
+
   release(pointerId: number): void {
     const handle = this.handles.find((h) => h.pointerId === pointerId);
-    if (handle) handle.pointerId = undefined;
+    if (handle) {
+      handle.pointerId = undefined;
+      handle.turning = undefined;
+    }
     this.endDragGesture();
   }
 
@@ -533,14 +570,19 @@ export class Posing {
       targets[2 * i + 1] = h.target[1];
     });
     const gap = largestGap(current, targets);
-    if (gap <= 1e-5 * this.shape.size) return 0;
-    const needed = substepCount(gap, longest);
+    const turnGap = Math.max(...this.handles.map((h) => Math.abs(h.turn - h.turned)));
+    const moves = gap > 1e-5 * this.shape.size;
+    if (!moves && !(turnGap > 1e-9)) return 0;
+    const needed = Math.max(moves ? substepCount(gap, longest) : 1, Math.ceil(turnGap / MAX_TURN_STEP - 1e-9));
     const count = Math.min(needed, maxSubsteps);
     const velocities = new Float64Array(2 * n);
     let taken = 0;
     for (; taken < count && !this.clamped; taken++) {
       trackingVelocities(current, targets, needed - taken, velocities);
-      this.step(velocities, timings);
+      if (!moves) velocities.fill(0);
+      const turns =
+        turnGap > 1e-9 ? Float64Array.from(this.handles, (h) => (h.turn - h.turned) / (needed - taken)) : undefined;
+      this.step(velocities, timings, turns);
       current = this.deformer.handlePositions();
     }
     // Stopped short to keep the triangles unfolded: handles let go stay where they are
@@ -584,34 +626,48 @@ export class Posing {
    * stopped short (`clamped`) where even small pieces would; each plain step it took is
    * recorded as it was taken, so a replay repeats it bit for bit.
    */
-  step(velocities: Float64Array, timings: Timings): void {
-    const attempt = (v: Float64Array): Float64Array[] => {
+  step(velocities: Float64Array, timings: Timings, turns?: Float64Array): void {
+    const scaled = (a: Float64Array, f: number) => (f === 1 ? a : a.map((x) => x * f));
+    /** The plain steps taken: velocities and turns each, as fractions of those given. */
+    const attempt = (v: Float64Array, w: Float64Array | undefined): [Float64Array, Float64Array | undefined][] => {
       if (!this.settings.noFoldovers) {
-        this.deformer.step(v);
-        return [v];
+        if (w) this.deformer.stepTurning(v, w);
+        else this.deformer.step(v);
+        return [[v, w]];
       }
-      const report = this.deformer.stepWithoutFoldovers(v);
+      const report = this.deformer.stepWithoutFoldovers(v, {}, w);
       if (report.clamped) this.clamped = true;
       // The core's own products: `step` with these repeats each piece to the bit.
-      return report.steps.map((fraction) => (fraction === 1 ? v : v.map((x) => x * fraction)));
+      return report.steps.map((f) => [scaled(v, f), w && scaled(w, f)]);
     };
-    let taken: Float64Array[] | undefined;
+    let taken: [Float64Array, Float64Array | undefined][] | undefined;
     try {
-      taken = attempt(velocities);
+      taken = attempt(velocities, turns);
     } catch (error) {
       for (const f of RETRY_SCALES) {
         try {
-          taken = attempt(velocities.map((v) => v * f));
+          taken = attempt(scaled(velocities, f), turns && scaled(turns, f));
           break;
         } catch {
           // try smaller still
         }
       }
-      if (!taken) throw error;
+      if (!taken) {
+        // A method without turning handles, say: the turns asked for are dropped.
+        this.handles.forEach((h) => (h.turn = h.turned));
+        throw error;
+      }
     }
     if (taken.length === 0) return;
     this.atRest = false;
-    for (const v of taken) this.record({ step: v });
+    for (const [v, w] of taken) {
+      if (w) {
+        this.handles.forEach((h, i) => (h.turned += w[i]!));
+        this.record({ turn: { velocities: v, turns: w } });
+      } else {
+        this.record({ step: v });
+      }
+    }
     const t = this.deformer.timings();
     timings.assembly += t.assembly;
     timings.factorisation += t.factorisation;
@@ -624,7 +680,9 @@ export class Posing {
   pinUnheld(): void {
     const p = this.deformer.handlePositions();
     this.handles.forEach((h, i) => {
-      if (h.pointerId === undefined) h.target = [p[2 * i]!, p[2 * i + 1]!];
+      if (h.pointerId !== undefined) return;
+      h.target = [p[2 * i]!, p[2 * i + 1]!];
+      h.turn = h.turned;
     });
   }
 
@@ -672,7 +730,7 @@ export class Posing {
       let steps = 0;
       for (const event of session.data.events) {
         this.apply(event);
-        if ("step" in event && !(await paused(++steps))) return;
+        if (("step" in event || "turn" in event) && !(await paused(++steps))) return;
       }
     } catch (error) {
       this.restore(before);
@@ -699,6 +757,9 @@ export class Posing {
       this.pinHandlesWhereTheyAre();
     } else if ("step" in event) {
       this.deformer.step(event.step);
+      this.atRest = false;
+    } else if ("turn" in event) {
+      this.deformer.stepTurning(event.turn.velocities, event.turn.turns);
       this.atRest = false;
     } else if ("positions" in event) {
       this.deformer.setPositions(event.positions);
@@ -732,5 +793,8 @@ export function newHandle(point: MeshPoint): Handle {
     pending: [0, 0],
     layer: 0,
     ordered: false,
+    turn: 0,
+    turned: 0,
+    turning: undefined,
   };
 }

@@ -59,6 +59,7 @@ export type SessionEvent =
   | { positions: Coordinates }
   | { options: DeformerOptions }
   | { stiffness: Coordinates | undefined | null }
+  | { turn: { velocities: Coordinates; turns: Coordinates } }
   | { reset: true };
 
 /** A session's JSON, parsed. */
@@ -167,7 +168,9 @@ function add(recorder: rawTypes.SessionRecorder, event: SessionEvent): void {
   } else if ("step" in event) recorder.step(toFloat64(event.step, "velocities"));
   else if ("positions" in event) recorder.positions(toFloat64(event.positions, "positions"));
   else if ("options" in event) recorder.options(event.options);
-  else if ("stiffness" in event) {
+  else if ("turn" in event) {
+    recorder.turn(toFloat64(event.turn.velocities, "velocities"), toFloat64(event.turn.turns, "turns"));
+  } else if ("stiffness" in event) {
     recorder.stiffness(event.stiffness == null ? undefined : toFloat64(event.stiffness, "stiffness"));
   } else recorder.reset();
 }

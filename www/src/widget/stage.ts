@@ -11,7 +11,7 @@ import { GlRenderer, type MeshRenderer } from "./gl.js";
 import { HelpPanel } from "./help.js";
 import { Hud } from "./hud.js";
 import type { WidgetSettings } from "./options.js";
-import { drawOverlay, type OverlayHandle } from "./overlay.js";
+import { HANDLE_RADIUS, RING_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { regionOutlines } from "./geometry.js";
 import { drawOrder, layering, type Layering } from "./layers.js";
 import type { Posing } from "./posing.js";
@@ -185,6 +185,12 @@ export class Stage {
     const rig = withHandles && posing.posingWithRig ? posing.rig : undefined;
     const radius = settings.region ? rig?.radius : undefined;
     const rest = radius !== undefined ? rig!.restHandles() : undefined;
+    // A selected handle's turning ring shows while it turns, or while the pointer is near it.
+    const near = (i: number) => {
+      const pointer = extras.brushAt;
+      const reach = ((RING_RADIUS + 1.2) * HANDLE_RADIUS * this.ratio) / this.camera.view.scale;
+      return pointer !== undefined && Math.hypot(pointer[0] - at[2 * i]!, pointer[1] - at[2 * i + 1]!) < reach;
+    };
     const handles: OverlayHandle[] = withHandles
       ? posing.handles.map((h, i) => ({
           x: at[2 * i]!,
@@ -193,6 +199,8 @@ export class Stage {
           targetY: paper ? at[2 * i + 1]! : h.target[1],
           selected: h.selected,
           dragged: h.pointerId !== undefined,
+          ring: h.selected && (h.turning !== undefined || (h.pointerId === undefined && near(i))),
+          turned: h.turning ? h.turn - h.turning.start : undefined,
           outside:
             rest !== undefined && Math.hypot(h.target[0] - rest[2 * i]!, h.target[1] - rest[2 * i + 1]!) > radius!,
         }))
