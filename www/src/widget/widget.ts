@@ -19,9 +19,9 @@ import {
   type MeshData,
   type Metrics,
   type Outline,
-  type Timings,
 } from "../core.js";
 import { posedMesh, posedSvg } from "./export.js";
+import { FrameLoop } from "./frames.js";
 
 import {
   DEFAULTS,
@@ -29,7 +29,6 @@ import {
   widgetSettings,
   type GalleryItem,
   type MethodPreset,
-  type PoseDetail,
   type WidgetOptions,
   type WidgetSettings,
   type WidgetTool,
@@ -74,9 +73,6 @@ export {
 export type { BrushSettings } from "./stiffness.js";
 export type { RigInfo, WidgetTrainOptions } from "./rigging.js";
 
-/** Frames without input after which the loop stops even if pins have not settled. */
-const SETTLE_FRAMES = 240;
-
 export class Widget {
   /** The element the widget was mounted into; events are dispatched on it. */
   readonly target: HTMLElement;
@@ -95,14 +91,10 @@ export class Widget {
   readonly #files: Loaded[] = [];
   #baseTexture: TexImageSource | undefined;
   #lastSession: Session | undefined;
-  #raf = 0;
-  #idleFrames = 0;
   #input: WidgetInput | undefined;
-  #lastField: Float64Array | undefined;
-  #metrics: Metrics = { areaDistortion: 2, angleDistortion: 2, flipped: 0 };
   #destroyed = false;
-  #idleWaiters: (() => void)[] = [];
   readonly #brush: Brush;
+  readonly #frames: FrameLoop;
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
     this.target = target;
@@ -129,14 +121,38 @@ export class Widget {
         this.#emit("akap-handles", { count });
         this.#rigChanged();
       },
-      poseChanged: () => this.#poseChanged(),
+      poseChanged: () => this.#frames.poseChanged(),
       historyChanged: () => this.#refreshButtons(),
-      schedule: () => this.#schedule(),
+      schedule: () => this.#frames.schedule(),
     });
     const document = target.ownerDocument;
     ({ host: this.#host, root: this.#root } = widgetShell(document));
 
     this.#stage = new Stage(document, () => this.#toggleHelp(false));
+    // The loop reads the widget's parts as they are (some are set below).
+    // eslint-disable-next-line @typescript-eslint/no-this-alias
+    const widget = this;
+    this.#frames = new FrameLoop({
+      get posing() {
+        return widget.#posing;
+      },
+      get stage() {
+        return widget.#stage;
+      },
+      get settings() {
+        return widget.#settings;
+      },
+      get rigging() {
+        return widget.#rigging;
+      },
+      get root() {
+        return widget.#root;
+      },
+      destroyed: () => this.#destroyed,
+      render: () => this.#render(),
+      showError: (error) => this.#showError(error),
+      emit: (type, detail) => this.#emit(type, detail),
+    });
     this.#rigging = new Rigging({
       posing: this.#posing,
       indicator: this.#stage.training,
@@ -259,7 +275,7 @@ export class Widget {
 
   /** Distortion of the pose on screen. */
   get metrics(): Metrics {
-    return { ...this.#metrics };
+    return { ...this.#frames.metrics };
   }
 
   /** Undo and redo as the buttons offer them. */
@@ -391,6 +407,8 @@ export class Widget {
     this.#brush.paintAt(x, y, value, radius);
   }
 
+  // ---------------------------------------------------------------- view, messages, shapes
+
   /** Zooms the view by `factor` about its centre, or fits the pose on screen into it (`"fit"`). */
   zoom(factor: number | "fit"): void {
     if (factor === "fit") this.#stage.camera.fit(this.#posing.deformer.positionsView());
@@ -502,7 +520,7 @@ export class Widget {
     >,
   ): void {
     Object.assign(this.#settings, options);
-    if (options.field) this.#lastField = this.#posing.deformer.field();
+    if (options.field) this.#frames.lastField = this.#posing.deformer.field();
     if (options.compare) this.#rigging.compareSoon();
     this.#rigChanged();
   }
@@ -636,7 +654,7 @@ export class Widget {
       delete this.#root.dataset.replaying;
     }
     this.#refreshButtons();
-    this.#poseChanged();
+    this.#frames.poseChanged();
     return posing.deformer.positions();
   }
 
@@ -683,16 +701,14 @@ export class Widget {
 
   /** Resolves when no frame is pending (the pose has settled and nothing is dragged). */
   whenIdle(): Promise<void> {
-    if (this.#raf === 0 && !this.#posing.replaying) return Promise.resolve();
-    return new Promise((resolve) => this.#idleWaiters.push(resolve));
+    return this.#frames.whenIdle();
   }
 
   /** Removes the widget from the page and frees its WebAssembly memory. */
   destroy(): void {
     if (this.#destroyed) return;
     this.#destroyed = true;
-    if (this.#raf) cancelAnimationFrame(this.#raf);
-    this.#raf = 0;
+    this.#frames.stop();
     this.#input?.destroy();
     this.#resizeObserver.disconnect();
     this.#stage.destroy();
@@ -702,7 +718,6 @@ export class Widget {
     this.#rigging.adopt(undefined);
     (this.#posing.deformer as Deformer | undefined)?.free();
     this.#host.remove();
-    for (const resolve of this.#idleWaiters.splice(0)) resolve();
   }
 
   // ---------------------------------------------------------------- shapes
@@ -746,7 +761,7 @@ export class Widget {
 
   /** A new shape or deformer is in place: renderer, lists, HUD (and the view, if asked). */
   #adopted(shape: Shape, deformer: Deformer, refit: boolean): void {
-    this.#lastField = undefined;
+    this.#frames.lastField = undefined;
     this.#stage.renderer.setMesh(shape.mesh.triangles, shape.edges, shape.uvs);
     this.#stage.meshSet();
     const texture = shape.texture ?? this.#baseTexture;
@@ -793,69 +808,6 @@ export class Widget {
     this.#stage.status.succeeded();
   }
 
-  /** The pose on screen changed outside the frame loop: distortion, HUD, event, picture. */
-  #poseChanged(): void {
-    const deformer = this.#posing.deformer;
-    this.#metrics = deformer.metrics();
-    if (this.#settings.field) this.#lastField = deformer.field();
-    this.#stage.hud.showMetrics(this.#metrics);
-    this.#draw();
-    this.#emitPose();
-  }
-
-  // ---------------------------------------------------------------- the frame loop
-
-  #schedule(): void {
-    if (this.#raf === 0 && !this.#destroyed) {
-      this.#raf = requestAnimationFrame((time) => this.#frame(time));
-      delete this.#root.dataset.idle;
-    }
-  }
-
-  #frame(time: number): void {
-    this.#raf = 0;
-    const posing = this.#posing;
-    if (this.#destroyed || posing.replaying) return;
-    const started = performance.now();
-    const timings: Timings = { assembly: 0, factorisation: 0, dirichletFactorisation: 0, solve: 0, integration: 0 };
-    let substeps = 0;
-    try {
-      substeps = posing.advance(timings);
-      if (substeps > 0) this.#stage.status.succeeded();
-    } catch (error) {
-      // The deformer is unchanged; pins stay where they are, dragged handles keep their
-      // targets and are tried again next frame, in smaller steps.
-      this.#showError(new Error(`${messageOf(error)}. Try a smaller move, or Undo (Ctrl+Z) or Reset.`));
-      posing.pinUnheld();
-    }
-    const dragging = posing.dragging;
-    this.#idleFrames = substeps > 0 && dragging ? 0 : this.#idleFrames + 1;
-    if (substeps > 0) {
-      posing.markChanged();
-      this.#metrics = posing.deformer.metrics();
-      if (this.#settings.field) this.#lastField = posing.deformer.field();
-      if (this.#settings.compare && posing.posingWithRig) {
-        this.#rigging.comparison = undefined;
-        this.#rigging.compareSoon();
-      }
-    }
-    this.#render();
-    this.#stage.keepHudClear(this.#posing);
-    if (substeps > 0) {
-      const work = performance.now() - started;
-      const evaluationMs = posing.evaluationMs > 0 ? posing.evaluationMs : undefined;
-      const clamped = posing.clamped;
-      this.#stage.hud.report({ time, work, timings, substeps, metrics: this.#metrics, evaluationMs, clamped });
-      this.#emitPose(work, substeps, timings, evaluationMs, clamped);
-    }
-    if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
-      this.#schedule();
-    } else {
-      this.#root.dataset.idle = "true";
-      for (const resolve of this.#idleWaiters.splice(0)) resolve();
-    }
-  }
-
   // ---------------------------------------------------------------- drawing and the view
 
   #resize(): void {
@@ -867,14 +819,14 @@ export class Widget {
 
   /** Asks for the picture to be drawn anew in the next animation frame (once, however often asked). */
   #draw(): void {
-    this.#schedule();
+    this.#frames.schedule();
   }
 
   /** Draws the picture now. */
   #render(): void {
     if (this.#destroyed) return;
     this.#stage.render(this.#posing, this.#settings, {
-      field: this.#lastField,
+      field: this.#frames.lastField,
       ghost: this.#rigging.comparison?.positions,
       brushAt: this.#brush.at,
     });
@@ -893,10 +845,7 @@ export class Widget {
       ratio: () => this.#stage.ratio,
       devicePixel: (x, y) => this.#stage.devicePixel(x, y),
       draw: () => this.#draw(),
-      moved: () => {
-        this.#idleFrames = 0;
-        this.#schedule();
-      },
+      moved: () => this.#frames.moved(),
       succeeded: () => this.#stage.status.succeeded(),
       gesture: (change) => this.#gesture(change),
       removeHandle: (index) => this.removeHandle(index),
@@ -942,25 +891,6 @@ export class Widget {
     if (this.#stage.status.kind === "error" && this.#stage.status.text === message) return;
     this.#stage.status.error(message);
     this.#emit("akap-error", { message });
-  }
-
-  #emitPose(
-    frameMs = 0,
-    steps = 0,
-    timings: Timings = { assembly: 0, factorisation: 0, dirichletFactorisation: 0, solve: 0, integration: 0 },
-    evaluationMs?: number,
-    clamped = false,
-  ): void {
-    const detail: PoseDetail = {
-      clamped,
-      metrics: { ...this.#metrics },
-      handleCount: this.#posing.handles.length,
-      frameMs,
-      steps,
-      timings,
-      ...(evaluationMs === undefined ? {} : { evaluationMs }),
-    };
-    this.#emit("akap-pose", detail);
   }
 
   #emit(type: string, detail: unknown): void {
