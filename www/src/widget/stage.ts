@@ -185,11 +185,14 @@ export class Stage {
     const rig = withHandles && posing.posingWithRig ? posing.rig : undefined;
     const radius = settings.region ? rig?.radius : undefined;
     const rest = radius !== undefined ? rig!.restHandles() : undefined;
-    // A selected handle's turning ring shows while it turns, or while the pointer is near it.
+    // A selected handle's turning ring shows while it turns, or while the pointer is near it
+    // (off the handle itself: a pointer resting on the handle it just dragged shows none).
     const near = (i: number) => {
       const pointer = extras.brushAt;
-      const reach = ((RING_RADIUS + 1.2) * HANDLE_RADIUS * this.ratio) / this.camera.view.scale;
-      return pointer !== undefined && Math.hypot(pointer[0] - at[2 * i]!, pointer[1] - at[2 * i + 1]!) < reach;
+      if (pointer === undefined) return false;
+      const pixels =
+        (Math.hypot(pointer[0] - at[2 * i]!, pointer[1] - at[2 * i + 1]!) * this.camera.view.scale) / this.ratio;
+      return pixels > 1.5 * HANDLE_RADIUS && pixels < (RING_RADIUS + 1.2) * HANDLE_RADIUS;
     };
     const handles: OverlayHandle[] = withHandles
       ? posing.handles.map((h, i) => ({
