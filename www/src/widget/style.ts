@@ -20,6 +20,11 @@ button:disabled { opacity: 0.45; cursor: default; }
 button.active { background: #c0392b; color: white; border-color: #8e261b; }
 button:focus-visible, select:focus-visible, input:focus-visible { outline: 2px solid #1d3557; outline-offset: 1px; }
 .hidden { display: none !important; }
+.brush-panel {
+  position: absolute; left: 0.6em; bottom: 2.4em; display: flex; gap: 0.4em; align-items: center;
+  padding: 0.35em 0.6em; border-radius: 8px; background: rgba(255, 250, 241, 0.95);
+  box-shadow: 0 2px 12px rgba(0, 0, 0, 0.2);
+}
 .stage { position: relative; flex: 1 1 auto; min-height: 0; overflow: hidden; }
 canvas.mesh, canvas.overlay { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
 canvas.overlay { touch-action: none; cursor: crosshair; }

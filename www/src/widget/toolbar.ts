@@ -78,6 +78,8 @@ export interface Toolbar {
   addShape(option: { value: string; label: string }): void;
   /** Enables the rig's buttons: Save with a rig, Train when no training runs. */
   showRig(state: { hasRig: boolean; training: boolean }): void;
+  /** The stiffness brush's controls, shown while the brush is on; the widget puts it on the stage. */
+  brushPanel: HTMLElement;
   /** Brings every field in line with the settings (changed by keys, a load, or a refused value). */
   sync(settings: ToolbarSettings): void;
 }
@@ -258,13 +260,20 @@ export function buildToolbar(
     String(s.brush.value),
   );
   brushValue.name = "brush-value";
-  labelled(stiffnessGroup, "Paint ", brushValue);
+  // The brush's own controls float over the stage while it is on, so the toolbar stays
+  // short and the stage keeps its size (the widget puts the panel on the stage).
+  const brushControls = document.createElement("div");
+  brushControls.className = "brush-panel";
+  brushControls.setAttribute("role", "group");
+  brushControls.setAttribute("aria-label", "Stiffness brush");
+  labelled(brushControls, "Paint ", brushValue);
   const brushSize = number(s.brush.size, BRUSH_SIZE_RANGE[0], BRUSH_SIZE_RANGE[1], 1);
   brushSize.name = "brush-size";
-  labelled(stiffnessGroup, "Size px ", brushSize);
+  labelled(brushControls, "Size px ", brushSize);
   brushValue.addEventListener("change", setBrush);
   brushSize.addEventListener("change", setBrush);
-  button(stiffnessGroup, "Clear", "Every triangle back to stiffness 1", actions.clearStiffness, "clear-stiffness");
+  button(brushControls, "Clear", "Every triangle back to stiffness 1", actions.clearStiffness, "clear-stiffness");
+  brushControls.classList.toggle("hidden", s.tool !== "stiffness");
 
   const rigGroup = group("Trained rig");
   const energy = select(
@@ -385,6 +394,7 @@ export function buildToolbar(
 
   return {
     element,
+    brushPanel: brushControls,
     refresh(state) {
       undo.disabled = !state.canUndo;
       redo.disabled = !state.canRedo;
@@ -426,6 +436,7 @@ export function buildToolbar(
       method.value = settings.method;
       lambda.value = String(settings.lambda);
       brushOn.checked = settings.tool === "stiffness";
+      brushControls.classList.toggle("hidden", settings.tool !== "stiffness");
       brushSize.value = String(settings.brush.size);
       if (!BRUSH_VALUES.some((v) => String(v) === brushValue.value && v === settings.brush.value)) {
         // A value set through the API that the list lacks is shown as one more choice.

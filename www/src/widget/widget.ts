@@ -22,6 +22,7 @@ import {
 } from "../core.js";
 import { posedMesh, posedSvg } from "./export.js";
 import { FrameLoop } from "./frames.js";
+import { ShapeLoader } from "./loading.js";
 
 import {
   DEFAULTS,
@@ -36,24 +37,14 @@ import {
 import { WorkKeeper, WorkStore, restoreWork, savedShape, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
 import { WidgetInput } from "./input.js";
-import { Posing, newHandle, type Parts } from "./posing.js";
+import { Posing, newHandle } from "./posing.js";
 import { Rig } from "./rig.js";
 import { Rigging, rigBytes, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
 import type { TrainProgress } from "../defop-pool.js";
 import { parseSession, type Session } from "./session.js";
 import { widgetToolbar } from "./actions.js";
-import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
 import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
-import {
-  fetchFile,
-  fileKind,
-  fileLimits,
-  loadImage,
-  paintVector,
-  partShape,
-  readShapeFile,
-  type Loaded,
-} from "./sources.js";
+import { fetchFile, fileKind, fileLimits, loadImage, paintVector } from "./sources.js";
 import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
@@ -81,20 +72,18 @@ export class Widget {
   readonly #stage: Stage;
   readonly #toolbar: Toolbar | undefined;
   readonly #resizeObserver: ResizeObserver;
-  readonly #maker = new ShapeMaker();
   readonly #settings: WidgetSettings;
   readonly #posing: Posing;
   readonly #rigging: Rigging;
   readonly #keeper: WorkKeeper | undefined;
   readonly #gallery: readonly GalleryItem[];
-  /** Files opened so far, offered again in the shape list as `file:index`. */
-  readonly #files: Loaded[] = [];
   #baseTexture: TexImageSource | undefined;
   #lastSession: Session | undefined;
   #input: WidgetInput | undefined;
   #destroyed = false;
   readonly #brush: Brush;
   readonly #frames: FrameLoop;
+  readonly #loader: ShapeLoader;
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
     this.target = target;
@@ -153,6 +142,23 @@ export class Widget {
       showError: (error) => this.#showError(error),
       emit: (type, detail) => this.#emit(type, detail),
     });
+    this.#loader = new ShapeLoader({
+      get settings() {
+        return widget.#settings;
+      },
+      get posing() {
+        return widget.#posing;
+      },
+      get stage() {
+        return widget.#stage;
+      },
+      get toolbar() {
+        return widget.#toolbar;
+      },
+      document,
+      destroyed: () => this.#destroyed,
+      gesture: (change) => this.#gesture(change),
+    });
     this.#rigging = new Rigging({
       posing: this.#posing,
       indicator: this.#stage.training,
@@ -164,7 +170,7 @@ export class Widget {
     if (this.#settings.controls) {
       this.#toolbar = widgetToolbar(document, this, this.#settings, {
         gallery: this.#gallery,
-        showFile: (index) => this.#showFile(this.#files[index]!, 0),
+        showFile: (index) => this.#loader.show(this.#loader.files[index]!, 0),
         keepsWork: this.#keeper !== undefined,
         failed: (error) => {
           this.#showError(error);
@@ -182,6 +188,7 @@ export class Widget {
         help: () => this.#toggleHelp(),
       });
       this.#root.append(this.#toolbar.element);
+      this.#stage.element.insertBefore(this.#toolbar.brushPanel, this.#stage.help.element);
     }
     this.#root.append(this.#stage.element);
     this.#root.dataset.renderer = this.#stage.renderer.kind;
@@ -428,24 +435,12 @@ export class Widget {
    * shape are dropped.
    */
   async setShape(name: string | undefined, vertices = this.#settings.vertices): Promise<void> {
-    const spec = name ?? this.#posing.shape.spec?.name;
-    if (!spec) throw new Error("this widget shows a custom outline; give a built-in shape name");
-    builtinShape(spec); // an unknown name fails here, before any work
-    const prepared = await this.#make({ name: spec, outline: undefined, label: spec, vertices });
-    this.#gesture(() => {
-      this.#settings.vertices = vertices;
-      this.#posing.parts = undefined;
-      this.#posing.install(prepared.shape, prepared.orders);
-    });
+    await this.#loader.setShape(name, vertices);
   }
 
   /** Shows a custom outline instead (triangulated to about `vertices` vertices). Undoable. */
   async setOutline(outline: Outline, vertices = this.#settings.vertices): Promise<void> {
-    const prepared = await this.#make({ name: undefined, outline, label: "custom shape", vertices });
-    this.#gesture(() => {
-      this.#posing.parts = undefined;
-      this.#posing.install(prepared.shape, prepared.orders);
-    });
+    await this.#loader.setOutline(outline, vertices);
   }
 
   /**
@@ -462,11 +457,7 @@ export class Widget {
       const text = await file.text();
       if (/"format"\s*:\s*"akap-session"/.test(text)) return this.loadSession(file);
     }
-    const loaded = await readShapeFile(file, name);
-    if (loaded.kind === "outlines" && loaded.parts.length === 0) throw new Error(`${name}: no shape found`);
-    await this.#showFile(loaded, 0);
-    this.#files.push(loaded);
-    this.#toolbar?.addShape({ value: `file:${this.#files.length - 1}`, label: loaded.name });
+    await this.#loader.open(file, name);
   }
 
   /** Loads a shape file by URL (see {@link loadFile}). */
@@ -478,11 +469,7 @@ export class Widget {
 
   /** Shows another separate part of the last imported file (0 is the largest). Undoable. */
   async choosePart(index: number): Promise<void> {
-    const parts = this.#posing.parts;
-    if (!parts || !(index >= 0 && index < parts.loaded.parts.length)) {
-      throw new RangeError(`there is no part ${index} to choose`);
-    }
-    await this.#showFile(parts.loaded, index);
+    await this.#loader.choosePart(index);
   }
 
   /**
@@ -494,20 +481,7 @@ export class Widget {
    * outlines can be re-meshed; a mesh loaded from a file cannot.
    */
   async remesh(vertices = this.#settings.vertices, minAngle = this.#settings.minAngle): Promise<void> {
-    const { parts, shape } = this.#posing;
-    if (!parts && !shape.spec) throw new Error("this shape came as a mesh; it cannot be re-meshed");
-    const previous = { vertices: this.#settings.vertices, minAngle: this.#settings.minAngle };
-    Object.assign(this.#settings, { vertices, minAngle });
-    let prepared: Prepared;
-    try {
-      prepared = parts
-        ? await this.#partShape(parts.loaded, parts.index)
-        : await this.#make({ name: shape.spec!.name, outline: undefined, label: shape.spec!.name, vertices });
-    } catch (error) {
-      Object.assign(this.#settings, previous);
-      throw error;
-    }
-    this.#gesture(() => this.#posing.carryOver(prepared.shape, prepared.orders));
+    await this.#loader.remesh(vertices, minAngle);
   }
 
   /**
@@ -712,7 +686,7 @@ export class Widget {
     this.#input?.destroy();
     this.#resizeObserver.disconnect();
     this.#stage.destroy();
-    this.#maker.destroy();
+    this.#loader.destroy();
     this.#keeper?.stop();
     this.#rigging.destroy();
     this.#rigging.adopt(undefined);
@@ -722,43 +696,6 @@ export class Widget {
 
   // ---------------------------------------------------------------- shapes
 
-  /**
-   * Meshes an outline and orders the deformer's systems, in a worker, while the busy
-   * indicator shows the stage and offers Cancel; rejects with `Cancelled` when cancelled
-   * or replaced by a newer request.
-   */
-  async #make(request: Pick<SetupRequest, "name" | "outline" | "label" | "vertices">): Promise<Prepared> {
-    const full = { minAngle: this.#settings.minAngle, ...request, options: this.#posing.deformerOptions() };
-    const prepared = await makeShown(this.#maker, this.#stage.busy, full, () => this.#posing.deformerOptions().method);
-    if (this.#destroyed) throw new Cancelled();
-    return prepared;
-  }
-
-  /** Makes a loaded file (part `index` of it) the shape, as one undoable step. */
-  async #showFile(loaded: Loaded, index: number): Promise<void> {
-    const prepared =
-      loaded.kind === "mesh"
-        ? { shape: shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name), orders: undefined }
-        : await this.#partShape(loaded, index);
-    this.#gesture(() => {
-      this.#posing.parts = loaded.kind === "outlines" ? { loaded, index } : undefined;
-      this.#posing.install(prepared.shape, prepared.orders);
-      if (loaded.kind === "mesh" && loaded.stiffness) this.#posing.setStiffness(loaded.stiffness);
-    });
-    if (loaded.kind === "outlines" && loaded.parts.length > 1) {
-      this.#stage.status.info(
-        `${loaded.name} has ${loaded.parts.length} separate parts; showing part ${index + 1} (the parts are ordered by size)`,
-      );
-    }
-  }
-
-  #partShape(loaded: Parts["loaded"], index: number): Promise<Prepared> {
-    const { vertices } = this.#settings;
-    return partShape(this.target.ownerDocument, loaded, index, (outline, label) =>
-      this.#make({ name: undefined, outline, label, vertices }),
-    );
-  }
-
   /** A new shape or deformer is in place: renderer, lists, HUD (and the view, if asked). */
   #adopted(shape: Shape, deformer: Deformer, refit: boolean): void {
     this.#frames.lastField = undefined;
@@ -767,7 +704,7 @@ export class Widget {
     const texture = shape.texture ?? this.#baseTexture;
     if (texture) this.#stage.renderer.setTexture(texture);
     if (refit) this.#stage.camera.reset(shape.mesh.positions, this.#stage.glCanvas.width, this.#stage.glCanvas.height);
-    const file = this.#files.findIndex((f) => f === this.#posing.parts?.loaded);
+    const file = this.#loader.files.findIndex((f) => f === this.#posing.parts?.loaded);
     this.#toolbar?.showShape(
       shape.spec ? `builtin:${shape.spec.name}` : file >= 0 ? `file:${file}` : undefined,
       shape.mesh.vertexCount,
