@@ -69,13 +69,7 @@ for (const [what, end] of [
     const points = await figurePoints(page);
     for (const foot of points.feet) await page.mouse.click(...foot);
     const start = what.includes("hand") ? points.hand : points.head;
-    await page.mouse.move(...start);
-    await page.mouse.down();
-    for (let k = 1; k <= 40; k++) {
-      await page.mouse.move(start[0] + ((end[0] - start[0]) * k) / 40, start[1] + ((end[1] - start[1]) * k) / 40);
-    }
-    await page.mouse.up();
-    await idle(page);
+    await dragMouse(page, start, [...end], 40);
     expect(await errors()).toEqual([]);
     expect(await statusText(page)).toBe("");
     const { toCss } = await mapping(page);
@@ -107,13 +101,7 @@ for (const [what, end] of [
     for (const foot of points.feet) await page.mouse.click(...foot);
     const start = what.includes("hand") ? points.hand : points.head;
     const { toCss } = await mapping(page);
-    await page.mouse.move(...start);
-    await page.mouse.down();
-    for (let k = 1; k <= 40; k++) {
-      await page.mouse.move(start[0] + ((end[0] - start[0]) * k) / 40, start[1] + ((end[1] - start[1]) * k) / 40);
-    }
-    await page.mouse.up();
-    await idle(page);
+    await dragMouse(page, start, [...end], 40);
     expect(await errors()).toEqual([]);
     expect(await page.evaluate(() => window.akapDemo!.widget.metrics.flipped)).toBe(0);
     // The handle went a good way toward the pointer, where the shape let it; the pins stayed.

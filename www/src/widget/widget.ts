@@ -21,8 +21,8 @@ import {
   type Outline,
 } from "../core.js";
 import { posedMesh, posedSvg } from "./export.js";
-import { FrameLoop } from "./frames.js";
-import { ShapeLoader } from "./loading.js";
+import { FrameLoop, type FrameHost } from "./frames.js";
+import { ShapeLoader, type LoaderHost } from "./loading.js";
 
 import {
   DEFAULTS,
@@ -48,7 +48,7 @@ import { fetchFile, fileKind, fileLimits, loadImage, paintVector } from "./sourc
 import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
-import { Brush } from "./brush.js";
+import { Brush, type BrushHost } from "./brush.js";
 import { unpainted, type BrushSettings } from "./stiffness.js";
 import type { Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
@@ -118,10 +118,10 @@ export class Widget {
     ({ host: this.#host, root: this.#root } = widgetShell(document));
 
     this.#stage = new Stage(document, () => this.#toggleHelp(false));
-    // The loop reads the widget's parts as they are (some are set below).
+    // The widget's parts as its helpers see them: read when used (some are set below).
     // eslint-disable-next-line @typescript-eslint/no-this-alias
     const widget = this;
-    this.#frames = new FrameLoop({
+    const parts: FrameHost & LoaderHost & BrushHost = {
       get posing() {
         return widget.#posing;
       },
@@ -137,28 +137,19 @@ export class Widget {
       get root() {
         return widget.#root;
       },
-      destroyed: () => this.#destroyed,
-      render: () => this.#render(),
-      showError: (error) => this.#showError(error),
-      emit: (type, detail) => this.#emit(type, detail),
-    });
-    this.#loader = new ShapeLoader({
-      get settings() {
-        return widget.#settings;
-      },
-      get posing() {
-        return widget.#posing;
-      },
-      get stage() {
-        return widget.#stage;
-      },
       get toolbar() {
         return widget.#toolbar;
       },
       document,
       destroyed: () => this.#destroyed,
+      render: () => this.#render(),
+      draw: () => this.#draw(),
+      showError: (error) => this.#showError(error),
+      emit: (type, detail) => this.#emit(type, detail),
       gesture: (change) => this.#gesture(change),
-    });
+    };
+    this.#frames = new FrameLoop(parts);
+    this.#loader = new ShapeLoader(parts);
     this.#rigging = new Rigging({
       posing: this.#posing,
       indicator: this.#stage.training,
@@ -193,14 +184,7 @@ export class Widget {
     this.#root.append(this.#stage.element);
     this.#root.dataset.renderer = this.#stage.renderer.kind;
 
-    this.#brush = new Brush({
-      settings: this.#settings,
-      posing: this.#posing,
-      stage: this.#stage,
-      toolbar: this.#toolbar,
-      draw: () => this.#draw(),
-      gesture: (change) => this.#gesture(change),
-    });
+    this.#brush = new Brush(parts);
     this.#input = this.#bindInput();
     this.#resizeObserver = new ResizeObserver(() => this.#resize());
     target.append(this.#host);
