@@ -21,7 +21,7 @@
 //! - [`operator`]: the trained operator and its allocation-free evaluation, on the dot
 //!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy
 //!   for a GPU upload;
-//! - [`file`]: operator files (the operator with its mesh, versioned, checksummed);
+//! - [`file`](mod@file): operator files (the operator with its mesh, versioned, checksummed);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
 

@@ -1,7 +1,7 @@
 //! Method settings by name, read and written the same way by every caller that names them:
 //! the JavaScript bindings (`{ method: "arap", iterations: 10 }`), session files and the
 //! command line of `examples/pose_obj`. Each method's options type lists its settings once
-//! ([`Settings::SETTINGS`](super::Settings::SETTINGS), beside the type in `options.rs`); [`MethodOptions::over`] sets
+//! ([`Settings::SETTINGS`], beside the type in `options.rs`); [`MethodOptions::over`] sets
 //! named values on a method's options, refusing an unknown name, a setting of another
 //! method or a value of the wrong kind, and [`MethodOptions::values`] lists them for
 //! writing.

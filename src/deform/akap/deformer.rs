@@ -281,7 +281,8 @@ impl Deformer {
     }
 
     /// One step in which handles also turn: `turns[i]` radians counter-clockwise about the
-    /// handle's point (see [`turning`]); all zero is exactly [`Self::step`]. A single
+    /// handle's point, its neighbourhood asked for that rigid motion's Killing field (see
+    /// the module `akap::turning`); all zero is exactly [`Self::step`]. A single
     /// handle (or handles at one point) moves the whole shape by its rigid motion.
     pub fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
         check_velocities(velocities, self.handles.len())?;
