@@ -7,7 +7,10 @@
 //! handle pinned elsewhere turns its triangle by about omega; bad turns change nothing;
 //! methods without turning handles refuse them. Runs natively and as wasm.
 
-use akap::deform::{DeformError, Deformer, DeformerOptions, FoldoverGuard, FoldoverStepper, MethodOptions, MlsOptions};
+use akap::deform::{
+    ArapDeformer, ArapOptions, DeformError, Deformer, DeformerOptions, FoldoverGuard, FoldoverStepper, MethodOptions,
+    MlsOptions,
+};
 use akap::geometry::Point;
 use akap::session::{replay, Event, Session};
 use akap::shapes::grid_mesh;
@@ -145,7 +148,7 @@ fn bad_turns_change_nothing_and_methods_without_them_refuse_them() {
     let mut mls = MethodOptions::Mls(MlsOptions::default()).build(mesh).unwrap();
     mls.set_handle_vertices(&[0, 50]).unwrap();
     let error = mls.step_turning(&v, &[0.0, 0.2]).unwrap_err();
-    assert_eq!(error.to_string(), "method mls has no turning handles; choose \"akap\" for it");
+    assert_eq!(error.to_string(), "method mls has no turning handles; choose \"akap\" or \"arap\" for it");
     mls.step_turning(&v, &[0.0, 0.0]).unwrap();
 }
 
@@ -188,4 +191,42 @@ fn turn_events_and_guarded_turning_pieces_replay_to_the_same_bits() {
         Session::from_json(&bad.to_json()).unwrap_err().to_string(),
         format!("event {}: turns has 1 numbers, expected 2 (1 for each of the 2 handles)", bad.events.len() - 1)
     );
+}
+
+#[test]
+fn arap_turns_a_lone_handle_through_a_rotated_target_frame_toward_the_rigid_rotation() {
+    let mesh = mesh();
+    let w = [0.2, 0.3, 0.5];
+    let c = at(&mesh, mesh.positions(), 40, w);
+    let omega: f64 = 0.5;
+    let (s, k) = omega.sin_cos();
+    let expected: Vec<Point> = mesh
+        .positions()
+        .iter()
+        .map(|p| {
+            let (x, y) = (p[0] - c[0], p[1] - c[1]);
+            [c[0] + k * x - s * y, c[1] + s * x + k * y]
+        })
+        .collect();
+    // Run to convergence: the rotated shape meets every target at zero energy.
+    let mut d = ArapDeformer::new(mesh.clone(), ArapOptions::default().until_converged(1e-14, 100_000)).unwrap();
+    d.set_handle_points(&[40], &[w]).unwrap();
+    d.step_turning(&[[0.0, 0.0]], &[omega]).unwrap();
+    let gap = largest_gap(d.positions(), &expected);
+    assert!(gap < 1e-7 * 12.0, "{gap}");
+    // A plain step afterwards is the plain handle set's again: a zero velocity moves nothing.
+    let pose = d.positions().to_vec();
+    d.step(&[[0.0, 0.0]]).unwrap();
+    assert!(largest_gap(d.positions(), &pose) < 1e-7 * 12.0);
+    // Zero turns are the plain step, bit for bit.
+    let make = || {
+        let mut d = ArapDeformer::new(mesh.clone(), ArapOptions::default()).unwrap();
+        d.set_handle_points(&[6, 120], &[[1.0 / 3.0; 3], w]).unwrap();
+        d
+    };
+    let (mut a, mut b) = (make(), make());
+    a.step(&[[0.0, 0.0], [0.3, 0.1]]).unwrap();
+    b.step_turning(&[[0.0, 0.0], [0.3, 0.1]], &[0.0, 0.0]).unwrap();
+    let bits = |d: &ArapDeformer| d.positions().iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&a), bits(&b));
 }

@@ -255,8 +255,7 @@ impl fmt::Display for DeformError {
                 Number(*value)
             ),
             Self::Unsupported { method, what } => {
-                let with = if *what == "turning handles" { "\"akap\"" } else { "\"akap\" or \"arap\"" };
-                write!(f, "method {method} has no {what}; choose {with} for it")
+                write!(f, "method {method} has no {what}; choose \"akap\" or \"arap\" for it")
             }
             Self::InvalidCage { reason } => write!(f, "the cage cannot be used: {reason}"),
             Self::ForeignCheckpoint { method, saved } => match saved {

@@ -226,6 +226,18 @@ pub(crate) fn check_turns(turns: &[f64], handle_count: usize) -> Result<(), Defo
     }
 }
 
+/// The vertices a turning handle carries with it: its triangle's corners and their
+/// neighbours, each once, ascending.
+pub(crate) fn neighbourhood(mesh: &Mesh, handle: &HandlePoint) -> Vec<u32> {
+    let mut vertices: Vec<u32> = handle.vertices.to_vec();
+    for &v in &handle.vertices {
+        vertices.extend_from_slice(mesh.neighbors(v as usize));
+    }
+    vertices.sort_unstable();
+    vertices.dedup();
+    vertices
+}
+
 /// Checks per-triangle stiffness: one value per triangle, each in [`STIFFNESS_RANGE`]
 /// (`None`, 1 everywhere, always passes).
 pub(crate) fn check_stiffness(stiffness: Option<&[f64]>, triangle_count: usize) -> Result<(), DeformError> {

@@ -170,8 +170,8 @@ pub trait Deform: fmt::Debug {
     /// One step with a velocity per handle, in handle order.
     fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError>;
     /// One step in which handles also turn: `turns[i]` radians counter-clockwise about
-    /// handle `i`'s point, its neighbourhood following that rigid motion (AKAP; see
-    /// `deform::akap` and the README). All turns zero is exactly [`Deform::step`]; methods
+    /// handle `i`'s point, its neighbourhood following that rigid motion (AKAP: its Killing
+    /// field; ARAP: held in the turned frame for the step; see the README). All turns zero is exactly [`Deform::step`]; methods
     /// without turning handles refuse other turns ([`DeformError::Unsupported`]).
     fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
         crate::deform::handles::check_turns(turns, self.handle_count())?;

@@ -35,7 +35,7 @@
 //! `reset` (`true`; `false` does nothing) returns to the rest pose; `stiffness` paints
 //! every triangle's stiffness (one number per triangle, [`crate::deform::STIFFNESS_RANGE`]),
 //! or `null` for 1 everywhere; `turn` is a frame in which handles also turn (`velocities` as
-//! a `step`'s, `turns` one angle per handle in radians, counter-clockwise; AKAP only), for
+//! a `step`'s, `turns` one angle per handle in radians, counter-clockwise; AKAP and ARAP), for
 //! the methods that have it (AKAP, ARAP: a stiffness event
 //! under another method is refused on replay as the deformer refuses it, and passed over by
 //! [`replay_to_targets`], whose method is a comparison's).

@@ -367,8 +367,9 @@ export class Deformer {
    * One step in which handles also turn: `turns` has one angle per handle (radians,
    * counter-clockwise about the handle's point), and the region around each turning handle
    * follows that rigid motion (softly, as handles are held). One handle alone turns the
-   * whole shape rigidly about itself. All turns 0 is exactly {@link step}. AKAP only: the
-   * other methods throw (code `invalid-argument`) for a turn that is not 0.
+   * whole shape rigidly about itself. All turns 0 is exactly {@link step}. AKAP and ARAP
+   * (ARAP holds the neighbourhood in the turned frame for the step); MLS and Cauchy-Green
+   * throw (code `invalid-argument`) for a turn that is not 0.
    */
   stepTurning(velocities: Coordinates, turns: Coordinates): void {
     this.#raw.stepTurning(toFloat64(velocities, "velocities"), toFloat64(turns, "turns"));

@@ -12,7 +12,7 @@
 //! and the spiral step of a field with the same `s = omega i` on every edge is the rotation
 //! `c + (p - c) e^(omega i)` (plus the translation) to rounding.
 
-use crate::deform::handles::HandlePoint;
+use crate::deform::handles::{neighbourhood, HandlePoint};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 
@@ -30,12 +30,7 @@ pub(super) struct Neighbourhood {
 impl Neighbourhood {
     /// The neighbourhood of `handle`; `diagonal(v)` gives the slots of vertex `v`'s block.
     pub(super) fn of(mesh: &Mesh, handle: &HandlePoint, diagonal: impl Fn(usize) -> [usize; 2]) -> Self {
-        let mut vertices: Vec<u32> = handle.vertices.to_vec();
-        for &v in &handle.vertices {
-            vertices.extend_from_slice(mesh.neighbors(v as usize));
-        }
-        vertices.sort_unstable();
-        vertices.dedup();
+        let vertices = neighbourhood(mesh, handle);
         let slots = vertices.iter().map(|&v| diagonal(v as usize)).collect();
         let boundary_only = vertices.iter().all(|&v| mesh.is_boundary_vertex(v as usize));
         Self { vertices, slots, boundary_only }

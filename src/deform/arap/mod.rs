@@ -58,6 +58,8 @@ use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two,
 use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
 
+mod turning;
+
 const NONE: usize = usize::MAX;
 
 /// Penalty weight of handles inside triangles, relative to the mean diagonal of `L`.
@@ -127,6 +129,9 @@ pub struct ArapDeformer {
     pin_target: Vec<Point>,
     rhs_x: Vec<f64>,
     rhs_y: Vec<f64>,
+    /// During a step in which handles turn: each turning handle's neighbourhood vertex and
+    /// its target in the rotated frame (see `turning`); empty otherwise.
+    turning: Vec<(usize, Point)>,
 }
 
 /// The cotangent Laplacian of the per-triangle weights `cot` on the pattern (`nnz`
@@ -234,6 +239,7 @@ impl ArapDeformer {
             next_rotations: vec![[1.0, 0.0]; m],
             next_targets: Vec::new(),
             pin_target: vec![[0.0; 2]; n],
+            turning: Vec::new(),
             rhs_x: vec![0.0; n],
             rhs_y: vec![0.0; n],
             mesh,
@@ -524,6 +530,11 @@ impl ArapDeformer {
                 }
             }
         }
+        for &(v, target) in &self.turning {
+            let target = into(target);
+            self.rhs_x[v] += self.penalty * target[0];
+            self.rhs_y[v] += self.penalty * target[1];
+        }
         for &(value, row, col) in &self.coupling {
             let pin = into(self.pin_target[col]);
             self.rhs_x[row] -= value * pin[0];
@@ -658,6 +669,9 @@ impl Deform for ArapDeformer {
     }
     fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
         ArapDeformer::step(self, velocities)
+    }
+    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
+        ArapDeformer::step_turning(self, velocities, turns)
     }
     fn positions(&self) -> &[Point] {
         ArapDeformer::positions(self)
