@@ -76,7 +76,9 @@ describe("turning handles", () => {
     const p = posing.deformer.handlePositions();
     posing.grabTurn(1, 3, p[2]! + 0.2, p[3]!);
     posing.dragTurn(3, p[2]!, p[3]! + 0.2);
-    expect(() => posing.advance(noTimings())).toThrow('method mls has no turning handles; choose "akap" or "arap" for it');
+    expect(() => posing.advance(noTimings())).toThrow(
+      'method mls has no turning handles; choose "akap" or "arap" for it',
+    );
     expect(posing.handles[1]!.turn).toBe(posing.handles[1]!.turned);
   });
 });
