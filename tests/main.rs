@@ -1,6 +1,7 @@
 //! Integration tests: one binary, one module per area, shared checks in `common`.
 
 mod arap;
+mod bones;
 mod cauchy_green;
 mod common;
 mod defop_coordinates;

@@ -58,7 +58,10 @@ fn json_round_trips_every_double_exactly() {
         s.events
             .iter()
             .flat_map(|e| match e {
-                Event::Step(v) | Event::Positions(v) | Event::Handles { barycentric: v, .. } => v.clone(),
+                Event::Step(v)
+                | Event::Positions(v)
+                | Event::Handles { barycentric: v, .. }
+                | Event::Bones { barycentric: v, .. } => v.clone(),
                 Event::Stiffness(v) => v.clone().unwrap_or_default(),
                 Event::Turn { velocities, turns } => [&velocities[..], &turns[..]].concat(),
                 Event::Reset(_) | Event::Options(_) => Vec::new(),
@@ -557,6 +560,7 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
             Event::Reset(_) => "reset",
             Event::Stiffness(_) => "stiffness",
             Event::Turn { .. } => "turn",
+            Event::Bones { .. } => "bones",
         })
         .collect();
     for kind in ["handles", "step", "options", "reset"] {

@@ -160,6 +160,14 @@ pub enum DeformError {
         /// What it lacks.
         what: &'static str,
     },
+    /// A bone that cannot be used: its ends at one point or not in the mesh, its segment
+    /// leaving the shape, or touching another bone.
+    InvalidBone {
+        /// Which bone.
+        bone: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
     /// A Cauchy-Green cage that cannot be used: given with too few points, points that are
     /// not finite, edges that meet or the shape not strictly inside; or no automatic cage of
     /// the vertex count asked for fits.
@@ -258,6 +266,7 @@ impl fmt::Display for DeformError {
                 write!(f, "method {method} has no {what}; choose \"akap\" or \"arap\" for it")
             }
             Self::InvalidCage { reason } => write!(f, "the cage cannot be used: {reason}"),
+            Self::InvalidBone { bone, reason } => write!(f, "bone {bone} cannot be used: {reason}"),
             Self::ForeignCheckpoint { method, saved } => match saved {
                 Some(saved) if saved != method => write!(
                     f,

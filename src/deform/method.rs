@@ -88,6 +88,12 @@ impl MethodOptions {
                 Err(other) => return Err(other),
             }
         }
+        // So do bones, laid in the same pose.
+        let (triangles, barycentric) = deformer.bone_points();
+        match next.set_bones(&triangles, &barycentric) {
+            Ok(()) | Err(DeformError::Unsupported { .. }) => {}
+            Err(other) => return Err(other),
+        }
         let (triangles, barycentric) = deformer.handle_points();
         next.set_handle_points(&triangles, &barycentric)?;
         *deformer = next;
@@ -208,6 +214,26 @@ pub trait Deform: fmt::Debug {
     }
     /// Whether the method takes per-triangle stiffness ([`Deform::set_stiffness`]).
     fn has_stiffness(&self) -> bool {
+        false
+    }
+    /// Sets the bones (see [`super::bones`]): two mesh points per bone, its ends, given as
+    /// [`Deform::set_handle_points`] takes points, replacing any bones; none removes them.
+    /// Each bone covers the triangles its segment meets in the current pose, which from
+    /// then on move as one rigid body. Methods without bones (MLS, Cauchy-Green) refuse any
+    /// ([`DeformError::Unsupported`]). Refused, changing nothing, for a bone that cannot be
+    /// used ([`DeformError::InvalidBone`]).
+    fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        if triangles.is_empty() && barycentric.is_empty() {
+            return Ok(());
+        }
+        Err(DeformError::Unsupported { method: self.method_options().method(), what: "bones" })
+    }
+    /// The bones' ends, two per bone, as [`Deform::set_bones`] took them.
+    fn bone_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
+        (Vec::new(), Vec::new())
+    }
+    /// Whether the method has bones ([`Deform::set_bones`]).
+    fn has_bones(&self) -> bool {
         false
     }
     /// The polygon the method deforms the shape through, where it has one, as the last step

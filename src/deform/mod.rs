@@ -15,6 +15,8 @@
 //! - `pattern`: the sparsity pattern of both deformers' matrices, a block per vertex pair;
 //! - `handles`: the checks and helpers every deformer shares (handle points, velocities,
 //!   poses, connectivity, sizes);
+//! - [`bones`]: segments whose triangles move as one rigid body ([`BONE_STIFFNESS`]),
+//!   for the methods that have them (AKAP, ARAP);
 //! - [`akap`]: the [`Deformer`] of the paper (eqs. (3), (4), (6), (14)-(16)) in three files:
 //!   the Killing matrix, the spiral step, the solver;
 //! - [`arap`]: the [`ArapDeformer`] (Liu et al. 2008 elements energy, local/global);
@@ -30,6 +32,7 @@
 
 pub mod akap;
 pub mod arap;
+pub mod bones;
 pub mod cauchy;
 mod error;
 pub mod foldover;
@@ -43,6 +46,7 @@ pub mod settings;
 
 pub use akap::Deformer;
 pub use arap::ArapDeformer;
+pub use bones::BONE_STIFFNESS;
 pub use cauchy::CauchyGreenDeformer;
 pub use error::DeformError;
 pub use foldover::{step_without_foldovers, FoldoverGuard, FoldoverStepper, GuardedStep};

@@ -249,6 +249,7 @@ impl DeformError {
             | Self::OrdersMismatch { .. }
             | Self::TooFewHandles { .. }
             | Self::InvalidCage { .. }
+            | Self::InvalidBone { .. }
             | Self::InvalidStiffness { .. }
             | Self::Unsupported { .. }
             | Self::ForeignCheckpoint { .. } => ErrorCode::InvalidArgument,

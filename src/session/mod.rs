@@ -13,6 +13,7 @@
 //!               { "options": { "method": "arap", "iterations": 10 } },
 //!               { "stiffness": [1, 1, 100, 100, 1] },
 //!               { "turn": { "velocities": [0, 0, 0.01, 0], "turns": [0, 0.05] } },
+//!               { "bones": { "triangles": [7, 12], "barycentric": [1, 0, 0, 0.5, 0.5, 0] } },
 //!               { "reset": true } ] }
 //! ```
 //!
@@ -35,8 +36,10 @@
 //! `reset` (`true`; `false` does nothing) returns to the rest pose; `stiffness` paints
 //! every triangle's stiffness (one number per triangle, [`crate::deform::STIFFNESS_RANGE`]),
 //! or `null` for 1 everywhere; `turn` is a frame in which handles also turn (`velocities` as
-//! a `step`'s, `turns` one angle per handle in radians, counter-clockwise; AKAP and ARAP), for
-//! the methods that have it (AKAP, ARAP: a stiffness event
+//! a `step`'s, `turns` one angle per handle in radians, counter-clockwise; AKAP and ARAP);
+//! `bones` replaces the bones (two points per bone, its ends, given as handles are;
+//! [`Deform::set_bones`]), laid in the pose at that point. Stiffness and bones are for
+//! the methods that have them (AKAP, ARAP: such an event
 //! under another method is refused on replay as the deformer refuses it, and passed over by
 //! [`replay_to_targets`], whose method is a comparison's).
 //!
@@ -312,6 +315,14 @@ pub enum Event {
     Reset(bool),
     /// Each triangle's stiffness (one number per triangle), or `null` for 1 everywhere.
     Stiffness(Option<Vec<f64>>),
+    /// New bones ([`Deform::set_bones`]): a triangle and three barycentric coordinates for
+    /// each end, two ends per bone.
+    Bones {
+        /// Triangle of each end.
+        triangles: Vec<u32>,
+        /// Barycentric coordinates, three per end.
+        barycentric: Vec<f64>,
+    },
     /// One frame in which handles also turn ([`Deform::step_turning`]).
     Turn {
         /// x and y velocity of each handle.
@@ -490,6 +501,7 @@ impl Session {
             Event::Options(_) => Some("an options event"),
             Event::Stiffness(_) => Some("a stiffness event"),
             Event::Turn { .. } => Some("a turn event"),
+            Event::Bones { .. } => Some("a bones event"),
             _ => None,
         })
     }
@@ -539,6 +551,14 @@ impl Session {
                 Event::Options(o) => options = o.over(options, Some(index))?,
                 Event::Stiffness(s) => check_stiffness(s.as_deref(), counts.triangle_count)
                     .map_err(|error| SessionError::Event { index, error })?,
+                Event::Bones { triangles, barycentric } => {
+                    if barycentric.len() != 3 * triangles.len() {
+                        return Err(length("bone barycentric", 3 * triangles.len(), barycentric.len(), 3, "bone ends"));
+                    }
+                    if !triangles.len().is_multiple_of(2) {
+                        return Err(length("bone triangles", triangles.len() + 1, triangles.len(), 2, "bones"));
+                    }
+                }
                 _ => {}
             }
         }

@@ -31,7 +31,8 @@ pub fn replay(session: &Session, deformer: &mut Box<dyn Deform>) -> Result<Repla
 /// of a [`replay`] with the recorded deformer): each step's velocity is the target minus
 /// the handle's current position in `deformer`. `options` events are passed over: the
 /// method compared keeps its settings. `positions` events put it into the recorded pose.
-/// `stiffness` events paint it, or are passed over by a method without stiffness.
+/// `stiffness` and `bones` events paint it or set them, or are passed over by a method
+/// without stiffness or bones.
 pub fn replay_to_targets(
     session: &Session,
     targets: &[Vec<Point>],
@@ -54,6 +55,16 @@ impl Slot<'_> {
             Self::Compared(d) => &mut **d,
         }
     }
+
+    /// Sets stiffness or bones with `set`; a compared method without them passes over it
+    /// and poses the shape as it can.
+    fn set(&mut self, set: impl FnOnce(&mut dyn Deform) -> Result<(), DeformError>) -> Result<(), DeformError> {
+        let compared = matches!(self, Self::Compared(_));
+        match set(self.get()) {
+            Err(DeformError::Unsupported { .. }) if compared => Ok(()),
+            result => result,
+        }
+    }
 }
 
 fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) -> Result<Replay, SessionError> {
@@ -62,7 +73,8 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
     let mut last_was_step = false;
     for (index, event) in session.events.iter().enumerate() {
         let refused = |error| SessionError::Event { index, error };
-        last_was_step &= matches!(event, Event::Reset(false) | Event::Options(_) | Event::Stiffness(_));
+        last_was_step &=
+            matches!(event, Event::Reset(false) | Event::Options(_) | Event::Stiffness(_) | Event::Bones { .. });
         match event {
             Event::Handles { triangles, barycentric } => {
                 let (weights, rest) = barycentric.as_chunks::<3>();
@@ -119,13 +131,19 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
                 let options = recorded.over(deformer.method_options(), Some(index))?;
                 options.apply(deformer).map_err(refused)?;
             }
-            Event::Stiffness(values) => {
-                let compared = matches!(slot, Slot::Compared(_));
-                match slot.get().set_stiffness(values.as_deref()) {
-                    // A compared method without stiffness poses the shape as it can.
-                    Err(DeformError::Unsupported { .. }) if compared => {}
-                    result => result.map_err(refused)?,
+            Event::Stiffness(values) => slot.set(|d| d.set_stiffness(values.as_deref())).map_err(refused)?,
+            Event::Bones { triangles, barycentric } => {
+                let (ends, rest) = barycentric.as_chunks::<3>();
+                if !rest.is_empty() {
+                    return Err(refused(DeformError::Length {
+                        what: "bone barycentric",
+                        expected: 3 * triangles.len(),
+                        found: barycentric.len(),
+                        per: 3,
+                        items: "bone ends",
+                    }));
                 }
+                slot.set(|d| d.set_bones(triangles, ends)).map_err(refused)?;
             }
             Event::Reset(true) => slot.get().reset(),
             Event::Reset(false) => {}

@@ -27,6 +27,7 @@ use sprs::CsMat;
 use super::killing::KillingMatrix;
 use super::spiral::{linear_step, spiral_step};
 use super::turning::{self, rigid_field, Neighbourhood};
+use crate::deform::bones::Bones;
 use crate::deform::error::{out_of_memory, DeformError};
 use crate::deform::handles::{
     self, check_connected, check_pose, check_stiffness, check_turns, check_velocities, diagonal, in_range, HandlePoint,
@@ -81,6 +82,10 @@ pub struct Deformer {
     options: DeformerOptions,
     clock: Clock,
     killing: KillingMatrix,
+    /// The stiffness painted per triangle, if any ([`Self::set_stiffness`]).
+    painted: Option<Vec<f64>>,
+    /// The bones ([`Self::set_bones`]); their triangles' stiffness is raised in `killing`.
+    bones: Bones,
     /// Step 1: K plus the handle penalties (same pattern as K).
     soft: System,
     /// Step 2: K restricted to interior unknowns; `None` when no vertex is interior.
@@ -163,6 +168,8 @@ impl Deformer {
             options,
             clock: default_clock,
             killing,
+            painted: None,
+            bones: Bones::default(),
             soft,
             dirichlet,
             interior_rhs: vec![0.0; 2 * interior_count],
@@ -213,7 +220,21 @@ impl Deformer {
     /// wrong length or a value out of range.
     pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
         check_stiffness(stiffness, self.mesh.triangle_count())?;
-        self.killing.set_stiffness(stiffness.map(<[f64]>::to_vec));
+        self.painted = stiffness.map(<[f64]>::to_vec);
+        self.killing.set_stiffness(self.bones.stiffness(stiffness, self.mesh.triangle_count()));
+        Ok(())
+    }
+
+    /// Sets the bones, two mesh points per bone (see [`crate::deform::bones`]), laid in the
+    /// current pose, replacing any; none removes them. Their triangles weigh at least
+    /// [`BONE_STIFFNESS`](crate::deform::BONE_STIFFNESS) in the Killing energy, and after
+    /// each step each bone's vertices are put where the rigid motion that best fits them
+    /// takes the bone as it was set. Refused, changing nothing, for a bone that cannot be
+    /// used.
+    pub fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.bones = Bones::new(&self.mesh, &self.positions, triangles, barycentric)?;
+        let painted = self.painted.as_deref();
+        self.killing.set_stiffness(self.bones.stiffness(painted, self.mesh.triangle_count()));
         Ok(())
     }
 
@@ -341,6 +362,7 @@ impl Deformer {
             }
             Integrator::Linear => linear_step(&self.positions, field, &mut self.next_positions),
         }
+        self.bones.project(&mut self.next_positions);
         if !in_range(&self.next_positions) {
             return Err(DeformError::NonFiniteResult);
         }
@@ -601,7 +623,16 @@ impl Deform for Deformer {
         true
     }
     fn stiffness(&self) -> Option<&[f64]> {
-        self.killing.stiffness()
+        self.painted.as_deref()
+    }
+    fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        Deformer::set_bones(self, triangles, barycentric)
+    }
+    fn bone_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
+        self.bones.points()
+    }
+    fn has_bones(&self) -> bool {
+        true
     }
     /// Positions, both fields and the timings: every other buffer a step reads is
     /// assembled afresh from the positions in each step.

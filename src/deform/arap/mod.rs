@@ -44,10 +44,9 @@ use std::sync::Arc;
 
 use sprs::CsMat;
 
+use super::bones::Bones;
 use super::error::{out_of_memory, DeformError};
-use super::handles::{
-    self, check_connected, check_pose, check_stiffness, check_velocities, diagonal, in_range, HandlePoint,
-};
+use super::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
 pub use super::method::IterationReport;
 use super::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
 use super::metrics::{metrics, Metrics};
@@ -59,6 +58,9 @@ use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
 
 mod turning;
+mod weights;
+
+use weights::laplacian_of;
 
 const NONE: usize = usize::MAX;
 
@@ -97,6 +99,8 @@ pub struct ArapDeformer {
     rest_cot: Vec<[f64; 3]>,
     /// Each triangle's stiffness, if set.
     stiffness: Option<Vec<f64>>,
+    /// The bones ([`Self::set_bones`]); their triangles' stiffness is raised in `cot`.
+    bones: Bones,
     /// Per triangle, the rest edge vectors `x[v[k + 1]] - x[v[k + 2]]`, scaled by `2^unit`.
     rest_edges: Vec<[Point; 3]>,
     /// The cotangent Laplacian on the pattern of `matrix` (full symmetric CSC storage).
@@ -132,31 +136,6 @@ pub struct ArapDeformer {
     /// During a step in which handles turn: each turning handle's neighbourhood vertex and
     /// its target in the rotated frame (see `turning`); empty otherwise.
     turning: Vec<(usize, Point)>,
-}
-
-/// The cotangent Laplacian of the per-triangle weights `cot` on the pattern (`nnz`
-/// entries, `triangle_slots` per triangle, `diagonal(v)` the slot of `(v, v)` for the `n`
-/// vertices), and the handles' penalty weight for it: [`PENALTY`] times its mean diagonal
-/// entry.
-fn laplacian_of(
-    cot: &[[f64; 3]],
-    triangle_slots: &[[usize; 9]],
-    nnz: usize,
-    n: usize,
-    diagonal: impl Fn(usize) -> usize,
-) -> (Vec<f64>, f64) {
-    let mut laplacian = vec![0.0; nnz];
-    for (c, s) in cot.iter().zip(triangle_slots) {
-        for (k, &weight) in c.iter().enumerate() {
-            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-            laplacian[s[3 * i + i]] += weight;
-            laplacian[s[3 * j + j]] += weight;
-            laplacian[s[3 * i + j]] -= weight;
-            laplacian[s[3 * j + i]] -= weight;
-        }
-    }
-    let diagonal_sum: f64 = (0..n).map(|v| laplacian[diagonal(v)]).sum();
-    (laplacian, PENALTY * diagonal_sum / n as f64)
 }
 
 impl ArapDeformer {
@@ -218,6 +197,7 @@ impl ArapDeformer {
             size: diagonal(x),
             rest_cot: cot.clone(),
             stiffness: None,
+            bones: Bones::default(),
             cot,
             rest_edges,
             laplacian,
@@ -296,29 +276,6 @@ impl ArapDeformer {
                 })
                 .collect(),
         );
-        Ok(())
-    }
-
-    /// Sets each triangle's stiffness, the factor on its element energy (its cotangent
-    /// weights times it): stiff regions bend less. One value per triangle, each in
-    /// [`STIFFNESS_RANGE`](super::STIFFNESS_RANGE); `None` is 1 everywhere, exactly the
-    /// unpainted deformer. The Laplacian and the handles' penalty are rebuilt (the pattern
-    /// and its analysis stay), and the next step factors anew. Refused, changing nothing,
-    /// for a wrong length or a value out of range.
-    pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
-        check_stiffness(stiffness, self.mesh.triangle_count())?;
-        self.stiffness = stiffness.map(<[f64]>::to_vec);
-        self.cot = match stiffness {
-            None => self.rest_cot.clone(),
-            Some(values) => self.rest_cot.iter().zip(values).map(|(c, s)| c.map(|x| x * s)).collect(),
-        };
-        let diagonal = |v: usize| self.slot_of(v);
-        let (laplacian, penalty) =
-            laplacian_of(&self.cot, &self.triangle_slots, self.laplacian.len(), self.positions.len(), diagonal);
-        self.laplacian = laplacian;
-        self.penalty = penalty;
-        self.assemble_matrix();
-        self.factored = false;
         Ok(())
     }
 
@@ -467,6 +424,7 @@ impl ArapDeformer {
                 moved = moved.max(libm::hypot(q[0] - p[0], q[1] - p[1]));
                 *p = q;
             }
+            self.bones.project(&mut self.next_positions);
             let t3 = clock();
             timings.assembly += t1 - t0;
             timings.solve += t2 - t1;
@@ -690,6 +648,15 @@ impl Deform for ArapDeformer {
     }
     fn stiffness(&self) -> Option<&[f64]> {
         self.stiffness.as_deref()
+    }
+    fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        ArapDeformer::set_bones(self, triangles, barycentric)
+    }
+    fn bone_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
+        self.bones.points()
+    }
+    fn has_bones(&self) -> bool {
+        true
     }
     /// Positions, targets, the rotations the next local step starts from (kept where a
     /// triangle's `S` has no rotational part), the field, the report and the timings. The
