@@ -133,6 +133,31 @@ impl JsDeformer {
         Ok(self.inner.set_handle_points(&triangles, weights)?)
     }
 
+    /// Bones, segments whose triangles move as one rigid body (AKAP and ARAP): two ends per
+    /// bone, each a triangle index (`Uint32Array`) and three barycentric coordinates
+    /// (`Float64Array`), laid in the current pose, replacing any bones; empty arrays remove
+    /// them. Refused, changing nothing, for a bone whose ends are at one point, whose segment
+    /// leaves the shape or that touches another bone, and by methods without bones.
+    #[wasm_bindgen(js_name = setBones)]
+    pub fn set_bones(&mut self, triangles: JsValue, barycentric: JsValue) -> Result<(), BindingError> {
+        let triangles = read::uint32s(&triangles, "triangles", max_handles())?;
+        let barycentric = read::float64s(&barycentric, "barycentric", 3 * max_handles())?;
+        let (ends, rest) = barycentric.as_chunks::<3>();
+        if !rest.is_empty() {
+            return Err(BindingError::argument(format!(
+                "barycentric has {} numbers, not 3 for each bone end",
+                barycentric.len()
+            )));
+        }
+        Ok(self.inner.set_bones(&triangles, ends)?)
+    }
+
+    /// Whether the method has bones (`setBones`): AKAP and ARAP.
+    #[wasm_bindgen(getter, js_name = hasBones)]
+    pub fn has_bones(&self) -> bool {
+        self.inner.has_bones()
+    }
+
     /// One step with two velocity components per handle, in handle order (`Float64Array`).
     pub fn step(&mut self, velocities: JsValue) -> Result<(), BindingError> {
         let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;

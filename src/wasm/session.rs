@@ -154,6 +154,23 @@ impl JsSessionRecorder {
         Ok(())
     }
 
+    /// New bones, as `Deformer.setBones` takes them: a triangle (`Uint32Array`) and three
+    /// barycentric coordinates (`Float64Array`) per end, two ends per bone.
+    pub fn bones(&mut self, triangles: JsValue, barycentric: JsValue) -> Result<(), BindingError> {
+        let most = limits().max_vertices;
+        let triangles = read::uint32s(&triangles, "triangles", most)?;
+        let barycentric = finite(read::float64s(&barycentric, "barycentric", 3 * most)?, "barycentric")?;
+        if barycentric.len() != 3 * triangles.len() || !triangles.len().is_multiple_of(2) {
+            return Err(BindingError::argument(format!(
+                "bones have {} triangles and {} barycentric numbers; each bone has 2 ends of 1 and 3",
+                triangles.len(),
+                barycentric.len()
+            )));
+        }
+        self.session.events.push(Event::Bones { triangles, barycentric });
+        Ok(())
+    }
+
     /// Back to the rest pose.
     pub fn reset(&mut self) {
         self.session.events.push(Event::Reset(true));

@@ -433,6 +433,27 @@ export class Deformer {
     return this.#raw.hasStiffness;
   }
 
+  /**
+   * Bones: straight segments whose triangles move as one rigid body, for limbs. Two ends per
+   * bone, each a triangle index and 3 barycentric coordinates (as {@link setHandlePoints}
+   * takes points), laid in the current pose, replacing any bones; empty arrays remove them.
+   * The triangles a bone's segment meets weigh at least 1000 in the energy and, after each
+   * step, are put where the rigid motion that best fits them takes the bone as it was set:
+   * the segment stays straight and keeps its length however the handles pull, and a handle
+   * on it moves and turns it as a whole. AKAP and ARAP (kept when switching between them);
+   * `"mls"` and `"cauchy-green"` throw (code `invalid-argument`). A bone whose ends are at one
+   * point, whose segment leaves the shape, or that shares a vertex with another bone (leave
+   * a joint of free triangles between bones) throws, changing nothing.
+   */
+  setBones(triangles: Indices, barycentric: Coordinates): void {
+    this.#raw.setBones(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
+  }
+
+  /** Whether the method takes {@link Deformer.setBones} (AKAP and ARAP). */
+  get hasBones(): boolean {
+    return this.#raw.hasBones;
+  }
+
   /** Puts the mesh into a given pose (xy-interleaved, length 2n); handles stay. */
   setPositions(positions: Coordinates): void {
     this.#raw.setPositions(toFloat64(positions, "positions"));

@@ -4,7 +4,7 @@
  * settings in force.
  */
 import { builtinShapes } from "../core.js";
-import { METHODS, type GalleryItem, type MethodPreset } from "./options.js";
+import { METHODS, type GalleryItem, type MethodPreset, type WidgetTool } from "./options.js";
 import { Cancelled } from "./setup.js";
 import { download } from "./export.js";
 import type { RigTrainOptions } from "./rig.js";
@@ -85,7 +85,8 @@ export function toolbarActions(widget: Widget, host: ActionHost): ToolbarActions
       host.succeeded();
     }),
     display: guard((options: DisplayToggles) => widget.setDisplay(options)),
-    brush: guard((tool: "pose" | "stiffness", brush: BrushSettings) => widget.setTool(tool, brush)),
+    brush: guard((tool: WidgetTool, brush: BrushSettings) => widget.setTool(tool, brush)),
+    clearBones: guard(() => widget.clearBones()),
     clearStiffness: guard(() => widget.setStiffness(undefined)),
     reorder: guard((step: 1 | -1) => (step > 0 ? widget.bringForward() : widget.sendBack())),
     train: (options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined) => {

@@ -4,7 +4,10 @@
  * a selected handle's turning ring), and the dabs the API makes. What a
  * dab paints is {@link Posing.paint}'s; this file is the page side of it.
  */
-import { METHODS, brushSettings, type WidgetSettings, type WidgetTool } from "./options.js";
+import { METHODS, brushSettings, checkTool, type WidgetSettings, type WidgetTool } from "./options.js";
+import { coded } from "../internal/arrays.js";
+import { boneEnds } from "./bones.js";
+import { locate } from "./picking.js";
 import type { Posing } from "./posing.js";
 import type { Stage } from "./stage.js";
 import { BRUSH_SIZE_RANGE, type BrushSettings } from "./stiffness.js";
@@ -24,6 +27,8 @@ export interface BrushHost {
 export class Brush {
   /** Where the brush's outline is drawn (the pointer over the shape, shape units), if anywhere. */
   at: [number, number] | undefined;
+  /** The bone being drawn with the bone tool: from the press to the pointer (shape units). */
+  boneDraft: [number, number, number, number] | undefined;
   readonly #host: BrushHost;
 
   constructor(host: BrushHost) {
@@ -36,7 +41,7 @@ export class Brush {
    */
   setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
     const { settings, posing, stage, toolbar } = this.#host;
-    if (tool !== "pose" && tool !== "stiffness") throw new Error(`unknown tool "${String(tool)}"`);
+    checkTool(tool);
     settings.brush = brushSettings(settings.brush, brush);
     settings.tool = tool;
     toolbar?.sync(settings);
@@ -45,12 +50,15 @@ export class Brush {
         `${METHODS[settings.method].label} has no stiffness: the painting is kept, and used by AKAP and ARAP.`,
       );
     }
+    if (tool === "bone" && !posing.deformer.hasBones) {
+      stage.status.info(`${METHODS[settings.method].label} has no bones: choose AKAP or ARAP to draw them.`);
+    }
     this.#host.draw();
   }
 
-  /** The brush on or off (B). */
-  toggle(): void {
-    this.setTool(this.#host.settings.tool === "stiffness" ? "pose" : "stiffness");
+  /** The brush (B) or the bone tool (O) on or off. */
+  toggle(tool: "stiffness" | "bone" = "stiffness"): void {
+    this.setTool(this.#host.settings.tool === tool ? "pose" : tool);
   }
 
   /** The brush's size times `factor`, within its range ([ and ]). */
@@ -75,6 +83,43 @@ export class Brush {
   radius(): number {
     const { stage, settings } = this.#host;
     return (settings.brush.size * stage.ratio) / stage.camera.view.scale;
+  }
+
+  /** Adds a bone between two shape points in the pose on screen (see `Widget.addBone`); its index. */
+  addBone(x0: number, y0: number, x1: number, y1: number): number {
+    const { posing } = this.#host;
+    const tolerance = 1e-9 * posing.shape.size;
+    const at = (x: number, y: number) =>
+      locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, tolerance);
+    const [from, to] = [at(x0, y0), at(x1, y1)];
+    if (!from || !to) {
+      throw coded(
+        new Error(`a bone's ends must lie on the shape; (${from ? x1 : x0}, ${from ? y1 : y0}) does not`),
+        "invalid-argument",
+      );
+    }
+    this.#host.gesture(() => posing.bones.set([...posing.bones.list, { ends: [from, to] }]));
+    return posing.bones.list.length - 1;
+  }
+
+  /** The bones' ends in the current pose (see `Widget.bones`). */
+  boneEnds(): Float64Array {
+    const { posing } = this.#host;
+    return boneEnds(posing.bones.list, posing.deformer.positionsView(), posing.shape.mesh.triangles);
+  }
+
+  /** Removes one bone, or all (see `Widget.removeBone`, `Widget.clearBones`); undoable. */
+  removeBone(index: number | "all"): void {
+    const { posing } = this.#host;
+    const list = posing.bones.list;
+    if (index === "all") {
+      if (list.length > 0) this.#host.gesture(() => posing.bones.set([]));
+      return;
+    }
+    if (!Number.isInteger(index) || index < 0 || index >= list.length) {
+      throw coded(new RangeError(`no bone ${index}; there are ${list.length}`), "invalid-argument");
+    }
+    this.#host.gesture(() => posing.bones.set(list.filter((_, k) => k !== index)));
   }
 
   /** One dab at (x, y) as a stroke of one point (see `Widget.paintAt`). */

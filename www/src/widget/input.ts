@@ -4,6 +4,7 @@
  * and files dropped on the stage. What each gesture changes is the posing's and the
  * widget's; this file only routes.
  */
+import { boneAt, boneEnds } from "./bones.js";
 import type { Brush } from "./brush.js";
 import type { Camera } from "./camera.js";
 import { keyCommand, keyFocus } from "./keys.js";
@@ -29,6 +30,8 @@ export interface InputHost {
   moved(): void;
   /** An action succeeded (messages are out of date). */
   succeeded(): void;
+  /** An action failed: its message is shown. */
+  failed(error: unknown): void;
   gesture(change: () => void): void;
   removeHandle(index: number): void;
   undo(): void;
@@ -113,8 +116,12 @@ export class WidgetInput {
         posing.endDragGesture();
         host.draw();
       },
-      painting: () => posing.settings.tool === "stiffness",
+      painting: () => posing.settings.tool !== "pose",
       paint: (_pointerId, x, y, erase) => {
+        if (posing.settings.tool === "bone") {
+          this.#drawBone(x, y, erase);
+          return;
+        }
         const { size, value } = posing.settings.brush;
         if (posing.paint(x, y, (size * host.ratio()) / host.camera.view.scale, erase ? 1 : value)) {
           posing.markChanged();
@@ -123,7 +130,10 @@ export class WidgetInput {
       },
       paintEnd: () => {
         try {
+          if (posing.settings.tool === "bone") this.#endBone();
           posing.flushStiffness();
+        } catch (error) {
+          host.failed(error);
         } finally {
           posing.endDragGesture();
           host.draw();
@@ -159,6 +169,53 @@ export class WidgetInput {
 
   destroy(): void {
     this.#pointer.destroy();
+  }
+
+  /**
+   * The bone tool's press (or drag) at a shape point: a press starts a bone there and a
+   * drag stretches it to the pointer; with Alt, a press removes the bone under it.
+   */
+  #drawBone(x: number, y: number, erase: boolean): void {
+    const { posing, brush } = this.#host;
+    if (brush.boneDraft) {
+      brush.boneDraft = [brush.boneDraft[0], brush.boneDraft[1], x, y];
+    } else if (erase) {
+      const index = boneAt(this.#boneEnds(), x, y, this.#pixels(6));
+      if (index >= 0) {
+        posing.bones.set(posing.bones.list.filter((_, k) => k !== index));
+        posing.markChanged();
+      }
+      return;
+    } else {
+      brush.boneDraft = [x, y, x, y];
+    }
+    this.#host.draw();
+  }
+
+  /** The bone tool's release: the bone drawn is added (if it is longer than a few pixels). */
+  #endBone(): void {
+    const { posing, brush } = this.#host;
+    const draft = brush.boneDraft;
+    brush.boneDraft = undefined;
+    this.#host.draw();
+    if (!draft || Math.hypot(draft[2] - draft[0], draft[3] - draft[1]) < this.#pixels(8)) return;
+    const at = (x: number, y: number) =>
+      locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, this.#pixels(4));
+    const [from, to] = [at(draft[0], draft[1]), at(draft[2], draft[3])];
+    if (!from || !to) throw new Error("a bone's ends must lie on the shape");
+    posing.bones.set([...posing.bones.list, { ends: [from, to] }]);
+    posing.markChanged();
+    this.#host.succeeded();
+  }
+
+  #boneEnds(): Float64Array {
+    const { posing } = this.#host;
+    return boneEnds(posing.bones.list, posing.deformer.positionsView(), posing.shape.mesh.triangles);
+  }
+
+  /** Shape units in `n` CSS pixels at the current zoom. */
+  #pixels(n: number): number {
+    return (n * this.#host.ratio()) / this.#host.camera.view.scale;
   }
 
   #setSpace(held: boolean): void {
@@ -230,6 +287,9 @@ export class WidgetInput {
         break;
       case "brush":
         host.brush.toggle();
+        break;
+      case "bones":
+        host.brush.toggle("bone");
         break;
       case "brush-size":
         host.brush.resize(command.factor);

@@ -17,6 +17,8 @@ export type KeyCommand =
   | { kind: "help" }
   /** The stiffness brush on or off. */
   | { kind: "brush" }
+  /** The bone tool on or off. */
+  | { kind: "bones" }
   /** The brush's size times `factor`. */
   | { kind: "brush-size"; factor: number }
   /** The selected handles' parts in front of the others (1) or behind them (-1). */
@@ -69,6 +71,7 @@ export function keyCommand(e: KeyPress, focus: KeyFocus = "other"): KeyCommand |
   if (key === "pageup") return { kind: "layer", step: 1 };
   if (key === "pagedown") return { kind: "layer", step: -1 };
   if (key === "b") return { kind: "brush" };
+  if (key === "o") return { kind: "bones" };
   if (key === "[") return { kind: "brush-size", factor: 1 / BRUSH_STEP };
   if (key === "]") return { kind: "brush-size", factor: BRUSH_STEP };
   return undefined;
@@ -109,6 +112,10 @@ export const HELP: readonly { keys: string; does: string }[] = [
     does: "stiffness brush: paint stiff (blue) or soft (orange) regions; Alt-drag erases; B again to pose",
   },
   { keys: "[ and ]", does: "brush smaller, larger" },
+  {
+    keys: "O; drag on the shape",
+    does: "bone tool: draw a bone from end to end (it moves as one rigid piece, AKAP and ARAP); Alt-click removes one; O again to pose",
+  },
   {
     keys: "Ctrl+] or Page Up, Ctrl+[ or Page Down",
     does: "bring the selected handle's part in front of the others, send it behind (a dragged part comes to the front by itself)",

@@ -94,7 +94,9 @@ export interface WidgetOptions {
   flipped?: boolean;
   /**
    * What a press on the shape does: `"pose"` (the default) adds and drags handles;
-   * `"stiffness"` paints stiffness with the brush (Alt-drag erases). Key B toggles.
+   * `"stiffness"` paints stiffness with the brush (Alt-drag erases). Key B toggles;
+   * `"bone"` draws bones, segments that move as one rigid body (a drag from end to end;
+   * Alt-click removes one; AKAP and ARAP). Key O toggles.
    */
   tool?: WidgetTool;
   /** The stiffness brush: radius in CSS pixels (2 to 400, default 24) and the value painted (0.001 to 1000, default 100). */
@@ -116,8 +118,11 @@ export interface WidgetOptions {
   storageKey?: string;
 }
 
-/** What a press on the shape does: pose with handles, or paint stiffness. */
-export type WidgetTool = "pose" | "stiffness";
+/** What a press on the shape does: pose with handles, paint stiffness, or draw bones. */
+export type WidgetTool = "pose" | "stiffness" | "bone";
+
+/** The tools, in the order messages list them. */
+export const TOOLS: readonly WidgetTool[] = ["pose", "stiffness", "bone"];
 
 /** The settings a widget runs with (its options that can change while it runs). */
 export type WidgetSettings = Required<
@@ -223,9 +228,7 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     tool: options.tool ?? "pose",
     brush: brushSettings(DEFAULT_BRUSH, options.brush ?? {}),
   };
-  if (settings.tool !== "pose" && settings.tool !== "stiffness") {
-    throw coded(new Error(`unknown tool "${String(settings.tool)}"; the tools are pose, stiffness`), "invalid-option");
-  }
+  checkTool(settings.tool);
   if (!Object.hasOwn(METHODS, settings.method)) {
     throw new Error(`unknown method "${settings.method}"; the methods are ${Object.keys(METHODS).join(", ")}`);
   }
@@ -279,4 +282,11 @@ export function widgetMethod(options: DeformerOptions, lambda: number): { method
     return m.method === "akap" && m.dirichlet === dirichlet && m.integrator === integrator;
   });
   return { method: found ?? "akap", lambda: options.lambda ?? lambda };
+}
+
+/** Throws (code `invalid-option`) for a tool that is not one of {@link TOOLS}. */
+export function checkTool(tool: unknown): asserts tool is WidgetTool {
+  if (!TOOLS.includes(tool as WidgetTool)) {
+    throw coded(new Error(`unknown tool "${String(tool)}"; the tools are ${TOOLS.join(", ")}`), "invalid-option");
+  }
 }

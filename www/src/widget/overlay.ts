@@ -46,6 +46,9 @@ export interface OverlayScene {
   stiffness?: Map<number, number[][]> | undefined;
   /** The brush's outline: centre and radius in shape units. */
   brush?: { x: number; y: number; r: number };
+  /** Bones: x0 y0 x1 y1 each (shape units), and one being drawn. */
+  bones?: ArrayLike<number>;
+  boneDraft?: readonly [number, number, number, number] | undefined;
 }
 
 /** Handle radius in CSS pixels. */
@@ -130,6 +133,8 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
   }
 
   if (scene.field) drawField(ctx, p, scene.field, view, ratio);
+
+  if (scene.bones || scene.boneDraft) drawBones(ctx, scene.bones ?? [], scene.boneDraft, view, ratio);
 
   if (scene.brush) {
     const [x, y] = toPixel(view, scene.brush.x, scene.brush.y);
@@ -297,4 +302,41 @@ function drawField(
   ctx.strokeStyle = "rgba(10, 60, 140, 0.85)";
   ctx.lineWidth = 1.2 * ratio;
   ctx.stroke();
+}
+
+/** Bones as thick bars with round ends, white-rimmed so they show on any art; the one being drawn dashed. */
+function drawBones(
+  ctx: CanvasRenderingContext2D,
+  bones: ArrayLike<number>,
+  draft: readonly [number, number, number, number] | undefined,
+  view: View,
+  ratio: number,
+): void {
+  const segment = (ax: number, ay: number, bx: number, by: number) => {
+    const [x0, y0] = toPixel(view, ax, ay);
+    const [x1, y1] = toPixel(view, bx, by);
+    ctx.moveTo(x0, y0);
+    ctx.lineTo(x1, y1);
+  };
+  ctx.save();
+  ctx.lineCap = "round";
+  ctx.beginPath();
+  for (let k = 0; 4 * k + 3 < bones.length; k++) {
+    segment(bones[4 * k]!, bones[4 * k + 1]!, bones[4 * k + 2]!, bones[4 * k + 3]!);
+  }
+  ctx.strokeStyle = "rgba(255, 255, 255, 0.9)";
+  ctx.lineWidth = 9 * ratio;
+  ctx.stroke();
+  ctx.strokeStyle = "rgba(90, 40, 140, 0.95)";
+  ctx.lineWidth = 5 * ratio;
+  ctx.stroke();
+  if (draft) {
+    ctx.beginPath();
+    segment(...draft);
+    ctx.setLineDash([6 * ratio, 4 * ratio]);
+    ctx.strokeStyle = "rgba(90, 40, 140, 0.95)";
+    ctx.lineWidth = 3 * ratio;
+    ctx.stroke();
+  }
+  ctx.restore();
 }

@@ -4,6 +4,7 @@
  * paths), the pose, the handles and the settings, in IndexedDB under a key the page
  * chooses. Saved a moment after each change; read once when the widget starts.
  */
+import type { Bone } from "./bones.js";
 import { builtinShape, meshFromArrays, triangulate } from "../core.js";
 import type { VectorPath } from "../import.js";
 import type { ShapeSpec } from "./session.js";
@@ -38,6 +39,8 @@ export interface SavedWork {
   handles: HandleState[];
   /** Painted stiffness, one per triangle (absent: none). */
   stiffness?: Float64Array;
+  /** The bones (absent: none). */
+  bones?: Bone[];
 }
 
 const DATABASE = "akap";
@@ -189,6 +192,7 @@ export function savedWork(
     atRest: pose.atRest,
     handles: pose.handles,
     ...(pose.stiffness ? { stiffness: pose.stiffness } : {}),
+    ...(pose.bones && pose.bones.length > 0 ? { bones: pose.bones } : {}),
   };
 }
 
@@ -227,8 +231,8 @@ export interface WorkSource {
   pose(): SavedPose;
 }
 
-/** The pose part of the work: positions, handles and painted stiffness. */
-export type SavedPose = Pick<SavedWork, "positions" | "atRest" | "handles" | "stiffness">;
+/** The pose part of the work: positions, handles, painted stiffness and bones. */
+export type SavedPose = Pick<SavedWork, "positions" | "atRest" | "handles" | "stiffness" | "bones">;
 
 /**
  * Saves the work a moment after the last change (a change only asks; the save comes

@@ -17,6 +17,7 @@ import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset, type WidgetSettings } from "./options.js";
 import { locate, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, type Session, type SessionEvent } from "./session.js";
+import { Bones, bonesEvent, bonesFrom, type Bone } from "./bones.js";
 import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
 import type { Rig } from "./rig.js";
 import type { Shape } from "./shape.js";
@@ -66,6 +67,8 @@ export interface Snapshot {
   handles: HandleState[];
   /** The painted stiffness, one per triangle (a copy), or undefined for none. */
   stiffness?: Float64Array | undefined;
+  /** The bones (work saved before bones existed has none). */
+  bones?: Bone[] | undefined;
 }
 
 /** What the posing tells the page. */
@@ -102,6 +105,8 @@ export class Posing {
   replaying = false;
   /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
   rig: Rig | undefined;
+  /** The bones drawn on the shape (see bones.ts). */
+  readonly bones: Bones = new Bones(this);
   /** Whether a step of the last frame stopped short to keep triangles from folding over. */
   clamped = false;
   /** Milliseconds of the last frame's rig evaluation (0 when the frame stepped the deformer). */
@@ -164,6 +169,7 @@ export class Posing {
     this.shape = shape;
     this.stiffness = undefined;
     this.#stiffnessPending = false;
+    this.bones.forget();
     this.recorder.stop();
     this.#host.adopted(shape, deformer, refit);
   }
@@ -180,8 +186,9 @@ export class Posing {
     // throws, changing nothing, for a bad lambda.
     this.deformer.setOptions(options);
     this.record({ options });
-    // A method without stiffness dropped it; one with it gets the painting back.
+    // A method without stiffness or bones dropped them; one with them gets them back.
     if (this.stiffness) this.#sendStiffness();
+    if (this.bones.list.length > 0) this.bones.resend();
     this.showMethod(method, lambda);
   }
 
@@ -206,6 +213,7 @@ export class Posing {
   carryOver(shape: Shape, orders: Uint32Array[] | undefined): void {
     const old = { shape: this.shape, positions: this.deformer.positions(), atRest: this.atRest };
     const stiffness = carryStiffness(this.stiffness, old.shape.mesh, shape.mesh, 0.05 * shape.size);
+    const bones = this.bones.carried(old.shape.mesh, shape.mesh, 0.05 * shape.size);
     const handles = this.handles.map((h) => ({
       rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
       target: h.target,
@@ -232,6 +240,8 @@ export class Posing {
     }
     this.stiffness = stiffness;
     if (stiffness) this.#sendStiffness();
+    this.bones.assign(bones);
+    if (bones.length > 0) this.bones.resend();
     this.applyHandles();
     this.#host.poseChanged();
   }
@@ -449,6 +459,7 @@ export class Posing {
       atRest: this.atRest,
       handles: this.handles.map((h) => ({ point: h.point, target: [...h.target], layer: h.layer, ordered: h.ordered })),
       stiffness: this.stiffness?.slice(),
+      bones: [...this.bones.list],
     };
   }
 
@@ -470,6 +481,8 @@ export class Posing {
     this.atRest = snapshot.atRest;
     this.stiffness = snapshot.stiffness?.slice();
     this.#sendStiffness();
+    this.bones.assign(snapshot.bones ?? []);
+    this.bones.resend();
     this.handles = snapshot.handles.map((h) => ({
       ...newHandle(h.point),
       target: [...h.target],
@@ -694,6 +707,7 @@ export class Posing {
     if (this.handles.length > 0) start.push(this.handlesEvent());
     this.flushStiffness();
     if (this.deformer.hasStiffness && !unpainted(this.stiffness)) start.push({ stiffness: this.stiffness!.slice() });
+    if (this.deformer.hasBones && this.bones.list.length > 0) start.push(bonesEvent(this.bones.list));
     const { mesh, spec } = this.shape;
     this.recorder.start({ shape: spec, mesh, options: this.deformerOptions() }, start);
     this.#host.historyChanged();
@@ -725,6 +739,7 @@ export class Posing {
       }
       this.applyOptions(session.data.options);
       this.apply({ stiffness: undefined });
+      this.apply({ bones: { triangles: [], barycentric: [] } });
       this.apply({ reset: true });
       this.apply({ handles: { triangles: [], barycentric: [] } });
       let steps = 0;
@@ -766,6 +781,10 @@ export class Posing {
       this.atRest = false;
     } else if ("options" in event) {
       this.applyOptions(event.options);
+    } else if ("bones" in event) {
+      const { triangles, barycentric } = event.bones;
+      this.deformer.setBones(triangles, barycentric);
+      this.bones.assign(bonesFrom(triangles, barycentric));
     } else if ("stiffness" in event) {
       const values = event.stiffness ?? undefined;
       this.deformer.setStiffness(values);

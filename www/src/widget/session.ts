@@ -19,6 +19,8 @@
  *               { "positions": [.. 2 per vertex ..] },
  *               { "options": { "method": "arap", "iterations": 10 } },
  *               { "stiffness": [.. 1 per triangle ..] },
+ *               { "turn": { "velocities": [..], "turns": [.. 1 per handle ..] } },
+ *               { "bones": { "triangles": [.. 2 per bone ..], "barycentric": [.. 3 per end ..] } },
  *               { "reset": true } ] }
  * ```
  * `shape` names a built-in shape and how it was triangulated; a session of another shape
@@ -60,6 +62,7 @@ export type SessionEvent =
   | { options: DeformerOptions }
   | { stiffness: Coordinates | undefined | null }
   | { turn: { velocities: Coordinates; turns: Coordinates } }
+  | { bones: { triangles: Indices; barycentric: Coordinates } }
   | { reset: true };
 
 /** A session's JSON, parsed. */
@@ -170,6 +173,9 @@ function add(recorder: rawTypes.SessionRecorder, event: SessionEvent): void {
   else if ("options" in event) recorder.options(event.options);
   else if ("turn" in event) {
     recorder.turn(toFloat64(event.turn.velocities, "velocities"), toFloat64(event.turn.turns, "turns"));
+  } else if ("bones" in event) {
+    const { triangles, barycentric } = event.bones;
+    recorder.bones(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
   } else if ("stiffness" in event) {
     recorder.stiffness(event.stiffness == null ? undefined : toFloat64(event.stiffness, "stiffness"));
   } else recorder.reset();

@@ -5,6 +5,7 @@
  * status line, the busy indicator, the training's progress (which never blocks posing), the
  * HUD and the help panel, all in the shadow root's stage element.
  */
+import { boneEnds } from "./bones.js";
 import { Camera } from "./camera.js";
 import { Canvas2dRenderer } from "./canvas2d.js";
 import { GlRenderer, type MeshRenderer } from "./gl.js";
@@ -26,6 +27,8 @@ export interface Extras {
   ghost?: Float64Array;
   /** The pointer over the shape while the brush is on (shape units): its outline is drawn there. */
   brushAt?: [number, number] | undefined;
+  /** A bone being drawn: x0 y0 x1 y1 (shape units). */
+  boneDraft?: readonly [number, number, number, number] | undefined;
 }
 
 /**
@@ -234,6 +237,10 @@ export class Stage {
       cage,
       stiffness,
       brush,
+      ...(withHandles && posing.bones.list.length > 0
+        ? { bones: boneEnds(posing.bones.list, deformer.positionsView(), shape.mesh.triangles) }
+        : {}),
+      boneDraft: withHandles ? extras.boneDraft : undefined,
     };
     drawOverlay(ctx, scene, this.camera.view, this.ratio);
   }

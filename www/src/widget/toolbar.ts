@@ -4,6 +4,7 @@
  * (energy, basis, samples, radius), files and display. Every control has a label and is
  * reachable with the keyboard.
  */
+import type { WidgetTool } from "./options.js";
 import type { RigTrainOptions } from "./rig.js";
 import { BRUSH_SIZE_RANGE, BRUSH_VALUES, type BrushSettings } from "./stiffness.js";
 
@@ -33,8 +34,10 @@ export interface ToolbarActions {
   part(index: number): void;
   method(method: string, lambda: number): void;
   display(options: DisplayToggles): void;
-  /** The stiffness brush on (`"stiffness"`) or off (`"pose"`), and what it paints. */
-  brush(tool: "pose" | "stiffness", brush: BrushSettings): void;
+  /** The stiffness brush on (`"stiffness"`) or the bone tool (`"bone"`) or neither (`"pose"`), and what the brush paints. */
+  brush(tool: WidgetTool, brush: BrushSettings): void;
+  /** Removes every bone. */
+  clearBones(): void;
   /** Every triangle back to stiffness 1. */
   clearStiffness(): void;
   /** The selected handles' parts in front of the others (1) or behind them (-1). */
@@ -64,7 +67,7 @@ export interface ToolbarSettings extends DisplayToggles {
   lambda: number;
   hud: boolean;
   training: RigTrainOptions;
-  tool: "pose" | "stiffness";
+  tool: WidgetTool;
   brush: BrushSettings;
 }
 
@@ -244,12 +247,12 @@ export function buildToolbar(
   hud.name = "hud";
 
   const stiffnessGroup = group("Stiffness");
-  const setBrush = (): void =>
-    actions.brush(brushOn.checked ? "stiffness" : "pose", {
+  const setBrush = (tool: WidgetTool = brushOn.checked ? "stiffness" : "pose"): void =>
+    actions.brush(tool, {
       size: Number(brushSize.value),
       value: Number(brushValue.value),
     });
-  const brushOn = checkbox(stiffnessGroup, "Brush (B)", s.tool === "stiffness", setBrush);
+  const brushOn = checkbox(stiffnessGroup, "Brush (B)", s.tool === "stiffness", () => setBrush());
   brushOn.name = "brush";
   brushOn.parentElement!.title = "Paint stiffness on the shape: stiff regions bend less (Alt-drag erases)";
   const brushValue = select(
@@ -270,8 +273,15 @@ export function buildToolbar(
   const brushSize = number(s.brush.size, BRUSH_SIZE_RANGE[0], BRUSH_SIZE_RANGE[1], 1);
   brushSize.name = "brush-size";
   labelled(brushControls, "Size px ", brushSize);
-  brushValue.addEventListener("change", setBrush);
-  brushSize.addEventListener("change", setBrush);
+  brushValue.addEventListener("change", () => setBrush());
+  brushSize.addEventListener("change", () => setBrush());
+  const bonesOn = checkbox(stiffnessGroup, "Bones (O)", s.tool === "bone", () =>
+    setBrush(bonesOn.checked ? "bone" : "pose"),
+  );
+  bonesOn.name = "bones";
+  bonesOn.parentElement!.title =
+    "Draw bones: drag from end to end on the shape; each moves as one rigid piece (AKAP, ARAP). Alt-click removes one";
+  button(stiffnessGroup, "Clear bones", "Remove every bone", actions.clearBones, "clear-bones");
   button(brushControls, "Clear", "Every triangle back to stiffness 1", actions.clearStiffness, "clear-stiffness");
   brushControls.classList.toggle("hidden", s.tool !== "stiffness");
 
@@ -436,6 +446,7 @@ export function buildToolbar(
       method.value = settings.method;
       lambda.value = String(settings.lambda);
       brushOn.checked = settings.tool === "stiffness";
+      bonesOn.checked = settings.tool === "bone";
       brushControls.classList.toggle("hidden", settings.tool !== "stiffness");
       brushSize.value = String(settings.brush.size);
       if (!BRUSH_VALUES.some((v) => String(v) === brushValue.value && v === settings.brush.value)) {

@@ -354,7 +354,7 @@ export class Widget {
 
   // ---------------------------------------------------------------- stiffness
 
-  /** What a press on the shape does: pose, or paint stiffness with the brush. */
+  /** What a press on the shape does: pose, paint stiffness with the brush, or draw bones. */
   get tool(): WidgetTool {
     return this.#settings.tool;
   }
@@ -365,9 +365,9 @@ export class Widget {
   }
 
   /**
-   * Turns the stiffness brush on (`"stiffness"`) or off (`"pose"`) and/or changes it;
-   * throws (code `invalid-option`), changing nothing, for an unknown tool or a brush out of
-   * range.
+   * Chooses the tool (`"pose"`, `"stiffness"`: the brush, `"bone"`: drawing bones) and/or
+   * changes the brush; throws (code `invalid-option`), changing nothing, for an unknown tool
+   * or a brush out of range.
    */
   setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
     this.#brush.setTool(tool, brush);
@@ -396,6 +396,32 @@ export class Widget {
    */
   paintAt(x: number, y: number, value = this.#settings.brush.value, radius?: number): void {
     this.#brush.paintAt(x, y, value, radius);
+  }
+
+  /**
+   * Adds a bone from (x0, y0) to (x1, y1), points of the shape in the pose on screen: the
+   * triangles its segment meets move as one rigid body from now on (AKAP and ARAP). Returns
+   * its index; undoable. Throws (code `invalid-argument`), changing nothing, for an end off
+   * the shape, a segment that leaves it, a bone touching another (leave a joint of free
+   * triangles between them), or a method without bones.
+   */
+  addBone(x0: number, y0: number, x1: number, y1: number): number {
+    return this.#brush.addBone(x0, y0, x1, y1);
+  }
+
+  /** The bones' ends in the current pose: x0 y0 x1 y1 per bone. */
+  bones(): Float64Array {
+    return this.#brush.boneEnds();
+  }
+
+  /** Removes bone `index` (undoable); throws (code `invalid-argument`) for no such bone. */
+  removeBone(index: number): void {
+    this.#brush.removeBone(index);
+  }
+
+  /** Removes every bone (undoable). */
+  clearBones(): void {
+    this.#brush.removeBone("all");
   }
 
   // ---------------------------------------------------------------- view, messages, shapes
@@ -750,6 +776,7 @@ export class Widget {
       field: this.#frames.lastField,
       ghost: this.#rigging.comparison?.positions,
       brushAt: this.#brush.at,
+      boneDraft: this.#brush.boneDraft,
     });
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
     this.#keeper?.changed();
@@ -768,6 +795,7 @@ export class Widget {
       draw: () => this.#draw(),
       moved: () => this.#frames.moved(),
       succeeded: () => this.#stage.status.succeeded(),
+      failed: (error) => this.#showError(error),
       gesture: (change) => this.#gesture(change),
       removeHandle: (index) => this.removeHandle(index),
       undo: () => this.undo(),
