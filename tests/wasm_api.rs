@@ -322,3 +322,39 @@ fn a_step_without_foldovers_reports_its_plain_steps_and_refuses_bad_input_as_err
     assert_eq!(get("attempts").as_f64(), Some(19.0));
     assert_eq!(deformer.positions(), [0.0, 0.0, 1.0, 0.0, 0.0, 2f64.powi(-16)]);
 }
+
+#[test]
+fn bones_through_the_bindings_are_checked_and_refused_as_errors() {
+    use akap::wasm::JsDeformer;
+    // A 4 x 1 strip of unit squares; a bone along its middle from x = 0.5 to x = 3.5.
+    let mesh = akap::shapes::grid_mesh(4, 1);
+    let positions = f64s(mesh.positions().as_flattened());
+    let triangles = u32s(mesh.triangles().as_flattened());
+    let mut deformer = JsDeformer::new(positions.clone(), triangles.clone(), options("{}")).unwrap();
+    assert!(deformer.has_bones());
+    let locate = |x: f64, y: f64| {
+        mesh.triangles()
+            .iter()
+            .enumerate()
+            .find_map(|(t, c)| {
+                let [a, b, d] = c.map(|v| mesh.positions()[v as usize]);
+                let area = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
+                let wa = ((b[0] - x) * (d[1] - y) - (b[1] - y) * (d[0] - x)) / area;
+                let wb = ((d[0] - x) * (a[1] - y) - (d[1] - y) * (a[0] - x)) / area;
+                let w = [wa, wb, 1.0 - wa - wb];
+                w.iter().all(|&v| v >= 0.0).then_some((t as u32, w))
+            })
+            .unwrap()
+    };
+    let (a, b) = (locate(0.5, 0.4), locate(3.5, 0.6));
+    let text = message(deformer.set_bones(u32s(&[a.0, b.0]), f64s(&[a.1, b.1].concat()[..5])));
+    assert_eq!(text, "barycentric has 5 numbers, not 3 for each bone end");
+    let text = message(deformer.set_bones(u32s(&[a.0, a.0]), f64s(&[a.1, a.1].concat())));
+    assert_eq!(text, "bone 0 cannot be used: its ends are at one point");
+    deformer.set_bones(u32s(&[a.0, b.0]), f64s(&[a.1, b.1].concat())).unwrap();
+    // MLS has none.
+    let mut mls = JsDeformer::new(positions, triangles, options(r#"{"method": "mls"}"#)).unwrap();
+    assert!(!mls.has_bones());
+    let text = message(mls.set_bones(u32s(&[a.0, b.0]), f64s(&[a.1, b.1].concat())));
+    assert_eq!(text, "method mls has no bones; choose \"akap\" or \"arap\" for it");
+}

@@ -35,7 +35,7 @@ pub(super) fn laplacian_of(
 impl ArapDeformer {
     /// Sets each triangle's stiffness, the factor on its element energy (its cotangent
     /// weights times it): stiff regions bend less. One value per triangle, each in
-    /// [`STIFFNESS_RANGE`](super::STIFFNESS_RANGE); `None` is 1 everywhere, exactly the
+    /// [`STIFFNESS_RANGE`](crate::deform::STIFFNESS_RANGE); `None` is 1 everywhere, exactly the
     /// unpainted deformer. The Laplacian and the handles' penalty are rebuilt (the pattern
     /// and its analysis stay), and the next step factors anew. Refused, changing nothing,
     /// for a wrong length or a value out of range.
