@@ -5,7 +5,7 @@
  * a pin stays; Alt-dragging a handle turns it too; undo takes the turn back.
  */
 import { expect, test } from "@playwright/test";
-import { anchorPoints, idle, mapping, open, positions, usePrepared } from "./helpers.js";
+import { anchorPoints, idle, mapping, open, positions, prepare, usePrepared } from "./helpers.js";
 
 usePrepared();
 
@@ -73,4 +73,64 @@ test("the ring round a selected handle turns it; Alt-drag too; undo takes it bac
   await idle(page);
   const back = wrap(triangleDirection(await positions(page), triangles, f) - triangleDirection(rest, triangles, f));
   expect(back).toBeLessThan(-0.6 * (Math.PI / 3));
+});
+
+test("with a finger the ring shows round the selected handle, and a finger going round it turns the handle", async ({
+  browser,
+}) => {
+  const context = await prepare(await browser.newContext({ hasTouch: true, viewport: { width: 900, height: 700 } }));
+  const page = await context.newPage();
+  await open(page);
+  const cdp = await context.newCDPSession(page);
+  const touch = async (type: "touchStart" | "touchMove" | "touchEnd", points: [number, number][]) =>
+    cdp.send("Input.dispatchTouchEvent", { type, touchPoints: points.map(([x, y], id) => ({ x, y, id })) });
+  const tap = async (at: [number, number]) => {
+    await touch("touchStart", [at]);
+    await touch("touchEnd", []);
+    await idle(page);
+  };
+  /** The overlay's alpha at a CSS point of the app's widget. */
+  const alpha = async (css: [number, number]) => {
+    const box = (await page.locator("#app canvas.overlay").boundingBox())!;
+    return page.evaluate(
+      ({ x, y }) => {
+        const overlay = document.querySelector("#app .akap-host")!.shadowRoot!.querySelector("canvas.overlay");
+        const ratio = window.akapDemo!.widget.view.pixelRatio;
+        const ctx = (overlay as HTMLCanvasElement).getContext("2d")!;
+        return ctx.getImageData(Math.round(x * ratio), Math.round(y * ratio), 1, 1).data[3]!;
+      },
+      { x: css[0] - box.x, y: css[1] - box.y },
+    );
+  };
+  const { toCss } = await mapping(page);
+  const { pin, grab } = await anchorPoints(page);
+  await tap(toCss(...pin));
+  const hand = toCss(...grab);
+  await tap(hand); // adds the handle, selected
+  expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
+  // The ring's knob, 2.6 handle radii (7 px) to the right, is drawn: a finger cannot hover.
+  const r = 2.6 * 7;
+  expect(await alpha([hand[0] + r, hand[1]])).toBeGreaterThan(200);
+  const rest = await positions(page);
+  const handle = await page.evaluate(() => Array.from(window.akapDemo!.widget.handlePositions()));
+  // A finger on the ring, going a quarter turn round (up on screen).
+  const around = (a: number): [number, number] => [hand[0] + r * Math.cos(a), hand[1] - r * Math.sin(a)];
+  await touch("touchStart", [around(0)]);
+  for (let k = 1; k <= 12; k++) await touch("touchMove", [around((Math.PI / 2) * (k / 12))]);
+  await touch("touchEnd", []);
+  await idle(page);
+  expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
+  // The vertex nearest the handle turned about it by most of the quarter turn.
+  const turned = await positions(page);
+  let v = 0;
+  for (let k = 1; k < rest.length / 2; k++) {
+    const d = (i: number) => Math.hypot(rest[2 * i]! - handle[2]!, rest[2 * i + 1]! - handle[3]!);
+    if (d(k) > 0.01 && (d(v) <= 0.01 || d(k) < d(v))) v = k;
+  }
+  const direction = (p: number[]) => Math.atan2(p[2 * v + 1]! - handle[3]!, p[2 * v]! - handle[2]!);
+  const now = await page.evaluate(() => Array.from(window.akapDemo!.widget.handlePositions()));
+  const turnedBy = Math.atan2(turned[2 * v + 1]! - now[3]!, turned[2 * v]! - now[2]!) - direction(rest);
+  const wrapped = turnedBy - 2 * Math.PI * Math.round(turnedBy / (2 * Math.PI));
+  expect(wrapped).toBeGreaterThan(0.6 * (Math.PI / 2));
+  await context.close();
 });

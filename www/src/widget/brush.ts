@@ -27,6 +27,8 @@ export interface BrushHost {
 export class Brush {
   /** Where the brush's outline is drawn (the pointer over the shape, shape units), if anywhere. */
   at: [number, number] | undefined;
+  /** Whether the last press was a finger's: selected handles then show their turning rings. */
+  touch = false;
   /** The bone being drawn with the bone tool: from the press to the pointer (shape units). */
   boneDraft: [number, number, number, number] | undefined;
   readonly #host: BrushHost;

@@ -140,6 +140,9 @@ export class WidgetInput {
         }
       },
       hover: (at) => host.brush.hover(at),
+      pressedWith: (touch) => {
+        host.brush.touch = touch;
+      },
       panMode: () => this.#spaceHeld,
       pan: (dx, dy) => {
         host.camera.pan(dx * host.ratio(), dy * host.ratio());

@@ -6,7 +6,9 @@
  * own record, so several fingers drag several handles at once.
  *
  * A press on the ring round the selected handle, or an Alt-press on a handle, turns the
- * handle (and the region about it) as the pointer goes round it.
+ * handle (and the region about it) as the pointer goes round it. The ring shows when a
+ * mouse or pen comes near the handle; after a finger's press it shows round every
+ * selected handle (a finger cannot hover).
  *
  * With the stiffness brush on, a press on the shape paints instead (with Alt, erases) until
  * it is released; the pointer's place, pressed or not, is reported for the brush's outline.
@@ -55,6 +57,8 @@ export interface PointerHost {
   paintEnd(pointerId: number): void;
   /** Where a mouse or pen is over the overlay (shape units), undefined once it leaves. */
   hover(at: [number, number] | undefined): void;
+  /** A press began with a finger (`true`) or a mouse or pen: a finger cannot hover, so selected handles then show their turning rings. */
+  pressedWith(touch: boolean): void;
   /** Whether presses pan the view instead of posing (Space is held). */
   panMode(): boolean;
   /** Moves the view by (dx, dy) CSS pixels. */
@@ -119,6 +123,7 @@ export class PointerInput {
     if (!host.accepting() || e.button > 1) return;
     host.focus();
     const touch = e.pointerType === "touch";
+    host.pressedWith(touch);
     const client: [number, number] = [e.clientX, e.clientY];
     if (e.button === 1 || host.panMode()) {
       this.#begin(e, { kind: "view", touch, start: client, last: client, timer: undefined, added: 0 });

@@ -29,6 +29,8 @@ export interface Extras {
   brushAt?: [number, number] | undefined;
   /** A bone being drawn: x0 y0 x1 y1 (shape units). */
   boneDraft?: readonly [number, number, number, number] | undefined;
+  /** The last press was a finger's: selected handles show their rings (a finger cannot hover). */
+  touch?: boolean;
 }
 
 /**
@@ -189,7 +191,8 @@ export class Stage {
     const radius = settings.region ? rig?.radius : undefined;
     const rest = radius !== undefined ? rig!.restHandles() : undefined;
     // A selected handle's turning ring shows while it turns, or while the pointer is near it
-    // (off the handle itself: a pointer resting on the handle it just dragged shows none).
+    // (off the handle itself: a pointer resting on the handle it just dragged shows none),
+    // or, after a finger's press, whenever it is selected and not held.
     const near = (i: number) => {
       const pointer = extras.brushAt;
       if (pointer === undefined) return false;
@@ -205,7 +208,7 @@ export class Stage {
           targetY: paper ? at[2 * i + 1]! : h.target[1],
           selected: h.selected,
           dragged: h.pointerId !== undefined,
-          ring: h.selected && (h.turning !== undefined || (h.pointerId === undefined && near(i))),
+          ring: h.selected && (h.turning !== undefined || (h.pointerId === undefined && (extras.touch || near(i)))),
           turned: h.turning ? h.turn - h.turning.start : undefined,
           outside:
             rest !== undefined && Math.hypot(h.target[0] - rest[2 * i]!, h.target[1] - rest[2 * i + 1]!) > radius!,

@@ -777,6 +777,7 @@ export class Widget {
       ghost: this.#rigging.comparison?.positions,
       brushAt: this.#brush.at,
       boneDraft: this.#brush.boneDraft,
+      touch: this.#brush.touch,
     });
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
     this.#keeper?.changed();
