@@ -8,8 +8,10 @@
 // `--guard` steps with `stepWithoutFoldovers` instead of `step` (the drag flips nothing, so
 // this times the guard's own cost: a checkpoint and the orientation check each frame);
 // compare runs with and without it interleaved, the machine's noise being larger.
+// `--bones` lays a bone along the dragged arm (AKAP and ARAP): its cost, the rigid fit of
+// the bone's vertices after each step, is in the "spiral" column.
 //   npm run build && node scripts/bench-deformer.mjs [--method akap|arap|mls|cauchy-green]
-//     [--set name=value ...] [--guard] [vertices ...]
+//     [--set name=value ...] [--guard] [--bones] [vertices ...]
 import process from "node:process";
 import { performance } from "node:perf_hooks";
 import { Deformer, defaultShape, init, triangulate } from "../www/lib/index.js";
@@ -21,6 +23,9 @@ const method = methodAt >= 0 ? args.splice(methodAt, 2)[1] : "akap";
 const guardAt = args.indexOf("--guard");
 const guard = guardAt >= 0;
 if (guard) args.splice(guardAt, 1);
+const bonesAt = args.indexOf("--bones");
+const bones = bonesAt >= 0;
+if (bones) args.splice(bonesAt, 1);
 const settings = {};
 for (let at = args.indexOf("--set"); at >= 0; at = args.indexOf("--set")) {
   const [name, value] = args.splice(at, 2)[1].split("=");
@@ -50,7 +55,7 @@ const stat = (values, q) => {
 const shape = defaultShape();
 const area = ringArea(shape.outer) - shape.holes.reduce((s, h) => s + ringArea(h), 0);
 console.log(
-  `Method ${method}${Object.keys(settings).length ? ` ${JSON.stringify(settings)}` : ""}${guard ? ", guarded (stepWithoutFoldovers)" : ""}. Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
+  `Method ${method}${Object.keys(settings).length ? ` ${JSON.stringify(settings)}` : ""}${guard ? ", guarded (stepWithoutFoldovers)" : ""}${bones ? ", a bone along the arm" : ""}. Milliseconds, median / 95th percentile over ${frames} frames (after ${warmup} untimed); ` +
     "factorisation 1 and 2: step 1's " +
     "(soft constraints) and step 2's (Dirichlet) numeric factorisations.",
 );
@@ -76,6 +81,7 @@ for (const target of targets) {
   const deformer = new Deformer(mesh.positions, mesh.triangles, { method, ...settings });
   deformer.setHandles([...feet, hand]);
   const setup = performance.now() - start;
+  if (bones) layBone(deformer, mesh, hand);
   const velocities = new Float64Array(2 * (feet.length + 1));
   const stages = { assembly: [], soft: [], dirichlet: [], solve: [], integration: [], frame: [], outside: [] };
   // Guarded frames that took more than the one plain step.
@@ -110,4 +116,29 @@ for (const target of targets) {
   console.log(`(outside the stages: ${cell("outside")} ms a frame)`);
   if (split > 0) console.log(`(guarded: ${split} of ${frames + warmup} frames were split or clamped)`);
   deformer.free();
+}
+
+/**
+ * A bone along the arm: from a tenth to 35 hundredths of the way from the hand's vertex
+ * toward the shoulder, at (-0.22, 0.78); its ends located in the rest mesh.
+ */
+function layBone(deformer, mesh, hand) {
+  const p = mesh.positions;
+  const t = mesh.triangles;
+  const along = (s) => [p[2 * hand] + s * (-0.22 - p[2 * hand]), p[2 * hand + 1] + s * (0.78 - p[2 * hand + 1])];
+  const locate = ([x, y]) => {
+    for (let f = 0; f < t.length / 3; f++) {
+      const [a, b, c] = [0, 1, 2].map((k) => [p[2 * t[3 * f + k]], p[2 * t[3 * f + k] + 1]]);
+      const area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+      const wa = ((b[0] - x) * (c[1] - y) - (b[1] - y) * (c[0] - x)) / area;
+      const wb = ((c[0] - x) * (a[1] - y) - (c[1] - y) * (a[0] - x)) / area;
+      if (wa >= 0 && wb >= 0 && wa + wb <= 1) return { f, w: [wa, wb, 1 - wa - wb] };
+    }
+    throw new Error(`the bone's end (${x}, ${y}) is off the figure`);
+  };
+  const ends = [locate(along(0.1)), locate(along(0.35))];
+  deformer.setBones(
+    ends.map((e) => e.f),
+    ends.flatMap((e) => e.w),
+  );
 }
