@@ -8,7 +8,7 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { Deformer, init } from "../../www/src/index.js";
-import { AnimationFrames, type FrameSource } from "../../www/src/widget/animation.js";
+import { AnimationFrames } from "../../www/src/widget/animation.js";
 import { Animator } from "../../www/src/widget/animator.js";
 import { posed, dragTo } from "./posing-fixtures.js";
 import type { Posing } from "../../www/src/widget/posing.js";

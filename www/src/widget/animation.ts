@@ -161,7 +161,9 @@ export class AnimationFrames {
     try {
       ({ clamped } = trackFrame(deformer, this.#targets, s));
     } catch (error) {
-      throw new Error(`frame ${index} of the animation could not be posed: ${(error as Error).message}`);
+      throw new Error(`frame ${index} of the animation could not be posed: ${(error as Error).message}`, {
+        cause: error,
+      });
     }
     return this.#read(deformer, clamped);
   }
