@@ -178,9 +178,10 @@ describe("animation frames", () => {
     expect(posing.handles).toHaveLength(2);
     expect(bytes(posing.deformer.positions())).toEqual(bytes(a.frames().frame(12).positions));
     expect(a.playhead).toBe(12);
-    // Seeking past the end shows the last frame.
+    // Seeking past the end moves the playhead there and shows the last frame.
     a.seek(7);
-    expect(a.playhead).toBe(24);
+    expect(a.playhead).toBe(7 * 24);
+    expect(bytes(posing.deformer.positions())).toEqual(bytes(a.frames().frame(24).positions));
     posing.travel(false);
     posing.travel(false);
     expect(posing.handles).toHaveLength(3);

@@ -51,7 +51,7 @@ export class Animator {
   #rig: Rig | undefined;
   #raf = 0;
   /** Playback's clock: the time (ms) frame 0 would have been shown at. */
-  #start = 0;
+  #start: number | undefined;
   #whenStopped: (() => void)[] = [];
 
   constructor(host: AnimatorHost) {
@@ -192,20 +192,30 @@ export class Animator {
       .map((f) => f.positions.slice());
   }
 
-  /** Shows the frame at `time` (seconds; past the end, the last frame) as one undoable step. */
+  /**
+   * Moves the playhead to `time` (seconds, on the frame grid) and shows its frame (past the
+   * last key, the last frame) as one undoable step; without keys it only moves the playhead.
+   */
   seek(time: number): void {
     checkTime(time);
     this.pause();
-    const frames = this.frames();
-    this.#host.posing.gesture(() => this.show(Math.min(frameAt(time, this.#host.fps()), frames.count - 1)));
+    const index = frameAt(time, this.#host.fps());
+    if (this.frameCount === 0) {
+      this.playhead = index;
+      this.#host.changed();
+      return;
+    }
+    this.#host.posing.gesture(() => this.show(index));
   }
 
   /**
-   * Puts frame `index`'s pose in place (the caller makes it undoable): the timeline's
-   * handles, their targets where the frame has them.
+   * Moves the playhead to frame `index` and puts its pose in place (past the last key, the
+   * last frame's; the caller makes it undoable): the timeline's handles, their targets
+   * where the frame has them.
    */
   show(index: number): Frame {
-    const frame = this.frames().frame(index);
+    const frames = this.frames();
+    const frame = frames.frame(Math.min(index, frames.count - 1));
     const posing = this.#host.posing;
     const handles = this.timeline.handles!;
     const current = posing.handlesEvent().handles;
@@ -227,7 +237,6 @@ export class Animator {
       h.pending = [0, 0];
       h.turn = h.turned;
     });
-    posing.markChanged();
     this.playhead = index;
     this.#host.shown(index);
     this.#host.changed();
@@ -249,9 +258,11 @@ export class Animator {
     const posing = this.#host.posing;
     posing.releasePointers();
     posing.beginGesture();
+    posing.markChanged();
     this.playing = true;
     this.show(this.playhead);
-    this.#start = performance.now() - (1000 * this.playhead) / this.#host.fps();
+    // The clock starts at the first animation frame's time (rAF's times may precede now).
+    this.#start = undefined;
     this.#raf = requestAnimationFrame((now) => this.#tick(now));
     return stopped;
   }
@@ -288,7 +299,8 @@ export class Animator {
       return;
     }
     const count = frames.count;
-    let wanted = Math.floor(((now - this.#start) * fps) / 1000);
+    this.#start ??= now - (1000 * this.playhead) / fps;
+    let wanted = Math.max(0, Math.floor(((now - this.#start) * fps) / 1000));
     // One frame to compute at most per tick, so that the page stays responsive: while
     // frames take longer than 1/fps to compute, playback runs slower than real time.
     if (wanted > frames.computed && frames.computed < count) {

@@ -1,6 +1,7 @@
 /**
  * The widget's input: pointer gestures on the shape (handles or the stiffness brush, and
- * the view's pan and zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan,
+ * the view's pan and zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan
+ * (tapped: play or pause the animation),
  * and files dropped on the stage. What each gesture changes is the posing's and the
  * widget's; this file only routes.
  */
@@ -43,12 +44,16 @@ export interface InputHost {
   help(open?: boolean): void;
   helpOpen(): boolean;
   dropped(file: File): void;
+  /** The animation: capture a key (K), play or pause (a tap of Space). */
+  animate(what: "capture" | "play"): void;
 }
 
 export class WidgetInput {
   readonly #host: InputHost;
   readonly #pointer: PointerInput;
   #spaceHeld = false;
+  /** The view was panned while Space was held (then its release does not play). */
+  #spacePanned = false;
 
   constructor(host: InputHost) {
     this.#host = host;
@@ -132,6 +137,7 @@ export class WidgetInput {
       hover: (at) => host.brush.hover(at),
       panMode: () => this.#spaceHeld,
       pan: (dx, dy) => {
+        if (this.#spaceHeld) this.#spacePanned = true;
         host.camera.pan(dx * host.ratio(), dy * host.ratio());
         host.draw();
       },
@@ -142,7 +148,10 @@ export class WidgetInput {
     });
     host.root.addEventListener("keydown", (e) => this.#key(e));
     host.root.addEventListener("keyup", (e) => {
-      if (e.key === " ") this.#setSpace(false);
+      if (e.key !== " " || !this.#spaceHeld) return;
+      // A tap of Space (no pan while it was held) plays or pauses the animation.
+      if (!this.#spacePanned && keyFocus(e.composedPath()[0] ?? null) === "other") host.animate("play");
+      this.#setSpace(false);
     });
     host.root.addEventListener("blur", () => this.#setSpace(false), true);
     // Files dropped on the stage load like the Open button's.
@@ -171,6 +180,7 @@ export class WidgetInput {
     const focus = keyFocus(e.composedPath()[0] ?? null);
     if (e.key === " " && focus === "other") {
       e.preventDefault();
+      if (!e.repeat && !this.#spaceHeld) this.#spacePanned = false;
       this.#setSpace(true);
       return;
     }
@@ -233,6 +243,9 @@ export class WidgetInput {
         break;
       case "brush-size":
         host.brush.resize(command.factor);
+        break;
+      case "capture-key":
+        host.animate("capture");
         break;
     }
   }

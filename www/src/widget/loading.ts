@@ -8,7 +8,8 @@ import { builtinShape, type Outline } from "../core.js";
 import type { WidgetSettings } from "./options.js";
 import type { Parts, Posing } from "./posing.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
-import { shapeFromMesh } from "./shape.js";
+import type { Session } from "./session.js";
+import { sessionShape, shapeFromMesh } from "./shape.js";
 import { partShape, readShapeFile, type Loaded } from "./sources.js";
 import type { Stage } from "./stage.js";
 import type { Toolbar } from "./toolbar.js";
@@ -136,5 +137,31 @@ export class ShapeLoader {
     return partShape(this.#host.document, loaded, index, (outline, label) =>
       this.make({ name: undefined, outline, label, vertices }),
     );
+  }
+}
+
+/**
+ * See `Widget.replay`: the session's shape rebuilt if needed, then `Posing.replay`, drawn
+ * every `stepsPerFrame` steps (`data-replaying` on the widget's element meanwhile).
+ */
+export async function replaySession(
+  host: { readonly posing: Posing; readonly root: HTMLElement; render(): void; destroyed(): boolean },
+  session: Session,
+  stepsPerFrame: number,
+): Promise<void> {
+  const posing = host.posing;
+  if (posing.replaying) throw new Error("a replay is already running");
+  const shape = sessionShape(session, posing.shape);
+  host.root.dataset.replaying = "true";
+  try {
+    await posing.replay(session, shape, async (steps) => {
+      if (steps % stepsPerFrame === 0) {
+        host.render();
+        await new Promise((resolve) => requestAnimationFrame(resolve));
+      }
+      return !host.destroyed();
+    });
+  } finally {
+    delete host.root.dataset.replaying;
   }
 }

@@ -5,6 +5,7 @@
 import { limits, type DeformerOptions, type Metrics, type Outline, type Timings, type WasmSource } from "../core.js";
 import { coded } from "../internal/arrays.js";
 import type { RigTrainOptions } from "./rig.js";
+import { DEFAULT_FPS, checkFps } from "./timeline.js";
 import { BRUSH_SIZE_RANGE, DEFAULT_BRUSH, type BrushSettings } from "./stiffness.js";
 
 /**
@@ -114,6 +115,10 @@ export interface WidgetOptions {
    * or `outline`. Off by default; the app uses it. The toolbar then has "Start over".
    */
   storageKey?: string;
+  /** Show the animation's timeline strip under the stage (default false; the app shows it). */
+  timeline?: boolean;
+  /** Frames per second of the animation (a whole number from 1 to 120, default 24). */
+  fps?: number;
 }
 
 /** What a press on the shape does: pose with handles, or paint stiffness. */
@@ -186,6 +191,8 @@ export const WIDGET_OPTIONS = [
   "tool",
   "brush",
   "noFoldovers",
+  "timeline",
+  "fps",
 ] as const satisfies readonly (keyof WidgetOptions)[];
 // Every option of the interface is in the list (a compile-time check).
 const everyOption: Record<Exclude<keyof WidgetOptions, (typeof WIDGET_OPTIONS)[number]>, never> = {};
@@ -222,7 +229,14 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     noFoldovers: options.noFoldovers ?? true,
     tool: options.tool ?? "pose",
     brush: brushSettings(DEFAULT_BRUSH, options.brush ?? {}),
+    timeline: options.timeline ?? false,
+    fps: options.fps ?? DEFAULT_FPS,
   };
+  try {
+    checkFps(settings.fps);
+  } catch (error) {
+    throw coded(error as Error, "invalid-option");
+  }
   if (settings.tool !== "pose" && settings.tool !== "stiffness") {
     throw coded(new Error(`unknown tool "${String(settings.tool)}"; the tools are pose, stiffness`), "invalid-option");
   }
