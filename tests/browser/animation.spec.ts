@@ -109,3 +109,177 @@ test("three keys recorded through the UI play twice with the same frames, which 
   // Paused at the end, the pose stays at the last frame; undo goes back to before playback.
   expect(await page.evaluate(() => Array.from(window.akapDemo!.widget.positions()))).toEqual(frames[FPS]);
 });
+
+/** In the page: pixels of images and video frames, and how two of them differ. */
+async function definePixelHelpers(page: Page): Promise<void> {
+  await page.evaluate(() => {
+    const pixels = (source: CanvasImageSource, width: number, height: number): Uint8ClampedArray => {
+      const canvas = document.createElement("canvas");
+      [canvas.width, canvas.height] = [width, height];
+      const ctx = canvas.getContext("2d")!;
+      ctx.drawImage(source, 0, 0, width, height);
+      return ctx.getImageData(0, 0, width, height).data;
+    };
+    /** The picture the stage draws of frame `index` (a seek, then the PNG export of it). */
+    const drawn = async (index: number) => {
+      const w = window.akapDemo!.widget;
+      w.seek(index / 24);
+      await w.whenIdle();
+      const bitmap = await createImageBitmap(await w.exportPng());
+      return { data: pixels(bitmap, bitmap.width, bitmap.height), width: bitmap.width, height: bitmap.height };
+    };
+    /** Mean and largest absolute difference of two RGBA pictures' channels. */
+    const difference = (a: Uint8ClampedArray, b: Uint8ClampedArray) => {
+      let [sum, most] = [0, 0];
+      for (let i = 0; i < a.length; i++) {
+        const d = Math.abs(a[i]! - b[i]!);
+        sum += d;
+        most = Math.max(most, d);
+      }
+      return { mean: sum / a.length, most };
+    };
+    Object.assign(window, { pixels, drawn, difference });
+  });
+}
+
+interface PixelHelpers {
+  pixels(source: CanvasImageSource, width: number, height: number): Uint8ClampedArray;
+  drawn(index: number): Promise<{ data: Uint8ClampedArray; width: number; height: number }>;
+  difference(a: Uint8ClampedArray, b: Uint8ClampedArray): { mean: number; most: number };
+}
+
+test("a WebM export has the canvas's size, a frame per frame's time, and the drawn first and last frames", async ({
+  page,
+}) => {
+  test.setTimeout(60_000);
+  await page.setViewportSize({ width: 700, height: 560 });
+  await open(page);
+  await recordThreeKeys(page);
+  await definePixelHelpers(page);
+  const result = await page.evaluate(async () => {
+    const h = window as unknown as PixelHelpers;
+    const w = window.akapDemo!.widget;
+    const progress: number[] = [];
+    const blob = (await w.exportAnimation("webm", { onProgress: (done) => progress.push(done) })) as Blob;
+    const video = document.createElement("video");
+    video.muted = true;
+    video.src = URL.createObjectURL(blob);
+    await new Promise((resolve, reject) => {
+      video.onloadedmetadata = resolve;
+      video.onerror = () => reject(new Error("the video could not be read"));
+    });
+    // MediaRecorder writes no duration: reading to the end finds it.
+    if (!Number.isFinite(video.duration)) {
+      video.currentTime = 1e6;
+      await new Promise((resolve) => (video.ondurationchange = resolve));
+    }
+    const seek = async (time: number) => {
+      video.currentTime = time;
+      await new Promise((resolve) => (video.onseeked = resolve));
+      return h.pixels(video, video.videoWidth, video.videoHeight);
+    };
+    const firstFrame = await seek(0);
+    const lastFrame = await seek(Math.max(0, video.duration - 0.5 / 24));
+    const [first, last] = [await h.drawn(0), await h.drawn(24)];
+    return {
+      type: blob.type,
+      size: [video.videoWidth, video.videoHeight],
+      drawnSize: [first.width, first.height],
+      duration: video.duration,
+      progress,
+      first: h.difference(firstFrame, first.data),
+      last: h.difference(lastFrame, last.data),
+      firstVsLast: h.difference(first.data, last.data),
+    };
+  });
+  expect(result.type).toBe("video/webm");
+  expect(result.size).toEqual(result.drawnSize);
+  expect(result.progress).toEqual(Array.from({ length: FPS + 1 }, (_, i) => i + 1));
+  // 25 frames of 1/24 s: about 1.04 s (the recorder's clock is the page's).
+  expect(result.duration).toBeGreaterThan(0.8);
+  expect(result.duration).toBeLessThan(1.6);
+  // Lossy video: close on average; the first and last drawn frames differ far more.
+  expect(result.firstVsLast.mean).toBeGreaterThan(1);
+  expect(result.first.mean).toBeLessThan(0.35 * result.firstVsLast.mean);
+  expect(result.last.mean).toBeLessThan(0.35 * result.firstVsLast.mean);
+});
+
+test("an export cancelled midway takes its progress bar away and downloads nothing", async ({ page }) => {
+  await page.setViewportSize({ width: 700, height: 560 });
+  await open(page);
+  await recordThreeKeys(page);
+  const downloads: string[] = [];
+  page.on("download", (d) => downloads.push(d.suggestedFilename()));
+  const busy = page.locator("#app .akap-host .busy");
+  await strip(page).exportMenu.selectOption("webm");
+  await expect(busy).toBeVisible();
+  await expect(busy.locator("progress")).toBeVisible();
+  await busy.getByRole("button", { name: "Cancel" }).click();
+  await expect(busy).toBeHidden();
+  await expect(page.locator("#app .akap-host .status")).toHaveText("Export cancelled; nothing was saved.");
+  await page.waitForTimeout(1500);
+  expect(downloads).toEqual([]);
+  // And one that is not cancelled downloads its file.
+  const download = page.waitForEvent("download");
+  await strip(page).exportMenu.selectOption("webm");
+  expect((await download).suggestedFilename()).toBe("animation.webm");
+});
+
+test("the strip: scrubbing shows each frame (undone as one step), a key dragged moves, Delete deletes it, Space plays", async ({
+  page,
+}) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  await recordThreeKeys(page);
+  const w = () => page.evaluate(() => Array.from(window.akapDemo!.widget.positions()));
+  const frames = await page.evaluate(() => window.akapDemo!.widget.animationFrames().map((f) => Array.from(f)));
+  const before = await w();
+  // Scrub from 0.125 s to 0.5 s: the pose follows, and is frame 12 where the pointer stops.
+  const box = (await strip(page).track.boundingBox())!;
+  const y = box.y + box.height / 2;
+  await page.mouse.move(box.x + box.width / 16, y);
+  await page.mouse.down();
+  expect(await w()).toEqual(frames[3]);
+  await page.mouse.move(box.x + box.width / 8, y, { steps: 4 });
+  await page.mouse.move(box.x + box.width / 4, y, { steps: 4 });
+  await page.mouse.up();
+  expect(await w()).toEqual(frames[12]);
+  await expect(strip(page).root.locator(".readout")).toHaveText("0.50 s / 1.00 s · frame 13/25");
+  await page.locator("#app .akap-host .widget").focus();
+  await page.keyboard.press("Control+z");
+  expect(await w()).toEqual(before);
+
+  // The middle key dragged from 0.5 s to 0.75 s.
+  const marker = strip(page).markers.nth(1);
+  const m = (await marker.boundingBox())!;
+  await dragMouse(page, [m.x + m.width / 2, m.y + m.height / 2], [box.x + (box.width * 0.75) / 2, y]);
+  expect(await page.evaluate(() => window.akapDemo!.widget.keys().map((k) => k.time))).toEqual([0, 0.75, 1]);
+  // Selected by the drag: Delete in the strip deletes it (and no handle).
+  await marker.focus();
+  await page.keyboard.press("Delete");
+  expect(await page.evaluate(() => window.akapDemo!.widget.keys().map((k) => k.time))).toEqual([0, 1]);
+  expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(2);
+
+  // A tap of Space on the stage plays.
+  await page.locator("#app .akap-host .widget").focus();
+  await page.keyboard.press(" ");
+  await expect(strip(page).play).toHaveText("Pause");
+  await expect(strip(page).play).toHaveText("Play", { timeout: 10_000 });
+  expect(await w()).toEqual(await page.evaluate(() => Array.from(window.akapDemo!.widget.animationFrames().at(-1)!)));
+
+  // Another handle set: K is refused, saying what to do.
+  const { toCss } = await mapping(page);
+  const third = await page.evaluate(() => {
+    // The centroid of a triangle half way through the list: on the shape, far from the handles.
+    const { positions: p, triangles: t } = window.akapDemo!.widget.mesh;
+    const f = Math.floor(t.length / 6);
+    const at = (d: number) => (p[2 * t[3 * f]! + d]! + p[2 * t[3 * f + 1]! + d]! + p[2 * t[3 * f + 2]! + d]!) / 3;
+    return [at(0), at(1)] as [number, number];
+  });
+  await page.mouse.click(...toCss(...third));
+  await idle(page);
+  expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(3);
+  await page.keyboard.press("k");
+  await expect(page.locator("#app .akap-host .status")).toContainText("another set of handles");
+  expect(await page.evaluate(() => window.akapDemo!.widget.keys().length)).toBe(2);
+});

@@ -179,8 +179,8 @@ export class Animating {
   async export(format: AnimationFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
     if (this.#exporting) throw new Error("an animation export is running already; wait for it or cancel it");
     const a = this.animator;
-    const frames = a.frames();
-    const count = frames.count;
+    // Every frame computed first: a video's frames then come at an even pace.
+    const count = a.frames().all().length;
     a.pause();
     const { posing, stage, settings, document } = this.#host;
     const controller = new AbortController();

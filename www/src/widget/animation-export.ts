@@ -60,7 +60,8 @@ export function webmType(): string | undefined {
 
 /**
  * Records the frames as a WebM video in real time (the recorder stamps frames by the
- * clock): one frame every 1/fps. Refused where MediaRecorder or WebM is missing (Node).
+ * clock): one frame every 1/fps, the last one given again at the end so that it lasts
+ * 1/fps too. Refused where MediaRecorder or WebM is missing (Node).
  * MediaRecorder writes no duration into the file's header; players find it by reading on.
  */
 export async function recordWebm(painter: FramePainter, options: AnimationExportOptions = {}): Promise<Blob> {
@@ -96,6 +97,12 @@ export async function recordWebm(painter: FramePainter, options: AnimationExport
       // The next frame at its time (the last one held for a frame's time too).
       await yieldToPage(Math.max(0, start + (i + 1) * interval - performance.now()));
     }
+    // The last frame again, so that it is shown for its 1/fps (a stream's last frame has no
+    // length; a player seeking near the end would show the one before it).
+    checkSignal(signal);
+    painter.draw(painter.count - 1); // drawn again: a canvas not drawn on since gives no frame
+    track.requestFrame();
+    await yieldToPage(interval);
   } finally {
     recorder.stop();
     track.stop();
