@@ -14,6 +14,7 @@ import {
   targetsAt,
   type HandleSet,
 } from "../../www/src/widget/timeline.js";
+import { abortError, recordWebm, sheetLayout } from "../../www/src/widget/animation-export.js";
 
 const TWO: HandleSet = { triangles: [3, 7], barycentric: [1, 0, 0, 0.25, 0.25, 0.5] };
 const POSE = Float64Array.from([0, 0, 1, 0, 0, 1]);
@@ -163,5 +164,38 @@ describe("Timeline", () => {
       expect(change).toThrow(message);
       expect(state(t)).toBe(before);
     }
+  });
+});
+
+describe("export layout and refusals (animation-export.ts)", () => {
+  it("lays a sprite sheet out near square, within the canvas limits, or refuses", () => {
+    // 25 frames of 100 x 100: 5 x 5.
+    expect(sheetLayout(25, 100, 100)).toEqual({ columns: 5, rows: 5 });
+    // Wide frames go in fewer columns: 25 of 400 x 100 -> ceil(sqrt(25 / 4)) = 3 columns, 9 rows.
+    expect(sheetLayout(25, 400, 100)).toEqual({ columns: 3, rows: 9 });
+    expect(sheetLayout(1, 640, 480)).toEqual({ columns: 1, rows: 1 });
+    // Very wide frames: one column (ceil(sqrt(9 * 10 / 5000)) = 1), a sheet of 5000 x 90.
+    expect(sheetLayout(9, 5000, 10)).toEqual({ columns: 1, rows: 9 });
+    // Tall frames: ceil(sqrt(4 * 900 / 300)) = 4 columns, one row (1200 x 900).
+    expect(sheetLayout(4, 300, 900)).toEqual({ columns: 4, rows: 1 });
+    // 2^26 pixels at most: 4 frames of 3000 x 9000 (108 million) are refused.
+    expect(() => sheetLayout(4, 3000, 9000)).toThrow(/too large/);
+    expect(() => sheetLayout(400, 1000, 1000)).toThrow(/too large for a canvas/);
+    expect(() => sheetLayout(2, 20000, 10)).toThrow(/too large/);
+  });
+
+  it("refuses WebM where MediaRecorder is missing (Node), before drawing anything", async () => {
+    let drawn = 0;
+    const painter = {
+      count: 3,
+      fps: 24,
+      draw: () => {
+        drawn++;
+        throw new Error("drawn");
+      },
+    };
+    await expect(recordWebm(painter)).rejects.toThrow(/MediaRecorder, which this environment lacks/);
+    expect(drawn).toBe(0);
+    expect(abortError().name).toBe("AbortError");
   });
 });
