@@ -128,6 +128,16 @@ export class Animating {
     return index;
   }
 
+  /** K (capture) or a tap of Space (play or pause); a refusal shows as an error. */
+  key(what: "capture" | "play"): void {
+    try {
+      if (what === "capture") this.capture();
+      else this.playPause();
+    } catch (error) {
+      this.#failed(error);
+    }
+  }
+
   playPause(): void {
     const a = this.animator;
     if (a.playing) a.pause();

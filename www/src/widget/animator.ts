@@ -84,6 +84,7 @@ export class Animator {
    */
   capture(time = this.time, easing?: Easing): number {
     this.#checkShape();
+    this.pause();
     const posing = this.#host.posing;
     const index = this.timeline.capture(
       time,

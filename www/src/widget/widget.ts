@@ -832,14 +832,7 @@ export class Widget {
       help: (open) => this.#toggleHelp(open),
       helpOpen: () => this.#stage.help.open,
       dropped: (file) => this.loadFile(file).catch((error: unknown) => this.#showError(error)),
-      animate: (what) => {
-        try {
-          if (what === "capture") this.#animating.capture();
-          else this.#animating.playPause();
-        } catch (error) {
-          this.#showError(error);
-        }
-      },
+      animate: (what) => this.#animating.key(what),
     });
   }
 
