@@ -12,6 +12,8 @@ import { AnimationFrames } from "../../www/src/widget/animation.js";
 import { Animator } from "../../www/src/widget/animator.js";
 import { posed, dragTo } from "./posing-fixtures.js";
 import type { Posing } from "../../www/src/widget/posing.js";
+import { Rig } from "../../www/src/widget/rig.js";
+import { trainDefOp } from "../../www/src/index.js";
 
 beforeAll(async () => {
   await init();
@@ -187,6 +189,28 @@ describe("animation frames", () => {
     expect(posing.handles).toHaveLength(3);
     posing.travel(false);
     expect(bytes(posing.deformer.positions())).toEqual(bytes(before));
+  });
+
+  it("with a fitting rig (the defop method), each frame is the rig's pose for the interpolated targets", async () => {
+    const { posing, animator: a, targets } = threeKeys();
+    const { mesh } = posing.shape;
+    const points = posing.handles.map((h) => h.point);
+    const trained = await trainDefOp(
+      mesh.positions,
+      mesh.triangles,
+      { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
+      { samples: 6, energy: "arap" },
+    );
+    posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
+    const stepped = a.frames();
+    posing.setMethod("defop", 100);
+    const frames = a.frames();
+    expect(frames).not.toBe(stepped);
+    // 0.25 s: half way (linear) from the first key's places to the second's.
+    const half = targets[0]!.map((v, i) => v + (targets[1]![i]! - v) * 0.5);
+    expect(bytes(frames.frame(6).positions)).toEqual(bytes(trained.operator.evaluate(half)));
+    expect(bytes(frames.frame(24).positions)).toEqual(bytes(trained.operator.evaluate(targets[2]!)));
+    posing.rig.free();
   });
 
   it("clears the keys when the shape changes", () => {
