@@ -267,6 +267,32 @@ test("the strip: scrubbing shows each frame (undone as one step), a key dragged 
   await expect(strip(page).play).toHaveText("Play", { timeout: 10_000 });
   expect(await w()).toEqual(await page.evaluate(() => Array.from(window.akapDemo!.widget.animationFrames().at(-1)!)));
 
+  // Loop: playback goes round (frame 0 after the last) until paused.
+  await page.evaluate(() => {
+    const w = window as unknown as { seen: number[] };
+    w.seen = [];
+    document.getElementById("app")!.addEventListener("akap-frame", (e) => {
+      w.seen.push((e as CustomEvent<{ index: number }>).detail.index);
+    });
+  });
+  await strip(page).root.getByLabel("Loop").check();
+  await strip(page).play.click();
+  await expect
+    .poll(() =>
+      page.evaluate(() => {
+        const seen = (window as unknown as { seen: number[] }).seen;
+        return seen.some((index, i) => i > 0 && index < seen[i - 1]!);
+      }),
+    )
+    .toBe(true);
+  await strip(page).play.click();
+  await expect(strip(page).play).toHaveText("Play");
+
+  // 12 fps: 13 frames for the same second.
+  await strip(page).root.locator("input.fps").fill("12");
+  await strip(page).root.locator("input.fps").press("Enter");
+  expect(await page.evaluate(() => window.akapDemo!.widget.animationFrames().length)).toBe(13);
+
   // Another handle set: K is refused, saying what to do.
   const { toCss } = await mapping(page);
   const third = await page.evaluate(() => {
