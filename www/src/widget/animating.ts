@@ -3,7 +3,7 @@
  * `timeline` option shows it), the K and Space keys' commands, and the exports, which draw
  * each frame with the stage's renderer ({@link Stage.picture}) and put the pose back after.
  * An export from the strip shows the busy indicator's progress bar with Cancel and
- * downloads the file.
+ * downloads the file; while an export runs the shape takes no input and nothing is recorded.
  */
 import { animationToJson, encodeAnimation, spriteSheetTable, zipFiles } from "./encoders.js";
 import {
@@ -198,6 +198,9 @@ export class Animating {
     if (signal.aborted) throw abortError();
     this.#exporting = controller;
     const before = posing.snapshot();
+    // Meanwhile the shape takes no input, the frame loop rests and nothing is recorded.
+    posing.releasePointers();
+    posing.replaying = true;
     const playhead = a.playhead;
     const canvas = document.createElement("canvas");
     const painter: FramePainter = {
@@ -231,6 +234,7 @@ export class Animating {
       }
     } finally {
       this.#exporting = undefined;
+      posing.replaying = false;
       posing.restore(before);
       a.playhead = playhead;
       this.refresh();
