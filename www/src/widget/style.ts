@@ -89,7 +89,10 @@ canvas.overlay.panning { cursor: grab; }
 .compact .hud { top: auto; bottom: 2.4em; padding: 0.25em 0.4em; }
 .compact .hud pre { font-size: 10px; }
 .compact .hud canvas { display: none; }
+.compact .timeline { gap: 0.25em 0.4em; padding: 0.25em 0.4em; }
 .compact .timeline .track { flex-basis: 100%; order: 9; height: 2.6em; }
+.compact .timeline .readout, .compact .timeline label:has(input.fps) { display: none; }
+.compact .timeline select { max-width: 7em; }
 .compact .timeline .marker { width: 1.4em; height: 1.4em; }
 .compact .help dl { grid-template-columns: 1fr; }
 .compact .help dd { margin-bottom: 0.4em; }
