@@ -25,7 +25,6 @@ import { FrameLoop, type FrameHost } from "./frames.js";
 import { ShapeLoader, replaySession, type LoaderHost } from "./loading.js";
 
 import {
-  DEFAULTS,
   METHODS,
   widgetSettings,
   type GalleryItem,
@@ -34,7 +33,7 @@ import {
   type WidgetSettings,
   type WidgetTool,
 } from "./options.js";
-import { WorkKeeper, WorkStore, restoreWork, savedShape, type SavedWork } from "./persist.js";
+import { WorkKeeper, WorkStore, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
 import { WidgetInput } from "./input.js";
 import { Posing } from "./posing.js";
@@ -43,7 +42,7 @@ import type { TrainProgress } from "../defop-pool.js";
 import { parseSession, type Session } from "./session.js";
 import { widgetToolbar } from "./actions.js";
 import { meshOutline, type Shape } from "./shape.js";
-import { fetchFile, fileKind, fileLimits, loadImage, paintVector } from "./sources.js";
+import { fetchFile, fileKind, fileLimits, loadImage } from "./sources.js";
 import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
@@ -694,15 +693,7 @@ export class Widget {
    */
   async startOver(): Promise<void> {
     await this.#keeper?.store.clear();
-    const name = builtinShapes()[0]!;
-    const shape = meshOutline(builtinShape(name), name, DEFAULTS.vertices, DEFAULTS.minAngle);
-    this.#gesture(() => {
-      Object.assign(this.#settings, { vertices: DEFAULTS.vertices, minAngle: DEFAULTS.minAngle });
-      Object.assign(this.#settings, { wireframe: false, field: false, flipped: true, paperMode: false, tool: "pose" });
-      this.#posing.showMethod(DEFAULTS.method, DEFAULTS.lambda);
-      this.#posing.parts = undefined;
-      this.#posing.install(shape);
-    });
+    this.#loader.startOver();
     this.#syncToolbar();
   }
 
@@ -753,14 +744,8 @@ export class Widget {
 
   /** Puts back saved work (over the shape just installed); throws, changing nothing, if it cannot. */
   async #resume(saved: SavedWork): Promise<void> {
-    const document = this.target.ownerDocument;
-    await restoreWork(saved, this.#posing, this.#settings, (shape) =>
-      savedShape(document, shape, (s, v) => paintVector(document, s, v)),
-    );
+    await this.#loader.resume(saved);
     this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
-    if (this.#settings.method === "defop") {
-      await this.#rigging.fromCache(this.#settings.training).catch(() => false);
-    }
     this.#syncToolbar();
   }
 
