@@ -249,6 +249,14 @@ test("the strip: scrubbing shows each frame (undone as one step), a key dragged 
   await page.keyboard.press("Control+z");
   expect(await w()).toEqual(before);
 
+  // The playhead by keyboard on the track: End, then a frame back.
+  await strip(page).track.focus();
+  await page.keyboard.press("End");
+  expect(await w()).toEqual(frames[24]);
+  await page.keyboard.press("ArrowLeft");
+  expect(await w()).toEqual(frames[23]);
+  await expect(strip(page).track).toHaveAttribute("aria-valuetext", "0.96 seconds");
+
   // The middle key dragged from 0.5 s to 0.75 s.
   const marker = strip(page).markers.nth(1);
   const m = (await marker.boundingBox())!;

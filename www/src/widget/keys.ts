@@ -107,7 +107,7 @@ export const HELP: readonly { keys: string; does: string }[] = [
   { keys: "K", does: "animation: capture the pose as a key at the playhead (the timeline strip under the stage)" },
   { keys: "Space (tap)", does: "play or pause the animation" },
   {
-    keys: "Timeline: drag the playhead; drag a key; Delete",
+    keys: "Timeline: drag the playhead (or arrows, Home, End on it); drag a key; Delete",
     does: "scrub (each frame's pose shows); move the key; delete the selected key",
   },
   { keys: "F or 0", does: "fit the shape in view" },

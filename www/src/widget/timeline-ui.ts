@@ -3,7 +3,8 @@
  * Loop, Delete key, the selected key's easing, the track (key markers to select and drag,
  * the playhead to drag: scrubbing shows each frame's pose), the time readout, fps, and
  * "Export animation" with its formats. It only shows and asks; {@link StripActions} does.
- * Delete or Backspace in the strip deletes the selected key.
+ * Delete or Backspace in the strip deletes the selected key; on the track, the arrows move
+ * the playhead a frame back or on, Home and End to the ends.
  */
 import { ANIMATION_FORMATS, type AnimationFormat } from "./animation-export.js";
 import { EASINGS, FPS_RANGE, type Easing } from "./timeline.js";
@@ -105,6 +106,22 @@ export class TimelineStrip {
     });
     this.#track = make("div", "track");
     this.#track.setAttribute("aria-label", "Timeline: drag the playhead to scrub, a key to move it");
+    // The playhead by keyboard: arrows a frame back or on, Home and End the ends.
+    this.#track.tabIndex = 0;
+    this.#track.setAttribute("role", "slider");
+    this.#track.addEventListener("keydown", (e) => {
+      const state = this.#state;
+      if (!state) return;
+      const end = state.keys.at(-1)?.time ?? 0;
+      const step = 1 / state.fps;
+      const to = { ArrowLeft: state.time - step, ArrowRight: state.time + step, Home: 0, End: end }[e.key];
+      if (to === undefined) return;
+      e.preventDefault();
+      e.stopPropagation();
+      const time = Math.round(Math.max(0, to) * state.fps) / state.fps;
+      actions.scrub(time, "start");
+      actions.scrub(time, "end");
+    });
     this.#playhead = make("div", "playhead");
     this.#track.append(this.#playhead);
     this.#readout = make("span", "readout");
@@ -164,6 +181,10 @@ export class TimelineStrip {
       marker.dataset.time = String(k.time);
     });
     this.#playhead.style.left = `${(100 * state.time) / this.#span}%`;
+    this.#track.setAttribute("aria-valuemin", "0");
+    this.#track.setAttribute("aria-valuemax", String(this.#span));
+    this.#track.setAttribute("aria-valuenow", String(state.time));
+    this.#track.setAttribute("aria-valuetext", `${state.time.toFixed(2)} seconds`);
     this.#play.textContent = state.playing ? "Pause" : "Play";
     this.#play.classList.toggle("active", state.playing);
     this.#play.disabled = state.keys.length === 0;
