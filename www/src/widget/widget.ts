@@ -48,7 +48,7 @@ import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
 import { Brush, type BrushHost } from "./brush.js";
 import { Animating, type AnimatingHost, type AnimationExport } from "./animating.js";
-import type { AnimationExportOptions, AnimationFormat } from "./animation-export.js";
+import type { AnimationExportOptions, AnimationFormat, SpriteSheet } from "./animation-export.js";
 import type { KeyInfo } from "./animator.js";
 import type { Easing } from "./timeline.js";
 import { unpainted, type BrushSettings } from "./stiffness.js";
@@ -683,6 +683,9 @@ export class Widget {
    * "svg" (a zip) give a Blob, "sprites" a PNG and its JSON table; rejects with an
    * `AbortError` on `signal`'s abort.
    */
+  exportAnimation(format: "sprites", options?: AnimationExportOptions): Promise<SpriteSheet>;
+  exportAnimation(format: Exclude<AnimationFormat, "sprites">, options?: AnimationExportOptions): Promise<Blob>;
+  exportAnimation(format: AnimationFormat, options?: AnimationExportOptions): Promise<AnimationExport>;
   exportAnimation(format: AnimationFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
     return this.#animating.export(format, options);
   }
