@@ -166,7 +166,7 @@ export async function spriteSheet(
   };
 }
 
-/** A frame as RGBA pixels, for the GIF and APNG encoders. */
+/** A frame as RGBA pixels, for the GIF and APNG encoders (`delayMs` whole milliseconds). */
 export interface RgbaFrame {
   rgba: Uint8ClampedArray;
   width: number;
@@ -182,7 +182,9 @@ export async function* rgbaFrames(painter: FramePainter, signal?: AbortSignal): 
     const ctx = canvas.getContext("2d");
     if (!ctx) throw new Error("this browser cannot read a 2D canvas");
     const { data, width, height } = ctx.getImageData(0, 0, canvas.width, canvas.height);
-    yield { rgba: data, width, height, delayMs: 1000 / painter.fps };
+    // Whole milliseconds, rounded on the running total so that the frames keep the animation's length.
+    const delayMs = Math.round((1000 * (i + 1)) / painter.fps) - Math.round((1000 * i) / painter.fps);
+    yield { rgba: data, width, height, delayMs };
     await yieldToPage();
   }
 }
