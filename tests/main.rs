@@ -1,5 +1,7 @@
 //! Integration tests: one binary, one module per area, shared checks in `common`.
 
+mod animation;
+mod animation_file;
 mod arap;
 mod cauchy_green;
 mod common;
