@@ -31,4 +31,6 @@ mod stiffness;
 mod triangulation;
 mod turning;
 #[cfg(target_arch = "wasm32")]
+mod wasm_animation;
+#[cfg(target_arch = "wasm32")]
 mod wasm_api;
