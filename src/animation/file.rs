@@ -197,7 +197,7 @@ fn problem(vertices: usize, fps: f64, keys: &[JsonKey], frames: &[Vec<f64>], lim
 /// let text = write_animation(&animation, &Limits::default())?;
 /// assert!(text.starts_with(r#"{"format":"akap-animation","version":1,"mesh":{"positions":[0.0,0.0,"#));
 /// assert_eq!(read_animation(&text, &Limits::default())?, animation);
-/// # Ok::<(), akap::animation::AnimationError>(())
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_animation(animation: &Animation, limits: &Limits) -> Result<String, AnimationError> {
     let invalid = |message| AnimationError::Invalid { message };
