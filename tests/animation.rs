@@ -122,8 +122,11 @@ fn gif_of_many_colours_is_close() {
     assert!(decoded[0].rgba.chunks_exact(4).all(|p| p[3] == 255));
 }
 
-/// Decodes an APNG: (frames, plays), each frame (rgba, delay as numerator and denominator).
-fn decode_apng(bytes: &[u8]) -> (u32, u32, Vec<(Vec<u8>, u16, u16)>) {
+/// A decoded APNG frame: its RGBA and its delay's numerator and denominator.
+type ApngFrame = (Vec<u8>, u16, u16);
+
+/// Decodes an APNG: its frame count, plays, and frames.
+fn decode_apng(bytes: &[u8]) -> (u32, u32, Vec<ApngFrame>) {
     let decoder = png::Decoder::new(Cursor::new(bytes));
     let mut reader = decoder.read_info().unwrap();
     let control = reader.info().animation_control.expect("an acTL chunk");

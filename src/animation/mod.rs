@@ -4,7 +4,7 @@
 //! |---|---|
 //! | [`encode`] | [`AnimationEncoder`]: RGBA frames, one at a time, into an animated GIF (the `gif` crate, NeuQuant for frames of more than 256 colours) or an APNG (each frame compressed by the `png` crate as it is added; the chunks around them written at the end, when the frame count is known) |
 //! | [`zip`] | [`write_zip`]: files stored (not compressed) in one ZIP, e.g. an SVG or PNG per frame; [`crc32`] |
-//! | [`file`] | the `akap-animation` JSON format, its one definition: a rest mesh, keys of handle positions, and every frame's vertex positions; written and read with every check |
+//! | [`file`](mod@file) | the `akap-animation` JSON format, its one definition: a rest mesh, keys of handle positions, and every frame's vertex positions; written and read with every check |
 //! | [`sprites`] | the `akap-sprites` JSON frame table of a sprite sheet |
 //!
 //! Everything is plain Rust: the page renders the frames and hands over their pixels. Input
