@@ -6,7 +6,9 @@
  * last frames against the picture the stage draws. An export cancelled midway takes the
  * progress bar away and downloads nothing.
  */
+import { readFile } from "node:fs/promises";
 import { expect, test, type Page } from "@playwright/test";
+import { animationFromJson, init } from "../../www/lib/index.js";
 import { anchorPoints, dragMouse, idle, mapping, open, usePrepared } from "./helpers.js";
 
 usePrepared();
@@ -316,4 +318,124 @@ test("the strip: scrubbing shows each frame (undone as one step), a key dragged 
   await page.keyboard.press("k");
   await expect(page.locator("#app .akap-host .status")).toContainText("another set of handles");
   expect(await page.evaluate(() => window.akapDemo!.widget.keys().length)).toBe(2);
+});
+
+test("GIF, APNG, sprite sheet, JSON and SVG exports decode back to the frames drawn", async ({ page }) => {
+  test.setTimeout(120_000);
+  await page.setViewportSize({ width: 640, height: 520 });
+  await open(page);
+  await recordThreeKeys(page);
+  await definePixelHelpers(page);
+  const result = await page.evaluate(async () => {
+    const h = window as unknown as PixelHelpers;
+    const w = window.akapDemo!.widget;
+    const [first, last] = [await h.drawn(0), await h.drawn(24)];
+    const animated = async (format: "gif" | "apng") => {
+      const progress: number[] = [];
+      const blob = (await w.exportAnimation(format, { onProgress: (done) => progress.push(done) })) as Blob;
+      const decoder = new ImageDecoder({
+        data: await blob.arrayBuffer(),
+        type: format === "gif" ? "image/gif" : "image/png",
+      });
+      await decoder.tracks.ready;
+      await decoder.completed;
+      const frame = async (index: number) => {
+        const { image } = await decoder.decode({ frameIndex: index });
+        const data = h.pixels(image, image.displayWidth, image.displayHeight);
+        const size = [image.displayWidth, image.displayHeight];
+        image.close();
+        return { data, size };
+      };
+      const count = decoder.tracks.selectedTrack!.frameCount;
+      const [f0, fn] = [await frame(0), await frame(count - 1)];
+      decoder.close();
+      return {
+        type: blob.type,
+        count,
+        size: f0.size,
+        lastProgress: progress.at(-1),
+        first: h.difference(f0.data, first.data),
+        last: h.difference(fn.data, last.data),
+      };
+    };
+    const gif = await animated("gif");
+    const apng = await animated("apng");
+    // The sprite sheet: its size is the table's, its first and last cells the frames drawn.
+    const sheet = (await w.exportAnimation("sprites")) as { png: Blob; table: string };
+    const table = JSON.parse(sheet.table) as {
+      format: string;
+      size: { w: number; h: number };
+      frames: { x: number; y: number; w: number; h: number; duration: number }[];
+    };
+    const bitmap = await createImageBitmap(sheet.png);
+    const cell = (k: number) => {
+      const { x, y, w: cw, h: ch } = table.frames[k]!;
+      const canvas = document.createElement("canvas");
+      [canvas.width, canvas.height] = [cw, ch];
+      const ctx = canvas.getContext("2d")!;
+      ctx.drawImage(bitmap, x, y, cw, ch, 0, 0, cw, ch);
+      return ctx.getImageData(0, 0, cw, ch).data;
+    };
+    const sprites = {
+      format: table.format,
+      size: [bitmap.width, bitmap.height],
+      tableSize: [table.size.w, table.size.h],
+      frames: table.frames.length,
+      cellSize: [table.frames[0]!.w, table.frames[0]!.h],
+      first: h.difference(cell(0), first.data),
+      last: h.difference(cell(24), last.data),
+    };
+    // The JSON animation, read back in Node below; the SVG zip's entries counted here.
+    const json = await ((await w.exportAnimation("json")) as Blob).text();
+    const zip = new DataView(await ((await w.exportAnimation("svg")) as Blob).arrayBuffer());
+    let end = zip.byteLength - 22;
+    while (end > 0 && zip.getUint32(end, true) !== 0x06054b50) end--;
+    const entries = zip.getUint16(end + 10, true);
+    const firstName = new TextDecoder().decode(new Uint8Array(zip.buffer, 30, zip.getUint16(26, true)));
+    const frames = w.animationFrames().map((f) => Array.from(f));
+    const triangleCount = w.triangleCount;
+    return {
+      gif,
+      apng,
+      sprites,
+      json,
+      entries,
+      firstName,
+      frames,
+      triangleCount,
+      drawnSize: [first.width, first.height],
+      firstVsLast: h.difference(first.data, last.data),
+    };
+  });
+  const frameCount = FPS + 1;
+  for (const format of [result.gif, result.apng]) {
+    expect(format.count).toBe(frameCount);
+    expect(format.size).toEqual(result.drawnSize);
+    expect(format.lastProgress).toBe(frameCount);
+  }
+  expect(result.gif.type).toBe("image/gif");
+  expect(result.apng.type).toBe("image/apng");
+  // APNG is lossless: the frames drawn, exactly. GIF's palette: close.
+  expect(result.apng.first.most).toBe(0);
+  expect(result.apng.last.most).toBe(0);
+  expect(result.firstVsLast.mean).toBeGreaterThan(1);
+  expect(result.gif.first.mean).toBeLessThan(0.25 * result.firstVsLast.mean);
+  expect(result.gif.last.mean).toBeLessThan(0.25 * result.firstVsLast.mean);
+  expect(result.sprites.format).toBe("akap-sprites");
+  expect(result.sprites.size).toEqual(result.sprites.tableSize);
+  expect(result.sprites.frames).toBe(frameCount);
+  expect(result.sprites.cellSize).toEqual(result.drawnSize);
+  expect(result.sprites.first.most).toBe(0);
+  expect(result.sprites.last.most).toBe(0);
+  expect(result.entries).toBe(frameCount);
+  expect(result.firstName).toBe("frame-00.svg");
+  // The JSON animation read by the package's reader: every frame, bit for bit.
+  const wasm = await readFile(new URL("../../www/pkg/akap_bg.wasm", import.meta.url));
+  await init(wasm);
+  const animation = animationFromJson(result.json);
+  expect(animation.fps).toBe(FPS);
+  expect(animation.frames).toHaveLength(frameCount);
+  animation.frames.forEach((f, i) => expect(Array.from(f)).toEqual(result.frames[i]));
+  expect(animation.keys.map((k) => k.time)).toEqual([0, 0.5, 1]);
+  expect(animation.mesh.triangles.length).toBe(result.triangleCount * 3);
 });

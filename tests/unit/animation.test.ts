@@ -1,225 +1,254 @@
 /**
- * The animation's frames against the real wasm core in Node (`animation.ts`,
- * `animator.ts`): three keys recorded on the default figure; handles at the keys' targets
- * at the keys' times; computed twice, the same bits; the same frames from a `Deformer`
- * driven by hand (targets and substeps worked out here, not through the modules); the
- * cache made again when keys, method or stiffness change; bad input refused with nothing
- * changed; showing a frame leaves the pose there, undoably.
+ * Animations out through the public API and the real wasm in Node: encodeAnimation's
+ * progress, cancel and clean-up, its GIF and APNG read back by small parsers here, and the
+ * thin wrappers (ZIP, the akap-animation JSON, the sprite table).
  */
-import { beforeAll, describe, expect, it } from "vitest";
-import { Deformer, init } from "../../www/src/index.js";
-import { AnimationFrames } from "../../www/src/widget/animation.js";
-import { Animator } from "../../www/src/widget/animator.js";
-import { posed, dragTo } from "./posing-fixtures.js";
-import type { Posing } from "../../www/src/widget/posing.js";
-import { Rig } from "../../www/src/widget/rig.js";
-import { trainDefOp } from "../../www/src/index.js";
+import { afterEach, beforeAll, describe, expect, it, vi } from "vitest";
+import * as glue from "../../www/pkg/akap.js";
+import {
+  animationFromJson,
+  animationToJson,
+  encodeAnimation,
+  init,
+  spriteSheetTable,
+  zipFiles,
+  type AnimationFrame,
+} from "../../www/src/index.js";
 
 beforeAll(async () => {
   await init();
 });
 
-const FPS = 24;
-/** The bytes of a Float64Array: equal only when every number has the same bits. */
-const bytes = (values: Float64Array) =>
-  new Uint8Array(values.buffer.slice(values.byteOffset, values.byteOffset + values.byteLength));
+afterEach(() => {
+  vi.restoreAllMocks();
+});
 
-function animator(posing: Posing, fps = FPS): { animator: Animator; shown: number[]; messages: string[] } {
-  const shown: number[] = [];
-  const messages: string[] = [];
-  const a = new Animator({
-    posing,
-    fps: () => fps,
-    shown: (index) => shown.push(index),
-    changed: () => undefined,
-    info: (message) => messages.push(message),
-  });
-  return { animator: a, shown, messages };
+/** A frame of `w` x `h` pixels of one colour. */
+function solid(w: number, h: number, [r, g, b, a]: number[], delayMs = 100): AnimationFrame {
+  const rgba = new Uint8ClampedArray(4 * w * h);
+  for (let i = 0; i < w * h; i++) rgba.set([r!, g!, b!, a!], 4 * i);
+  return { rgba, width: w, height: h, delayMs };
 }
 
-/**
- * The default figure with a pin and a handle; keys at 0 s (rest), 0.5 s (the handle
- * dragged right and up, linear) and 1 s (dragged down, eased), captured as K does: the
- * handles where they are, with the pose.
- */
-function threeKeys(): { posing: Posing; animator: Animator; targets: Float64Array[] } {
-  const { posing } = posed(400);
-  const { animator: a } = animator(posing);
-  const targets: Float64Array[] = [];
-  const at = () => posing.deformer.handlePositions();
-  const size = posing.shape.size;
-  a.capture(0);
-  targets.push(at());
-  const [x, y] = [at()[2]!, at()[3]!];
-  dragTo(posing, [x + 0.15 * size, y + 0.2 * size]);
-  a.capture(0.5);
-  targets.push(at());
-  dragTo(posing, [x + 0.1 * size, y - 0.15 * size]);
-  a.capture(1, "ease");
-  targets.push(at());
-  return { posing, animator: a, targets };
-}
+const colours = [
+  [255, 0, 0, 255],
+  [0, 255, 0, 255],
+  [0, 0, 255, 255],
+  [255, 255, 0, 255],
+  [0, 0, 0, 0],
+];
 
-describe("animation frames", () => {
-  it("has a frame per 1/fps; frame 0 is the first key's pose; the handles reach each key's targets at its time", () => {
-    const { posing, animator: a, targets } = threeKeys();
-    const frames = a.frames();
-    expect(frames.count).toBe(25);
-    expect(bytes(frames.frame(0).positions)).toEqual(bytes(a.timeline.keys[0]!.pose));
-    const size = posing.shape.size;
-    for (const [k, index] of [0, 12, 24].entries()) {
-      const h = frames.frame(index).handles;
-      for (let i = 0; i < h.length; i++) expect(Math.abs(h[i]! - targets[k]![i]!)).toBeLessThan(2e-3 * size);
+/** A GIF's screen size, and per image its size and delay (cs), by walking its blocks. */
+function parseGif(bytes: Uint8Array): {
+  width: number;
+  height: number;
+  frames: { w: number; h: number; delay: number }[];
+} {
+  const u16 = (at: number) => bytes[at]! | (bytes[at + 1]! << 8);
+  expect(new TextDecoder().decode(bytes.subarray(0, 6))).toBe("GIF89a");
+  const flags = bytes[10]!;
+  let at = 13 + (flags & 0x80 ? 3 << ((flags & 7) + 1) : 0);
+  const skipSubBlocks = () => {
+    while (bytes[at] !== 0) at += bytes[at]! + 1;
+    at += 1;
+  };
+  const frames: { w: number; h: number; delay: number }[] = [];
+  let delay = 0;
+  for (;;) {
+    const block = bytes[at]!;
+    if (block === 0x3b) break;
+    if (block === 0x21) {
+      if (bytes[at + 1] === 0xf9) delay = u16(at + 4);
+      at += 2;
+      skipSubBlocks();
+    } else if (block === 0x2c) {
+      const local = bytes[at + 9]!;
+      frames.push({ w: u16(at + 5), h: u16(at + 7), delay });
+      at += 10 + (local & 0x80 ? 3 << ((local & 7) + 1) : 0) + 1; // descriptor, palette, LZW size
+      skipSubBlocks();
+    } else {
+      throw new Error(`unexpected GIF block ${block} at ${at}`);
     }
-    // Between keys the handle is on its way: at 0.25 s, half way (linear) to the second key's place.
-    const mid = frames.frame(6).handles;
-    const half = [0.5 * (targets[0]![2]! + targets[1]![2]!), 0.5 * (targets[0]![3]! + targets[1]![3]!)];
-    expect(Math.hypot(mid[2]! - half[0]!, mid[3]! - half[1]!)).toBeLessThan(2e-3 * size);
+  }
+  return { width: u16(6), height: u16(8), frames };
+}
+
+/** A PNG's chunks: type and data. */
+function pngChunks(bytes: Uint8Array): { type: string; data: DataView }[] {
+  expect([...bytes.subarray(0, 8)]).toEqual([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const chunks = [];
+  for (let at = 8; at < bytes.length;) {
+    const length = view.getUint32(at);
+    const type = new TextDecoder().decode(bytes.subarray(at + 4, at + 8));
+    chunks.push({ type, data: new DataView(bytes.buffer, bytes.byteOffset + at + 8, length) });
+    at += 12 + length;
+  }
+  return chunks;
+}
+
+describe("encodeAnimation", () => {
+  it("encodes a GIF from an array, reporting progress frame by frame", async () => {
+    const free = vi.spyOn(glue.AnimationEncoder.prototype, "free");
+    const frames = colours.map((c, i) => solid(8, 6, c, 40 + 10 * i));
+    const progress: [number, number | undefined][] = [];
+    const gif = await encodeAnimation("gif", frames, { onProgress: (done, total) => progress.push([done, total]) });
+    expect(progress).toEqual([1, 2, 3, 4, 5].map((done) => [done, 5]));
+    const parsed = parseGif(gif);
+    expect([parsed.width, parsed.height]).toEqual([8, 6]);
+    // 40, 50, 60, 70, 80 ms: whole centiseconds.
+    expect(parsed.frames).toEqual([4, 5, 6, 7, 8].map((delay) => ({ w: 8, h: 6, delay })));
+    expect(free).toHaveBeenCalledTimes(1);
   });
 
-  it("computed twice gives the same bits, frame by frame", () => {
-    const { animator: a } = threeKeys();
-    const first = a.frames().all();
-    const again = new AnimationFrames(a.frames().source);
-    const second = again.all();
-    again.free();
-    expect(second).toHaveLength(first.length);
-    first.forEach((f, i) => expect(bytes(second[i]!.positions)).toEqual(bytes(f.positions)));
-  });
-
-  it("equals a Deformer driven by hand: tracking substeps toward the interpolated targets", () => {
-    const { posing, animator: a, targets } = threeKeys();
-    const frames = a.frames().all();
-    const { mesh, size } = posing.shape;
-    const { maxStep, maxSubsteps } = posing.settings;
-    const handles = a.timeline.handles!;
-    const deformer = new Deformer(mesh.positions, mesh.triangles, {
-      method: "akap",
-      dirichlet: true,
-      integrator: "spiral",
-      lambda: 100,
-    });
-    deformer.setHandlePoints(Uint32Array.from(handles.triangles), Float64Array.from(handles.barycentric));
-    deformer.setPositions(a.timeline.keys[0]!.pose);
-    expect(bytes(deformer.positions())).toEqual(bytes(frames[0]!.positions));
-    const smooth = (u: number) => u * u * (3 - 2 * u);
-    for (let f = 1; f < frames.length; f++) {
-      const t = f / FPS;
-      const [from, to, e] =
-        t <= 0.5 ? [targets[0]!, targets[1]!, (t - 0) / 0.5] : [targets[1]!, targets[2]!, smooth((t - 0.5) / 0.5)];
-      const goal = from.map((v, i) => v + (to[i]! - v) * e);
-      let now = deformer.handlePositions();
-      let gap = 0;
-      for (let i = 0; i < now.length; i += 2)
-        gap = Math.max(gap, Math.hypot(goal[i]! - now[i]!, goal[i + 1]! - now[i + 1]!));
-      if (gap > 1e-5 * size) {
-        const needed = Math.max(1, Math.ceil(gap / (maxStep * size) - 1e-9));
-        for (let s = 0; s < Math.min(needed, maxSubsteps); s++) {
-          const v = goal.map((g, i) => (g - now[i]!) / (needed - s));
-          if (deformer.stepWithoutFoldovers(v).clamped) break;
-          now = deformer.handlePositions();
-        }
+  it("encodes an APNG from an async iterable, played once", async () => {
+    async function* frames() {
+      for (const c of colours.slice(0, 4)) {
+        await Promise.resolve();
+        yield solid(3, 7, c, 33);
       }
-      expect(bytes(deformer.positions()), `frame ${f}`).toEqual(bytes(frames[f]!.positions));
     }
-    deformer.free();
+    const totals: (number | undefined)[] = [];
+    const png = await encodeAnimation("apng", frames(), { loop: false, onProgress: (_, total) => totals.push(total) });
+    expect(totals).toEqual([undefined, undefined, undefined, undefined]);
+    const chunks = pngChunks(png);
+    const ihdr = chunks[0]!;
+    expect([ihdr.type, ihdr.data.getUint32(0), ihdr.data.getUint32(4)]).toEqual(["IHDR", 3, 7]);
+    const actl = chunks.find((c) => c.type === "acTL")!;
+    expect([actl.data.getUint32(0), actl.data.getUint32(4)]).toEqual([4, 1]);
+    const fctl = chunks.filter((c) => c.type === "fcTL");
+    expect(fctl.map((c) => [c.data.getUint16(20), c.data.getUint16(22)])).toEqual(Array(4).fill([33, 1000]));
+    expect(chunks.at(-1)!.type).toBe("IEND");
   });
 
-  it("is computed again when the keys, the method or the stiffness change, and not otherwise", () => {
-    const { posing, animator: a } = threeKeys();
-    const first = a.frames();
-    expect(a.frames()).toBe(first);
-    a.setEasing(2, "linear");
-    const second = a.frames();
-    expect(second).not.toBe(first);
-    expect(bytes(second.frame(20).positions)).not.toEqual(bytes(first.frame(20).positions));
-    posing.setMethod("arap", 100);
-    const third = a.frames();
-    expect(third).not.toBe(second);
-    expect(third.source.options.method).toBe("arap");
-    posing.setStiffness(new Float64Array(posing.shape.mesh.triangleCount).fill(5));
-    const fourth = a.frames();
-    expect(fourth).not.toBe(third);
-    expect(fourth.source.stiffness?.[0]).toBe(5);
-    a.moveKey(1, 0.25);
-    expect(a.frames()).not.toBe(fourth);
-    a.deleteKey(1);
-    expect(a.frames().count).toBe(25);
-  });
-
-  it("refuses bad input with nothing changed", () => {
-    const { posing, animator: a } = threeKeys();
-    const before = JSON.stringify(a.keys().map((k) => [k.time, k.easing, [...k.targets]]));
-    const frames = a.frames();
-    for (const bad of [
-      () => a.capture(NaN),
-      () => a.capture(-0.5),
-      () => a.moveKey(3, 1),
-      () => a.moveKey(0, -1),
-      () => a.moveKey(0, 1),
-      () => a.deleteKey(-1),
-      () => a.setEasing(0, "springy" as "ease"),
-      () => a.seek(NaN),
-      () => frames.frame(25),
-    ]) {
-      expect(bad).toThrow();
-      expect(JSON.stringify(a.keys().map((k) => [k.time, k.easing, [...k.targets]]))).toBe(before);
+  it("yields a macrotask between frames, so timers run", async () => {
+    let ticks = 0;
+    const timer = setInterval(() => ticks++, 0);
+    try {
+      const frames = Array.from({ length: 6 }, (_, i) => solid(4, 4, colours[i % 4]!));
+      const seen: number[] = [];
+      await encodeAnimation("apng", frames, { onProgress: () => seen.push(ticks) });
+      // Each frame after the first starts after a task of its own: the interval got turns.
+      expect(seen.at(-1)!).toBeGreaterThan(0);
+    } finally {
+      clearInterval(timer);
     }
-    expect(a.frames()).toBe(frames);
-    // Another handle set: refused, with what to do.
-    posing.gesture(() => posing.addHandle(posing.handles[1]!.point));
-    expect(() => a.capture(2)).toThrow(/another set of handles.*delete the keys/);
-    expect(a.keys()).toHaveLength(3);
   });
 
-  it("shows a frame in the posing (the timeline's handles, the frame's pose) as one undoable step", () => {
-    const { posing, animator: a } = threeKeys();
-    const before = posing.deformer.positions();
-    posing.gesture(() => posing.addHandle(posing.handles[1]!.point));
-    a.seek(0.5);
-    expect(posing.handles).toHaveLength(2);
-    expect(bytes(posing.deformer.positions())).toEqual(bytes(a.frames().frame(12).positions));
-    expect(a.playhead).toBe(12);
-    // Seeking past the end moves the playhead there and shows the last frame.
-    a.seek(7);
-    expect(a.playhead).toBe(7 * 24);
-    expect(bytes(posing.deformer.positions())).toEqual(bytes(a.frames().frame(24).positions));
-    posing.travel(false);
-    posing.travel(false);
-    expect(posing.handles).toHaveLength(3);
-    posing.travel(false);
-    expect(bytes(posing.deformer.positions())).toEqual(bytes(before));
+  it("cancels mid-way with an AbortError and frees the encoder", async () => {
+    const free = vi.spyOn(glue.AnimationEncoder.prototype, "free");
+    const controller = new AbortController();
+    let pulled = 0;
+    function* frames() {
+      for (let i = 0; i < 10; i++) {
+        pulled++;
+        yield solid(16, 16, colours[i % 4]!);
+      }
+    }
+    const done = encodeAnimation("gif", frames(), {
+      signal: controller.signal,
+      onProgress: (n) => {
+        if (n === 3) controller.abort();
+      },
+    });
+    await expect(done).rejects.toMatchObject({ name: "AbortError" });
+    expect(pulled).toBe(3);
+    expect(free).toHaveBeenCalledTimes(1);
+    // Already aborted: nothing is encoded.
+    await expect(
+      encodeAnimation("gif", [solid(2, 2, colours[0]!)], { signal: controller.signal }),
+    ).rejects.toMatchObject({
+      name: "AbortError",
+    });
   });
 
-  it("with a fitting rig (the defop method), each frame is the rig's pose for the interpolated targets", async () => {
-    const { posing, animator: a, targets } = threeKeys();
-    const { mesh } = posing.shape;
-    const points = posing.handles.map((h) => h.point);
-    const trained = await trainDefOp(
-      mesh.positions,
-      mesh.triangles,
-      { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
-      { samples: 6, energy: "arap" },
+  it("rejects bad frames with codes, freeing the encoder", async () => {
+    const free = vi.spyOn(glue.AnimationEncoder.prototype, "free");
+    const mixed = [solid(4, 4, colours[0]!), solid(4, 5, colours[1]!)];
+    await expect(encodeAnimation("apng", mixed)).rejects.toMatchObject({ code: "invalid-argument" });
+    await expect(encodeAnimation("gif", [solid(4, 4, colours[0]!, 0)])).rejects.toMatchObject({
+      code: "invalid-argument",
+      message: expect.stringContaining("delay of 0 ms"),
+    });
+    const short = { ...solid(4, 4, colours[0]!), rgba: new Uint8Array(63) };
+    await expect(encodeAnimation("gif", [short])).rejects.toMatchObject({ code: "invalid-argument" });
+    await expect(encodeAnimation("gif", [])).rejects.toMatchObject({ code: "invalid-argument" });
+    await expect(encodeAnimation("webp" as "gif", [solid(1, 1, colours[0]!)])).rejects.toMatchObject({
+      code: "invalid-argument",
+    });
+    await expect(encodeAnimation("gif", [solid(0, 0, colours[0]!)])).rejects.toMatchObject({
+      code: "invalid-argument",
+    });
+    // One encoder was made for each of the three calls with a first frame of a valid size.
+    expect(free).toHaveBeenCalledTimes(3);
+  });
+});
+
+describe("files", () => {
+  it("zips files and refuses unsafe names", () => {
+    const text = new TextEncoder();
+    const zip = zipFiles([
+      { name: "frames/0001.svg", data: text.encode("<svg/>") },
+      { name: "check.txt", data: text.encode("123456789") },
+    ]);
+    const view = new DataView(zip.buffer, zip.byteOffset, zip.byteLength);
+    expect(view.getUint32(0, true)).toBe(0x04034b50);
+    const end = zip.length - 22;
+    expect(view.getUint32(end, true)).toBe(0x06054b50);
+    expect(view.getUint16(end + 10, true)).toBe(2);
+    // The second file's CRC-32 is the standard check value.
+    const second = 30 + "frames/0001.svg".length + 6;
+    expect(view.getUint32(second + 14, true)).toBe(0xcbf43926);
+    for (const name of ["", "/abs", "a/../b"]) {
+      expect(() => zipFiles([{ name, data: new Uint8Array(1) }])).toThrow(
+        expect.objectContaining({ code: "invalid-argument" }),
+      );
+    }
+    const twice = [
+      { name: "a", data: new Uint8Array(0) },
+      { name: "a", data: new Uint8Array(0) },
+    ];
+    expect(() => zipFiles(twice)).toThrow(/given twice/);
+  });
+
+  it("round-trips an animation exactly", () => {
+    const animation = {
+      mesh: { positions: [0, 0, 1, 0, 0, 1], triangles: [0, 1, 2], uvs: [0, 0, 1, 0, 0, 1] },
+      fps: 24,
+      keys: [
+        { time: 0, easing: "linear" as const, handles: [0, 0] },
+        { time: 0.1 + 0.2, easing: "ease" as const, handles: new Float64Array([1 / 3, -0]) },
+      ],
+      frames: [new Float64Array([0, 0, 1, 0, 0, 1]), [0.1 + 0.2, -0, 1e-300, 5e-324, 1 / 3, 1]],
+    };
+    const text = animationToJson(animation);
+    const back = animationFromJson(text);
+    expect(back.mesh.positions).toEqual(new Float64Array([0, 0, 1, 0, 0, 1]));
+    expect(back.mesh.triangles).toEqual(new Uint32Array([0, 1, 2]));
+    expect(back.mesh.uvs).toEqual(new Float64Array([0, 0, 1, 0, 0, 1]));
+    expect(back.fps).toBe(24);
+    expect(back.keys.map((k) => [k.time, k.easing])).toEqual([
+      [0, "linear"],
+      [0.1 + 0.2, "ease"],
+    ]);
+    expect(Object.is(back.keys[1]!.handles[1], -0)).toBe(true);
+    expect([...back.frames[1]!]).toEqual([0.1 + 0.2, -0, 1e-300, 5e-324, 1 / 3, 1]);
+    expect(Object.is(back.frames[1]![1], -0)).toBe(true);
+    expect(animationToJson(back)).toBe(text);
+    expect(() => animationFromJson(text.replace('"version":1', '"version":2'))).toThrow(
+      expect.objectContaining({ code: "import" }),
     );
-    posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
-    const stepped = a.frames();
-    posing.setMethod("defop", 100);
-    const frames = a.frames();
-    expect(frames).not.toBe(stepped);
-    // 0.25 s: half way (linear) from the first key's places to the second's.
-    const half = targets[0]!.map((v, i) => v + (targets[1]![i]! - v) * 0.5);
-    expect(bytes(frames.frame(6).positions)).toEqual(bytes(trained.operator.evaluate(half)));
-    expect(bytes(frames.frame(24).positions)).toEqual(bytes(trained.operator.evaluate(targets[2]!)));
-    posing.rig.free();
+    expect(() => animationToJson({ ...animation, fps: 500 })).toThrow(
+      expect.objectContaining({ code: "invalid-argument" }),
+    );
   });
 
-  it("clears the keys when the shape changes", () => {
-    const { posing } = posed(400);
-    const { animator: a, messages } = animator(posing);
-    a.capture(0);
-    posing.install(posed(300).posing.shape);
-    expect(a.keys()).toEqual([]);
-    expect(a.frameCount).toBe(0);
-    expect(messages).toEqual(["The shape changed: the animation's keys were cleared."]);
+  it("writes a sprite table", () => {
+    const table = JSON.parse(spriteSheetTable({ frameWidth: 32, frameHeight: 16, columns: 3, frameCount: 4, fps: 8 }));
+    expect(table).toMatchObject({ format: "akap-sprites", version: 1, columns: 3, rows: 2, size: { w: 96, h: 32 } });
+    expect(table.frames[3]).toEqual({ x: 0, y: 16, w: 32, h: 16, duration: 125 });
+    expect(() => spriteSheetTable({ frameWidth: 32, frameHeight: 16, columns: 0, frameCount: 4, fps: 8 })).toThrow(
+      expect.objectContaining({ code: "invalid-argument" }),
+    );
   });
 });

@@ -5,14 +5,14 @@
  * An export from the strip shows the busy indicator's progress bar with Cancel and
  * downloads the file; while an export runs the shape takes no input and nothing is recorded.
  */
-import { animationToJson, encodeAnimation, spriteSheetTable, zipFiles } from "./encoders.js";
+import { animationToJson, encodeAnimation, spriteSheetTable, zipFiles } from "../animation.js";
 import {
   abortError,
   recordWebm,
   rgbaFrames,
   spriteSheet,
   type AnimationExportOptions,
-  type AnimationFormat,
+  type AnimationExportFormat,
   type FramePainter,
   type SpriteSheet,
 } from "./animation-export.js";
@@ -24,6 +24,7 @@ import type { Stage } from "./stage.js";
 import { messageOf } from "./status.js";
 import { checkFps, frameAt } from "./timeline.js";
 import { TimelineStrip } from "./timeline-ui.js";
+import { unpainted } from "./stiffness.js";
 
 /** What the animation needs of the widget. */
 export interface AnimatingHost {
@@ -40,7 +41,7 @@ export interface AnimatingHost {
 /** An export's result: a file, or a sprite sheet's PNG and table. */
 export type AnimationExport = Blob | SpriteSheet;
 
-const FILE_NAMES: Record<AnimationFormat, string> = {
+const FILE_NAMES: Record<AnimationExportFormat, string> = {
   webm: "animation.webm",
   gif: "animation.gif",
   apng: "animation.png",
@@ -100,7 +101,7 @@ export class Animating {
         moveKey: guard((index: number, time: number) => a.moveKey(index, time)),
         scrub: guard((time: number, phase: "start" | "move" | "end") => this.scrub(time, phase)),
         fps: guard((fps: number) => this.setFps(fps)),
-        export: guard((format: AnimationFormat) => this.exportToFile(format)),
+        export: guard((format: AnimationExportFormat) => this.exportToFile(format)),
       });
     }
     this.refresh();
@@ -186,7 +187,7 @@ export class Animating {
    * The animation in `format` (see `Widget.exportAnimation`): each frame shown and drawn
    * by the stage's renderer, the pose put back after.
    */
-  async export(format: AnimationFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
+  async export(format: AnimationExportFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
     if (this.#exporting) throw new Error("an animation export is running already; wait for it or cancel it");
     const a = this.animator;
     // Every frame computed first: a video's frames then come at an even pace.
@@ -251,7 +252,7 @@ export class Animating {
   }
 
   /** An export from the strip: progress with Cancel, then the download. */
-  async exportToFile(format: AnimationFormat): Promise<void> {
+  async exportToFile(format: AnimationExportFormat): Promise<void> {
     const { stage, document } = this.#host;
     const label = `Exporting the animation (${format})`;
     const cancel = () => this.cancelExport();
@@ -282,9 +283,11 @@ export class Animating {
 
   #json(): string {
     const a = this.animator;
-    const { mesh } = this.#host.posing.shape;
+    const { shape, stiffness } = this.#host.posing;
+    const mesh = shape.mesh;
+    const painted = unpainted(stiffness) ? undefined : stiffness;
     return animationToJson({
-      mesh: { vertices: mesh.positions, triangles: mesh.triangles },
+      mesh: { positions: mesh.positions, triangles: mesh.triangles, stiffness: painted },
       fps: this.#host.settings.fps,
       keys: a.timeline.keys.map((k) => ({ time: k.time, easing: k.easing, handles: k.targets })),
       frames: a

@@ -9,8 +9,8 @@
  */
 
 /** The formats of {@link exportAnimation}. */
-export type AnimationFormat = "webm" | "gif" | "apng" | "sprites" | "json" | "svg";
-export const ANIMATION_FORMATS: readonly AnimationFormat[] = ["webm", "gif", "apng", "sprites", "json", "svg"];
+export type AnimationExportFormat = "webm" | "gif" | "apng" | "sprites" | "json" | "svg";
+export const ANIMATION_FORMATS: readonly AnimationExportFormat[] = ["webm", "gif", "apng", "sprites", "json", "svg"];
 
 export interface AnimationExportOptions {
   /** Hears `done` of `total` frames after each one. */

@@ -6,7 +6,7 @@
  * Delete or Backspace in the strip deletes the selected key; on the track, the arrows move
  * the playhead a frame back or on, Home and End to the ends.
  */
-import { ANIMATION_FORMATS, type AnimationFormat } from "./animation-export.js";
+import { ANIMATION_FORMATS, type AnimationExportFormat } from "./animation-export.js";
 import { EASINGS, FPS_RANGE, type Easing } from "./timeline.js";
 
 export interface StripActions {
@@ -20,7 +20,7 @@ export interface StripActions {
   /** The playhead dragged: `phase` "start", "move" (show that time) or "end". */
   scrub(time: number, phase: "start" | "move" | "end"): void;
   fps(fps: number): void;
-  export(format: AnimationFormat): void;
+  export(format: AnimationExportFormat): void;
 }
 
 /** What the strip shows. */
@@ -36,7 +36,7 @@ export interface StripState {
   loop: boolean;
 }
 
-const FORMAT_LABELS: Record<AnimationFormat, string> = {
+const FORMAT_LABELS: Record<AnimationExportFormat, string> = {
   webm: "WebM video",
   gif: "Animated GIF",
   apng: "Animated PNG (APNG)",
@@ -139,7 +139,7 @@ export class TimelineStrip {
     this.#export.append(new Option("Export animation…", ""));
     for (const f of ANIMATION_FORMATS) this.#export.append(new Option(FORMAT_LABELS[f], f));
     this.#export.addEventListener("change", () => {
-      const format = this.#export.value as AnimationFormat | "";
+      const format = this.#export.value as AnimationExportFormat | "";
       this.#export.value = "";
       if (format) actions.export(format);
     });

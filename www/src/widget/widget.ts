@@ -48,7 +48,7 @@ import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
 import { Brush, type BrushHost } from "./brush.js";
 import { Animating, type AnimatingHost, type AnimationExport } from "./animating.js";
-import type { AnimationExportOptions, AnimationFormat, SpriteSheet } from "./animation-export.js";
+import type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
 import type { KeyInfo } from "./animator.js";
 import type { Easing } from "./timeline.js";
 import { unpainted, type BrushSettings } from "./stiffness.js";
@@ -66,7 +66,7 @@ export {
 export type { BrushSettings } from "./stiffness.js";
 export type { RigInfo, WidgetTrainOptions } from "./rigging.js";
 export type { AnimationExport } from "./animating.js";
-export type { AnimationExportOptions, AnimationFormat, SpriteSheet } from "./animation-export.js";
+export type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
 export type { KeyInfo } from "./animator.js";
 export type { Easing } from "./timeline.js";
 
@@ -684,9 +684,9 @@ export class Widget {
    * `AbortError` on `signal`'s abort.
    */
   exportAnimation(format: "sprites", options?: AnimationExportOptions): Promise<SpriteSheet>;
-  exportAnimation(format: Exclude<AnimationFormat, "sprites">, options?: AnimationExportOptions): Promise<Blob>;
-  exportAnimation(format: AnimationFormat, options?: AnimationExportOptions): Promise<AnimationExport>;
-  exportAnimation(format: AnimationFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
+  exportAnimation(format: Exclude<AnimationExportFormat, "sprites">, options?: AnimationExportOptions): Promise<Blob>;
+  exportAnimation(format: AnimationExportFormat, options?: AnimationExportOptions): Promise<AnimationExport>;
+  exportAnimation(format: AnimationExportFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
     return this.#animating.export(format, options);
   }
 
