@@ -439,3 +439,43 @@ test("GIF, APNG, sprite sheet, JSON and SVG exports decode back to the frames dr
   expect(animation.keys.map((k) => k.time)).toEqual([0, 0.5, 1]);
   expect(animation.mesh.triangles.length).toBe(result.triangleCount * 3);
 });
+
+test("an imported SVG animates to one SVG per frame with its own paths and colours, moving", async ({ page }) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  const svg =
+    '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 200 100">' +
+    '<rect width="120" height="100" fill="#dd2222"/><circle cx="150" cy="50" r="45" fill="#2222dd"/></svg>';
+  await page.locator('input[name="shape-file"]').setInputFiles({
+    name: "two-colours.svg",
+    mimeType: "image/svg+xml",
+    buffer: Buffer.from(svg),
+  });
+  await expect(page.getByRole("combobox", { name: "Shape" }).locator("option:checked")).toHaveText("two-colours.svg");
+  await recordThreeKeys(page);
+  const files = await page.evaluate(async () => {
+    const zip = new Uint8Array(await (await window.akapDemo!.widget.exportAnimation("svg")).arrayBuffer());
+    // Stored entries one after another: local header (30 bytes, name, data).
+    const view = new DataView(zip.buffer);
+    const out: { name: string; text: string }[] = [];
+    for (let at = 0; view.getUint32(at, true) === 0x04034b50;) {
+      const size = view.getUint32(at + 18, true);
+      const [nameLength, extra] = [view.getUint16(at + 26, true), view.getUint16(at + 28, true)];
+      const name = new TextDecoder().decode(zip.subarray(at + 30, at + 30 + nameLength));
+      const start = at + 30 + nameLength + extra;
+      out.push({ name, text: new TextDecoder().decode(zip.subarray(start, start + size)) });
+      at = start + size;
+    }
+    return out;
+  });
+  expect(files).toHaveLength(FPS + 1);
+  expect(files[0]!.name).toBe("frame-00.svg");
+  expect(files.at(-1)!.name).toBe("frame-24.svg");
+  for (const { text } of [files[0]!, files.at(-1)!]) {
+    expect(text).toContain('fill="#dd2222"');
+    expect(text).toContain('fill="#2222dd"');
+    expect(text.match(/<path /g)).toHaveLength(2);
+  }
+  // The paths move with the frames.
+  expect(files[0]!.text).not.toBe(files.at(-1)!.text);
+});
