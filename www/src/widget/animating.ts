@@ -219,7 +219,9 @@ export class Animating {
           return await recordWebm(painter, opts);
         case "gif":
         case "apng": {
-          const bytes = await encodeAnimation(format, rgbaFrames(painter, signal), opts);
+          // The frames come one at a time (the encoder cannot know their count): the total is ours.
+          const onProgress = (done: number) => options.onProgress?.(done, count);
+          const bytes = await encodeAnimation(format, rgbaFrames(painter, signal), { signal, onProgress });
           return new Blob([bytes as Uint8Array<ArrayBuffer>], { type: format === "gif" ? "image/gif" : "image/apng" });
         }
         case "sprites":
