@@ -221,6 +221,26 @@ test("an export cancelled midway takes its progress bar away and downloads nothi
   await expect(page.locator("#app .akap-host .status")).toHaveText("Export cancelled; nothing was saved.");
   await page.waitForTimeout(1500);
   expect(downloads).toEqual([]);
+  // Through the API: a GIF aborted after three frames rejects with an AbortError, and the
+  // pose on screen is the one before the export.
+  const aborted = await page.evaluate(async () => {
+    const w = window.akapDemo!.widget;
+    const before = Array.from(w.positions());
+    const controller = new AbortController();
+    let frames = 0;
+    const error = await w
+      .exportAnimation("gif", {
+        signal: controller.signal,
+        onProgress: (done) => {
+          frames = done;
+          if (done === 3) controller.abort();
+        },
+      })
+      .catch((e: unknown) => e as Error);
+    const after = Array.from(w.positions());
+    return { name: (error as Error).name, frames, same: after.every((v, i) => v === before[i]) };
+  });
+  expect(aborted).toEqual({ name: "AbortError", frames: 3, same: true });
   // And one that is not cancelled downloads its file.
   const download = page.waitForEvent("download");
   await strip(page).exportMenu.selectOption("webm");
