@@ -213,9 +213,11 @@ describe("animation frames", () => {
     posing.rig.free();
   });
 
-  it("clears the keys when the shape changes", () => {
+  it("refuses to play without keys, and clears the keys when the shape changes", async () => {
     const { posing } = posed(400);
     const { animator: a, messages } = animator(posing);
+    await expect(a.play()).rejects.toThrow(/there are no keys/);
+    expect(() => a.frames()).toThrow(/there are no keys/);
     a.capture(0);
     posing.install(posed(300).posing.shape);
     expect(a.keys()).toEqual([]);

@@ -248,9 +248,9 @@ export class Animator {
    * Plays from the playhead (from the start when it is at the end) in real time at the
    * frame rate, computing frames as it goes (slower than real time while they take longer
    * than a frame to compute); `loop` starts again after the last frame. Resolves when
-   * playback stops (the end, or {@link pause}).
+   * playback stops (the end, or {@link pause}); rejects without keys.
    */
-  play(options: { loop?: boolean } = {}): Promise<void> {
+  async play(options: { loop?: boolean } = {}): Promise<void> {
     const frames = this.frames();
     if (options.loop !== undefined) this.loop = options.loop;
     const stopped = new Promise<void>((resolve) => this.#whenStopped.push(resolve));
