@@ -11,7 +11,11 @@ import { keyCommand, keyFocus } from "./keys.js";
 import { HANDLE_RADIUS, RING_RADIUS } from "./overlay.js";
 import { locate, nearestPoint } from "./picking.js";
 import { PointerInput } from "./pointer.js";
+import type { WidgetSettings } from "./options.js";
 import type { Posing } from "./posing.js";
+import type { Stage } from "./stage.js";
+import type { Toolbar } from "./toolbar.js";
+import type { Widget } from "./widget.js";
 import { fromPixel } from "./view.js";
 
 /** What the input needs of the widget. */
@@ -46,6 +50,53 @@ export interface InputHost {
   dropped(file: File): void;
   /** The animation: capture a key (K), play or pause (a tap of Space). */
   animate(what: "capture" | "play"): void;
+}
+
+/** What {@link inputHost} reads of the widget's parts (see `widget.ts`). */
+export interface InputParts {
+  readonly posing: Posing;
+  readonly stage: Stage;
+  readonly settings: WidgetSettings;
+  readonly root: HTMLElement;
+  readonly toolbar: Toolbar | undefined;
+  draw(): void;
+  gesture(change: () => void): void;
+  showError(error: unknown): void;
+}
+
+/** The input's host for a widget: its public API, its parts, and what only it has. */
+export function inputHost(
+  widget: Pick<
+    Widget,
+    "removeHandle" | "undo" | "redo" | "zoom" | "setDisplay" | "bringForward" | "sendBack" | "loadFile"
+  >,
+  parts: InputParts,
+  own: Pick<InputHost, "moved" | "brush" | "help" | "animate">,
+): InputHost {
+  const { stage, settings } = parts;
+  return {
+    ...own,
+    posing: parts.posing,
+    camera: stage.camera,
+    root: parts.root,
+    overlay: stage.overlay,
+    ratio: () => stage.ratio,
+    devicePixel: (x, y) => stage.devicePixel(x, y),
+    draw: () => parts.draw(),
+    succeeded: () => stage.status.succeeded(),
+    gesture: (change) => parts.gesture(change),
+    removeHandle: (index) => widget.removeHandle(index),
+    undo: () => widget.undo(),
+    redo: () => widget.redo(),
+    zoom: (factor) => widget.zoom(factor),
+    toggleDisplay: (what) => {
+      widget.setDisplay({ [what]: !settings[what] });
+      parts.toolbar?.sync(settings);
+    },
+    reorder: (step) => (step > 0 ? widget.bringForward() : widget.sendBack()),
+    helpOpen: () => stage.help.open,
+    dropped: (file) => widget.loadFile(file).catch((error: unknown) => parts.showError(error)),
+  };
 }
 
 export class WidgetInput {

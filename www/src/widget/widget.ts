@@ -35,7 +35,7 @@ import {
 } from "./options.js";
 import { WorkKeeper, WorkStore, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
-import { WidgetInput } from "./input.js";
+import { WidgetInput, inputHost } from "./input.js";
 import { Posing } from "./posing.js";
 import { Rigging, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
 import type { TrainProgress } from "../defop-pool.js";
@@ -201,7 +201,14 @@ export class Widget {
     this.#root.dataset.renderer = this.#stage.renderer.kind;
 
     this.#brush = new Brush(parts);
-    this.#input = this.#bindInput();
+    this.#input = new WidgetInput(
+      inputHost(this, parts, {
+        moved: () => this.#frames.moved(),
+        brush: this.#brush,
+        help: (open) => this.#toggleHelp(open),
+        animate: (what) => this.#animating.key(what),
+      }),
+    );
     this.#resizeObserver = new ResizeObserver(() => this.#resize());
     target.append(this.#host);
   }
@@ -794,35 +801,6 @@ export class Widget {
   }
 
   // ---------------------------------------------------------------- input
-
-  #bindInput(): WidgetInput {
-    return new WidgetInput({
-      posing: this.#posing,
-      camera: this.#stage.camera,
-      root: this.#root,
-      overlay: this.#stage.overlay,
-      ratio: () => this.#stage.ratio,
-      devicePixel: (x, y) => this.#stage.devicePixel(x, y),
-      draw: () => this.#draw(),
-      moved: () => this.#frames.moved(),
-      succeeded: () => this.#stage.status.succeeded(),
-      gesture: (change) => this.#gesture(change),
-      removeHandle: (index) => this.removeHandle(index),
-      undo: () => this.undo(),
-      redo: () => this.redo(),
-      zoom: (factor) => this.zoom(factor),
-      toggleDisplay: (what) => {
-        this.setDisplay({ [what]: !this.#settings[what] });
-        this.#toolbar?.sync(this.#settings);
-      },
-      brush: this.#brush,
-      reorder: (step) => (step > 0 ? this.bringForward() : this.sendBack()),
-      help: (open) => this.#toggleHelp(open),
-      helpOpen: () => this.#stage.help.open,
-      dropped: (file) => this.loadFile(file).catch((error: unknown) => this.#showError(error)),
-      animate: (what) => this.#animating.key(what),
-    });
-  }
 
   #toggleHelp(open = !this.#stage.help.open): void {
     this.#stage.help.open = open;
