@@ -499,3 +499,28 @@ test("an imported SVG animates to one SVG per frame with its own paths and colou
   // The paths move with the frames.
   expect(files[0]!.text).not.toBe(files.at(-1)!.text);
 });
+
+test("the keys and fps are kept with the work: after a reload the same frames, bit for bit", async ({ page }) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  await recordThreeKeys(page);
+  await strip(page).root.locator("input.fps").fill("12");
+  await strip(page).root.locator("input.fps").press("Enter");
+  const read = () =>
+    page.evaluate(() => {
+      const w = window.akapDemo!.widget;
+      return {
+        keys: w.keys().map((k) => [k.time, k.easing, Array.from(k.targets)]),
+        frames: w.animationFrames().map((f) => Array.from(f)),
+      };
+    });
+  const before = await read();
+  expect(before.frames).toHaveLength(13);
+  // Saved a moment after the last change.
+  await page.waitForTimeout(1000);
+  await page.reload();
+  await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
+  await expect(strip(page).markers).toHaveCount(3);
+  await expect(strip(page).root.locator("input.fps")).toHaveValue("12");
+  expect(await read()).toEqual(before);
+});

@@ -19,6 +19,7 @@ import {
 import { Animator } from "./animator.js";
 import { download, posedSvg } from "./export.js";
 import type { WidgetSettings } from "./options.js";
+import type { SavedAnimation } from "./persist.js";
 import type { Posing } from "./posing.js";
 import type { Stage } from "./stage.js";
 import { messageOf } from "./status.js";
@@ -36,6 +37,8 @@ export interface AnimatingHost {
   poseChanged(): void;
   emit(type: string, detail: unknown): void;
   showError(error: unknown): void;
+  /** The work changed (the keeper saves it soon). */
+  keep(): void;
 }
 
 /** An export's result: a file, or a sprite sheet's PNG and table. */
@@ -69,7 +72,10 @@ export class Animating {
         host.poseChanged();
         host.emit("akap-frame", { index, time: index / host.settings.fps });
       },
-      changed: () => this.refresh(),
+      changed: () => {
+        this.refresh();
+        host.keep();
+      },
       info: (message) => host.stage.status.info(message),
     });
     if (host.settings.timeline) {
@@ -242,6 +248,25 @@ export class Animating {
       a.playhead = playhead;
       this.refresh();
     }
+  }
+
+  /** The animation to keep with the work (undefined without keys). */
+  saved(): SavedAnimation | undefined {
+    const { keys, handles } = this.animator.timeline;
+    if (!handles || keys.length === 0) return undefined;
+    return {
+      fps: this.#host.settings.fps,
+      handles: { triangles: [...handles.triangles], barycentric: [...handles.barycentric] },
+      keys: keys.map((k) => ({ time: k.time, easing: k.easing, targets: k.targets, pose: k.pose })),
+    };
+  }
+
+  /** An animation kept with the work put back (see {@link Animator.restoreKeys}); throws, changing nothing, if it does not fit. */
+  restore(saved: SavedAnimation): void {
+    checkFps(saved.fps);
+    this.animator.restoreKeys(saved);
+    this.#host.settings.fps = saved.fps;
+    this.refresh();
   }
 
   /** Stops the export under way (its promise rejects with an `AbortError`). */

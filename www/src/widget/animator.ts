@@ -13,7 +13,16 @@ import { newHandle, type Posing } from "./posing.js";
 import type { Rig } from "./rig.js";
 import type { Shape } from "./shape.js";
 import { unpainted } from "./stiffness.js";
-import { Timeline, checkTime, frameAt, frameCount, frameTime, type Easing, type Key } from "./timeline.js";
+import {
+  Timeline,
+  checkTime,
+  frameAt,
+  frameCount,
+  frameTime,
+  type Easing,
+  type HandleSet,
+  type Key,
+} from "./timeline.js";
 
 /** What the animator needs of the widget. */
 export interface AnimatorHost {
@@ -35,7 +44,8 @@ export interface KeyInfo {
 }
 
 export class Animator {
-  readonly timeline = new Timeline();
+  /** The keys (replaced whole by {@link restoreKeys}). */
+  timeline = new Timeline();
   /** The frame on screen (or where playback resumes). */
   playhead = 0;
   playing = false;
@@ -126,6 +136,27 @@ export class Animator {
     this.timeline.clear();
     this.selected = undefined;
     this.#edited();
+  }
+
+  /**
+   * Keys kept with the work put back (each checked as a capture is), on the shape posed now;
+   * throws, changing nothing, when they do not fit it.
+   */
+  restoreKeys(saved: { handles: HandleSet; keys: readonly Key[] }): void {
+    const timeline = new Timeline();
+    for (const k of saved.keys) timeline.capture(k.time, saved.handles, k.targets, k.pose, k.easing);
+    const vertices = this.#host.posing.shape.mesh.vertexCount;
+    if (timeline.keys.some((k) => k.pose.length !== 2 * vertices)) {
+      throw new Error("the kept animation's poses do not fit the shape");
+    }
+    this.pause();
+    this.#frames?.free();
+    this.#frames = undefined;
+    this.timeline = timeline;
+    this.#shape = timeline.keys.length > 0 ? this.#host.posing.shape : undefined;
+    this.selected = undefined;
+    this.playhead = 0;
+    this.#host.changed();
   }
 
   /**

@@ -38,6 +38,15 @@ export interface SavedWork {
   handles: HandleState[];
   /** Painted stiffness, one per triangle (absent: none). */
   stiffness?: Float64Array;
+  /** The animation's keys and frame rate (absent: none; work saved before animation has none). */
+  animation?: SavedAnimation;
+}
+
+/** The animation kept with the work: its frame rate, handle set and keys (each with its pose). */
+export interface SavedAnimation {
+  fps: number;
+  handles: { triangles: number[]; barycentric: number[] };
+  keys: { time: number; easing: "linear" | "ease"; targets: Float64Array; pose: Float64Array }[];
 }
 
 const DATABASE = "akap";
@@ -151,6 +160,7 @@ export function savedWork(
   shape: Shape,
   pose: SavedPose,
   texture: Blob | undefined,
+  animation?: SavedAnimation,
 ): SavedWork {
   const s = settings;
   const { mesh } = shape;
@@ -189,6 +199,7 @@ export function savedWork(
     atRest: pose.atRest,
     handles: pose.handles,
     ...(pose.stiffness ? { stiffness: pose.stiffness } : {}),
+    ...(animation ? { animation } : {}),
   };
 }
 
@@ -225,6 +236,8 @@ export interface WorkSource {
   settings: SavedSettings;
   shape: Shape;
   pose(): SavedPose;
+  /** The animation, when it has keys. */
+  animation?(): SavedAnimation | undefined;
 }
 
 /** The pose part of the work: positions, handles and painted stiffness. */
@@ -302,6 +315,6 @@ export class WorkKeeper {
       texture = this.#textures.get(work.shape) ?? textureBlob(source);
       this.#textures.set(work.shape, texture);
     }
-    await this.store.save(savedWork(work.settings, work.shape, work.pose(), await texture));
+    await this.store.save(savedWork(work.settings, work.shape, work.pose(), await texture, work.animation?.()));
   }
 }

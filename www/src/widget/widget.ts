@@ -107,7 +107,12 @@ export class Widget {
           () =>
             this.#destroyed || this.#posing.replaying
               ? undefined
-              : { settings: this.#settings, shape: this.#posing.shape, pose: () => this.#posing.snapshot() },
+              : {
+                  settings: this.#settings,
+                  shape: this.#posing.shape,
+                  pose: () => this.#posing.snapshot(),
+                  animation: () => this.#animating.saved(),
+                },
           (error) => this.#stage.status.info(`Your work cannot be kept in this browser: ${messageOf(error)}`),
         )
       : undefined;
@@ -160,6 +165,7 @@ export class Widget {
       emit: (type, detail) => this.#emit(type, detail),
       gesture: (change) => this.#gesture(change),
       poseChanged: () => this.#frames.poseChanged(),
+      keep: () => this.#keeper?.changed(),
     };
     this.#parts = parts;
     this.#frames = new FrameLoop(parts);
@@ -755,6 +761,11 @@ export class Widget {
   /** Puts back saved work (over the shape just installed); throws, changing nothing, if it cannot. */
   async #resume(saved: SavedWork): Promise<void> {
     await this.#loader.resume(saved);
+    try {
+      if (saved.animation) this.#animating.restore(saved.animation);
+    } catch (error) {
+      this.#stage.status.info(`The animation's keys could not be restored (${messageOf(error)}).`);
+    }
     this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
     this.#syncToolbar();
   }
