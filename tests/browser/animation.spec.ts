@@ -500,7 +500,9 @@ test("an imported SVG animates to one SVG per frame with its own paths and colou
   expect(files[0]!.text).not.toBe(files.at(-1)!.text);
 });
 
-test("the keys and fps are kept with the work: after a reload the same frames, bit for bit", async ({ page }) => {
+test("the keys and fps are kept with the work: after a reload the same frames, bit for bit; Start over forgets them", async ({
+  page,
+}) => {
   await page.setViewportSize({ width: 900, height: 700 });
   await open(page);
   await recordThreeKeys(page);
@@ -523,4 +525,11 @@ test("the keys and fps are kept with the work: after a reload the same frames, b
   await expect(strip(page).markers).toHaveCount(3);
   await expect(strip(page).root.locator("input.fps")).toHaveValue("12");
   expect(await read()).toEqual(before);
+  // Start over forgets them, also after a reload.
+  await page.getByRole("button", { name: "Start over" }).click();
+  await expect(strip(page).markers).toHaveCount(0);
+  await page.waitForTimeout(1000);
+  await page.reload();
+  await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
+  expect(await page.evaluate(() => window.akapDemo!.widget.keys().length)).toBe(0);
 });

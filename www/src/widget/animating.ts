@@ -252,6 +252,8 @@ export class Animating {
 
   /** The animation to keep with the work (undefined without keys). */
   saved(): SavedAnimation | undefined {
+    // (Counting the frames forgets keys of a shape no longer posed.)
+    if (this.animator.frameCount === 0) return undefined;
     const { keys, handles } = this.animator.timeline;
     if (!handles || keys.length === 0) return undefined;
     return {

@@ -705,10 +705,12 @@ export class Widget {
 
   /**
    * Forgets the saved work and starts again: the default shape at its default density, at
-   * rest, without handles, with the default method and display. Undoable.
+   * rest, without handles or animation keys, with the default method and display. Undoable
+   * (the keys excepted).
    */
   async startOver(): Promise<void> {
     await this.#keeper?.store.clear();
+    this.#animating.animator.clear();
     this.#loader.startOver();
     this.#syncToolbar();
   }
