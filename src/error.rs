@@ -4,6 +4,7 @@
 
 use std::fmt;
 
+use crate::animation::AnimationError;
 use crate::defop::TrainError;
 use crate::deform::DeformError;
 use crate::import::ImportError;
@@ -35,6 +36,8 @@ pub enum Error {
     Factor(FactorError),
     /// A deformation operator could not be trained, fitted or solved for.
     DefOp(TrainError),
+    /// An animation could not be encoded, packed, written or read.
+    Animation(AnimationError),
 }
 
 impl fmt::Display for Error {
@@ -47,6 +50,7 @@ impl fmt::Display for Error {
             Self::Deform(e) => e.fmt(f),
             Self::Factor(e) => e.fmt(f),
             Self::DefOp(e) => e.fmt(f),
+            Self::Animation(e) => e.fmt(f),
         }
     }
 }
@@ -61,6 +65,7 @@ impl std::error::Error for Error {
             Self::Deform(e) => Some(e),
             Self::Factor(e) => Some(e),
             Self::DefOp(e) => Some(e),
+            Self::Animation(e) => Some(e),
         }
     }
 }
@@ -89,6 +94,12 @@ pub(crate) fn one_of(words: &[&str]) -> String {
         Some((last, [])) => last.clone(),
         Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
         None => "nothing".into(),
+    }
+}
+
+impl From<AnimationError> for Error {
+    fn from(e: AnimationError) -> Self {
+        Self::Animation(e)
     }
 }
 

@@ -22,9 +22,11 @@
 //! [`sparse`] (our sparse Cholesky and eigensolver), [`random`] (a seeded generator),
 //! [`deform`] (AKAP and ARAP), [`defop`] (the deformation operators of the DefOp paper),
 //! [`session`] (recorded interaction sessions and their replay), [`import`] (SVG
-//! documents, images and mesh files in), and `wasm` (the JavaScript bindings, compiled for
+//! documents, images and mesh files in), [`animation`] (animations out: GIF, APNG, ZIP,
+//! the `akap-animation` JSON and sprite tables), and `wasm` (the JavaScript bindings, compiled for
 //! wasm32 only).
 
+pub mod animation;
 pub mod defop;
 pub mod deform;
 pub mod error;

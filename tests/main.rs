@@ -1,5 +1,7 @@
 //! Integration tests: one binary, one module per area, shared checks in `common`.
 
+mod animation;
+mod animation_file;
 mod arap;
 mod bones;
 mod cauchy_green;
@@ -29,5 +31,7 @@ mod sparse;
 mod stiffness;
 mod triangulation;
 mod turning;
+#[cfg(target_arch = "wasm32")]
+mod wasm_animation;
 #[cfg(target_arch = "wasm32")]
 mod wasm_api;

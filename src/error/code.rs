@@ -5,6 +5,7 @@
 use std::fmt;
 
 use super::Error;
+use crate::animation::AnimationError;
 use crate::defop::{DefOpError, FitError, TrainError};
 use crate::deform::DeformError;
 use crate::import::ImportError;
@@ -104,6 +105,30 @@ impl Error {
             Self::Deform(e) => e.code(),
             Self::Factor(e) => e.code(),
             Self::DefOp(e) => e.code(),
+            Self::Animation(e) => e.code(),
+        }
+    }
+}
+
+impl AnimationError {
+    /// The kind of error: [`ErrorCode::Limit`] beyond a size limit, [`ErrorCode::Import`]
+    /// for an animation file that cannot be read, the mesh file's own for its mesh,
+    /// [`ErrorCode::Internal`] should an image encoder fail, otherwise
+    /// [`ErrorCode::InvalidArgument`] (sizes, pixel buffers, delays, file names, an
+    /// animation to write that is not valid, an encoder without frames or finished).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::TooLarge { .. } => ErrorCode::Limit,
+            Self::Syntax { .. } | Self::File { .. } => ErrorCode::Import,
+            Self::Mesh(e) => e.code(),
+            Self::Encoder { .. } => ErrorCode::Internal,
+            Self::Size { .. }
+            | Self::FrameLength { .. }
+            | Self::Delay { .. }
+            | Self::NoFrames
+            | Self::Finished
+            | Self::FileName { .. }
+            | Self::Invalid { .. } => ErrorCode::InvalidArgument,
         }
     }
 }

@@ -37,9 +37,11 @@ pub struct MeshFile {
     pub stiffness: Option<Vec<f64>>,
 }
 
+/// A mesh in our JSON layout as serde reads and writes it, unchecked; also the `mesh` of
+/// an `akap-animation` file (`crate::animation::file`).
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-struct JsonMesh {
+pub(crate) struct JsonMesh {
     positions: Vec<f64>,
     triangles: Vec<u32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -132,6 +134,11 @@ pub fn read_json(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
             column,
         }
     })?;
+    from_json_mesh(parsed, limits)
+}
+
+/// The checked mesh file of a parsed [`JsonMesh`] (what [`read_json`] does after parsing).
+pub(crate) fn from_json_mesh(parsed: JsonMesh, limits: &Limits) -> Result<MeshFile, ImportError> {
     check_counts(parsed.positions.len() / 2, parsed.triangles.len() / 3, limits, "the mesh")?;
     let mesh = Mesh::from_flat(&parsed.positions, &parsed.triangles)?;
     let uvs = match parsed.uvs {
@@ -187,18 +194,29 @@ pub fn write_json_pose(
     stiffness: Option<&[f64]>,
     limits: &Limits,
 ) -> Result<String, ImportError> {
+    let json = to_json_mesh(positions, triangles, uvs, stiffness, limits)?;
+    // Arrays of finite numbers and indices always serialise.
+    check_written(serde_json::to_string(&json).expect("a mesh serialises to JSON"), limits, "the JSON text")
+}
+
+/// The [`JsonMesh`] of a pose, checked as [`write_json_pose`] checks it.
+pub(crate) fn to_json_mesh(
+    positions: &[Point],
+    triangles: &[[u32; 3]],
+    uvs: Option<&[Point]>,
+    stiffness: Option<&[f64]>,
+    limits: &Limits,
+) -> Result<JsonMesh, ImportError> {
     check_writable(positions, triangles, uvs, limits)?;
     if let Some(stiffness) = stiffness {
         check_stiffness(stiffness, triangles.len())?;
     }
-    let json = JsonMesh {
+    Ok(JsonMesh {
         positions: positions.iter().flatten().copied().collect(),
         triangles: triangles.iter().flatten().copied().collect(),
         uvs: uvs.map(|u| u.iter().flatten().copied().collect()),
         stiffness: stiffness.map(<[f64]>::to_vec),
-    };
-    // Arrays of finite numbers and indices always serialise.
-    check_written(serde_json::to_string(&json).expect("a mesh serialises to JSON"), limits, "the JSON text")
+    })
 }
 
 /// OBJ statements that carry nothing for a flat triangle mesh; they are skipped.

@@ -72,6 +72,12 @@ pub struct Limits {
     /// tests, squared distances, summed over every point) stay far from overflowing, and
     /// positions still fit in single precision (3.4e38) for drawing.
     pub max_coordinate: f64,
+    /// Most bytes of RGBA an animation's frames may add up to, 4 per pixel per frame
+    /// (default 1 GiB, 1,073,741,824 bytes: 1,024 frames of 512 x 512, 129 of 1920 x
+    /// 1080). The encoders hold the frames compressed, so they need at most about this much
+    /// memory, and far less for a rendered mesh on a plain background (see
+    /// [`crate::animation::AnimationEncoder`]).
+    pub max_animation_bytes: usize,
 }
 
 impl Default for Limits {
@@ -85,6 +91,7 @@ impl Default for Limits {
             max_attribute_pairs: 10_000_000,
             max_segment_pairs: 50_000_000,
             max_coordinate: 1e30,
+            max_animation_bytes: 1 << 30,
         }
     }
 }
@@ -110,6 +117,7 @@ impl Limits {
             ("maxElements", self.max_elements),
             ("maxAttributePairs", self.max_attribute_pairs),
             ("maxSegmentPairs", self.max_segment_pairs),
+            ("maxAnimationBytes", self.max_animation_bytes),
         ];
         for (name, value) in counts {
             if value == 0 {

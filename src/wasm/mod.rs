@@ -12,8 +12,10 @@
 //! `mesh`: meshes, triangulation, built-in shapes; `deformer`: the deformers and their
 //! options; `import`: shapes from SVG, images and mesh files, and `PointMapper`; `session`:
 //! recorded sessions read, checked and written by `crate::session`; `defop`: training and
-//! evaluating deformation operators (`crate::defop`).
+//! evaluating deformation operators (`crate::defop`); `animation`: animated GIF and APNG,
+//! ZIP archives, the `akap-animation` JSON and sprite tables (`crate::animation`).
 
+mod animation;
 mod defop;
 mod deformer;
 mod error;
@@ -22,6 +24,7 @@ mod mesh;
 mod read;
 mod session;
 
+pub use animation::{animation_from_json, animation_to_json, sprite_sheet_table, zip_files, JsAnimationEncoder};
 pub use defop::{ground_truth, JsDefOp, JsDefOpSolver, JsDefOpTrainer};
 pub use deformer::{check_stiffness, deformer_orders, JsDeformer};
 pub use error::BindingError;

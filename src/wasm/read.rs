@@ -267,7 +267,7 @@ impl Options {
 }
 
 /// An argument whose reading threw: the exception's message.
-fn unreadable(what: &str, thrown: &JsValue) -> BindingError {
+pub(super) fn unreadable(what: &str, thrown: &JsValue) -> BindingError {
     BindingError::argument(format!("{what} could not be read: {}", message(thrown)))
 }
 

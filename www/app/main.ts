@@ -42,7 +42,7 @@ declare global {
  */
 function optionsFromUrl(params: URLSearchParams): { options: WidgetOptions; problems: string[] } {
   // The app keeps the user's work across reloads (not when the URL asks for a shape).
-  const options: WidgetOptions = { gallery, storageKey: "akap-app" };
+  const options: WidgetOptions = { gallery, storageKey: "akap-app", timeline: true };
   const problems: string[] = [];
   const shape = params.get("shape");
   if (shape !== null) {

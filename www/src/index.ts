@@ -5,6 +5,8 @@
  *   the built-in shapes and the {@link Deformer}.
  * - Deformation operators: {@link DefOpTrainer} trains a {@link DefOp}, which poses a mesh in
  *   closed form; {@link groundTruth} is the deformation it approximates.
+ * - Animations out: {@link encodeAnimation} (GIF, APNG), {@link zipFiles},
+ *   {@link animationToJson} and {@link animationFromJson}, {@link spriteSheetTable}.
  * - The posing widget for pages: {@link mount} it into an element, or register the
  *   `<akap-deformer>` custom element with {@link defineElement}.
  *
@@ -32,8 +34,15 @@ export {
   type MethodPreset,
   type PoseDetail,
   type WidgetOptions,
+  type AnimationExport,
+  type AnimationExportFormat,
+  type AnimationExportOptions,
+  type Easing,
+  type KeyInfo,
+  type SpriteSheet,
 } from "./widget/widget.js";
 export { defineElement, type AkapDeformerElement } from "./widget/element.js";
 export type { SessionData, SessionEvent, SessionMesh, SessionShape, ShapeSpec } from "./widget/session.js";
 export { Session, parseSession, sessionMesh } from "./widget/session.js";
 export * from "./import.js";
+export * from "./animation.js";

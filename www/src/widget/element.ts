@@ -11,9 +11,10 @@
  * Attributes (read when the element is connected): `shape`, `src` (an SVG, image or mesh
  * file to pose instead), `operator` (a trained rig's `.defop` file: its shape posed at once
  * by the rig, no training), `texture` (an image URL), `region`, `compare`,
- * `vertices`, `method`, `lambda`, `controls`, `hud`, `wireframe`, `field` (`"false"` turns
- * a default-on feature off). The element fires the widget's events (`akap-ready`,
- * `akap-pose`, `akap-handles`, `akap-error`); `element.widget` is the {@link Widget}.
+ * `vertices`, `method`, `lambda`, `controls`, `hud`, `wireframe`, `field`, `timeline` (the
+ * animation's strip), `fps` (`"false"` turns a default-on feature off). The element fires the
+ * widget's events (`akap-ready`, `akap-pose`, `akap-handles`, `akap-error`, `akap-frame`);
+ * `element.widget` is the {@link Widget}.
  */
 import { mount, type MethodPreset, type Widget, type WidgetOptions } from "./widget.js";
 
@@ -102,5 +103,7 @@ function elementOptions(element: HTMLElement): WidgetOptions {
   assign("hud", flag("hud"));
   assign("wireframe", flag("wireframe"));
   assign("field", flag("field"));
+  assign("timeline", flag("timeline"));
+  assign("fps", num("fps"));
   return options;
 }

@@ -1,6 +1,7 @@
 /**
  * The widget's input: pointer gestures on the shape (handles or the stiffness brush, and
- * the view's pan and zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan,
+ * the view's pan and zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan
+ * (tapped: play or pause the animation),
  * and files dropped on the stage. What each gesture changes is the posing's and the
  * widget's; this file only routes.
  */
@@ -11,7 +12,11 @@ import { keyCommand, keyFocus } from "./keys.js";
 import { HANDLE_RADIUS, RING_RADIUS } from "./overlay.js";
 import { locate, nearestPoint } from "./picking.js";
 import { PointerInput } from "./pointer.js";
+import type { WidgetSettings } from "./options.js";
 import type { Posing } from "./posing.js";
+import type { Stage } from "./stage.js";
+import type { Toolbar } from "./toolbar.js";
+import type { Widget } from "./widget.js";
 import { fromPixel } from "./view.js";
 
 /** What the input needs of the widget. */
@@ -46,12 +51,64 @@ export interface InputHost {
   help(open?: boolean): void;
   helpOpen(): boolean;
   dropped(file: File): void;
+  /** The animation: capture a key (K), play or pause (a tap of Space). */
+  animate(what: "capture" | "play"): void;
+}
+
+/** What {@link inputHost} reads of the widget's parts (see `widget.ts`). */
+export interface InputParts {
+  readonly posing: Posing;
+  readonly stage: Stage;
+  readonly settings: WidgetSettings;
+  readonly root: HTMLElement;
+  readonly toolbar: Toolbar | undefined;
+  draw(): void;
+  gesture(change: () => void): void;
+  showError(error: unknown): void;
+}
+
+/** The input's host for a widget: its public API, its parts, and what only it has. */
+export function inputHost(
+  widget: Pick<
+    Widget,
+    "removeHandle" | "undo" | "redo" | "zoom" | "setDisplay" | "bringForward" | "sendBack" | "loadFile"
+  >,
+  parts: InputParts,
+  own: Pick<InputHost, "moved" | "brush" | "help" | "animate">,
+): InputHost {
+  const { stage, settings } = parts;
+  return {
+    ...own,
+    posing: parts.posing,
+    camera: stage.camera,
+    root: parts.root,
+    overlay: stage.overlay,
+    ratio: () => stage.ratio,
+    devicePixel: (x, y) => stage.devicePixel(x, y),
+    draw: () => parts.draw(),
+    succeeded: () => stage.status.succeeded(),
+    failed: (error) => parts.showError(error),
+    gesture: (change) => parts.gesture(change),
+    removeHandle: (index) => widget.removeHandle(index),
+    undo: () => widget.undo(),
+    redo: () => widget.redo(),
+    zoom: (factor) => widget.zoom(factor),
+    toggleDisplay: (what) => {
+      widget.setDisplay({ [what]: !settings[what] });
+      parts.toolbar?.sync(settings);
+    },
+    reorder: (step) => (step > 0 ? widget.bringForward() : widget.sendBack()),
+    helpOpen: () => stage.help.open,
+    dropped: (file) => widget.loadFile(file).catch((error: unknown) => parts.showError(error)),
+  };
 }
 
 export class WidgetInput {
   readonly #host: InputHost;
   readonly #pointer: PointerInput;
   #spaceHeld = false;
+  /** The view was panned while Space was held (then its release does not play). */
+  #spacePanned = false;
 
   constructor(host: InputHost) {
     this.#host = host;
@@ -145,6 +202,7 @@ export class WidgetInput {
       },
       panMode: () => this.#spaceHeld,
       pan: (dx, dy) => {
+        if (this.#spaceHeld) this.#spacePanned = true;
         host.camera.pan(dx * host.ratio(), dy * host.ratio());
         host.draw();
       },
@@ -155,7 +213,10 @@ export class WidgetInput {
     });
     host.root.addEventListener("keydown", (e) => this.#key(e));
     host.root.addEventListener("keyup", (e) => {
-      if (e.key === " ") this.#setSpace(false);
+      if (e.key !== " " || !this.#spaceHeld) return;
+      // A tap of Space (no pan while it was held) plays or pauses the animation.
+      if (!this.#spacePanned && keyFocus(e.composedPath()[0] ?? null) === "other") host.animate("play");
+      this.#setSpace(false);
     });
     host.root.addEventListener("blur", () => this.#setSpace(false), true);
     // Files dropped on the stage load like the Open button's.
@@ -231,6 +292,7 @@ export class WidgetInput {
     const focus = keyFocus(e.composedPath()[0] ?? null);
     if (e.key === " " && focus === "other") {
       e.preventDefault();
+      if (!e.repeat && !this.#spaceHeld) this.#spacePanned = false;
       this.#setSpace(true);
       return;
     }
@@ -296,6 +358,9 @@ export class WidgetInput {
         break;
       case "brush-size":
         host.brush.resize(command.factor);
+        break;
+      case "capture-key":
+        host.animate("capture");
         break;
     }
   }

@@ -22,7 +22,9 @@ export type KeyCommand =
   /** The brush's size times `factor`. */
   | { kind: "brush-size"; factor: number }
   /** The selected handles' parts in front of the others (1) or behind them (-1). */
-  | { kind: "layer"; step: 1 | -1 };
+  | { kind: "layer"; step: 1 | -1 }
+  /** Capture the pose as an animation key at the playhead. */
+  | { kind: "capture-key" };
 
 export interface KeyPress {
   key: string;
@@ -72,6 +74,7 @@ export function keyCommand(e: KeyPress, focus: KeyFocus = "other"): KeyCommand |
   if (key === "pagedown") return { kind: "layer", step: -1 };
   if (key === "b") return { kind: "brush" };
   if (key === "o") return { kind: "bones" };
+  if (key === "k") return { kind: "capture-key" };
   if (key === "[") return { kind: "brush-size", factor: 1 / BRUSH_STEP };
   if (key === "]") return { kind: "brush-size", factor: BRUSH_STEP };
   return undefined;
@@ -104,6 +107,12 @@ export const HELP: readonly { keys: string; does: string }[] = [
   { keys: "Ctrl+Z, Ctrl+Shift+Z or Ctrl+Y", does: "undo, redo" },
   { keys: "Wheel or pinch; + and -", does: "zoom" },
   { keys: "Drag the background, Space-drag, two fingers", does: "pan the view" },
+  { keys: "K", does: "animation: capture the pose as a key at the playhead (the timeline strip under the stage)" },
+  { keys: "Space (tap)", does: "play or pause the animation" },
+  {
+    keys: "Timeline: drag the playhead (or arrows, Home, End on it); drag a key; Delete",
+    does: "scrub (each frame's pose shows); move the key; delete the selected key",
+  },
   { keys: "F or 0", does: "fit the shape in view" },
   { keys: "W", does: "wireframe" },
   { keys: "V", does: "velocity field arrows" },

@@ -4,17 +4,21 @@
  * time), re-meshing that carries the pose over; each an undoable step. The page side of
  * `setup.ts`, `sources.ts` and `shape.ts`.
  */
-import { builtinShape, type Outline } from "../core.js";
-import type { WidgetSettings } from "./options.js";
+import { builtinShape, builtinShapes, type Outline } from "../core.js";
+import { DEFAULTS, type WidgetSettings } from "./options.js";
+import { restoreWork, savedShape, type SavedWork } from "./persist.js";
+import type { Rigging } from "./rigging.js";
 import type { Parts, Posing } from "./posing.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./setup.js";
-import { shapeFromMesh } from "./shape.js";
-import { partShape, readShapeFile, type Loaded } from "./sources.js";
+import type { Session } from "./session.js";
+import { meshOutline, sessionShape, shapeFromMesh } from "./shape.js";
+import { paintVector, partShape, readShapeFile, type Loaded } from "./sources.js";
 import type { Stage } from "./stage.js";
 import type { Toolbar } from "./toolbar.js";
 
 /** What the loader needs of the widget. */
 export interface LoaderHost {
+  readonly rigging: Rigging;
   readonly settings: WidgetSettings;
   readonly posing: Posing;
   readonly stage: Stage;
@@ -47,6 +51,32 @@ export class ShapeLoader {
       posing.parts = undefined;
       posing.install(prepared.shape, prepared.orders);
     });
+  }
+
+  /**
+   * See `Widget.startOver`: the default shape at its default density, at rest, without
+   * handles, with the default method and display; undoable.
+   */
+  startOver(): void {
+    const { posing, settings } = this.#host;
+    const name = builtinShapes()[0]!;
+    const shape = meshOutline(builtinShape(name), name, DEFAULTS.vertices, DEFAULTS.minAngle);
+    this.#host.gesture(() => {
+      Object.assign(settings, { vertices: DEFAULTS.vertices, minAngle: DEFAULTS.minAngle });
+      Object.assign(settings, { wireframe: false, field: false, flipped: true, paperMode: false, tool: "pose" });
+      posing.showMethod(DEFAULTS.method, DEFAULTS.lambda);
+      posing.parts = undefined;
+      posing.install(shape);
+    });
+  }
+
+  /** Saved work put back over the shape installed (a rig from the cache with it); throws, changing nothing, if it cannot. */
+  async resume(saved: SavedWork): Promise<void> {
+    const { document, posing, settings } = this.#host;
+    await restoreWork(saved, posing, settings, (shape) =>
+      savedShape(document, shape, (s, v) => paintVector(document, s, v)),
+    );
+    if (settings.method === "defop") await this.#host.rigging.fromCache(settings.training).catch(() => false);
   }
 
   /** See `Widget.setOutline`. */
@@ -136,5 +166,31 @@ export class ShapeLoader {
     return partShape(this.#host.document, loaded, index, (outline, label) =>
       this.make({ name: undefined, outline, label, vertices }),
     );
+  }
+}
+
+/**
+ * See `Widget.replay`: the session's shape rebuilt if needed, then `Posing.replay`, drawn
+ * every `stepsPerFrame` steps (`data-replaying` on the widget's element meanwhile).
+ */
+export async function replaySession(
+  host: { readonly posing: Posing; readonly root: HTMLElement; render(): void; destroyed(): boolean },
+  session: Session,
+  stepsPerFrame: number,
+): Promise<void> {
+  const posing = host.posing;
+  if (posing.replaying) throw new Error("a replay is already running");
+  const shape = sessionShape(session, posing.shape);
+  host.root.dataset.replaying = "true";
+  try {
+    await posing.replay(session, shape, async (steps) => {
+      if (steps % stepsPerFrame === 0) {
+        host.render();
+        await new Promise((resolve) => requestAnimationFrame(resolve));
+      }
+      return !host.destroyed();
+    });
+  } finally {
+    delete host.root.dataset.replaying;
   }
 }

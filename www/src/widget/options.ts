@@ -5,6 +5,7 @@
 import { limits, type DeformerOptions, type Metrics, type Outline, type Timings, type WasmSource } from "../core.js";
 import { coded } from "../internal/arrays.js";
 import type { RigTrainOptions } from "./rig.js";
+import { DEFAULT_FPS, checkFps } from "./timeline.js";
 import { BRUSH_SIZE_RANGE, DEFAULT_BRUSH, type BrushSettings } from "./stiffness.js";
 
 /**
@@ -116,6 +117,10 @@ export interface WidgetOptions {
    * or `outline`. Off by default; the app uses it. The toolbar then has "Start over".
    */
   storageKey?: string;
+  /** Show the animation's timeline strip under the stage (default false; the app shows it). */
+  timeline?: boolean;
+  /** Frames per second of the animation (a whole number from 1 to 120, default 24). */
+  fps?: number;
 }
 
 /** What a press on the shape does: pose with handles, paint stiffness, or draw bones. */
@@ -191,6 +196,8 @@ export const WIDGET_OPTIONS = [
   "tool",
   "brush",
   "noFoldovers",
+  "timeline",
+  "fps",
 ] as const satisfies readonly (keyof WidgetOptions)[];
 // Every option of the interface is in the list (a compile-time check).
 const everyOption: Record<Exclude<keyof WidgetOptions, (typeof WIDGET_OPTIONS)[number]>, never> = {};
@@ -227,7 +234,14 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     noFoldovers: options.noFoldovers ?? true,
     tool: options.tool ?? "pose",
     brush: brushSettings(DEFAULT_BRUSH, options.brush ?? {}),
+    timeline: options.timeline ?? false,
+    fps: options.fps ?? DEFAULT_FPS,
   };
+  try {
+    checkFps(settings.fps);
+  } catch (error) {
+    throw coded(error as Error, "invalid-option");
+  }
   checkTool(settings.tool);
   if (!Object.hasOwn(METHODS, settings.method)) {
     throw new Error(`unknown method "${settings.method}"; the methods are ${Object.keys(METHODS).join(", ")}`);

@@ -41,6 +41,15 @@ export interface SavedWork {
   stiffness?: Float64Array;
   /** The bones (absent: none). */
   bones?: Bone[];
+  /** The animation's keys and frame rate (absent: none; work saved before animation has none). */
+  animation?: SavedAnimation;
+}
+
+/** The animation kept with the work: its frame rate, handle set and keys (each with its pose). */
+export interface SavedAnimation {
+  fps: number;
+  handles: { triangles: number[]; barycentric: number[] };
+  keys: { time: number; easing: "linear" | "ease"; targets: Float64Array; pose: Float64Array }[];
 }
 
 const DATABASE = "akap";
@@ -154,6 +163,7 @@ export function savedWork(
   shape: Shape,
   pose: SavedPose,
   texture: Blob | undefined,
+  animation?: SavedAnimation,
 ): SavedWork {
   const s = settings;
   const { mesh } = shape;
@@ -193,6 +203,7 @@ export function savedWork(
     handles: pose.handles,
     ...(pose.stiffness ? { stiffness: pose.stiffness } : {}),
     ...(pose.bones && pose.bones.length > 0 ? { bones: pose.bones } : {}),
+    ...(animation ? { animation } : {}),
   };
 }
 
@@ -229,6 +240,8 @@ export interface WorkSource {
   settings: SavedSettings;
   shape: Shape;
   pose(): SavedPose;
+  /** The animation, when it has keys. */
+  animation?(): SavedAnimation | undefined;
 }
 
 /** The pose part of the work: positions, handles, painted stiffness and bones. */
@@ -306,6 +319,6 @@ export class WorkKeeper {
       texture = this.#textures.get(work.shape) ?? textureBlob(source);
       this.#textures.set(work.shape, texture);
     }
-    await this.store.save(savedWork(work.settings, work.shape, work.pose(), await texture));
+    await this.store.save(savedWork(work.settings, work.shape, work.pose(), await texture, work.animation?.()));
   }
 }

@@ -7,7 +7,8 @@
  */
 import { solveGroundTruth, trainDefOp, type TrainProgress } from "../defop-pool.js";
 import { coded } from "../internal/arrays.js";
-import type { Posing } from "./posing.js";
+import { newHandle, type Posing } from "./posing.js";
+import { shapeFromMesh } from "./shape.js";
 import { Rig, RigCache, rigKey, type RigTrainOptions } from "./rig.js";
 import { fetchFile } from "./sources.js";
 import type { BusyIndicator } from "./status.js";
@@ -79,6 +80,25 @@ export class Rigging {
 
   get training(): boolean {
     return this.#training !== undefined;
+  }
+
+  /** See `Widget.loadRig`: the rig's mesh and handles at rest, the method "defop"; `gesture` makes it one undoable step. */
+  async open(source: string | Blob | Uint8Array | ArrayBuffer, gesture: (change: () => void) => void): Promise<void> {
+    const rig = Rig.fromBytes(await rigBytes(source));
+    const shape = shapeFromMesh(rig.mesh, undefined, undefined, "rig");
+    const rest = rig.restHandles();
+    const posing = this.#host.posing;
+    gesture(() => {
+      posing.parts = undefined;
+      posing.install(shape);
+      posing.handles = rig.points.map((point, i) => ({
+        ...newHandle({ triangle: point.triangle, barycentric: [...point.barycentric] as [number, number, number] }),
+        target: [rest[2 * i]!, rest[2 * i + 1]!],
+      }));
+      posing.applyHandles();
+      posing.showMethod("defop", posing.settings.lambda);
+      this.adopt(rig);
+    });
   }
 
   /** Makes `rig` the widget's rig (the old one is freed). */

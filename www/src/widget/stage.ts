@@ -75,6 +75,8 @@ export class Stage {
   #tints: { shape: Shape; version: number; regions: Map<number, number[][]> } | undefined;
   /** Device pixels per CSS pixel. */
   ratio = 1;
+  /** Where {@link picture} draws the outline (kept: animation exports draw many frames). */
+  #outline: HTMLCanvasElement | undefined;
 
   constructor(document: Document, closeHelp: () => void) {
     this.element = document.createElement("div");
@@ -248,17 +250,21 @@ export class Stage {
     drawOverlay(ctx, scene, this.camera.view, this.ratio);
   }
 
-  /** The picture as drawn (mesh and outline, no handles) as a PNG. */
-  png(posing: Posing, settings: WidgetSettings): Promise<Blob> {
+  /**
+   * The picture as drawn (mesh and outline, no handles), on `into` (made, or resized, to
+   * the canvas's size): what PNG and animation exports encode.
+   */
+  picture(posing: Posing, settings: WidgetSettings, into?: HTMLCanvasElement): HTMLCanvasElement {
     this.render(posing, settings, {});
     const document = this.element.ownerDocument;
-    const canvas = document.createElement("canvas");
-    canvas.width = this.glCanvas.width;
-    canvas.height = this.glCanvas.height;
+    const canvas = into ?? document.createElement("canvas");
+    if (canvas.width !== this.glCanvas.width) canvas.width = this.glCanvas.width;
+    if (canvas.height !== this.glCanvas.height) canvas.height = this.glCanvas.height;
     const ctx = canvas.getContext("2d");
-    if (!ctx) return Promise.reject(new Error("this browser cannot draw on a 2D canvas"));
+    if (!ctx) throw new Error("this browser cannot draw on a 2D canvas");
     ctx.drawImage(this.glCanvas, 0, 0);
-    const outline = document.createElement("canvas");
+    this.#outline ??= document.createElement("canvas");
+    const outline = this.#outline;
     outline.width = canvas.width;
     outline.height = canvas.height;
     const outlineContext = outline.getContext("2d");
@@ -266,12 +272,12 @@ export class Stage {
       this.drawOverlay(outlineContext, posing, settings, {}, false);
       ctx.drawImage(outline, 0, 0);
     }
-    return new Promise((resolve, reject) =>
-      canvas.toBlob(
-        (blob) => (blob ? resolve(blob) : reject(new Error("the image could not be encoded"))),
-        "image/png",
-      ),
-    );
+    return canvas;
+  }
+
+  /** The picture as drawn (mesh and outline, no handles) as a PNG. */
+  async png(posing: Posing, settings: WidgetSettings): Promise<Blob> {
+    return canvasBlob(this.picture(posing, settings), "image/png");
   }
 
   /** Fades the HUD out while a dragged handle is under it (or near), so the handle shows. */
@@ -306,4 +312,11 @@ export class Stage {
     this.busy.done();
     this.training.done();
   }
+}
+
+/** A canvas's picture encoded (`type`, e.g. "image/png"). */
+export function canvasBlob(canvas: HTMLCanvasElement, type: string): Promise<Blob> {
+  return new Promise((resolve, reject) =>
+    canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error("the image could not be encoded"))), type),
+  );
 }

@@ -59,6 +59,23 @@ canvas.overlay.panning { cursor: grab; }
 .help dl { display: grid; grid-template-columns: max-content 1fr; gap: 0.25em 1em; margin: 0 0 0.8em; }
 .help dt { font-weight: bold; }
 .help dd { margin: 0; }
+.timeline {
+  display: flex; flex-wrap: wrap; gap: 0.3em 0.6em; align-items: center; padding: 0.35em 0.6em;
+  border-top: 1px solid #dccfb8; background: #efe6d6;
+}
+.timeline .track {
+  position: relative; flex: 1 1 12em; min-width: 8em; height: 1.9em; border-radius: 4px;
+  background: repeating-linear-gradient(90deg, #fffaf1 0 calc(50% - 1px), #e4d8c3 calc(50% - 1px) 50%);
+  border: 1px solid #b9a78a; cursor: pointer; touch-action: none;
+}
+.timeline .playhead { position: absolute; top: -2px; bottom: -2px; width: 2px; margin-left: -1px; background: #1d3557; pointer-events: none; }
+.timeline .marker {
+  position: absolute; top: 50%; width: 0.9em; height: 0.9em; min-width: 0; min-height: 0; padding: 0;
+  transform: translate(-50%, -50%) rotate(45deg); background: #c8773a; border: 1px solid #5a2d0c; border-radius: 2px;
+}
+.timeline .marker.selected { background: #c0392b; box-shadow: 0 0 0 2px #1d3557; }
+.timeline .readout { font-variant-numeric: tabular-nums; min-width: 13em; }
+.timeline input.fps { width: 3.5em; }
 /* Narrow widgets (phones): the tools fold behind a button, targets are finger-sized and the
    HUD is one small block out of the way. */
 .compact .toolbar { gap: 0.3em; padding: 0.25em 0.4em; }
@@ -72,6 +89,11 @@ canvas.overlay.panning { cursor: grab; }
 .compact .hud { top: auto; bottom: 2.4em; padding: 0.25em 0.4em; }
 .compact .hud pre { font-size: 10px; }
 .compact .hud canvas { display: none; }
+.compact .timeline { gap: 0.25em 0.4em; padding: 0.25em 0.4em; }
+.compact .timeline .track { flex-basis: 100%; order: 9; height: 2.6em; }
+.compact .timeline .readout, .compact .timeline label:has(input.fps) { display: none; }
+.compact .timeline select { max-width: 7em; }
+.compact .timeline .marker { width: 1.4em; height: 1.4em; }
 .compact .help dl { grid-template-columns: 1fr; }
 .compact .help dd { margin-bottom: 0.4em; }
 `;

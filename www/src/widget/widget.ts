@@ -22,10 +22,9 @@ import {
 } from "../core.js";
 import { posedMesh, posedSvg } from "./export.js";
 import { FrameLoop, type FrameHost } from "./frames.js";
-import { ShapeLoader, type LoaderHost } from "./loading.js";
+import { ShapeLoader, replaySession, type LoaderHost } from "./loading.js";
 
 import {
-  DEFAULTS,
   METHODS,
   widgetSettings,
   type GalleryItem,
@@ -34,21 +33,24 @@ import {
   type WidgetSettings,
   type WidgetTool,
 } from "./options.js";
-import { WorkKeeper, WorkStore, restoreWork, savedShape, type SavedWork } from "./persist.js";
+import { WorkKeeper, WorkStore, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
-import { WidgetInput } from "./input.js";
-import { Posing, newHandle } from "./posing.js";
-import { Rig } from "./rig.js";
-import { Rigging, rigBytes, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
+import { WidgetInput, inputHost } from "./input.js";
+import { Posing } from "./posing.js";
+import { Rigging, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
 import type { TrainProgress } from "../defop-pool.js";
 import { parseSession, type Session } from "./session.js";
 import { widgetToolbar } from "./actions.js";
-import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "./shape.js";
-import { fetchFile, fileKind, fileLimits, loadImage, paintVector } from "./sources.js";
+import { meshOutline, type Shape } from "./shape.js";
+import { fetchFile, fileKind, fileLimits, loadImage } from "./sources.js";
 import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
 import { Brush, type BrushHost } from "./brush.js";
+import { Animating, type AnimatingHost, type AnimationExport } from "./animating.js";
+import type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
+import type { KeyInfo } from "./animator.js";
+import type { Easing } from "./timeline.js";
 import { unpainted, type BrushSettings } from "./stiffness.js";
 import type { Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
@@ -63,6 +65,13 @@ export {
 } from "./options.js";
 export type { BrushSettings } from "./stiffness.js";
 export type { RigInfo, WidgetTrainOptions } from "./rigging.js";
+export type { AnimationExport } from "./animating.js";
+export type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
+export type { KeyInfo } from "./animator.js";
+export type { Easing } from "./timeline.js";
+
+/** What the widget's helpers see of it. */
+type WidgetParts = FrameHost & LoaderHost & BrushHost & AnimatingHost;
 
 export class Widget {
   /** The element the widget was mounted into; events are dispatched on it. */
@@ -84,6 +93,9 @@ export class Widget {
   readonly #brush: Brush;
   readonly #frames: FrameLoop;
   readonly #loader: ShapeLoader;
+  readonly #animating: Animating;
+  /** The widget's parts as its helpers see them. */
+  readonly #parts: WidgetParts;
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
     this.target = target;
@@ -95,7 +107,12 @@ export class Widget {
           () =>
             this.#destroyed || this.#posing.replaying
               ? undefined
-              : { settings: this.#settings, shape: this.#posing.shape, pose: () => this.#posing.snapshot() },
+              : {
+                  settings: this.#settings,
+                  shape: this.#posing.shape,
+                  pose: () => this.#posing.snapshot(),
+                  animation: () => this.#animating.saved(),
+                },
           (error) => this.#stage.status.info(`Your work cannot be kept in this browser: ${messageOf(error)}`),
         )
       : undefined;
@@ -121,7 +138,7 @@ export class Widget {
     // The widget's parts as its helpers see them: read when used (some are set below).
     // eslint-disable-next-line @typescript-eslint/no-this-alias
     const widget = this;
-    const parts: FrameHost & LoaderHost & BrushHost = {
+    const parts: WidgetParts = {
       get posing() {
         return widget.#posing;
       },
@@ -147,7 +164,10 @@ export class Widget {
       showError: (error) => this.#showError(error),
       emit: (type, detail) => this.#emit(type, detail),
       gesture: (change) => this.#gesture(change),
+      poseChanged: () => this.#frames.poseChanged(),
+      keep: () => this.#keeper?.changed(),
     };
+    this.#parts = parts;
     this.#frames = new FrameLoop(parts);
     this.#loader = new ShapeLoader(parts);
     this.#rigging = new Rigging({
@@ -182,10 +202,19 @@ export class Widget {
       this.#stage.element.insertBefore(this.#toolbar.brushPanel, this.#stage.help.element);
     }
     this.#root.append(this.#stage.element);
+    this.#animating = new Animating(parts);
+    if (this.#animating.strip) this.#root.append(this.#animating.strip.element);
     this.#root.dataset.renderer = this.#stage.renderer.kind;
 
     this.#brush = new Brush(parts);
-    this.#input = this.#bindInput();
+    this.#input = new WidgetInput(
+      inputHost(this, parts, {
+        moved: () => this.#frames.moved(),
+        brush: this.#brush,
+        help: (open) => this.#toggleHelp(open),
+        animate: (what) => this.#animating.key(what),
+      }),
+    );
     this.#resizeObserver = new ResizeObserver(() => this.#resize());
     target.append(this.#host);
   }
@@ -551,21 +580,7 @@ export class Widget {
    * a file that is not a valid rig throws (code `import`), changing nothing.
    */
   async loadRig(source: string | Blob | Uint8Array | ArrayBuffer): Promise<void> {
-    const bytes = await rigBytes(source);
-    const rig = Rig.fromBytes(bytes);
-    const shape = shapeFromMesh(rig.mesh, undefined, undefined, "rig");
-    const rest = rig.restHandles();
-    this.#gesture(() => {
-      this.#posing.parts = undefined;
-      this.#posing.install(shape);
-      this.#posing.handles = rig.points.map((point, i) => ({
-        ...newHandle({ triangle: point.triangle, barycentric: [...point.barycentric] as [number, number, number] }),
-        target: [rest[2 * i]!, rest[2 * i + 1]!],
-      }));
-      this.#posing.applyHandles();
-      this.#posing.showMethod("defop", this.#settings.lambda);
-      this.#rigging.adopt(rig);
-    });
+    await this.#rigging.open(source, (change) => this.#gesture(change));
   }
 
   /** The rig's state changed (or the handles, shape or method): HUD, toolbar, picture. */
@@ -622,24 +637,10 @@ export class Widget {
    */
   async replay(session: Session | string, stepsPerFrame = 4): Promise<Float64Array> {
     const s = typeof session === "string" ? parseSession(session) : session;
-    const posing = this.#posing;
-    if (posing.replaying) throw new Error("a replay is already running");
-    const shape = sessionShape(s, posing.shape);
-    this.#root.dataset.replaying = "true";
-    try {
-      await posing.replay(s, shape, async (steps) => {
-        if (steps % stepsPerFrame === 0) {
-          this.#render();
-          await nextFrame();
-        }
-        return !this.#destroyed;
-      });
-    } finally {
-      delete this.#root.dataset.replaying;
-    }
+    await replaySession(this.#parts, s, stepsPerFrame);
     this.#refreshButtons();
     this.#frames.poseChanged();
-    return posing.deformer.positions();
+    return this.#posing.deformer.positions();
   }
 
   /**
@@ -665,21 +666,78 @@ export class Widget {
     return this.#stage.png(this.#posing, this.#settings);
   }
 
+  // ---------------------------------------------------------------- animation (README "Animation")
+
+  /** Captures the pose as a key at `time` s (default: the playhead); returns its index. */
+  captureKey(time?: number, easing?: Easing): number {
+    return this.#animating.capture(time, easing);
+  }
+
+  /** The keys in time order: time, easing of the segment into it, the handles' targets. */
+  keys(): KeyInfo[] {
+    return this.#animating.animator.keys();
+  }
+
+  /** Moves key `index` to `time` s (not onto another key); returns its new index. */
+  moveKey(index: number, time: number): number {
+    return this.#animating.animator.moveKey(index, time);
+  }
+
+  deleteKey(index: number): void {
+    this.#animating.animator.deleteKey(index);
+  }
+
+  /** The easing of the segment that ends at key `index`: "linear" or "ease" (smoothstep). */
+  setKeyEasing(index: number, easing: Easing): void {
+    this.#animating.animator.setEasing(index, easing);
+  }
+
+  /** Plays from the playhead (`loop`: again and again); resolves when playback stops. */
+  play(options: { loop?: boolean } = {}): Promise<void> {
+    return this.#animating.animator.play(options);
+  }
+
+  /** Stops playback; the pose stays at the frame on screen (undoable). */
+  pause(): void {
+    this.#animating.animator.pause();
+  }
+
+  /** Shows the frame at `time` s (one undoable step); {@link playhead} is then `time`. */
+  seek(time: number): void {
+    this.#animating.animator.seek(time);
+  }
+
+  /** The playhead's time, seconds (on the frame grid). */
+  get playhead(): number {
+    return this.#animating.animator.time;
+  }
+
+  /** Every frame's vertex positions (copies), one per 1/fps from 0 to the last key. */
+  animationFrames(): Float64Array[] {
+    return this.#animating.animator.positions();
+  }
+
+  /**
+   * The animation as a file (see README "Animation"): "webm", "gif", "apng", "json" and
+   * "svg" (a zip) give a Blob, "sprites" a PNG and its JSON table; rejects with an
+   * `AbortError` on `signal`'s abort.
+   */
+  exportAnimation(format: "sprites", options?: AnimationExportOptions): Promise<SpriteSheet>;
+  exportAnimation(format: Exclude<AnimationExportFormat, "sprites">, options?: AnimationExportOptions): Promise<Blob>;
+  exportAnimation(format: AnimationExportFormat, options?: AnimationExportOptions): Promise<AnimationExport>;
+  exportAnimation(format: AnimationExportFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
+    return this.#animating.export(format, options);
+  }
+
   /**
    * Forgets the saved work and starts again: the default shape at its default density, at
-   * rest, without handles, with the default method and display. Undoable.
+   * rest, without handles or animation keys, with the default method and display. Undoable
+   * (the keys excepted).
    */
   async startOver(): Promise<void> {
     await this.#keeper?.store.clear();
-    const name = builtinShapes()[0]!;
-    const shape = meshOutline(builtinShape(name), name, DEFAULTS.vertices, DEFAULTS.minAngle);
-    this.#gesture(() => {
-      Object.assign(this.#settings, { vertices: DEFAULTS.vertices, minAngle: DEFAULTS.minAngle });
-      Object.assign(this.#settings, { wireframe: false, field: false, flipped: true, paperMode: false, tool: "pose" });
-      this.#posing.showMethod(DEFAULTS.method, DEFAULTS.lambda);
-      this.#posing.parts = undefined;
-      this.#posing.install(shape);
-    });
+    this.#animating.animator.clear();
+    this.#loader.startOver();
     this.#syncToolbar();
   }
 
@@ -693,6 +751,7 @@ export class Widget {
     if (this.#destroyed) return;
     this.#destroyed = true;
     this.#frames.stop();
+    this.#animating.destroy();
     this.#input?.destroy();
     this.#resizeObserver.disconnect();
     this.#stage.destroy();
@@ -729,14 +788,13 @@ export class Widget {
 
   /** Puts back saved work (over the shape just installed); throws, changing nothing, if it cannot. */
   async #resume(saved: SavedWork): Promise<void> {
-    const document = this.target.ownerDocument;
-    await restoreWork(saved, this.#posing, this.#settings, (shape) =>
-      savedShape(document, shape, (s, v) => paintVector(document, s, v)),
-    );
-    this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
-    if (this.#settings.method === "defop") {
-      await this.#rigging.fromCache(this.#settings.training).catch(() => false);
+    await this.#loader.resume(saved);
+    try {
+      if (saved.animation) this.#animating.restore(saved.animation);
+    } catch (error) {
+      this.#stage.status.info(`The animation's keys could not be restored (${messageOf(error)}).`);
     }
+    this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
     this.#syncToolbar();
   }
 
@@ -785,35 +843,6 @@ export class Widget {
 
   // ---------------------------------------------------------------- input
 
-  #bindInput(): WidgetInput {
-    return new WidgetInput({
-      posing: this.#posing,
-      camera: this.#stage.camera,
-      root: this.#root,
-      overlay: this.#stage.overlay,
-      ratio: () => this.#stage.ratio,
-      devicePixel: (x, y) => this.#stage.devicePixel(x, y),
-      draw: () => this.#draw(),
-      moved: () => this.#frames.moved(),
-      succeeded: () => this.#stage.status.succeeded(),
-      failed: (error) => this.#showError(error),
-      gesture: (change) => this.#gesture(change),
-      removeHandle: (index) => this.removeHandle(index),
-      undo: () => this.undo(),
-      redo: () => this.redo(),
-      zoom: (factor) => this.zoom(factor),
-      toggleDisplay: (what) => {
-        this.setDisplay({ [what]: !this.#settings[what] });
-        this.#toolbar?.sync(this.#settings);
-      },
-      brush: this.#brush,
-      reorder: (step) => (step > 0 ? this.bringForward() : this.sendBack()),
-      help: (open) => this.#toggleHelp(open),
-      helpOpen: () => this.#stage.help.open,
-      dropped: (file) => this.loadFile(file).catch((error: unknown) => this.#showError(error)),
-    });
-  }
-
   #toggleHelp(open = !this.#stage.help.open): void {
     this.#stage.help.open = open;
     if (!open) this.#root.focus({ preventScroll: true });
@@ -855,8 +884,4 @@ export class Widget {
  */
 export function mount(element: HTMLElement, options: WidgetOptions = {}): Promise<Widget> {
   return Widget.create(element, options);
-}
-
-function nextFrame(): Promise<void> {
-  return new Promise((resolve) => requestAnimationFrame(() => resolve()));
 }
