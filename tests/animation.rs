@@ -133,6 +133,26 @@ fn gif_of_many_colours_is_close() {
     assert!(decoded[0].rgba.chunks_exact(4).all(|p| p[3] == 255));
 }
 
+#[test]
+fn gif_of_many_colours_keeps_its_transparency() {
+    // 4096 colours over the right three quarters, transparent (alpha 0 or 100) on the left.
+    let frame = image(64, 64, |x, y| {
+        let alpha = if x >= 16 {
+            255
+        } else if y % 2 == 0 {
+            0
+        } else {
+            100
+        };
+        [(x * 4) as u8, (y * 4) as u8, 128, alpha]
+    });
+    let bytes = encode(Format::Gif, 64, 64, true, std::slice::from_ref(&frame), &[40]);
+    let (_, _, decoded) = decode_gif(&bytes);
+    for (i, (got, want)) in decoded[0].rgba.chunks_exact(4).zip(frame.chunks_exact(4)).enumerate() {
+        assert_eq!(got[3], if want[3] == 255 { 255 } else { 0 }, "pixel {i}");
+    }
+}
+
 /// A decoded APNG frame: its RGBA and its delay's numerator and denominator.
 type ApngFrame = (Vec<u8>, u16, u16);
 
