@@ -90,6 +90,17 @@ fn gif_frames_decode_to_their_colours() {
 }
 
 #[test]
+fn gif_alpha_is_cut_at_half() {
+    // Alpha 0 and 127 are transparent, 128 and 255 opaque in their colour.
+    let alphas = [0u8, 127, 128, 255];
+    let frame = image(4, 1, |x, _| [10 * x as u8, 20, 30, alphas[x as usize]]);
+    let bytes = encode(Format::Gif, 4, 1, true, std::slice::from_ref(&frame), &[10]);
+    let rgba = &decode_gif(&bytes).2[0].rgba;
+    assert_eq!(rgba.chunks_exact(4).map(|p| p[3]).collect::<Vec<_>>(), [0, 0, 255, 255]);
+    assert_eq!(&rgba[8..16], &[20, 20, 30, 255, 30, 20, 30, 255]);
+}
+
+#[test]
 fn gif_played_once_has_no_loop_extension() {
     let bytes = encode(Format::Gif, 5, 3, false, &three_frames(), &[10, 10, 10]);
     assert!(!bytes.windows(11).any(|w| w == b"NETSCAPE2.0"));
@@ -120,6 +131,26 @@ fn gif_of_many_colours_is_close() {
     let mean = error as f64 / (64.0 * 64.0 * 4.0);
     assert!(mean < 6.0, "mean error {mean} levels");
     assert!(decoded[0].rgba.chunks_exact(4).all(|p| p[3] == 255));
+}
+
+#[test]
+fn gif_of_many_colours_keeps_its_transparency() {
+    // 4096 colours over the right three quarters, transparent (alpha 0 or 100) on the left.
+    let frame = image(64, 64, |x, y| {
+        let alpha = if x >= 16 {
+            255
+        } else if y % 2 == 0 {
+            0
+        } else {
+            100
+        };
+        [(x * 4) as u8, (y * 4) as u8, 128, alpha]
+    });
+    let bytes = encode(Format::Gif, 64, 64, true, std::slice::from_ref(&frame), &[40]);
+    let (_, _, decoded) = decode_gif(&bytes);
+    for (i, (got, want)) in decoded[0].rgba.chunks_exact(4).zip(frame.chunks_exact(4)).enumerate() {
+        assert_eq!(got[3], if want[3] == 255 { 255 } else { 0 }, "pixel {i}");
+    }
 }
 
 /// A decoded APNG frame: its RGBA and its delay's numerator and denominator.
@@ -311,4 +342,18 @@ fn zip_refuses_unsafe_names() {
     assert!(refused(&["..\\x"]).contains("backslash"));
     assert!(refused(&["C:x"]).contains("drive"));
     assert!(write_zip::<&str, &[u8]>(&[]).unwrap().len() == 22);
+    let long = "a".repeat(1025);
+    assert!(refused(&[long.as_str()]).contains("longer than 1024 bytes"));
+    assert!(write_zip(&[("a".repeat(1024), b"")]).is_ok());
+}
+
+#[test]
+fn zip_refuses_more_files_than_it_can_count() {
+    let names: Vec<String> = (0..65_536).map(|i| format!("{i}")).collect();
+    let files: Vec<(&str, &[u8])> = names.iter().map(|n| (n.as_str(), b"".as_slice())).collect();
+    let e = write_zip(&files).unwrap_err();
+    assert!(matches!(e, AnimationError::TooLarge { size: 65_536, limit: 65_535, .. }), "{e:?}");
+    assert_eq!(e.code(), ErrorCode::Limit);
+    let zip = write_zip(&files[1..]).unwrap();
+    assert_eq!(u16_at(&zip, zip.len() - 12), 65_535);
 }

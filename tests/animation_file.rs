@@ -233,3 +233,15 @@ fn sprite_table_matches_its_layout() {
     let e = bad(SpriteSheet { frame_width: u32::MAX, frame_height: u32::MAX, columns: u32::MAX, ..sheet });
     assert_eq!(e.code(), ErrorCode::Limit);
 }
+
+#[test]
+fn the_readmes_example_reads() {
+    let readme = include_str!("../README.md");
+    let section = &readme[readme.find("- **`akap-animation` JSON**").unwrap()..];
+    let start = section.find("```json").unwrap() + "```json".len();
+    let text = &section[start..start + section[start..].find("```").unwrap()];
+    let animation = read_animation(text, &limits()).unwrap();
+    assert_eq!((animation.mesh.mesh.vertex_count(), animation.fps), (3, 30.0));
+    assert_eq!(animation.keys[1].easing, Easing::Ease);
+    assert_eq!(animation.frames[1][0], [0.0125, 0.025]);
+}

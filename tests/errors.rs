@@ -4,6 +4,7 @@
 use std::error::Error as _;
 use std::sync::Arc;
 
+use akap::animation::{read_animation, AnimationError};
 use akap::deform::{DeformError, Deformer, DeformerOptions};
 use akap::import::mesh_file::read_obj;
 use akap::import::{ImportError, Limits};
@@ -21,7 +22,9 @@ fn chain(error: &(dyn std::error::Error + 'static)) -> Vec<&'static str> {
     let mut names = Vec::new();
     let mut next = error.source();
     while let Some(e) = next {
-        names.push(if e.is::<TriangulationError>() {
+        names.push(if e.is::<AnimationError>() {
+            "AnimationError"
+        } else if e.is::<TriangulationError>() {
             "TriangulationError"
         } else if e.is::<OutlineError>() {
             "OutlineError"
@@ -75,6 +78,22 @@ fn a_mesh_error_in_a_file_is_reached_through_the_import_error() {
     let mesh = error.source().unwrap().source().unwrap().downcast_ref::<MeshError>().unwrap();
     assert_eq!(mesh, &MeshError::Clockwise { triangle: 0 });
     assert_eq!(error.code(), ErrorCode::InvalidMesh);
+}
+
+#[test]
+fn a_mesh_error_in_an_animation_file_is_reached_through_two_layers() {
+    let text = r#"{"format": "akap-animation", "version": 1, "fps": 30, "keys": [], "frames": [[0, 0, 1, 0, 0, 1]],
+        "mesh": {"positions": [0, 0, 1, 0, 0, 1], "triangles": [0, 2, 1]}}"#;
+    let error = Error::from(read_animation(text, &Limits::default()).unwrap_err());
+    assert_eq!(chain(&error), ["AnimationError", "ImportError", "MeshError"]);
+    assert_eq!(error.code(), ErrorCode::InvalidMesh);
+    // With the mesh made counter-clockwise, a file error, which ends the chain.
+    let error = Error::from(
+        read_animation(&text.replace("30", "0").replace("[0, 2, 1]", "[0, 1, 2]"), &Limits::default()).unwrap_err(),
+    );
+    assert_eq!(chain(&error), ["AnimationError"]);
+    assert_eq!(error.code(), ErrorCode::Import);
+    assert_eq!(error.to_string(), "the animation file is not valid: fps is 0, expected a number from 1 to 120");
 }
 
 #[test]

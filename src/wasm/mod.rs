@@ -101,9 +101,10 @@ fn outlines_to_js(outlines: &[Outline]) -> Result<Array, BindingError> {
     Ok(list)
 }
 
-/// The limits on inputs, `{ bytes, pixels, points, vertices, sessionBytes }`: the largest
-/// text file in bytes, image in pixels, outline in points, mesh in vertices, and session
-/// in bytes. One definition
+/// The limits on inputs, `{ bytes, pixels, points, vertices, sessionBytes, stiffness,
+/// animationBytes }`: the largest text file in bytes, image in pixels, outline in points,
+/// mesh in vertices, session in bytes, the stiffness range, and the RGBA bytes of an
+/// animation's frames in all. One definition
 /// (`akap::import::Limits`), which the TypeScript layer reads instead of repeating it.
 #[wasm_bindgen(js_name = limits)]
 pub fn js_limits() -> Result<Object, BindingError> {
@@ -115,6 +116,7 @@ pub fn js_limits() -> Result<Object, BindingError> {
         ("vertices", (l.max_vertices as f64).into()),
         ("sessionBytes", (crate::session::MAX_BYTES as f64).into()),
         ("stiffness", Array::of2(&(*STIFFNESS_RANGE.start()).into(), &(*STIFFNESS_RANGE.end()).into()).into()),
+        ("animationBytes", (l.max_animation_bytes as f64).into()),
     ])
 }
 

@@ -127,9 +127,15 @@ describe("encodeAnimation", () => {
     try {
       const frames = Array.from({ length: 6 }, (_, i) => solid(4, 4, colours[i % 4]!));
       const seen: number[] = [];
-      await encodeAnimation("apng", frames, { onProgress: () => seen.push(ticks) });
-      // Each frame after the first starts after a task of its own: the interval got turns.
-      expect(seen.at(-1)!).toBeGreaterThan(0);
+      const busy = (ms: number) => {
+        const end = performance.now() + ms;
+        while (performance.now() < end);
+      };
+      // Each frame takes at least 3 ms, so the 1 ms interval is due whenever the encoder
+      // lets the event loop turn; were it to wait for a microtask only, it never would.
+      await encodeAnimation("apng", frames, { onProgress: () => (busy(3), seen.push(ticks)) });
+      expect(seen[0]).toBe(0);
+      expect(seen.at(-1)!).toBeGreaterThanOrEqual(4);
     } finally {
       clearInterval(timer);
     }
@@ -160,6 +166,26 @@ describe("encodeAnimation", () => {
     ).rejects.toMatchObject({
       name: "AbortError",
     });
+  });
+
+  it("lets a cancel from a timer land between frames", async () => {
+    const free = vi.spyOn(glue.AnimationEncoder.prototype, "free");
+    const controller = new AbortController();
+    setTimeout(() => controller.abort(), 5);
+    let done = 0;
+    const frames = Array.from({ length: 50 }, (_, i) => solid(8, 8, colours[i % 4]!));
+    const encoding = encodeAnimation("gif", frames, {
+      signal: controller.signal,
+      onProgress: (n) => {
+        done = n;
+        const end = performance.now() + 2; // 2 ms a frame: 100 ms for all of them
+        while (performance.now() < end);
+      },
+    });
+    await expect(encoding).rejects.toMatchObject({ name: "AbortError" });
+    expect(done).toBeGreaterThan(0);
+    expect(done).toBeLessThan(50);
+    expect(free).toHaveBeenCalledTimes(1);
   });
 
   it("rejects bad frames with codes, freeing the encoder", async () => {

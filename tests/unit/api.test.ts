@@ -130,6 +130,7 @@ describe("limits", () => {
       vertices: 100_000,
       sessionBytes: 80_000_000,
       stiffness: [0.001, 1000],
+      animationBytes: 1024 * 1024 * 1024,
     });
     expect(() => triangulate(defaultShape(), { maxVertices: l.vertices + 1 })).toThrow(
       `option maxVertices is ${l.vertices + 1}, expected a whole number from 0 to ${l.vertices}`,

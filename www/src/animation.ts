@@ -41,8 +41,15 @@ export interface EncodeAnimationOptions {
   loop?: boolean;
 }
 
-/** Resolves after the event loop has run other tasks (a macrotask, not a microtask). */
+/**
+ * Resolves after the event loop has run other tasks (a macrotask, not a microtask):
+ * `setImmediate` where there is one (Node, where a chain of `MessageChannel` messages can
+ * be delivered in one turn of the loop, starving timers), else a `MessageChannel` message
+ * (pages: a task, without `setTimeout`'s 4 ms clamp), else `setTimeout`.
+ */
 function nextTask(): Promise<void> {
+  const immediate = (globalThis as { setImmediate?: (callback: () => void) => unknown }).setImmediate;
+  if (typeof immediate === "function") return new Promise((resolve) => immediate(resolve));
   if (typeof MessageChannel !== "function") return new Promise((resolve) => setTimeout(resolve, 0));
   return new Promise((resolve) => {
     const channel = new MessageChannel();

@@ -536,6 +536,9 @@ export interface Limits {
   sessionBytes: number;
   /** The range of per-triangle stiffness ({@link Deformer.setStiffness}): 0.001 to 1000. */
   stiffness: [number, number];
+  /** Most bytes of RGBA an animation's frames may add up to, 4 per pixel per frame (1 GiB;
+   * see `encodeAnimation`). */
+  animationBytes: number;
 }
 
 /** The limits on inputs; bigger inputs are refused with an `Error` saying so. */
