@@ -31,7 +31,6 @@ import {
   type MethodPreset,
   type WidgetOptions,
   type WidgetSettings,
-  type WidgetTool,
 } from "./options.js";
 import { WorkKeeper, WorkStore, type SavedWork } from "./persist.js";
 import { locate } from "./picking.js";
@@ -47,11 +46,11 @@ import { messageOf } from "./status.js";
 import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
 import { defaultTexture } from "./texture.js";
 import { Brush, type BrushHost } from "./brush.js";
+import { WidgetTools, type ToolParts } from "./tools-api.js";
 import { Animating, type AnimatingHost, type AnimationExport } from "./animating.js";
 import type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
 import type { KeyInfo } from "./animator.js";
 import type { Easing } from "./timeline.js";
-import { unpainted, type BrushSettings } from "./stiffness.js";
 import type { Toolbar } from "./toolbar.js";
 import type { View } from "./view.js";
 
@@ -73,7 +72,7 @@ export type { Easing } from "./timeline.js";
 /** What the widget's helpers see of it. */
 type WidgetParts = FrameHost & LoaderHost & BrushHost & AnimatingHost;
 
-export class Widget {
+export class Widget extends WidgetTools {
   /** The element the widget was mounted into; events are dispatched on it. */
   readonly target: HTMLElement;
   readonly #host: HTMLElement;
@@ -96,8 +95,10 @@ export class Widget {
   readonly #animating: Animating;
   /** The widget's parts as its helpers see them. */
   readonly #parts: WidgetParts;
+  readonly #tools: ToolParts;
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
+    super();
     this.target = target;
     this.#gallery = options.gallery ?? [];
     this.#settings = widgetSettings(options);
@@ -207,6 +208,13 @@ export class Widget {
     this.#root.dataset.renderer = this.#stage.renderer.kind;
 
     this.#brush = new Brush(parts);
+    this.#tools = {
+      posing: this.#posing,
+      brush: this.#brush,
+      settings: this.#settings,
+      gesture: (change) => this.#gesture(change),
+      info: (message) => this.#stage.status.info(message),
+    };
     this.#input = new WidgetInput(
       inputHost(this, parts, {
         moved: () => this.#frames.moved(),
@@ -249,7 +257,11 @@ export class Widget {
     return widget;
   }
 
-  // ---------------------------------------------------------------- public API
+  // ---------------------------------------------------------------- public API (and tools-api.ts)
+
+  protected get tools(): ToolParts {
+    return this.#tools;
+  }
 
   get vertexCount(): number {
     return this.#posing.shape.mesh.vertexCount;
@@ -351,106 +363,6 @@ export class Widget {
   /** Changes the method and/or lambda. */
   setMethod(method: MethodPreset, lambda = this.#settings.lambda): void {
     this.#posing.setMethod(method, lambda);
-  }
-
-  // ---------------------------------------------------------------- depth order
-
-  /**
-   * Brings the selected handles' parts in front of every other part (each part of the
-   * shape belongs to its nearest handle); they stay there when dragged. Undoable; false
-   * when no handle is selected.
-   */
-  bringForward(): boolean {
-    return this.#reorder(1);
-  }
-
-  /** Sends the selected handles' parts behind every other part (see {@link bringForward}). */
-  sendBack(): boolean {
-    return this.#reorder(-1);
-  }
-
-  /** Each handle's layer, in handle order (higher is in front). */
-  handleLayers(): number[] {
-    return this.#posing.handles.map((h) => h.layer);
-  }
-
-  #reorder(step: 1 | -1): boolean {
-    let moved = false;
-    if (this.#posing.handles.some((h) => h.selected)) this.#gesture(() => (moved = this.#posing.reorder(step)));
-    else this.#stage.status.info("Select a handle first (click it) to bring its part forward or send it back.");
-    return moved;
-  }
-
-  // ---------------------------------------------------------------- stiffness
-
-  /** What a press on the shape does: pose, paint stiffness with the brush, or draw bones. */
-  get tool(): WidgetTool {
-    return this.#settings.tool;
-  }
-
-  /** The brush's size (CSS pixels) and the value it paints. */
-  get brush(): BrushSettings {
-    return { ...this.#settings.brush };
-  }
-
-  /**
-   * Chooses the tool (`"pose"`, `"stiffness"`: the brush, `"bone"`: drawing bones) and/or
-   * changes the brush; throws (code `invalid-option`), changing nothing, for an unknown tool
-   * or a brush out of range.
-   */
-  setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
-    this.#brush.setTool(tool, brush);
-  }
-
-  /** Each triangle's painted stiffness (a copy), or undefined when none is painted. */
-  stiffness(): Float64Array | undefined {
-    const s = this.#posing.stiffness;
-    return unpainted(s) ? undefined : s!.slice();
-  }
-
-  /**
-   * Paints every triangle (one value per triangle, 0.001 to 1000; undefined for none), as
-   * one undoable step; throws, changing nothing, for bad values. Used by AKAP and ARAP; kept
-   * (and shown) under the other methods.
-   */
-  setStiffness(values: ArrayLike<number> | undefined): void {
-    const copy = values === undefined ? undefined : Float64Array.from(values);
-    this.#gesture(() => this.#posing.setStiffness(copy));
-  }
-
-  /**
-   * One dab of the brush at the shape point (x, y) in the pose on screen, as a stroke of
-   * one point: `value` (default the brush's) on the triangles whose centroids lie within
-   * `radius` shape units (default the brush's size on screen). Undoable.
-   */
-  paintAt(x: number, y: number, value = this.#settings.brush.value, radius?: number): void {
-    this.#brush.paintAt(x, y, value, radius);
-  }
-
-  /**
-   * Adds a bone from (x0, y0) to (x1, y1), points of the shape in the pose on screen: the
-   * triangles its segment meets move as one rigid body from now on (AKAP and ARAP). Returns
-   * its index; undoable. Throws (code `invalid-argument`), changing nothing, for an end off
-   * the shape, a segment that leaves it, a bone touching another (leave a joint of free
-   * triangles between them), or a method without bones.
-   */
-  addBone(x0: number, y0: number, x1: number, y1: number): number {
-    return this.#brush.addBone(x0, y0, x1, y1);
-  }
-
-  /** The bones' ends in the current pose: x0 y0 x1 y1 per bone. */
-  bones(): Float64Array {
-    return this.#brush.boneEnds();
-  }
-
-  /** Removes bone `index` (undoable); throws (code `invalid-argument`) for no such bone. */
-  removeBone(index: number): void {
-    this.#brush.removeBone(index);
-  }
-
-  /** Removes every bone (undoable). */
-  clearBones(): void {
-    this.#brush.removeBone("all");
   }
 
   // ---------------------------------------------------------------- view, messages, shapes
