@@ -4,13 +4,14 @@
  * dragged far (the same drag without it bends that segment by more than 1e-3); undo and
  * redo take it away and back; a recording with it replays to the same bits; a method
  * without bones refuses them and keeps them for the methods that have them; a bone the
- * core refuses changes nothing.
+ * core refuses changes nothing; an animation's frames keep the bone straight too.
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { init } from "../../www/src/index.js";
 import type { Bone } from "../../www/src/widget/bones.js";
 import { locate, pointPosition, type MeshPoint } from "../../www/src/widget/picking.js";
 import type { Posing } from "../../www/src/widget/posing.js";
+import { Animator } from "../../www/src/widget/animator.js";
 import { dragTo, posed } from "./posing-fixtures.js";
 
 beforeAll(async () => {
@@ -35,10 +36,10 @@ function samples(posing: Posing): MeshPoint[] {
   });
 }
 
-/** How far the sampled bone is from straight and from its rest length, at the current pose. */
-function bend(posing: Posing, points: MeshPoint[]): number {
+/** How far the sampled bone is from straight and from its rest length, at the current pose (or `positions`). */
+function bend(posing: Posing, points: MeshPoint[], positions = posing.deformer.positions()): number {
   const { triangles } = posing.shape.mesh;
-  const q = points.map((p) => pointPosition(posing.deformer.positions(), triangles, p));
+  const q = points.map((p) => pointPosition(positions, triangles, p));
   const [a, b] = [q[0]!, q[10]!];
   const rest = Math.hypot(ARM[1][0] - ARM[0][0], ARM[1][1] - ARM[0][1]);
   let worst = Math.abs(Math.hypot(b[0] - a[0], b[1] - a[1]) - rest);
@@ -115,5 +116,33 @@ describe("bones", () => {
     );
     expect(posing.bones.list).toHaveLength(1);
     expect(posing.bones.version).toBe(version);
+  });
+
+  it("an animation's frames keep the bone as straight and as long as it was drawn", () => {
+    const { posing } = posed(500);
+    const points = samples(posing);
+    posing.bones.set([armBone(points)]);
+    const animator = new Animator({
+      posing,
+      fps: () => 12,
+      shown: () => undefined,
+      changed: () => undefined,
+      info: () => undefined,
+    });
+    animator.capture(0);
+    dragTo(posing, [0.35, 1.1]);
+    animator.capture(0.5);
+    dragTo(posing, [0.9, 0.2]);
+    animator.capture(1);
+    const frames = animator.frames();
+    expect(frames.count).toBe(13);
+    let worst = 0;
+    for (let k = 0; k < frames.count; k++) worst = Math.max(worst, bend(posing, points, frames.frame(k).positions));
+    expect(worst).toBeLessThan(1e-9 * 1.34);
+    // Without the bone, the same keys bend it.
+    posing.gesture(() => posing.bones.set([]));
+    const free = animator.frames();
+    const last = free.frame(free.count - 1).positions;
+    expect(bend(posing, points, last)).toBeGreaterThan(1e-3 * 1.34);
   });
 });

@@ -12,7 +12,7 @@
  * that fits the handles (the "defop" method), a frame is the rig's pose for the targets.
  *
  * Frames are kept once computed; whoever holds an {@link AnimationFrames} makes a new one
- * when the keys, method, stiffness, handles or step settings change ({@link framesKey}).
+ * when the keys, method, stiffness, bones, handles or step settings change ({@link framesKey}).
  */
 import { Deformer, type DeformerOptions, type MeshData } from "../core.js";
 import { largestGap, substepCount, trackingVelocities } from "./drag.js";
@@ -24,6 +24,8 @@ export interface FrameSource {
   options: DeformerOptions;
   /** Per-triangle stiffness, or undefined for none (given only to methods that take it). */
   stiffness: Float64Array | undefined;
+  /** The bones as `Deformer.setBones` takes them (given only to methods that have them), laid in the first key's pose. */
+  bones?: { triangles: number[]; barycentric: number[] } | undefined;
   handles: HandleSet;
   keys: readonly Key[];
   fps: number;
@@ -177,6 +179,9 @@ export class AnimationFrames {
       if (s.stiffness && deformer.hasStiffness) deformer.setStiffness(s.stiffness);
       deformer.setHandlePoints(Uint32Array.from(s.handles.triangles), Float64Array.from(s.handles.barycentric));
       deformer.setPositions(s.keys[0]!.pose);
+      if (s.bones && s.bones.triangles.length > 0 && deformer.hasBones) {
+        deformer.setBones(s.bones.triangles, s.bones.barycentric);
+      }
     } catch (error) {
       deformer.free();
       throw error;

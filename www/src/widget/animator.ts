@@ -12,6 +12,7 @@ import { AnimationFrames, framesKey, type Frame } from "./animation.js";
 import { newHandle, type Posing } from "./posing.js";
 import type { Rig } from "./rig.js";
 import type { Shape } from "./shape.js";
+import { bonesEvent } from "./bones.js";
 import { unpainted } from "./stiffness.js";
 import {
   Timeline,
@@ -180,6 +181,7 @@ export class Animator {
       method: settings.method,
       lambda: settings.lambda,
       stiffness: posing.stiffnessVersion,
+      bones: posing.bones.version,
       fps: this.#host.fps(),
       maxStep: settings.maxStep,
       maxSubsteps: settings.maxSubsteps,
@@ -193,6 +195,7 @@ export class Animator {
         mesh: shape.mesh,
         options: posing.deformerOptions(),
         stiffness: unpainted(posing.stiffness) ? undefined : posing.stiffness!.slice(),
+        bones: bonesEvent(posing.bones.list).bones,
         handles,
         // A copy of the list: the timeline's changes make a new AnimationFrames.
         keys: [...keys],
