@@ -1,5 +1,5 @@
 /**
- * Bones in the app as a person draws them: the bone tool (its toolbar checkbox) and a drag
+ * Bones in the app as a person draws them: the bone tool (the toolbar's Tool list) and a drag
  * along the figure's right arm draw a bone, shown as a bar; back to posing, the hand pulled
  * far with a pin at the feet moves the arm's bone as one piece: points along it at rest stay
  * on the segment between its ends, at their fraction of the way, and the ends keep their
@@ -40,7 +40,7 @@ test("a bone drawn on the arm moves as one piece; Alt-click removes it, undo bri
     [0.53, 0.625],
   ];
 
-  await page.getByRole("checkbox", { name: "Bones (O)" }).check();
+  await page.getByRole("combobox", { name: "Tool" }).selectOption("bone");
   await page.mouse.move(...toCss(...arm[0]));
   await page.mouse.down();
   await page.mouse.move(...toCss(...arm[1]), { steps: 6 });
@@ -79,7 +79,7 @@ test("a bone drawn on the arm moves as one piece; Alt-click removes it, undo bri
   const length = Math.hypot(drawn[2]! - drawn[0]!, drawn[3]! - drawn[1]!);
 
   // Pose: a pin at the feet, the hand pulled far up and over.
-  await page.getByRole("checkbox", { name: "Bones (O)" }).uncheck();
+  await page.getByRole("combobox", { name: "Tool" }).selectOption("pose");
   const { pin, grab } = await anchorPoints(page);
   await page.mouse.click(...toCss(...pin));
   const hand = toCss(...grab);
@@ -113,7 +113,7 @@ test("a bone drawn on the arm moves as one piece; Alt-click removes it, undo bri
 
   // MLS has no bones: the tool says so.
   await page.getByRole("combobox", { name: "Method" }).selectOption("mls");
-  await page.getByRole("checkbox", { name: "Bones (O)" }).uncheck();
-  await page.getByRole("checkbox", { name: "Bones (O)" }).check();
+  await page.getByRole("combobox", { name: "Tool" }).selectOption("pose");
+  await page.getByRole("combobox", { name: "Tool" }).selectOption("bone");
   await expect(page.locator(".akap-host >> .status")).toContainText("has no bones");
 });

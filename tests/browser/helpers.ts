@@ -109,9 +109,10 @@ export async function coverage(page: Page, positions?: number[], which: Which = 
       const background = [0xf6, 0xf1, 0xe7];
       const isShape = (i: number) =>
         Math.max(...[0, 1, 2].map((k) => Math.abs(pixels[4 * i + k]! - background[k]!))) > 24;
-      // Handle discs may reach past the outline: leave them out.
+      // Handle discs and the turning rings round selected handles (2.6 handle radii of 7 CSS
+      // pixels, shown after a finger's press) may reach past the outline: leave them out.
       const h = typed.handlePositions();
-      const reach = 12 * typed.view.pixelRatio;
+      const reach = 24 * typed.view.pixelRatio;
       const nearHandle = (x: number, y: number) => {
         for (let k = 0; k < h.length; k += 2) {
           if (Math.hypot(x - (offsetX + scale * h[k]!), y - (offsetY - scale * h[k + 1]!)) < reach) return true;

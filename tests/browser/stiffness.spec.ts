@@ -65,7 +65,7 @@ test("the brush paints the triangles under the stroke, tinted, undoable, erasabl
   const before = await pixel(page, cssArm);
   expect(before[0]).toBeGreaterThan(before[2]); // the orange shape
 
-  await page.getByRole("checkbox", { name: "Brush (B)" }).check();
+  await page.getByRole("combobox", { name: "Tool" }).selectOption("stiffness");
   await page.getByRole("combobox", { name: "Paint" }).selectOption("100");
   const size = page.locator('input[name="brush-size"]');
   await size.fill("20");

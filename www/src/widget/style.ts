@@ -25,6 +25,7 @@ button:focus-visible, select:focus-visible, input:focus-visible { outline: 2px s
   padding: 0.35em 0.6em; border-radius: 8px; background: rgba(255, 250, 241, 0.95);
   box-shadow: 0 2px 12px rgba(0, 0, 0, 0.2);
 }
+.tool-controls { display: flex; gap: 0.4em; align-items: center; }
 .stage { position: relative; flex: 1 1 auto; min-height: 0; overflow: hidden; }
 canvas.mesh, canvas.overlay { position: absolute; inset: 0; width: 100%; height: 100%; display: block; }
 canvas.overlay { touch-action: none; cursor: crosshair; }

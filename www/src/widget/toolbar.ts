@@ -81,7 +81,7 @@ export interface Toolbar {
   addShape(option: { value: string; label: string }): void;
   /** Enables the rig's buttons: Save with a rig, Train when no training runs. */
   showRig(state: { hasRig: boolean; training: boolean }): void;
-  /** The stiffness brush's controls, shown while the brush is on; the widget puts it on the stage. */
+  /** The tool's controls (the brush's, or the bones'), shown while that tool is on; the widget puts it on the stage. */
   brushPanel: HTMLElement;
   /** Brings every field in line with the settings (changed by keys, a load, or a refused value). */
   sync(settings: ToolbarSettings): void;
@@ -246,15 +246,27 @@ export function buildToolbar(
   const hud = checkbox(view, "HUD", s.hud, () => actions.hud(hud.checked));
   hud.name = "hud";
 
-  const stiffnessGroup = group("Stiffness");
-  const setBrush = (tool: WidgetTool = brushOn.checked ? "stiffness" : "pose"): void =>
+  const stiffnessGroup = group("Tools");
+  const setBrush = (tool = toolList.value as WidgetTool): void =>
     actions.brush(tool, {
       size: Number(brushSize.value),
       value: Number(brushValue.value),
     });
-  const brushOn = checkbox(stiffnessGroup, "Brush (B)", s.tool === "stiffness", () => setBrush());
-  brushOn.name = "brush";
-  brushOn.parentElement!.title = "Paint stiffness on the shape: stiff regions bend less (Alt-drag erases)";
+  // The tools exclude each other: one list (short, so the toolbar keeps its rows).
+  const toolList = select(
+    [
+      { value: "pose", label: "Pose" },
+      { value: "stiffness", label: "Brush (B)" },
+      { value: "bone", label: "Bones (O)" },
+    ],
+    s.tool,
+  );
+  toolList.name = "tool";
+  toolList.title =
+    "What a press on the shape does: pose with handles; paint stiffness with the brush (stiff regions bend less, " +
+    "Alt-drag erases); draw bones (drag from end to end; each moves as one rigid piece, AKAP and ARAP; Alt-click removes one)";
+  labelled(stiffnessGroup, "Tool ", toolList);
+  toolList.addEventListener("change", () => setBrush());
   const brushValue = select(
     BRUSH_VALUES.map((v) => ({
       value: String(v),
@@ -263,27 +275,35 @@ export function buildToolbar(
     String(s.brush.value),
   );
   brushValue.name = "brush-value";
-  // The brush's own controls float over the stage while it is on, so the toolbar stays
-  // short and the stage keeps its size (the widget puts the panel on the stage).
+  // The tool's own controls float over the stage while it is on, so the toolbar stays short
+  // and the stage keeps its size (the widget puts the panel on the stage): the brush's
+  // value, size and Clear, or the bones' hint and Clear bones.
+  const toolPanel = document.createElement("div");
+  toolPanel.className = "brush-panel";
   const brushControls = document.createElement("div");
-  brushControls.className = "brush-panel";
+  brushControls.className = "tool-controls";
   brushControls.setAttribute("role", "group");
   brushControls.setAttribute("aria-label", "Stiffness brush");
+  const boneControls = document.createElement("div");
+  boneControls.className = "tool-controls";
+  boneControls.setAttribute("role", "group");
+  boneControls.setAttribute("aria-label", "Bones");
+  toolPanel.append(brushControls, boneControls);
   labelled(brushControls, "Paint ", brushValue);
   const brushSize = number(s.brush.size, BRUSH_SIZE_RANGE[0], BRUSH_SIZE_RANGE[1], 1);
   brushSize.name = "brush-size";
   labelled(brushControls, "Size px ", brushSize);
   brushValue.addEventListener("change", () => setBrush());
   brushSize.addEventListener("change", () => setBrush());
-  const bonesOn = checkbox(stiffnessGroup, "Bones (O)", s.tool === "bone", () =>
-    setBrush(bonesOn.checked ? "bone" : "pose"),
-  );
-  bonesOn.name = "bones";
-  bonesOn.parentElement!.title =
-    "Draw bones: drag from end to end on the shape; each moves as one rigid piece (AKAP, ARAP). Alt-click removes one";
-  button(stiffnessGroup, "Clear bones", "Remove every bone", actions.clearBones, "clear-bones");
   button(brushControls, "Clear", "Every triangle back to stiffness 1", actions.clearStiffness, "clear-stiffness");
-  brushControls.classList.toggle("hidden", s.tool !== "stiffness");
+  boneControls.append("Drag from end to end; Alt-click removes ");
+  button(boneControls, "Clear bones", "Remove every bone", actions.clearBones, "clear-bones");
+  const showTool = (tool: WidgetTool): void => {
+    toolPanel.classList.toggle("hidden", tool === "pose");
+    brushControls.classList.toggle("hidden", tool !== "stiffness");
+    boneControls.classList.toggle("hidden", tool !== "bone");
+  };
+  showTool(s.tool);
 
   const rigGroup = group("Trained rig");
   const energy = select(
@@ -404,7 +424,7 @@ export function buildToolbar(
 
   return {
     element,
-    brushPanel: brushControls,
+    brushPanel: toolPanel,
     refresh(state) {
       undo.disabled = !state.canUndo;
       redo.disabled = !state.canRedo;
@@ -445,9 +465,8 @@ export function buildToolbar(
       spatial.value = String(settings.training.spatial ?? 0);
       method.value = settings.method;
       lambda.value = String(settings.lambda);
-      brushOn.checked = settings.tool === "stiffness";
-      bonesOn.checked = settings.tool === "bone";
-      brushControls.classList.toggle("hidden", settings.tool !== "stiffness");
+      toolList.value = settings.tool;
+      showTool(settings.tool);
       brushSize.value = String(settings.brush.size);
       if (!BRUSH_VALUES.some((v) => String(v) === brushValue.value && v === settings.brush.value)) {
         // A value set through the API that the list lacks is shown as one more choice.
