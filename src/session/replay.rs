@@ -77,16 +77,7 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
             matches!(event, Event::Reset(false) | Event::Options(_) | Event::Stiffness(_) | Event::Bones { .. });
         match event {
             Event::Handles { triangles, barycentric } => {
-                let (weights, rest) = barycentric.as_chunks::<3>();
-                if !rest.is_empty() || weights.len() != triangles.len() {
-                    return Err(refused(DeformError::Length {
-                        what: "barycentric",
-                        expected: 3 * triangles.len(),
-                        found: barycentric.len(),
-                        per: 3,
-                        items: "handles",
-                    }));
-                }
+                let weights = triples(barycentric, triangles.len(), "barycentric", "handles").map_err(refused)?;
                 slot.get().set_handle_points(triangles, weights).map_err(refused)?;
             }
             Event::Step(flat) | Event::Turn { velocities: flat, .. } => {
@@ -133,16 +124,7 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
             }
             Event::Stiffness(values) => slot.set(|d| d.set_stiffness(values.as_deref())).map_err(refused)?,
             Event::Bones { triangles, barycentric } => {
-                let (ends, rest) = barycentric.as_chunks::<3>();
-                if !rest.is_empty() {
-                    return Err(refused(DeformError::Length {
-                        what: "bone barycentric",
-                        expected: 3 * triangles.len(),
-                        found: barycentric.len(),
-                        per: 3,
-                        items: "bone ends",
-                    }));
-                }
+                let ends = triples(barycentric, triangles.len(), "bone barycentric", "bone ends").map_err(refused)?;
                 slot.set(|d| d.set_bones(triangles, ends)).map_err(refused)?;
             }
             Event::Reset(true) => slot.get().reset(),
@@ -171,5 +153,18 @@ fn pairs<'a>(
     match flat.as_chunks::<2>() {
         (pairs, []) => Ok(pairs),
         _ => Err(DeformError::Length { what, expected: 2 * expected, found: flat.len(), per: 2, items }),
+    }
+}
+
+/// `flat` as `count` triples of barycentric coordinates (`what`, one triple per `items`).
+fn triples<'a>(
+    flat: &'a [f64],
+    count: usize,
+    what: &'static str,
+    items: &'static str,
+) -> Result<&'a [[f64; 3]], DeformError> {
+    match flat.as_chunks::<3>() {
+        (triples, []) if triples.len() == count => Ok(triples),
+        _ => Err(DeformError::Length { what, expected: 3 * count, found: flat.len(), per: 3, items }),
     }
 }
