@@ -227,6 +227,12 @@ pub fn write_animation(animation: &Animation, limits: &Limits) -> Result<String,
     let json = JsonAnimation { format: FORMAT.into(), version: VERSION, mesh, fps: animation.fps, keys, frames };
     // Finite numbers and indices always serialise.
     let text = serde_json::to_string(&json).map_err(|e| invalid(e.to_string()))?;
+    check_size(&text, limits)?;
+    Ok(text)
+}
+
+/// Refuses an animation JSON longer than `limits.max_bytes` (reading and writing alike).
+fn check_size(text: &str, limits: &Limits) -> Result<(), AnimationError> {
     if text.len() > limits.max_bytes {
         return Err(AnimationError::TooLarge {
             what: "the animation JSON",
@@ -235,7 +241,7 @@ pub fn write_animation(animation: &Animation, limits: &Limits) -> Result<String,
             unit: "bytes",
         });
     }
-    Ok(text)
+    Ok(())
 }
 
 fn syntax(e: &serde_json::Error) -> AnimationError {
@@ -253,14 +259,7 @@ fn syntax(e: &serde_json::Error) -> AnimationError {
 pub fn read_animation(text: &str, limits: &Limits) -> Result<Animation, AnimationError> {
     let file_error = |message| AnimationError::File { message };
     limits.validate().map_err(|e| AnimationError::Invalid { message: e.to_string() })?;
-    if text.len() > limits.max_bytes {
-        return Err(AnimationError::TooLarge {
-            what: "the animation JSON",
-            size: text.len() as u64,
-            limit: limits.max_bytes as u64,
-            unit: "bytes",
-        });
-    }
+    check_size(text, limits)?;
     let header: Header = serde_json::from_str(text).map_err(|e| syntax(&e))?;
     match header.format {
         Some(serde_json::Value::String(f)) if f == FORMAT => {}
