@@ -9,7 +9,7 @@ use std::fmt::Write;
 use std::time::Instant;
 
 use akap::deform::arap::MAX_ITERATIONS;
-use akap::deform::{ArapDeformer, ArapOptions, Deformer, DeformerOptions};
+use akap::deform::{AkapOptions, ArapOptions, Deformer};
 use akap::geometry::Point;
 use akap::import::svg::{import_svg, SvgOptions};
 use akap::import::warp::PointMapper;
@@ -109,7 +109,7 @@ const CASES: [Case; 11] = [
     ("handles", "setHandles: 100,489 distinct vertex handles", || {
         let mesh = grid_mesh(316, 316);
         let vertices: Vec<u32> = (0..mesh.vertex_count() as u32).collect();
-        let mut deformer = Deformer::new(mesh, DeformerOptions::default()).expect("a grid deforms");
+        let mut deformer = Deformer::new(mesh, AkapOptions::default()).expect("a grid deforms");
         let size = format!("{} handles", vertices.len());
         (Box::new(move || describe(deformer.set_handle_vertices(&vertices), |()| "set".into())), size)
     }),
@@ -131,11 +131,11 @@ const CASES: [Case; 11] = [
 fn arap_step(iterations: usize) -> (Box<dyn FnOnce() -> String>, String) {
     let mesh = grid_mesh(32, 32);
     let size = format!("{} vertices", mesh.vertex_count());
-    let made = ArapDeformer::new(mesh, ArapOptions::default().with_iterations(iterations));
+    let made = Deformer::new(mesh, ArapOptions::default().with_iterations(iterations));
     let run = move || match made {
         Ok(mut deformer) => describe(
             deformer.set_handle_vertices(&[0, 1088]).and_then(|()| deformer.step(&[[0.0, 0.0], [1.0, 1.0]])),
-            |()| format!("{} iterations", deformer.report().iterations),
+            |()| format!("{} iterations", deformer.arap().expect("ARAP").report().iterations),
         ),
         Err(e) => format!("error: {e}"),
     };

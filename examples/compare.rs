@@ -17,9 +17,10 @@
 use std::fmt::Write as _;
 
 use akap::deform::metrics::{deformation_gradient, singular_values};
-use akap::deform::{ArapOptions, CauchyGreenOptions, Deform, DeformerOptions, Integrator, MethodOptions, MlsOptions};
+use akap::deform::{AkapOptions, ArapOptions, CauchyGreenOptions, Deformer, Integrator, MethodOptions, MlsOptions};
 use akap::geometry::Point;
-use akap::session::{replay, replay_to_targets, Replay, Session};
+use akap::pose::{replay, replay_to_targets, Replay};
+use akap::session::Session;
 use akap::Mesh;
 
 /// A row of the comparison: a label and how to build the deformer.
@@ -29,7 +30,7 @@ struct Variant {
     options: MethodOptions,
 }
 
-fn variants(recorded: DeformerOptions) -> Vec<Variant> {
+fn variants(recorded: AkapOptions) -> Vec<Variant> {
     let akap = |dirichlet: bool, integrator: Integrator| {
         MethodOptions::Akap(recorded.with_dirichlet(dirichlet).with_integrator(integrator))
     };
@@ -134,7 +135,7 @@ fn table_1(rows: &[(String, Mesh, Vec<Outcome>)], labels: &[&str]) -> String {
     out
 }
 
-fn outcome(deformer: &dyn Deform, replay: &Replay) -> Outcome {
+fn outcome(deformer: &Deformer, replay: &Replay) -> Outcome {
     let m = deformer.metrics();
     Outcome {
         worst_angle: worst_angle(deformer.mesh(), deformer.positions()),
@@ -197,18 +198,18 @@ fn main() {
         let recorded_options = session.method_options().expect("as above");
         let akap_options = match recorded_options {
             MethodOptions::Akap(options) => options,
-            _ => DeformerOptions::default(),
+            _ => AkapOptions::default(),
         };
         for variant in variants(akap_options) {
             let result = if variant.options == recorded_options {
                 let mut deformer = session.recorded_deformer().expect("as above");
                 let r = replay(&session, &mut deformer).expect("as above");
-                outcome(deformer.as_ref(), &r)
+                outcome(&deformer, &r)
             } else {
-                let mut deformer = variant.options.build(mesh.clone()).expect("a connected mesh");
-                let r = replay_to_targets(&session, &recording.targets, deformer.as_mut())
+                let mut deformer = Deformer::new(mesh.clone(), variant.options).expect("a connected mesh");
+                let r = replay_to_targets(&session, &recording.targets, &mut deformer)
                     .unwrap_or_else(|e| panic!("{name}, {}: {e}", variant.label));
-                outcome(deformer.as_ref(), &r)
+                outcome(&deformer, &r)
             };
             let _ = writeln!(
                 table,

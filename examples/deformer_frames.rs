@@ -2,7 +2,7 @@
 //! figure at several mesh sizes, printing median and 95th-percentile milliseconds per
 //! stage. `cargo run --release --example deformer_frames [-- 1000 5000 10000]`.
 
-use akap::deform::{Deformer, DeformerOptions};
+use akap::deform::{AkapOptions, Deformer};
 use akap::triangulate::triangulate_to_about;
 use akap::{shapes, TriangulationOptions};
 
@@ -32,7 +32,7 @@ fn main() {
                 d(a).total_cmp(&d(b))
             })
             .expect("vertices");
-        let mut deformer = Deformer::new(mesh, DeformerOptions::default()).expect("connected mesh");
+        let mut deformer = Deformer::new(mesh, AkapOptions::default()).expect("connected mesh");
         let mut handles = feet.clone();
         handles.push(hand);
         deformer.set_handle_vertices(&handles).expect("valid handles");
@@ -55,7 +55,7 @@ fn main() {
                 s.push(x);
             }
         }
-        let (nnz, _) = deformer.factor_stats();
+        let (nnz, _) = deformer.akap().expect("AKAP").factor_stats();
         let med: Vec<String> = stages.iter_mut().map(|s| format!("{:.2}", percentile(s, 0.5))).collect();
         let p95 = percentile(&mut stages[4], 0.95);
         println!("| {n} | {m} | {nnz} | {} | {} | {} | {} | {} / {p95:.2} |", med[0], med[1], med[2], med[3], med[4]);

@@ -3,7 +3,7 @@
 //! uniform in a disc of radius 0.1 times the shape's bounding-box diagonal around its rest
 //! position). Per energy (S-ARAP, ARAP): solves cold (from the rest pose, with the
 //! homotopy) and warm (from the cold solution of a nearby target: every handle moved by up
-//! to 0.01 of the size); and the crate's local/global [`ArapDeformer`] run to convergence
+//! to 0.01 of the size); and the crate's local/global [`Deformer`] run to convergence
 //! on the same cold targets, in the same run. Prints numbers only.
 //!
 //! `cargo run --release --example ground_truth`
@@ -11,7 +11,7 @@
 use std::time::Instant;
 
 use akap::defop::{Energy, GroundTruth, GroundTruthOptions, Handles, Start};
-use akap::deform::{ArapDeformer, ArapOptions};
+use akap::deform::{ArapOptions, Deformer};
 use akap::geometry::Point;
 use akap::shapes::gingerbread;
 use akap::triangulate::triangulate_to_about;
@@ -144,8 +144,7 @@ fn main() {
         }
     }
     let tolerance = 1e-9;
-    let mut arap =
-        ArapDeformer::new(mesh.clone(), ArapOptions::default().until_converged(tolerance, 1_000_000)).unwrap();
+    let mut arap = Deformer::new(mesh.clone(), ArapOptions::default().until_converged(tolerance, 1_000_000)).unwrap();
     arap.set_handle_vertices(&handles).unwrap();
     let mut local_global = Row::default();
     let mut difference: f64 = 0.0;
@@ -157,7 +156,7 @@ fn main() {
         let t = Instant::now();
         arap.step(&velocities).unwrap();
         local_global.ms.push(t.elapsed().as_secs_f64() * 1e3);
-        local_global.iterations.push(arap.report().iterations);
+        local_global.iterations.push(arap.arap().expect("ARAP").report().iterations);
         let apart = max_distance(arap.positions(), solution);
         if apart <= 1e-5 * size {
             difference = difference.max(apart);

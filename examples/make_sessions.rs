@@ -16,7 +16,7 @@
 
 use std::f64::consts::PI;
 
-use akap::deform::{Deformer, DeformerOptions};
+use akap::deform::{AkapOptions, Deformer};
 use akap::geometry::{distance, Point};
 use akap::session::{Event, MeshCounts, Session, SessionMesh, ShapeSpec};
 use akap::{shapes, Mesh};
@@ -70,11 +70,11 @@ impl Recorder {
         };
         let counts = MeshCounts { vertex_count: 0, triangle_count: 0 };
         let triangulation = shape.triangulation_options();
-        let mut session = Session::new(shape, counts, DeformerOptions::default());
+        let mut session = Session::new(shape, counts, AkapOptions::default());
         let mesh = akap::triangulate(&shapes::by_name(name).expect("a built-in shape"), &triangulation)
             .expect("the built-in shapes triangulate");
         session.mesh = SessionMesh::counts_of(MeshCounts::of(&mesh));
-        let deformer = Deformer::new(mesh, DeformerOptions::default()).expect("a connected mesh");
+        let deformer = Deformer::new(mesh, AkapOptions::default()).expect("a connected mesh");
         Self { session, deformer }
     }
 

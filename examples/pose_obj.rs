@@ -16,7 +16,7 @@ use std::fs;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use akap::deform::{Method, MethodOptions, Metrics, SettingValue};
+use akap::deform::{Deformer, Method, MethodOptions, Metrics, SettingValue};
 use akap::geometry::{bounding_box, Point};
 use akap::import::mesh_file::{read_obj, write_obj_pose};
 use akap::import::Limits;
@@ -124,7 +124,7 @@ pub(crate) fn pose_obj(obj: Option<&str>, pose: &Pose) -> Result<Posed, String> 
     let (vertices, triangles) = (n, mesh.triangle_count());
 
     let start = Instant::now();
-    let mut deformer = pose.method.build(mesh).map_err(|e| e.to_string())?;
+    let mut deformer = Deformer::new(mesh, pose.method).map_err(|e| e.to_string())?;
     deformer.set_handle_vertices(&handles).map_err(|e| e.to_string())?;
     let setup_ms = start.elapsed().as_secs_f64() * 1e3;
     let start = Instant::now();

@@ -34,6 +34,7 @@ pub mod geometry;
 pub mod import;
 pub mod mesh;
 pub mod outline;
+pub mod pose;
 pub mod random;
 pub mod session;
 pub mod shapes;

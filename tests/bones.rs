@@ -7,9 +7,10 @@
 //! refuse them; a method switch carries them; a session with a bones event replays to the
 //! same bits. Runs natively and as wasm.
 
-use akap::deform::{ArapOptions, Deform, DeformError, DeformerOptions, Integrator, MethodOptions, MlsOptions};
+use akap::deform::{AkapOptions, ArapOptions, DeformError, Deformer, Integrator, MethodOptions, MlsOptions};
 use akap::geometry::Point;
-use akap::session::{replay, Event, Session};
+use akap::pose::replay;
+use akap::session::{Event, Session};
 use akap::shapes::grid_mesh;
 use akap::Mesh;
 #[cfg(target_arch = "wasm32")]
@@ -50,7 +51,7 @@ fn bone_samples(mesh: &Mesh) -> Vec<(u32, [f64; 3])> {
 }
 
 /// Sets the bone on `deformer` (at rest) and returns [`bone_samples`].
-fn bone(mesh: &Mesh, deformer: &mut dyn Deform) -> Vec<(u32, [f64; 3])> {
+fn bone(mesh: &Mesh, deformer: &mut Deformer) -> Vec<(u32, [f64; 3])> {
     let points = bone_samples(mesh);
     let [a, b] = [points[0], points[10]];
     deformer.set_bones(&[a.0, b.0], &[a.1, b.1]).unwrap();
@@ -83,9 +84,9 @@ fn random(state: &mut u64) -> f64 {
 
 fn methods() -> Vec<MethodOptions> {
     vec![
-        MethodOptions::Akap(DeformerOptions::default()),
-        MethodOptions::Akap(DeformerOptions::default().with_dirichlet(false)),
-        MethodOptions::Akap(DeformerOptions { integrator: Integrator::Linear, ..DeformerOptions::default() }),
+        MethodOptions::Akap(AkapOptions::default()),
+        MethodOptions::Akap(AkapOptions::default().with_dirichlet(false)),
+        MethodOptions::Akap(AkapOptions { integrator: Integrator::Linear, ..AkapOptions::default() }),
         MethodOptions::Arap(ArapOptions::default()),
     ]
 }
@@ -93,10 +94,10 @@ fn methods() -> Vec<MethodOptions> {
 /// The left end's corners pinned and a handle at the right end's middle dragged about at
 /// random, turning too, for 40 steps; with a bone (`with_bone`) or without. Returns the
 /// worst bend of the bone's segment over the steps and the deformer.
-fn drag(method: MethodOptions, with_bone: bool, seed: u64) -> (f64, Box<dyn Deform>) {
+fn drag(method: MethodOptions, with_bone: bool, seed: u64) -> (f64, Deformer) {
     let mesh = grid_mesh(COLUMNS, ROWS);
-    let mut deformer = method.build(mesh.clone()).unwrap();
-    let points = if with_bone { bone(&mesh, deformer.as_mut()) } else { bone_samples(&mesh) };
+    let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
+    let points = if with_bone { bone(&mesh, &mut deformer) } else { bone_samples(&mesh) };
     let right = locate(&mesh, [COLUMNS as f64 - 0.3, ROWS as f64 / 2.0]);
     let handles = [locate(&mesh, [0.0, 0.0]), locate(&mesh, [0.0, ROWS as f64]), right];
     let (triangles, weights): (Vec<u32>, Vec<[f64; 3]>) = handles.iter().copied().unzip();
@@ -133,8 +134,8 @@ fn a_bone_stays_straight_and_keeps_its_length_under_any_drag() {
 fn a_handle_on_the_bone_moves_and_turns_it_as_a_whole() {
     let mesh = grid_mesh(COLUMNS, ROWS);
     for method in methods() {
-        let mut deformer = method.build(mesh.clone()).unwrap();
-        let points = bone(&mesh, deformer.as_mut());
+        let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
+        let points = bone(&mesh, &mut deformer);
         // A pin at the left end, a handle in the middle of the bone moved and turned.
         let on_bone = locate(&mesh, [12.0, (BONE[0][1] + BONE[1][1]) / 2.0 + 0.05]);
         let pin = locate(&mesh, [0.5, 2.0]);
@@ -156,8 +157,8 @@ fn a_handle_on_the_bone_moves_and_turns_it_as_a_whole() {
 #[test]
 fn bad_bones_change_nothing_and_methods_without_bones_refuse_them() {
     let mesh = grid_mesh(COLUMNS, ROWS);
-    let mut deformer = MethodOptions::Akap(DeformerOptions::default()).build(mesh.clone()).unwrap();
-    bone(&mesh, deformer.as_mut());
+    let mut deformer = Deformer::new(mesh.clone(), MethodOptions::Akap(AkapOptions::default())).unwrap();
+    bone(&mesh, &mut deformer);
     let kept = deformer.bone_points();
     assert_eq!(kept.0.len(), 2);
     let [a, b] = BONE.map(|p| locate(&mesh, p));
@@ -197,7 +198,7 @@ fn bad_bones_change_nothing_and_methods_without_bones_refuse_them() {
         &akap::triangulate::TriangulationOptions::default(),
     )
     .unwrap();
-    let mut on_comb = MethodOptions::Arap(ArapOptions::default()).build(comb.clone()).unwrap();
+    let mut on_comb = Deformer::new(comb.clone(), MethodOptions::Arap(ArapOptions::default())).unwrap();
     let [p, q] = [[4.0, 0.5], [4.0, 2.5]].map(|x| locate(&comb, x));
     let error = on_comb.set_bones(&[p.0, q.0], &[p.1, q.1]).unwrap_err();
     assert_eq!(error.to_string(), "bone 0 cannot be used: its segment leaves the shape; draw it inside the shape");
@@ -205,7 +206,7 @@ fn bad_bones_change_nothing_and_methods_without_bones_refuse_them() {
     on_comb.set_bones(&[p.0, q.0], &[p.1, q.1]).unwrap();
 
     // MLS has no bones: it refuses any and takes none.
-    let mut mls = MethodOptions::Mls(MlsOptions::default()).build(mesh.clone()).unwrap();
+    let mut mls = Deformer::new(mesh.clone(), MethodOptions::Mls(MlsOptions::default())).unwrap();
     let error = mls.set_bones(&[a.0, b.0], &[a.1, b.1]).unwrap_err();
     assert!(matches!(error, DeformError::Unsupported { .. }));
     assert_eq!(error.to_string(), "method mls has no bones; choose \"akap\" or \"arap\" for it");
@@ -215,13 +216,13 @@ fn bad_bones_change_nothing_and_methods_without_bones_refuse_them() {
 #[test]
 fn a_method_switch_carries_bones_and_stiffness_stays_as_painted() {
     let mesh = grid_mesh(COLUMNS, ROWS);
-    let mut deformer = MethodOptions::Akap(DeformerOptions::default()).build(mesh.clone()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), MethodOptions::Akap(AkapOptions::default())).unwrap();
     let painted = vec![2.0; mesh.triangle_count()];
     deformer.set_stiffness(Some(&painted)).unwrap();
-    let points = bone(&mesh, deformer.as_mut());
+    let points = bone(&mesh, &mut deformer);
     // The bone's triangles weigh more in the energy, but the painting reads back as painted.
     assert_eq!(deformer.stiffness(), Some(&painted[..]));
-    MethodOptions::Arap(ArapOptions::default()).apply(&mut deformer).unwrap();
+    deformer.set_options(MethodOptions::Arap(ArapOptions::default())).unwrap();
     assert_eq!(deformer.bone_points().0.len(), 2);
     assert_eq!(deformer.stiffness(), Some(&painted[..]));
     let pin = locate(&mesh, [0.5, 2.0]);
@@ -233,15 +234,15 @@ fn a_method_switch_carries_bones_and_stiffness_stays_as_painted() {
     let size = (COLUMNS as f64).hypot(ROWS as f64);
     assert!(bend_of_bone(&mesh, deformer.positions(), &points) <= 1e-9 * size);
     // MLS poses without them.
-    MethodOptions::Mls(MlsOptions::default()).apply(&mut deformer).unwrap();
+    deformer.set_options(MethodOptions::Mls(MlsOptions::default())).unwrap();
     assert_eq!(deformer.bone_points().0.len(), 0);
 }
 
 #[test]
 fn a_bones_event_replays_to_the_same_bits() {
     let mesh = grid_mesh(COLUMNS, ROWS);
-    let options = MethodOptions::Akap(DeformerOptions::default());
-    let mut by_hand = options.build(mesh.clone()).unwrap();
+    let options = MethodOptions::Akap(AkapOptions::default());
+    let mut by_hand = Deformer::new(mesh.clone(), options).unwrap();
     let pin = locate(&mesh, [0.5, 2.0]);
     let right = locate(&mesh, [23.5, 2.0]);
     by_hand.set_handle_points(&[pin.0, right.0], &[pin.1, right.1]).unwrap();

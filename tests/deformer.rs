@@ -3,7 +3,7 @@
 //! handle edge cases and untouched state after bad input. Runs natively and as wasm.
 
 use akap::deform::akap::killing::KillingMatrix;
-use akap::deform::{ArapOptions, DeformError, Deformer, DeformerOptions, Integrator, Method, MethodOptions, Orders};
+use akap::deform::{AkapOptions, ArapOptions, DeformError, Deformer, Integrator, Method, MethodOptions, Orders};
 use akap::geometry::Point;
 use akap::shapes::{ellipse, gingerbread};
 use akap::{triangulate, Mesh, Outline, TriangulationOptions};
@@ -69,7 +69,7 @@ fn rigid_motions_are_reproduced_exactly() {
             (0.05, [0.5, 0.5], [1.0, 2.0], 1.0, true, true),
             (1.2, [0.0, 0.0], [-0.3, 0.1], 1e4, true, false),
         ] {
-            let options = DeformerOptions::default().with_lambda(lambda).with_dirichlet(dirichlet);
+            let options = AkapOptions::default().with_lambda(lambda).with_dirichlet(dirichlet);
             let mut deformer = Deformer::new(mesh.clone(), options).unwrap();
             place_handles(&mut deformer, barycentric, &mut rng);
             let u = killing_field(a, c, d);
@@ -100,7 +100,7 @@ fn rigid_motions_are_reproduced_exactly() {
 #[test]
 fn linear_steps_dilate_rotations_by_the_expected_factor() {
     let mesh = bar_with_holes();
-    let options = DeformerOptions::default().with_integrator(Integrator::Linear);
+    let options = AkapOptions::default().with_integrator(Integrator::Linear);
     let mut deformer = Deformer::new(mesh.clone(), options).unwrap();
     deformer.set_handle_vertices(&[0, 7, 20]).unwrap();
     let (a, c) = (0.4, [2.0, 0.5]);
@@ -133,7 +133,7 @@ fn both_solves_satisfy_their_optimality_conditions() {
     let mesh = figure();
     let mut rng = Rng::new(4);
     let lambda = 100.0;
-    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default().with_lambda(lambda)).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), AkapOptions::default().with_lambda(lambda)).unwrap();
     let tris = [3u32, 100, 250, 400];
     let weights = [[0.2, 0.3, 0.5], [1.0, 0.0, 0.0], [0.6, 0.2, 0.2], [0.1, 0.1, 0.8]];
     deformer.set_handle_points(&tris, &weights).unwrap();
@@ -181,7 +181,7 @@ fn bending_a_bar_along_a_quarter_circle_stays_near_isometric() {
         (0..mesh.vertex_count() as u32).filter(|&v| mesh.positions()[v as usize][0] == length).collect();
     let handles: Vec<u32> = left.iter().chain(&right).copied().collect();
     let rest: Vec<Point> = handles.iter().map(|&v| mesh.positions()[v as usize]).collect();
-    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh, AkapOptions::default()).unwrap();
     deformer.set_handle_vertices(&handles).unwrap();
     // The bar's centre line bent into a circular arc of angle phi keeps its length: the
     // right end goes to R (sin phi, 1 - cos phi) with R = length / phi, turned by phi.
@@ -216,7 +216,7 @@ fn bending_a_bar_along_a_quarter_circle_stays_near_isometric() {
 #[test]
 fn zero_one_and_coincident_handles() {
     let mesh = bar_with_holes();
-    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     deformer.step(&[]).unwrap();
     assert_eq!(deformer.positions(), mesh.positions());
 
@@ -237,7 +237,7 @@ fn zero_one_and_coincident_handles() {
 #[test]
 fn bad_input_is_refused_and_changes_nothing() {
     let mesh = bar_with_holes();
-    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     deformer.set_handle_vertices(&[0, 10]).unwrap();
     deformer.step(&[[0.0, 0.0], [0.1, 0.1]]).unwrap();
     let before = deformer.positions().to_vec();
@@ -268,7 +268,7 @@ fn bad_input_is_refused_and_changes_nothing() {
         Err(DeformError::NonFiniteVelocity { handle: 1 })
     ));
     assert!(matches!(
-        deformer.set_options(DeformerOptions::default().with_lambda(-1.0)),
+        deformer.set_options(AkapOptions::default().with_lambda(-1.0)),
         Err(DeformError::InvalidOption { name: "lambda", .. })
     ));
     assert_eq!(deformer.handle_count(), 2);
@@ -282,10 +282,7 @@ fn bad_input_is_refused_and_changes_nothing() {
         vec![[0, 1, 2], [3, 4, 5]],
     )
     .unwrap();
-    assert_eq!(
-        Deformer::new(two, DeformerOptions::default()).unwrap_err(),
-        DeformError::Disconnected { components: 2 }
-    );
+    assert_eq!(Deformer::new(two, AkapOptions::default()).unwrap_err(), DeformError::Disconnected { components: 2 });
 }
 
 #[test]
@@ -296,7 +293,7 @@ fn long_random_runs_stay_finite() {
     )
     .unwrap();
     let mut rng = Rng::new(99);
-    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     for step in 0..10_000 {
         if step % 500 == 0 {
             deformer.reset();
@@ -327,7 +324,7 @@ fn a_pose_set_from_outside_is_deformed_from_there() {
     };
     let posed: Vec<Point> =
         rest.iter().map(|&p| rotate(p, 0.4, [0.0, 0.0])).map(|p| [p[0] + 1.5, p[1] - 0.5]).collect();
-    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh, AkapOptions::default()).unwrap();
     deformer.set_handle_vertices(&[0, 7, 30]).unwrap();
     deformer.set_positions(&posed).unwrap();
     assert_eq!(deformer.positions(), &posed[..]);
@@ -358,7 +355,7 @@ fn with_handles_on_the_boundary_only_step_two_is_step_one() {
     // holds for the field it returns, and that it is U0.
     let mesh = figure();
     let boundary: Vec<u32> = mesh.boundary_vertices().step_by(37).take(4).collect();
-    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     deformer.set_handle_vertices(&boundary).unwrap();
     let velocities = [[0.01, 0.0], [0.0, -0.02], [0.015, 0.01], [-0.01, 0.005]];
     let positions = deformer.positions().to_vec();
@@ -395,7 +392,7 @@ fn a_drag_that_flips_triangles_never_sticks() {
     // step 406 a triangle flips, and the deformer used to refuse every later step (its
     // matrix then had a negative pivot). Every step must succeed, triangles flipped or not.
     let mesh = triangulate(&gingerbread(), &TriangulationOptions::default().with_target_edge_length(0.05)).unwrap();
-    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh, AkapOptions::default()).unwrap();
     deformer.set_handle_vertices(&[0, 500]).unwrap();
     let mut most_flipped = 0;
     for i in 0..700 {
@@ -429,7 +426,7 @@ fn rigid_motions_are_reproduced_from_flipped_and_collapsed_poses() {
     ] {
         let mut pose = rest.clone();
         pose[a] = moved;
-        let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
         deformer.set_positions(&pose).unwrap();
         deformer.set_handle_vertices(&[0, 500, a as u32, 100]).unwrap();
         let velocities: Vec<[f64; 2]> = deformer.handle_positions().into_iter().map(&u).collect();
@@ -455,7 +452,7 @@ fn a_step_that_fails_leaves_the_deformer_ready_for_smaller_ones() {
     // A velocity far too large for the mesh overflows the spiral step: the step is refused,
     // nothing changes, and a smaller step from there succeeds.
     let mesh = figure();
-    let mut deformer = Deformer::new(mesh, DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh, AkapOptions::default()).unwrap();
     deformer.set_handle_vertices(&[0, 40]).unwrap();
     deformer.step(&[[0.0, 0.0], [0.01, 0.0]]).unwrap();
     let before = deformer.positions().to_vec();
@@ -473,12 +470,12 @@ fn orders_made_beforehand_give_the_same_deformation_and_bad_ones_are_refused() {
     let mesh = figure();
     let n = mesh.vertex_count();
     let interior = (0..n).filter(|&v| !mesh.is_boundary_vertex(v)).count();
-    for options in [MethodOptions::Akap(DeformerOptions::default()), MethodOptions::Arap(ArapOptions::default())] {
+    for options in [MethodOptions::Akap(AkapOptions::default()), MethodOptions::Arap(ArapOptions::default())] {
         let own = options.orders(&mesh);
         let sizes: Vec<usize> = own.systems.iter().map(Vec::len).collect();
         assert_eq!(sizes, if options.method() == Method::Akap { vec![n, interior] } else { vec![n] });
         let pose = |orders: &Orders| {
-            let mut deformer = options.build_with_orders(mesh.clone(), orders).unwrap();
+            let mut deformer = Deformer::with_orders(mesh.clone(), options, orders).unwrap();
             deformer.set_handle_vertices(&[0, 40, 90]).unwrap();
             for _ in 0..5 {
                 deformer.step(&[[0.0, 0.0], [0.01, -0.02], [-0.015, 0.01]]).unwrap();
@@ -500,7 +497,7 @@ fn orders_made_beforehand_give_the_same_deformation_and_bad_ones_are_refused() {
         let mut extra = own.clone();
         extra.systems.push(Vec::new());
         for (bad, system) in [(twice, 0), (short, 0), (extra, sizes.len() + 1)] {
-            let error = options.build_with_orders(mesh.clone(), &bad).unwrap_err();
+            let error = Deformer::with_orders(mesh.clone(), options, &bad).unwrap_err();
             assert!(matches!(error, DeformError::OrdersMismatch { system: s, .. } if s == system), "{error}");
         }
     }

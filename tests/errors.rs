@@ -5,7 +5,7 @@ use std::error::Error as _;
 use std::sync::Arc;
 
 use akap::animation::{read_animation, AnimationError};
-use akap::deform::{DeformError, Deformer, DeformerOptions};
+use akap::deform::{AkapOptions, DeformError, Deformer};
 use akap::import::mesh_file::read_obj;
 use akap::import::{ImportError, Limits};
 use akap::sparse::{FactorError, Numeric, Ordering, Symbolic};
@@ -115,7 +115,7 @@ fn a_deformer_error_without_a_cause_ends_the_chain() {
     // Two triangles apart: two pieces.
     let positions = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [5.0, 0.0], [6.0, 0.0], [5.0, 1.0]];
     let mesh = akap::Mesh::new(positions, vec![[0, 1, 2], [3, 4, 5]]).unwrap();
-    let error = Error::from(Deformer::new(mesh, DeformerOptions::default()).unwrap_err());
+    let error = Error::from(Deformer::new(mesh, AkapOptions::default()).unwrap_err());
     assert_eq!(chain(&error), ["DeformError"]);
     assert_eq!(error.code(), ErrorCode::InvalidMesh);
 }

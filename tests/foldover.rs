@@ -7,8 +7,8 @@
 
 use akap::deform::foldover::newly_flipped;
 use akap::deform::{
-    step_without_foldovers, ArapDeformer, ArapOptions, CauchyGreenOptions, Checkpoint, Clock, Deform, DeformError,
-    DeformerOptions, FoldoverGuard, FoldoverStepper, GuardedStep, Method, MethodOptions, Metrics, MlsOptions, Timings,
+    step_without_foldovers, AkapOptions, ArapOptions, CauchyGreenOptions, Checkpoint, DeformError, Deformer,
+    FoldoverGuard, FoldoverStepper, GuardedStep, Method, MethodOptions, MlsOptions, Undoable,
 };
 use akap::geometry::Point;
 use akap::shapes::grid_mesh;
@@ -21,7 +21,7 @@ const ROWS: usize = 4;
 
 fn methods() -> [MethodOptions; 4] {
     [
-        MethodOptions::Akap(DeformerOptions::default()),
+        MethodOptions::Akap(AkapOptions::default()),
         MethodOptions::Arap(ArapOptions::default().with_iterations(10)),
         MethodOptions::Mls(MlsOptions::default()),
         MethodOptions::CauchyGreen(CauchyGreenOptions::default().with_cage(32)),
@@ -33,7 +33,7 @@ fn bits(points: &[Point]) -> Vec<u64> {
 }
 
 /// Everything a caller can read of a deformer's state, as bits.
-fn state(deformer: &dyn Deform) -> Vec<Vec<u64>> {
+fn state(deformer: &Deformer) -> Vec<Vec<u64>> {
     vec![
         bits(deformer.positions()),
         bits(deformer.field()),
@@ -45,8 +45,8 @@ fn state(deformer: &dyn Deform) -> Vec<Vec<u64>> {
 
 /// The bar `[0, 20] x [0, 4]` with its left end held (a handle on each vertex of the
 /// column x = 0) and a handle on the middle of its right end, last.
-fn bar(method: MethodOptions) -> Box<dyn Deform> {
-    let mut deformer = method.build(grid_mesh(COLUMNS, ROWS)).unwrap();
+fn bar(method: MethodOptions) -> Deformer {
+    let mut deformer = Deformer::new(grid_mesh(COLUMNS, ROWS), method).unwrap();
     let index = |x: usize, y: usize| (y * (COLUMNS + 1) + x) as u32;
     let mut handles: Vec<u32> = (0..=ROWS).map(|y| index(0, y)).collect();
     handles.push(index(COLUMNS, ROWS / 2));
@@ -55,7 +55,7 @@ fn bar(method: MethodOptions) -> Box<dyn Deform> {
 }
 
 /// Velocities that hold every handle but the last, which moves by `d`.
-fn drag(deformer: &dyn Deform, d: [f64; 2]) -> Vec<[f64; 2]> {
+fn drag(deformer: &Deformer, d: [f64; 2]) -> Vec<[f64; 2]> {
     let mut velocities = vec![[0.0; 2]; deformer.handle_count()];
     *velocities.last_mut().unwrap() = d;
     velocities
@@ -66,7 +66,7 @@ fn drag(deformer: &dyn Deform, d: [f64; 2]) -> Vec<[f64; 2]> {
 /// left (as the widget's drag does), so a guarded drag that lags catches up if it can.
 const FRAMES: usize = 8;
 
-fn drag_frame(deformer: &dyn Deform, frame: usize) -> Vec<[f64; 2]> {
+fn drag_frame(deformer: &Deformer, frame: usize) -> Vec<[f64; 2]> {
     let goal = [2.0, ROWS as f64 / 2.0];
     let at = *deformer.handle_positions().last().unwrap();
     let share = 1.0 / (FRAMES - frame) as f64;
@@ -79,11 +79,11 @@ fn a_step_that_flips_nothing_is_the_plain_step_to_the_bit() {
         let (mut plain, mut guarded) = (bar(method), bar(method));
         let mut stepper = FoldoverStepper::new(FoldoverGuard::default()).unwrap();
         for frame in 0..4 {
-            let velocities = drag(plain.as_ref(), [0.1 * frame as f64, 0.4]);
+            let velocities = drag(&plain, [0.1 * frame as f64, 0.4]);
             plain.step(&velocities).unwrap();
-            let report = stepper.step(guarded.as_mut(), &velocities).unwrap();
+            let report = stepper.step(&mut guarded, &velocities).unwrap();
             assert_eq!(report, &GuardedStep { steps: vec![1.0], clamped: false, attempts: 1 }, "{method:?}");
-            assert_eq!(state(guarded.as_ref()), state(plain.as_ref()), "{method:?} frame {frame}");
+            assert_eq!(state(&guarded), state(&plain), "{method:?} frame {frame}");
             assert_eq!(plain.metrics().flipped, 0, "{method:?}: the bending flips nothing");
         }
     }
@@ -118,7 +118,7 @@ fn rigid_motions_are_still_reproduced() {
                 }
             })
             .collect();
-        let report = step_without_foldovers(deformer.as_mut(), &velocities, &FoldoverGuard::default()).unwrap();
+        let report = step_without_foldovers(&mut deformer, &velocities, &FoldoverGuard::default()).unwrap();
         assert_eq!(report.steps, [1.0], "{method:?}");
         let size = 30.0;
         for (p, q) in deformer.mesh().positions().iter().zip(deformer.positions()) {
@@ -142,7 +142,7 @@ fn plain_drag(method: MethodOptions) -> usize {
     let mut deformer = bar(method);
     let mut most = 0;
     for frame in 0..FRAMES {
-        let velocities = drag_frame(deformer.as_ref(), frame);
+        let velocities = drag_frame(&deformer, frame);
         if deformer.step(&velocities).is_err() {
             break;
         }
@@ -153,7 +153,7 @@ fn plain_drag(method: MethodOptions) -> usize {
 
 /// The extreme drag with guarded steps.
 struct GuardedDrag {
-    deformer: Box<dyn Deform>,
+    deformer: Deformer,
     /// Every plain step taken: the velocities times its fraction.
     taken: Vec<Vec<[f64; 2]>>,
     /// Whether a guarded step was split, and whether one was clamped.
@@ -167,8 +167,8 @@ fn guarded_drag(method: MethodOptions) -> GuardedDrag {
     let mut stepper = FoldoverStepper::new(FoldoverGuard::default()).unwrap();
     let (mut taken, mut split, mut clamped) = (Vec::new(), false, false);
     for frame in 0..FRAMES {
-        let velocities = drag_frame(deformer.as_ref(), frame);
-        let report = stepper.step(deformer.as_mut(), &velocities).unwrap();
+        let velocities = drag_frame(&deformer, frame);
+        let report = stepper.step(&mut deformer, &velocities).unwrap();
         split |= report.steps != [1.0];
         clamped |= report.clamped;
         for &f in &report.steps {
@@ -205,7 +205,7 @@ fn the_reported_plain_steps_replay_to_the_same_bits() {
             replayed.step(velocities).unwrap();
         }
         assert!(split, "{method:?}: the drag should split a step");
-        assert_eq!(state(replayed.as_ref()), state(guarded.as_ref()), "{method:?} (clamped: {clamped})");
+        assert_eq!(state(&replayed), state(&guarded), "{method:?} (clamped: {clamped})");
     }
 }
 
@@ -215,7 +215,7 @@ fn a_restored_checkpoint_makes_the_next_step_as_if_nothing_happened() {
         let (mut undone, mut direct) = (bar(method), bar(method));
         for d in [&mut undone, &mut direct] {
             for k in 0..3 {
-                let velocities = drag(d.as_ref(), [-1.0, 0.5 * k as f64]);
+                let velocities = drag(d, [-1.0, 0.5 * k as f64]);
                 d.step(&velocities).unwrap();
             }
         }
@@ -223,17 +223,17 @@ fn a_restored_checkpoint_makes_the_next_step_as_if_nothing_happened() {
         undone.save_checkpoint(&mut checkpoint);
         assert_eq!(checkpoint.method(), Some(method.method()));
         // A step to undo: large, a different direction.
-        let velocities = drag(undone.as_ref(), [-9.0, -4.0]);
+        let velocities = drag(&undone, [-9.0, -4.0]);
         undone.step(&velocities).unwrap();
         assert_ne!(bits(undone.positions()), bits(direct.positions()));
         undone.restore_checkpoint(&checkpoint).unwrap();
-        assert_eq!(state(undone.as_ref()), state(direct.as_ref()), "{method:?} restored");
+        assert_eq!(state(&undone), state(&direct), "{method:?} restored");
         assert_eq!(undone.metrics(), direct.metrics());
         for d in [&mut undone, &mut direct] {
-            let velocities = drag(d.as_ref(), [0.7, 0.3]);
+            let velocities = drag(d, [0.7, 0.3]);
             d.step(&velocities).unwrap();
         }
-        assert_eq!(state(undone.as_ref()), state(direct.as_ref()), "{method:?} stepped after the restore");
+        assert_eq!(state(&undone), state(&direct), "{method:?} stepped after the restore");
     }
 }
 
@@ -241,8 +241,8 @@ fn a_restored_checkpoint_makes_the_next_step_as_if_nothing_happened() {
 fn arap_restores_its_targets_rotations_and_report() {
     let options = ArapOptions::default().with_iterations(5);
     let (mut undone, mut direct) = (
-        ArapDeformer::new(grid_mesh(COLUMNS, ROWS), options).unwrap(),
-        ArapDeformer::new(grid_mesh(COLUMNS, ROWS), options).unwrap(),
+        Deformer::new(grid_mesh(COLUMNS, ROWS), options).unwrap(),
+        Deformer::new(grid_mesh(COLUMNS, ROWS), options).unwrap(),
     );
     for d in [&mut undone, &mut direct] {
         d.set_handle_vertices(&[0, 62]).unwrap();
@@ -251,10 +251,10 @@ fn arap_restores_its_targets_rotations_and_report() {
     let checkpoint = undone.checkpoint();
     undone.step(&[[1.0, 0.0], [-6.0, -4.0]]).unwrap();
     undone.restore_checkpoint(&checkpoint).unwrap();
-    assert_eq!(undone.targets(), direct.targets());
-    assert_eq!(bits(undone.rotations()), bits(direct.rotations()));
-    assert_eq!(undone.report(), direct.report());
-    assert_eq!(undone.energy().to_bits(), direct.energy().to_bits());
+    assert_eq!(undone.arap().unwrap().targets(), direct.arap().unwrap().targets());
+    assert_eq!(bits(undone.arap().unwrap().rotations()), bits(direct.arap().unwrap().rotations()));
+    assert_eq!(undone.arap().unwrap().report(), direct.arap().unwrap().report());
+    assert_eq!(undone.energy().unwrap().to_bits(), direct.energy().unwrap().to_bits());
     for d in [&mut undone, &mut direct] {
         d.iterate(7, 0.0).unwrap();
     }
@@ -265,9 +265,9 @@ fn arap_restores_its_targets_rotations_and_report() {
 fn a_checkpoint_of_another_deformer_is_refused_and_changes_nothing() {
     let akap = bar(methods()[0]);
     let mut arap = bar(methods()[1]);
-    let velocities = drag(arap.as_ref(), [-1.0, 1.0]);
+    let velocities = drag(&arap, [-1.0, 1.0]);
     arap.step(&velocities).unwrap();
-    let before = state(arap.as_ref());
+    let before = state(&arap);
     let error = arap.restore_checkpoint(&akap.checkpoint()).unwrap_err();
     assert_eq!(error, DeformError::ForeignCheckpoint { method: Method::Arap, saved: Some(Method::Akap) });
     assert!(error.to_string().contains("method akap, not arap"), "{error}");
@@ -278,32 +278,32 @@ fn a_checkpoint_of_another_deformer_is_refused_and_changes_nothing() {
     arap.set_handle_vertices(&[0, 1]).unwrap();
     assert!(matches!(arap.restore_checkpoint(&saved), Err(DeformError::ForeignCheckpoint { .. })));
     for method in methods() {
-        let mut small = method.build(grid_mesh(3, 2)).unwrap();
+        let mut small = Deformer::new(grid_mesh(3, 2), method).unwrap();
         let error = small.restore_checkpoint(&bar(method).checkpoint()).unwrap_err();
         assert_eq!(error.code().as_str(), "invalid-argument");
         assert_eq!(bits(small.positions()), bits(small.mesh().positions()), "{method:?}");
     }
-    assert_eq!(state(arap.as_ref())[0], before[0]);
+    assert_eq!(state(&arap)[0], before[0]);
 }
 
 #[test]
 fn errors_leave_the_deformer_unchanged() {
     for method in methods() {
         let mut deformer = bar(method);
-        let velocities = drag(deformer.as_ref(), [-2.0, 1.0]);
+        let velocities = drag(&deformer, [-2.0, 1.0]);
         deformer.step(&velocities).unwrap();
-        let before = state(deformer.as_ref());
+        let before = state(&deformer);
         let guard = FoldoverGuard::default();
         let short = &velocities[1..];
-        assert!(matches!(step_without_foldovers(deformer.as_mut(), short, &guard), Err(DeformError::Length { .. })));
+        assert!(matches!(step_without_foldovers(&mut deformer, short, &guard), Err(DeformError::Length { .. })));
         let mut nan = velocities.clone();
         nan[2][1] = f64::NAN;
-        let error = step_without_foldovers(deformer.as_mut(), &nan, &guard).unwrap_err();
+        let error = step_without_foldovers(&mut deformer, &nan, &guard).unwrap_err();
         assert_eq!(error, DeformError::NonFiniteVelocity { handle: 2 });
-        let error = step_without_foldovers(deformer.as_mut(), &velocities, &guard.with_max_splits(11)).unwrap_err();
+        let error = step_without_foldovers(&mut deformer, &velocities, &guard.with_max_splits(11)).unwrap_err();
         assert!(matches!(error, DeformError::InvalidOption { name: "maxSplits", .. }), "{error}");
         assert!(FoldoverStepper::new(guard.with_clamp_trials(31)).is_err());
-        assert_eq!(state(deformer.as_ref()), before, "{method:?}");
+        assert_eq!(state(&deformer), before, "{method:?}");
 
         // A plain step failing after the guard has taken pieces: everything is undone. The
         // first frame of the extreme drag whose guarded step is split, and its plain steps:
@@ -311,23 +311,23 @@ fn errors_leave_the_deformer_unchanged() {
         let mut stepper = FoldoverStepper::new(guard).unwrap();
         let (frame, attempts) = (0..FRAMES)
             .find_map(|frame| {
-                let velocities = drag_frame(probe.as_ref(), frame);
-                let attempts = stepper.step(probe.as_mut(), &velocities).unwrap().attempts;
+                let velocities = drag_frame(&probe, frame);
+                let attempts = stepper.step(&mut probe, &velocities).unwrap().attempts;
                 (attempts >= 4).then_some((frame, attempts))
             })
             .expect("the drag splits a step");
         for fail_at in [2, 3, attempts] {
             let mut failing = FailsAt { inner: bar(method), steps: 0, fail_at: 0 };
             for earlier in 0..frame {
-                let velocities = drag_frame(&failing, earlier);
+                let velocities = drag_frame(&failing.inner, earlier);
                 step_without_foldovers(&mut failing, &velocities, &guard).unwrap();
             }
-            let before = state(&failing);
+            let before = state(&failing.inner);
             (failing.steps, failing.fail_at) = (0, fail_at);
-            let velocities = drag_frame(&failing, frame);
+            let velocities = drag_frame(&failing.inner, frame);
             let error = step_without_foldovers(&mut failing, &velocities, &guard).unwrap_err();
             assert_eq!(error, DeformError::NonFiniteResult);
-            assert_eq!(state(&failing), before, "{method:?}: failing at plain step {fail_at} of {attempts}");
+            assert_eq!(state(&failing.inner), before, "{method:?}: failing at plain step {fail_at} of {attempts}");
         }
     }
 }
@@ -347,9 +347,9 @@ fn the_clamp_finds_where_one_triangle_turns_over() {
     let mesh = Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0, 1, 2]]).unwrap();
     let push = [[0.0, 0.0], [0.0, 0.0], [0.0, -3.0]];
     for method in [MethodOptions::Mls(MlsOptions::default()), MethodOptions::Arap(ArapOptions::default())] {
-        let mut deformer = method.build(mesh.clone()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
         deformer.set_handle_vertices(&[0, 1, 2]).unwrap();
-        let report = step_without_foldovers(deformer.as_mut(), &push, &FoldoverGuard::default()).unwrap();
+        let report = step_without_foldovers(&mut deformer, &push, &FoldoverGuard::default()).unwrap();
         assert!(report.clamped, "{method:?}");
         assert_eq!(report.steps, [0.25, 0.0625, 0.0625 * 1365.0 / 4096.0], "{method:?}");
         // Seven steps (the whole, 1/2, 1/4, 1/4, 1/8, 1/16, 1/16) and twelve trials.
@@ -364,10 +364,10 @@ fn the_clamp_finds_where_one_triangle_turns_over() {
         // From there, a push that lifts the apex is taken whole; and a triangle already
         // turned over cannot block a step: pushed further down it stays so, in one step.
         let lift = [[0.0, 0.0], [0.0, 0.0], [0.0, 1.0]];
-        let report = step_without_foldovers(deformer.as_mut(), &lift, &FoldoverGuard::default()).unwrap();
+        let report = step_without_foldovers(&mut deformer, &lift, &FoldoverGuard::default()).unwrap();
         assert_eq!(report.steps, [1.0]);
         deformer.set_positions(&[[0.0, 0.0], [1.0, 0.0], [0.0, -1.0]]).unwrap();
-        let report = step_without_foldovers(deformer.as_mut(), &push, &FoldoverGuard::default()).unwrap();
+        let report = step_without_foldovers(&mut deformer, &push, &FoldoverGuard::default()).unwrap();
         assert_eq!((report.steps.as_slice(), report.clamped), ([1.0].as_slice(), false), "{method:?}");
         assert_eq!(deformer.positions()[2], [0.0, -4.0]);
     }
@@ -377,15 +377,15 @@ fn the_clamp_finds_where_one_triangle_turns_over() {
 fn no_splits_clamps_the_whole_step_and_no_trials_take_nothing() {
     let mesh = Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0, 1, 2]]).unwrap();
     let push = [[0.0, 0.0], [0.0, 0.0], [0.0, -3.0]];
-    let mut deformer = MethodOptions::Mls(MlsOptions::default()).build(mesh).unwrap();
+    let mut deformer = Deformer::new(mesh, MethodOptions::Mls(MlsOptions::default())).unwrap();
     deformer.set_handle_vertices(&[0, 1, 2]).unwrap();
     let guard = FoldoverGuard::default().with_max_splits(0);
-    let report = step_without_foldovers(deformer.as_mut(), &push, &guard).unwrap();
+    let report = step_without_foldovers(&mut deformer, &push, &guard).unwrap();
     // The whole push clamped: twelve bits of 1/3, after the whole push and twelve trials.
     assert_eq!(report, GuardedStep { steps: vec![1365.0 / 4096.0], clamped: true, attempts: 13 });
     assert_eq!(deformer.positions()[2], [0.0, 1.0 / 4096.0]);
     let before = bits(deformer.positions());
-    let report = step_without_foldovers(deformer.as_mut(), &push, &guard.with_clamp_trials(0)).unwrap();
+    let report = step_without_foldovers(&mut deformer, &push, &guard.with_clamp_trials(0)).unwrap();
     assert_eq!(report, GuardedStep { steps: vec![], clamped: true, attempts: 1 });
     assert_eq!(bits(deformer.positions()), before);
 }
@@ -394,38 +394,20 @@ fn no_splits_clamps_the_whole_step_and_no_trials_take_nothing() {
 /// as a step that overflows would: the deformer unchanged, [`DeformError::NonFiniteResult`].
 #[derive(Debug)]
 struct FailsAt {
-    inner: Box<dyn Deform>,
+    inner: Deformer,
     steps: usize,
     fail_at: usize,
 }
 
-impl Deform for FailsAt {
-    fn method_options(&self) -> MethodOptions {
-        self.inner.method_options()
-    }
-    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
-        self.inner.set_method_options(options)
-    }
-    fn set_clock(&mut self, clock: Clock) {
-        self.inner.set_clock(clock);
-    }
+impl Undoable for FailsAt {
     fn mesh(&self) -> &Mesh {
         self.inner.mesh()
     }
-    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        self.inner.set_handle_vertices(vertices)
-    }
-    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        self.inner.set_handle_points(triangles, barycentric)
+    fn positions(&self) -> &[Point] {
+        self.inner.positions()
     }
     fn handle_count(&self) -> usize {
         self.inner.handle_count()
-    }
-    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
-        self.inner.handle_points()
-    }
-    fn handle_positions(&self) -> Vec<Point> {
-        self.inner.handle_positions()
     }
     fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
         self.steps += 1;
@@ -434,34 +416,17 @@ impl Deform for FailsAt {
         }
         self.inner.step(velocities)
     }
-    fn positions(&self) -> &[Point] {
-        self.inner.positions()
-    }
-    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        self.inner.set_positions(positions)
-    }
-    fn field(&self) -> &[[f64; 2]] {
-        self.inner.field()
-    }
-    fn soft_field(&self) -> &[[f64; 2]] {
-        self.inner.soft_field()
-    }
-    fn cage_image(&self) -> Option<&[Point]> {
-        self.inner.cage_image()
+    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
+        self.steps += 1;
+        if self.steps == self.fail_at {
+            return Err(DeformError::NonFiniteResult);
+        }
+        self.inner.step_turning(velocities, turns)
     }
     fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
         self.inner.save_checkpoint(checkpoint);
     }
     fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
         self.inner.restore_checkpoint(checkpoint)
-    }
-    fn metrics(&self) -> Metrics {
-        self.inner.metrics()
-    }
-    fn timings(&self) -> Timings {
-        self.inner.timings()
-    }
-    fn reset(&mut self) {
-        self.inner.reset();
     }
 }

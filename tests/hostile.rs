@@ -5,7 +5,7 @@
 //! Runs natively and as wasm.
 
 use akap::deform::arap::MAX_ITERATIONS;
-use akap::deform::{ArapDeformer, ArapOptions, DeformError, Deformer, DeformerOptions};
+use akap::deform::{AkapOptions, ArapOptions, DeformError, Deformer};
 use akap::geometry::Point;
 use akap::import::svg::{import_svg, SvgOptions};
 use akap::import::vector::Verb;
@@ -164,7 +164,7 @@ fn large_outlines_are_checked_fast_and_refused_in_the_callers_terms() {
 fn tens_of_thousands_of_handles() {
     let mesh = grid(20, 20);
     let size = 20.0 * 2f64.sqrt();
-    let mut deformer = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     // 20,000 handles within 1e-12 of the shape's size of vertex 0: one point, so the shape
     // follows it rigidly, by the mean velocity.
     let count = 20_000;
@@ -231,20 +231,20 @@ fn points_far_outside_a_mesh_follow_its_nearest_triangle() {
 #[test]
 fn arap_steps_have_a_bounded_number_of_iterations() {
     let mesh = grid(4, 4);
-    let too_many = ArapDeformer::new(mesh.clone(), ArapOptions::default().with_iterations(MAX_ITERATIONS + 1));
+    let too_many = Deformer::new(mesh.clone(), ArapOptions::default().with_iterations(MAX_ITERATIONS + 1));
     let Err(DeformError::InvalidOption { name: "iterations", value, expected }) = too_many else {
         panic!("expected the iterations to be refused");
     };
     assert_eq!(value, (MAX_ITERATIONS + 1) as f64);
     assert!(expected.contains(&format!("from 1 to {MAX_ITERATIONS}")), "{expected}");
-    let mut deformer = ArapDeformer::new(mesh.clone(), ArapOptions::default().with_iterations(MAX_ITERATIONS)).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), ArapOptions::default().with_iterations(MAX_ITERATIONS)).unwrap();
     deformer.set_handle_vertices(&[0, 24]).unwrap();
     deformer.step(&[[0.0, 0.0], [0.5, 0.5]]).unwrap();
     // (It stops early only at an exact fixed point, where an iteration moves nothing.)
-    let report = deformer.report();
+    let report = deformer.arap().unwrap().report();
     assert!(report.iterations == MAX_ITERATIONS || report.last_move == 0.0, "{report:?}");
     assert!(deformer.iterate(MAX_ITERATIONS + 1, 0.0).is_err());
     // Convergence runs stop when converged and may allow more.
-    assert!(ArapDeformer::new(mesh, ArapOptions::default().until_converged(1e-9, 5 * MAX_ITERATIONS)).is_ok());
+    assert!(Deformer::new(mesh, ArapOptions::default().until_converged(1e-9, 5 * MAX_ITERATIONS)).is_ok());
     assert!(deformer.iterate(5 * MAX_ITERATIONS, 1e-9).unwrap().converged);
 }

@@ -2,7 +2,7 @@
 //! poses beyond the coordinate limit, lengths counted in the caller's numbers, collapsed
 //! poses, and the same deformation at every scale. Runs natively and as wasm.
 
-use akap::deform::{ArapOptions, CauchyGreenOptions, Deform, DeformError, DeformerOptions, MethodOptions, MlsOptions};
+use akap::deform::{AkapOptions, ArapOptions, CauchyGreenOptions, DeformError, Deformer, MethodOptions, MlsOptions};
 use akap::geometry::{scale_by_power_of_two, Point, MAX_COORDINATE};
 use akap::shapes::gingerbread;
 use akap::{triangulate, Mesh, TriangulationOptions};
@@ -19,8 +19,8 @@ fn scaled_mesh(mesh: &Mesh, f: impl Fn(f64) -> f64) -> Mesh {
 
 fn methods() -> [MethodOptions; 5] {
     [
-        MethodOptions::Akap(DeformerOptions::default()),
-        MethodOptions::Akap(DeformerOptions::default().with_dirichlet(false)),
+        MethodOptions::Akap(AkapOptions::default()),
+        MethodOptions::Akap(AkapOptions::default().with_dirichlet(false)),
         MethodOptions::Arap(ArapOptions::default()),
         MethodOptions::Mls(MlsOptions::default()),
         MethodOptions::CauchyGreen(CauchyGreenOptions::default()),
@@ -28,7 +28,7 @@ fn methods() -> [MethodOptions; 5] {
 }
 
 /// Handles on two vertices and a point inside a triangle; a few steps that bend the figure.
-fn pose(deformer: &mut dyn Deform, unit: impl Fn(f64) -> f64) {
+fn pose(deformer: &mut Deformer, unit: impl Fn(f64) -> f64) {
     let n = deformer.mesh().vertex_count() as u32;
     deformer.set_handle_vertices(&[0, n / 2]).unwrap();
     deformer.set_handle_points(&[0, 7, 20], &[[1.0, 0.0, 0.0], [0.2, 0.3, 0.5], [0.0, 0.0, 1.0]]).unwrap();
@@ -42,21 +42,21 @@ fn pose(deformer: &mut dyn Deform, unit: impl Fn(f64) -> f64) {
 fn lambda_has_the_documented_range_and_the_refusal_says_it() {
     let mesh = figure();
     for lambda in [1e-6, 1.0, 100.0, 1e10] {
-        let options = MethodOptions::Akap(DeformerOptions::default().with_lambda(lambda));
-        let mut deformer = options.build(mesh.clone()).unwrap();
-        pose(deformer.as_mut(), |x| x);
+        let options = MethodOptions::Akap(AkapOptions::default().with_lambda(lambda));
+        let mut deformer = Deformer::new(mesh.clone(), options).unwrap();
+        pose(&mut deformer, |x| x);
         assert!(deformer.positions().iter().flatten().all(|x| x.is_finite()), "lambda {lambda}");
     }
     for lambda in [0.0, -1.0, 9.9e-7, 1.01e10, 1e308, 1e-300, f64::NAN, f64::INFINITY] {
-        let options = DeformerOptions::default().with_lambda(lambda);
-        let error = MethodOptions::Akap(options).build(mesh.clone()).unwrap_err();
+        let options = AkapOptions::default().with_lambda(lambda);
+        let error = Deformer::new(mesh.clone(), MethodOptions::Akap(options)).unwrap_err();
         assert!(matches!(error, DeformError::InvalidOption { name: "lambda", .. }), "{error}");
         assert!(error.to_string().ends_with("expected a number from 1e-6 to 1e10"), "{error}");
-        let mut deformer = MethodOptions::default().build(mesh.clone()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), MethodOptions::default()).unwrap();
         let refused = deformer.set_method_options(MethodOptions::Akap(options)).unwrap_err();
         assert_eq!(refused.to_string(), error.to_string());
     }
-    let error = MethodOptions::Akap(DeformerOptions::default().with_lambda(1e308)).build(mesh).unwrap_err();
+    let error = Deformer::new(mesh, MethodOptions::Akap(AkapOptions::default().with_lambda(1e308))).unwrap_err();
     assert_eq!(error.to_string(), "option lambda is 1e308, expected a number from 1e-6 to 1e10");
 }
 
@@ -74,10 +74,11 @@ fn arap_options_have_documented_ranges() {
         (ArapOptions::default().until_converged(1.5, 10), "tolerance"),
         (ArapOptions::default().until_converged(f64::NAN, 10), "tolerance"),
     ] {
-        let error = MethodOptions::Arap(options).build(mesh.clone()).unwrap_err();
+        let error = Deformer::new(mesh.clone(), MethodOptions::Arap(options)).unwrap_err();
         assert!(matches!(error, DeformError::InvalidOption { name: n, .. } if n == name), "{error}");
     }
-    let error = MethodOptions::Arap(ArapOptions::default().with_iterations(0)).build(mesh.clone()).unwrap_err();
+    let error =
+        Deformer::new(mesh.clone(), MethodOptions::Arap(ArapOptions::default().with_iterations(0))).unwrap_err();
     assert_eq!(
         error.to_string(),
         "option iterations is 0, expected a whole number from 1 to 1000 per step (a step's work grows with it; \
@@ -89,7 +90,7 @@ fn arap_options_have_documented_ranges() {
         ArapOptions::default().until_converged(1.0, 3),
         ArapOptions::default().until_converged(1e-9, 1_000_000),
     ] {
-        assert!(MethodOptions::Arap(options).build(mesh.clone()).is_ok());
+        assert!(Deformer::new(mesh.clone(), MethodOptions::Arap(options)).is_ok());
     }
 }
 
@@ -100,12 +101,12 @@ fn every_method_deforms_the_same_at_every_scale() {
     // coordinate falls below the normal range, within one step of 4.9e-324).
     let unit_mesh = figure();
     for method in methods() {
-        let mut unit = method.build(unit_mesh.clone()).unwrap();
-        pose(unit.as_mut(), |x| x);
+        let mut unit = Deformer::new(unit_mesh.clone(), method).unwrap();
+        pose(&mut unit, |x| x);
         for j in [-990, -400, 400, 990] {
             let s = |x: f64| scale_by_power_of_two(x, j);
-            let mut scaled = method.build(scaled_mesh(&unit_mesh, s)).unwrap();
-            pose(scaled.as_mut(), s);
+            let mut scaled = Deformer::new(scaled_mesh(&unit_mesh, s), method).unwrap();
+            pose(&mut scaled, s);
             for (p, q) in scaled.positions().iter().zip(unit.positions()) {
                 for (x, y) in p.iter().zip(q) {
                     assert!((x - s(*y)).abs() <= f64::from_bits(1), "{method:?} at 2^{j}: {p:?} vs {q:?}");
@@ -123,8 +124,8 @@ fn every_method_deforms_the_same_at_every_scale() {
         let tolerance = if matches!(method, MethodOptions::CauchyGreen(_)) { 1e-4 } else { 1e-10 };
         for factor in [1e-300, 1e200] {
             let s = |x: f64| x * factor;
-            let mut scaled = method.build(scaled_mesh(&unit_mesh, s)).unwrap();
-            pose(scaled.as_mut(), s);
+            let mut scaled = Deformer::new(scaled_mesh(&unit_mesh, s), method).unwrap();
+            pose(&mut scaled, s);
             for (p, q) in scaled.positions().iter().zip(unit.positions()) {
                 let d = (p[0] / factor - q[0]).hypot(p[1] / factor - q[1]);
                 assert!(d < tolerance, "{method:?} at {factor}: {p:?} vs {q:?}");
@@ -137,7 +138,7 @@ fn every_method_deforms_the_same_at_every_scale() {
 fn poses_beyond_the_coordinate_limit_are_refused_and_change_nothing() {
     let mesh = scaled_mesh(&figure(), |x| 5e299 * x); // at most 5e299 from the origin
     for method in methods() {
-        let mut deformer = method.build(mesh.clone()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
         deformer.set_handle_vertices(&[0, 30]).unwrap();
         deformer.step(&[[0.0, 0.0], [1e298, 0.0]]).unwrap();
         let before = deformer.positions().to_vec();
@@ -159,7 +160,7 @@ fn lengths_are_counted_in_numbers() {
     let mesh = figure();
     let n = mesh.vertex_count();
     for method in methods() {
-        let mut deformer = method.build(mesh.clone()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
         // One point short: 2n - 2 numbers where 2n are needed.
         let error = deformer.set_positions(&mesh.positions()[1..]).unwrap_err();
         assert_eq!(
@@ -179,7 +180,7 @@ fn a_collapsed_pose_has_infinite_distortion_not_nan() {
     let mesh = figure();
     let m = mesh.triangle_count();
     for method in methods() {
-        let mut deformer = method.build(mesh.clone()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
         // Every vertex on the line y = 0: every triangle collapsed (sigma2 = 0).
         let flat: Vec<Point> = mesh.positions().iter().map(|p| [p[0], 0.0]).collect();
         deformer.set_positions(&flat).unwrap();

@@ -5,7 +5,7 @@
 //! deformer's complex numbers). Bad input is refused with nothing changed. Runs natively
 //! and as wasm.
 
-use akap::deform::{Deform, DeformError, MethodOptions, MlsDeformer, MlsOptions, MlsVariant};
+use akap::deform::{DeformError, Deformer, MethodOptions, MlsOptions, MlsVariant};
 use akap::geometry::Point;
 use akap::shapes::grid_mesh;
 use akap::Mesh;
@@ -17,16 +17,16 @@ use crate::common::Rng;
 const VARIANTS: [MlsVariant; 3] = [MlsVariant::Rigid, MlsVariant::Similarity, MlsVariant::Affine];
 
 /// A 12 x 6 grid of unit squares with handles on five vertices, not on one line.
-fn setup(variant: MlsVariant, alpha: f64) -> (Mesh, MlsDeformer, Vec<u32>) {
+fn setup(variant: MlsVariant, alpha: f64) -> (Mesh, Deformer, Vec<u32>) {
     let mesh = grid_mesh(12, 6);
     let handles = vec![0, 12, 13 * 6, 13 * 6 + 12, 13 * 3 + 6];
-    let mut deformer = MlsDeformer::new(mesh.clone(), MlsOptions { variant, alpha }).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), MlsOptions { variant, alpha }).unwrap();
     deformer.set_handle_vertices(&handles).unwrap();
     (mesh, deformer, handles)
 }
 
 /// Steps the deformer so that handle k goes to `targets[k]`.
-fn drive(deformer: &mut MlsDeformer, targets: &[Point]) {
+fn drive(deformer: &mut Deformer, targets: &[Point]) {
     let velocities: Vec<[f64; 2]> =
         deformer.handle_positions().iter().zip(targets).map(|(p, q)| [q[0] - p[0], q[1] - p[1]]).collect();
     deformer.step(&velocities).unwrap();
@@ -161,7 +161,7 @@ fn every_vertex_agrees_with_the_papers_formulas() {
     for variant in VARIANTS {
         for alpha in [0.5, 1.0, 1.5] {
             let mesh = grid_mesh(12, 6);
-            let mut deformer = MlsDeformer::new(mesh.clone(), MlsOptions { variant, alpha }).unwrap();
+            let mut deformer = Deformer::new(mesh.clone(), MlsOptions { variant, alpha }).unwrap();
             // Handles at points inside triangles, so that no vertex sits on one.
             let triangles = [3u32, 40, 77, 101, 130, 60];
             let barycentric: Vec<[f64; 3]> = triangles.iter().map(|_| [0.2, 0.3, 0.5]).collect();
@@ -189,12 +189,12 @@ fn bad_input_changes_nothing() {
     assert_eq!(deformer.positions(), &pose[..]);
     // The affine map needs three handles not on one line: two handles are refused at the
     // step, with nothing moved; rigid and similarity maps take one handle as a translation.
-    let mut affine = MlsDeformer::new(mesh.clone(), MlsOptions::default().with_variant(MlsVariant::Affine)).unwrap();
+    let mut affine = Deformer::new(mesh.clone(), MlsOptions::default().with_variant(MlsVariant::Affine)).unwrap();
     affine.set_handle_vertices(&[0, 12]).unwrap();
     let error = affine.step(&[[1.0, 0.0], [0.0, 1.0]]).unwrap_err();
     assert!(matches!(error, DeformError::TooFewHandles { .. }), "{error}");
     assert_eq!(affine.positions(), mesh.positions());
-    let mut one = MlsDeformer::new(mesh.clone(), MlsOptions::default()).unwrap();
+    let mut one = Deformer::new(mesh.clone(), MlsOptions::default()).unwrap();
     one.set_handle_vertices(&[5]).unwrap();
     one.step(&[[2.0, -1.0]]).unwrap();
     for (p, q) in mesh.positions().iter().zip(one.positions()) {
@@ -203,14 +203,11 @@ fn bad_input_changes_nothing() {
     // Options out of range, and another method's options, are refused.
     for alpha in [0.0, 5.0, f64::NAN] {
         let options = MlsOptions::default().with_alpha(alpha);
-        assert!(matches!(
-            MlsDeformer::new(mesh.clone(), options),
-            Err(DeformError::InvalidOption { name: "alpha", .. })
-        ));
+        assert!(matches!(Deformer::new(mesh.clone(), options), Err(DeformError::InvalidOption { name: "alpha", .. })));
         assert!(deformer.set_options(options).is_err());
     }
-    assert_eq!(deformer.options(), MlsOptions::default());
-    let mut boxed = MethodOptions::Mls(MlsOptions::default()).build(mesh).unwrap();
+    assert_eq!(deformer.options(), MethodOptions::Mls(MlsOptions::default()));
+    let mut boxed = Deformer::new(mesh, MethodOptions::Mls(MlsOptions::default())).unwrap();
     assert!(matches!(
         boxed.set_method_options(MethodOptions::Akap(Default::default())),
         Err(DeformError::WrongMethod { .. })

@@ -9,7 +9,7 @@
 #[path = "../examples/pose_obj.rs"]
 mod example;
 
-use akap::deform::{ArapOptions, DeformerOptions, MethodOptions};
+use akap::deform::{AkapOptions, ArapOptions, MethodOptions};
 use akap::geometry::Point;
 use akap::import::mesh_file::read_obj;
 use akap::import::Limits;
@@ -47,7 +47,7 @@ fn positions(obj: &str) -> Vec<Point> {
 }
 
 fn methods() -> [MethodOptions; 2] {
-    [MethodOptions::Akap(DeformerOptions::default()), MethodOptions::Arap(ArapOptions::default())]
+    [MethodOptions::Akap(AkapOptions::default()), MethodOptions::Arap(ArapOptions::default())]
 }
 
 /// Far corners of the bar.
@@ -172,7 +172,7 @@ fn bad_input_is_an_error_not_a_panic() {
         (Pose { pins: vec![3], moves: vec![(3, [1.0, 0.0])], ..Pose::default() }, "two handles"),
         (Pose { moves: vec![(3, [1e300, 0.0])], ..Pose::default() }, "steps: 1 to 100000"),
         (Pose { pins: vec![0], steps: Some(0), ..Pose::default() }, "0 steps"),
-        (Pose { method: MethodOptions::Akap(DeformerOptions::default().with_lambda(-1.0)), ..pin.clone() }, "lambda"),
+        (Pose { method: MethodOptions::Akap(AkapOptions::default().with_lambda(-1.0)), ..pin.clone() }, "lambda"),
     ] {
         let error = pose_obj(Some(&text), &pose).unwrap_err();
         assert!(error.contains(message), "{pose:?}: {error}");

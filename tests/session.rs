@@ -5,12 +5,10 @@
 
 use std::f64::consts::PI;
 
-use akap::deform::{
-    ArapDeformer, ArapOptions, Deform, DeformError, Deformer, DeformerOptions, Integrator, Method, MethodOptions,
-    SettingValue,
-};
+use akap::deform::{AkapOptions, ArapOptions, DeformError, Deformer, Integrator, Method, MethodOptions, SettingValue};
 use akap::geometry::Point;
-use akap::session::{replay, replay_to_targets, Event, MeshCounts, RecordedOptions, Session, SessionError, ShapeSpec};
+use akap::pose::{replay, replay_to_targets};
+use akap::session::{Event, MeshCounts, RecordedOptions, Session, SessionError, ShapeSpec};
 use akap::shapes::{self, BAR_SIZE};
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -173,7 +171,7 @@ fn arap_follows_the_recorded_targets() {
     let s = session("bar");
     let mut recorded = s.recorded_deformer().unwrap();
     let recording = replay(&s, &mut recorded).unwrap();
-    let mut arap = ArapDeformer::new(s.mesh().unwrap(), ArapOptions::default().with_iterations(10)).unwrap();
+    let mut arap = Deformer::new(s.mesh().unwrap(), ArapOptions::default().with_iterations(10)).unwrap();
     let result = replay_to_targets(&s, &recording.targets, &mut arap).unwrap();
     // The handles are at vertices, so hard constraints: exactly on target.
     assert_eq!(result.handle_error, Some(0.0));
@@ -183,7 +181,7 @@ fn arap_follows_the_recorded_targets() {
     let [length, height] = BAR_SIZE;
     let strain = height / 2.0 / (length / (PI / 2.0));
     let estimate = 2.0 + strain * strain / 3.0;
-    let m = Deform::metrics(&arap);
+    let m = arap.metrics();
     assert_eq!(m.flipped, 0);
     assert!((m.area_distortion - estimate).abs() < 0.3 * (estimate - 2.0), "{m:?} vs {estimate}");
 }
@@ -242,7 +240,7 @@ fn bad_sessions_are_refused() {
     ));
     // Targets that do not cover the steps.
     let mut deformer = good.recorded_deformer().unwrap();
-    assert!(matches!(replay_to_targets(&good, &[], deformer.as_mut()), Err(SessionError::MissingTargets { index: 1 })));
+    assert!(matches!(replay_to_targets(&good, &[], &mut deformer), Err(SessionError::MissingTargets { index: 1 })));
     // A session with only a reset changes nothing.
     let positions = replay_with(vec![Event::Reset(true), Event::Reset(false)]).unwrap();
     assert_eq!(positions, good.mesh().unwrap().positions());
@@ -253,7 +251,7 @@ fn version_1_files_are_read_but_not_with_what_only_version_2_has() {
     let (_, bar) = SESSIONS[0];
     let v1 = Session::from_json(bar).unwrap();
     assert_eq!(v1.options.method, None, "version 1 names no method");
-    assert_eq!(v1.method_options().unwrap(), MethodOptions::Akap(DeformerOptions::default()));
+    assert_eq!(v1.method_options().unwrap(), MethodOptions::Akap(AkapOptions::default()));
     let with = |from: &str, to: &str| {
         assert!(bar.contains(from));
         Session::from_json(&bar.replacen(from, to, 1))
@@ -307,35 +305,35 @@ fn positions_and_options_events_replay_as_the_calls_they_record() {
 
     // The same calls made by hand.
     let pairs = |flat: &[f64]| flat.as_chunks::<2>().0.to_vec();
-    let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut d = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     d.set_handle_points(&handles.0, &handles.1).unwrap();
     d.step(&pairs(&v(1.0))).unwrap();
-    d.set_options(DeformerOptions::default().with_lambda(10.0)).unwrap();
+    d.set_options(AkapOptions::default().with_lambda(10.0)).unwrap();
     d.step(&pairs(&v(2.0))).unwrap();
     d.set_positions(&pairs(&pose)).unwrap();
     // A positions event puts the mesh exactly into the pose.
     assert!(d.positions().iter().flatten().zip(&pose).all(|(a, b)| a.to_bits() == b.to_bits()));
     d.step(&pairs(&v(3.0))).unwrap();
-    let mut a = ArapDeformer::new(mesh.clone(), ArapOptions::default().with_iterations(3)).unwrap();
+    let mut a = Deformer::new(mesh.clone(), ArapOptions::default().with_iterations(3)).unwrap();
     a.set_positions(d.positions()).unwrap();
     a.set_handle_points(&handles.0, &handles.1).unwrap();
     a.step(&pairs(&v(4.0))).unwrap();
     // Another method starts from its defaults: lambda is 100 again.
-    let linear = DeformerOptions::default().with_integrator(Integrator::Linear);
+    let linear = AkapOptions::default().with_integrator(Integrator::Linear);
     let mut d = Deformer::new(mesh, linear).unwrap();
     d.set_positions(a.positions()).unwrap();
     d.set_handle_points(&handles.0, &handles.1).unwrap();
     d.step(&pairs(&v(5.0))).unwrap();
 
-    assert_eq!(replayed.method_options(), MethodOptions::Akap(linear));
+    assert_eq!(replayed.options(), MethodOptions::Akap(linear));
     let bits = |p: &[Point]| p.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(replayed.positions()), bits(d.positions()));
     // A compared method passes over options events and keeps its own.
-    let mut arap = ArapDeformer::new(s.mesh().unwrap(), ArapOptions::default().with_iterations(7)).unwrap();
+    let mut arap = Deformer::new(s.mesh().unwrap(), ArapOptions::default().with_iterations(7)).unwrap();
     let mut recorded = s.recorded_deformer().unwrap();
     let targets = replay(&s, &mut recorded).unwrap().targets;
     replay_to_targets(&s, &targets, &mut arap).unwrap();
-    assert_eq!(arap.options().iterations, 7);
+    assert_eq!(arap.arap().unwrap().options().iterations, 7);
 }
 
 #[test]
@@ -373,7 +371,7 @@ fn stiffness_events_replay_as_the_calls_they_record() {
     replay(&s, &mut replayed).unwrap();
 
     let pairs = |flat: &[f64]| flat.as_chunks::<2>().0.to_vec();
-    let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut d = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     d.set_handle_points(&handles.0, &handles.1).unwrap();
     d.set_stiffness(Some(&painted)).unwrap();
     d.step(&pairs(&v(1.0))).unwrap();
@@ -394,8 +392,8 @@ fn stiffness_events_replay_as_the_calls_they_record() {
     // A compared method without stiffness passes over the events; the recorded method
     // refuses one it cannot take, as the deformer does.
     let targets = replay(&s, &mut s.recorded_deformer().unwrap()).unwrap().targets;
-    let mut mls = MethodOptions::Mls(Default::default()).build(mesh.clone()).unwrap();
-    replay_to_targets(&s, &targets, mls.as_mut()).unwrap();
+    let mut mls = Deformer::new(mesh.clone(), MethodOptions::Mls(Default::default())).unwrap();
+    replay_to_targets(&s, &targets, &mut mls).unwrap();
     let mut under_mls = s.clone();
     under_mls.options = RecordedOptions::of(MethodOptions::Mls(Default::default()));
     let mut deformer = under_mls.recorded_deformer().unwrap();
@@ -450,9 +448,9 @@ fn inline_meshes_and_arap_sessions_round_trip_and_replay() {
     assert_eq!((rebuilt.positions(), rebuilt.triangles()), (mesh.positions(), mesh.triangles()));
     assert_eq!(back.method_options().unwrap(), options);
     let mut replayed = back.recorded_deformer().unwrap();
-    assert_eq!(replayed.method_options().method(), Method::Arap);
+    assert_eq!(replayed.options().method(), Method::Arap);
     replay(&back, &mut replayed).unwrap();
-    let mut a = ArapDeformer::new(mesh.clone(), ArapOptions::default().with_iterations(4)).unwrap();
+    let mut a = Deformer::new(mesh.clone(), ArapOptions::default().with_iterations(4)).unwrap();
     a.set_handle_points(&handles.0, &handles.1).unwrap();
     a.step(&[[0.0, 0.0], [0.02, 0.01]]).unwrap();
     a.reset();
@@ -578,7 +576,7 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
     let mut deformer = s.recorded_deformer().unwrap();
     replay(&s, &mut deformer).unwrap();
     // The recording switched to ARAP.
-    assert_eq!(deformer.method_options().method(), Method::Arap);
+    assert_eq!(deformer.options().method(), Method::Arap);
     let found: Vec<u64> = deformer.positions().iter().flatten().map(|x| x.to_bits()).collect();
     let differing = found.iter().zip(&expected).filter(|(a, b)| a != b).count();
     assert_eq!(differing, 0, "{differing} of {} coordinates differ from the app's", expected.len());

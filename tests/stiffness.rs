@@ -8,7 +8,7 @@
 //! natively and as wasm.
 
 use akap::deform::metrics::{deformation_gradient, singular_values};
-use akap::deform::{ArapOptions, CauchyGreenOptions, Deform, DeformError, DeformerOptions, MethodOptions, MlsOptions};
+use akap::deform::{AkapOptions, ArapOptions, CauchyGreenOptions, DeformError, Deformer, MethodOptions, MlsOptions};
 use akap::geometry::Point;
 use akap::shapes::grid_mesh;
 use akap::Mesh;
@@ -26,9 +26,9 @@ fn ends() -> (Vec<u32>, Vec<u32>) {
 
 /// The left end held, the right end turned by 90 degrees about its middle and lifted, in
 /// 60 steps that each go a share of the way that is left.
-fn bend(method: MethodOptions, stiffness: Option<&[f64]>) -> (Mesh, Box<dyn Deform>) {
+fn bend(method: MethodOptions, stiffness: Option<&[f64]>) -> (Mesh, Deformer) {
     let mesh = grid_mesh(COLUMNS, ROWS);
-    let mut deformer = method.build(mesh.clone()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
     deformer.set_stiffness(stiffness).unwrap();
     let (left, right) = ends();
     let handles: Vec<u32> = left.iter().chain(&right).copied().collect();
@@ -83,7 +83,7 @@ fn worst_stretch(mesh: &Mesh, positions: &[Point], chosen: &[bool]) -> f64 {
 }
 
 fn akap() -> MethodOptions {
-    MethodOptions::Akap(DeformerOptions::default())
+    MethodOptions::Akap(AkapOptions::default())
 }
 
 fn arap() -> MethodOptions {
@@ -114,7 +114,7 @@ fn stiffness_one_everywhere_is_the_unpainted_deformer_and_bad_values_change_noth
         let (_, painted) = bend(method, Some(&ones));
         assert_eq!(bits(painted.positions()), bits(plain.positions()), "{method:?}");
 
-        let mut deformer = method.build(mesh.clone()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
         deformer.set_handle_vertices(&[0, 40]).unwrap();
         let mut bad = ones.clone();
         bad[7] = f64::NAN;
@@ -125,7 +125,7 @@ fn stiffness_one_everywhere_is_the_unpainted_deformer_and_bad_values_change_noth
         assert!(matches!(deformer.set_stiffness(Some(&ones[1..])), Err(DeformError::Length { .. })));
         assert_eq!(deformer.stiffness(), None);
         // Nothing was changed: a step is the unpainted one.
-        let mut unpainted = method.build(mesh).unwrap();
+        let mut unpainted = Deformer::new(mesh, method).unwrap();
         unpainted.set_handle_vertices(&[0, 40]).unwrap();
         for d in [&mut deformer, &mut unpainted] {
             d.step(&[[0.0, 0.0], [0.5, 0.3]]).unwrap();
@@ -140,15 +140,15 @@ fn methods_without_a_per_triangle_energy_refuse_it_and_a_switch_keeps_it() {
     let stiffness: Vec<f64> = (0..mesh.triangle_count()).map(|t| 1.0 + (t % 7) as f64).collect();
     for method in [MethodOptions::Mls(MlsOptions::default()), MethodOptions::CauchyGreen(CauchyGreenOptions::default())]
     {
-        let mut deformer = method.build(mesh.clone()).unwrap();
+        let mut deformer = Deformer::new(mesh.clone(), method).unwrap();
         let error = deformer.set_stiffness(Some(&stiffness)).unwrap_err();
         assert!(matches!(error, DeformError::Unsupported { what: "stiffness", .. }), "{error}");
         deformer.set_stiffness(None).unwrap();
     }
-    let mut deformer = akap().build(mesh.clone()).unwrap();
+    let mut deformer = Deformer::new(mesh.clone(), akap()).unwrap();
     deformer.set_stiffness(Some(&stiffness)).unwrap();
-    arap().apply(&mut deformer).unwrap();
+    deformer.set_options(arap()).unwrap();
     assert_eq!(deformer.stiffness(), Some(&stiffness[..]));
-    MethodOptions::Mls(MlsOptions::default()).apply(&mut deformer).unwrap();
+    deformer.set_options(MethodOptions::Mls(MlsOptions::default())).unwrap();
     assert_eq!(deformer.stiffness(), None);
 }

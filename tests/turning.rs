@@ -8,11 +8,11 @@
 //! methods without turning handles refuse them. Runs natively and as wasm.
 
 use akap::deform::{
-    ArapDeformer, ArapOptions, DeformError, Deformer, DeformerOptions, FoldoverGuard, FoldoverStepper, MethodOptions,
-    MlsOptions,
+    AkapOptions, ArapOptions, DeformError, Deformer, FoldoverGuard, FoldoverStepper, MethodOptions, MlsOptions,
 };
 use akap::geometry::Point;
-use akap::session::{replay, Event, Session};
+use akap::pose::replay;
+use akap::session::{Event, Session};
 use akap::shapes::grid_mesh;
 use akap::Mesh;
 #[cfg(target_arch = "wasm32")]
@@ -44,7 +44,7 @@ fn largest_gap(a: &[Point], b: &[Point]) -> f64 {
 #[test]
 fn one_turning_handle_on_a_free_shape_rotates_it_rigidly_about_the_handle() {
     let mesh = mesh();
-    for options in [DeformerOptions::default(), DeformerOptions::default().with_dirichlet(false)] {
+    for options in [AkapOptions::default(), AkapOptions::default().with_dirichlet(false)] {
         let mut d = Deformer::new(mesh.clone(), options).unwrap();
         let w = [0.2, 0.3, 0.5];
         d.set_handle_points(&[40], &[w]).unwrap();
@@ -71,7 +71,7 @@ fn one_turning_handle_on_a_free_shape_rotates_it_rigidly_about_the_handle() {
 #[test]
 fn two_handles_asked_for_one_rigid_motion_give_its_spiral_step_through_the_full_solve() {
     let mesh = mesh();
-    let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut d = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     let (ta, tb) = (30u32, 101u32);
     let (wa, wb) = ([0.3, 0.3, 0.4], [0.6, 0.2, 0.2]);
     d.set_handle_points(&[ta, tb], &[wa, wb]).unwrap();
@@ -102,7 +102,7 @@ fn zero_turns_are_the_plain_step_and_a_pinned_turning_handle_turns_its_triangle(
     let mesh = mesh();
     let handles = (vec![6u32, 120], vec![[1.0 / 3.0; 3], [0.2, 0.5, 0.3]]);
     let make = || {
-        let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+        let mut d = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
         d.set_handle_points(&handles.0, &handles.1).unwrap();
         d
     };
@@ -133,7 +133,7 @@ fn zero_turns_are_the_plain_step_and_a_pinned_turning_handle_turns_its_triangle(
 #[test]
 fn bad_turns_change_nothing_and_methods_without_them_refuse_them() {
     let mesh = mesh();
-    let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+    let mut d = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
     d.set_handle_vertices(&[0, 50]).unwrap();
     d.step(&[[0.0, 0.0], [0.1, 0.0]]).unwrap();
     let before = d.positions().to_vec();
@@ -145,7 +145,7 @@ fn bad_turns_change_nothing_and_methods_without_them_refuse_them() {
     );
     assert_eq!(d.positions(), &before[..]);
 
-    let mut mls = MethodOptions::Mls(MlsOptions::default()).build(mesh).unwrap();
+    let mut mls = Deformer::new(mesh, MethodOptions::Mls(MlsOptions::default())).unwrap();
     mls.set_handle_vertices(&[0, 50]).unwrap();
     let error = mls.step_turning(&v, &[0.0, 0.2]).unwrap_err();
     assert_eq!(error.to_string(), "method mls has no turning handles; choose \"akap\" or \"arap\" for it");
@@ -157,7 +157,7 @@ fn turn_events_and_guarded_turning_pieces_replay_to_the_same_bits() {
     let mesh = mesh();
     let handles = (vec![6u32, 120], vec![[1.0 / 3.0; 3], [0.2, 0.5, 0.3]]);
     let make = || {
-        let mut d = Deformer::new(mesh.clone(), DeformerOptions::default()).unwrap();
+        let mut d = Deformer::new(mesh.clone(), AkapOptions::default()).unwrap();
         d.set_handle_points(&handles.0, &handles.1).unwrap();
         d
     };
@@ -177,7 +177,7 @@ fn turn_events_and_guarded_turning_pieces_replay_to_the_same_bits() {
     }
     assert!(events.len() > 7, "some step was split: {} events", events.len());
     assert_eq!(akap::deform::foldover::newly_flipped(mesh.positions(), guarded.positions(), mesh.triangles()), 0);
-    let mut s = Session::with_mesh(&mesh, MethodOptions::Akap(DeformerOptions::default()));
+    let mut s = Session::with_mesh(&mesh, MethodOptions::Akap(AkapOptions::default()));
     s.events = events;
     let s = Session::from_json(&s.to_json()).unwrap();
     let mut replayed = s.recorded_deformer().unwrap();
@@ -209,7 +209,7 @@ fn arap_turns_a_lone_handle_through_a_rotated_target_frame_toward_the_rigid_rota
         })
         .collect();
     // Run to convergence: the rotated shape meets every target at zero energy.
-    let mut d = ArapDeformer::new(mesh.clone(), ArapOptions::default().until_converged(1e-14, 100_000)).unwrap();
+    let mut d = Deformer::new(mesh.clone(), ArapOptions::default().until_converged(1e-14, 100_000)).unwrap();
     d.set_handle_points(&[40], &[w]).unwrap();
     d.step_turning(&[[0.0, 0.0]], &[omega]).unwrap();
     let gap = largest_gap(d.positions(), &expected);
@@ -220,13 +220,13 @@ fn arap_turns_a_lone_handle_through_a_rotated_target_frame_toward_the_rigid_rota
     assert!(largest_gap(d.positions(), &pose) < 1e-7 * 12.0);
     // Zero turns are the plain step, bit for bit.
     let make = || {
-        let mut d = ArapDeformer::new(mesh.clone(), ArapOptions::default()).unwrap();
+        let mut d = Deformer::new(mesh.clone(), ArapOptions::default()).unwrap();
         d.set_handle_points(&[6, 120], &[[1.0 / 3.0; 3], w]).unwrap();
         d
     };
     let (mut a, mut b) = (make(), make());
     a.step(&[[0.0, 0.0], [0.3, 0.1]]).unwrap();
     b.step_turning(&[[0.0, 0.0], [0.3, 0.1]], &[0.0, 0.0]).unwrap();
-    let bits = |d: &ArapDeformer| d.positions().iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let bits = |d: &Deformer| d.positions().iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&a), bits(&b));
 }

@@ -111,7 +111,7 @@ impl Bones {
         self.bodies.is_empty()
     }
 
-    /// The bones' ends, two per bone, as `Deform::bone_points` gives them.
+    /// The bones' ends, two per bone, as `Deformer::bone_points` gives them.
     pub(crate) fn points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
         handles::as_points(self.ends.iter())
     }

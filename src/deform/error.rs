@@ -190,11 +190,47 @@ pub enum DeformError {
         /// The method of the options given.
         given: Method,
     },
+    /// A handle index beyond the handles there are.
+    HandleOutOfRange {
+        /// The index given.
+        handle: usize,
+        /// How many handles there are.
+        handle_count: usize,
+    },
+    /// A handle's target or turn is NaN, infinite or beyond ±[`MAX_COORDINATE`].
+    InvalidTarget {
+        /// Which handle.
+        handle: usize,
+        /// The value given.
+        value: f64,
+    },
+    /// A trained rig that was not trained for this mesh and these handles.
+    RigMismatch {
+        /// The rig's handle and vertex counts.
+        rig: [usize; 2],
+        /// The deformer's.
+        deformer: [usize; 2],
+    },
 }
 
 impl fmt::Display for DeformError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            Self::HandleOutOfRange { handle, handle_count } => {
+                write!(f, "there is no handle {handle}: there are {handle_count}")
+            }
+            Self::InvalidTarget { handle, value } => write!(
+                f,
+                "the target of handle {handle} has {}, expected a finite number within ±{}",
+                Number(*value),
+                Number(MAX_COORDINATE)
+            ),
+            Self::RigMismatch { rig, deformer } => write!(
+                f,
+                "the rig was trained for {} handles on {} vertices; the deformer has {} handles on {} vertices: \
+                 train it again for these handles",
+                rig[0], rig[1], deformer[0], deformer[1]
+            ),
             Self::Disconnected { components } => {
                 write!(f, "the mesh has {components} separate pieces; the deformer needs one connected piece")
             }

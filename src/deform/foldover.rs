@@ -4,9 +4,9 @@
 //! after it (turned over, or collapsed to double precision). The guarded step
 //! ([`FoldoverStepper::step`], [`step_without_foldovers`]):
 //!
-//! 1. takes the plain step, `Deform::step(velocities)` itself; if nothing flips, that is
+//! 1. takes the plain step, `Deformer::step(velocities)` itself; if nothing flips, that is
 //!    all: a step that flips nothing is the plain step, to the bit;
-//! 2. otherwise undoes it ([`Deform::restore_checkpoint`]) and takes two half steps
+//! 2. otherwise undoes it ([`Deformer::restore_checkpoint`]) and takes two half steps
 //!    (`velocities * 0.5` each), each guarded the same way, halving down to pieces of
 //!    `2^-max_splits` of the velocities ([`FoldoverGuard`]);
 //! 3. a piece of that size that still flips is clamped: a bisection over the fraction `t`
@@ -33,9 +33,54 @@
 //! so for them the guard amounts to stopping the handles where the straight path to their
 //! targets would first flip a triangle.
 
+use super::deformer::Deformer;
 use super::error::DeformError;
-use super::method::{Checkpoint, Deform};
+use super::method::Checkpoint;
 use crate::geometry::{certain_orient, normalising_exponent, power_of_two, Point};
+use crate::mesh::Mesh;
+
+/// What the guarded step needs of a deformer: plain steps, and checkpoints to undo them
+/// with. [`Deformer`] is one; a test can put a deformer behind it that fails on purpose.
+pub trait Undoable {
+    /// The mesh in its rest pose.
+    fn mesh(&self) -> &Mesh;
+    /// Current vertex positions.
+    fn positions(&self) -> &[Point];
+    /// Number of handles.
+    fn handle_count(&self) -> usize;
+    /// A plain step ([`Deformer::step`]).
+    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError>;
+    /// A plain step in which handles turn ([`Deformer::step_turning`]).
+    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError>;
+    /// [`Deformer::save_checkpoint`].
+    fn save_checkpoint(&self, checkpoint: &mut Checkpoint);
+    /// [`Deformer::restore_checkpoint`].
+    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError>;
+}
+
+impl Undoable for Deformer {
+    fn mesh(&self) -> &Mesh {
+        Deformer::mesh(self)
+    }
+    fn positions(&self) -> &[Point] {
+        Deformer::positions(self)
+    }
+    fn handle_count(&self) -> usize {
+        Deformer::handle_count(self)
+    }
+    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+        Deformer::step(self, velocities)
+    }
+    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
+        Deformer::step_turning(self, velocities, turns)
+    }
+    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
+        Deformer::save_checkpoint(self, checkpoint);
+    }
+    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
+        Deformer::restore_checkpoint(self, checkpoint)
+    }
+}
 
 /// Most halvings a guarded step may make ([`FoldoverGuard::max_splits`]): pieces of 2^-10
 /// of the step, at most some two thousand plain steps.
@@ -98,7 +143,7 @@ impl FoldoverGuard {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct GuardedStep {
     /// The plain steps taken, in order, each as the fraction of the velocities it moved by
-    /// (`Deform::step` with `velocities[i] * fraction`): `[1.0]` when the step flipped
+    /// (`Deformer::step` with `velocities[i] * fraction`): `[1.0]` when the step flipped
     /// nothing; otherwise powers of two, and last, when `clamped`, the clamp's fraction;
     /// empty when nothing could be taken.
     pub steps: Vec<f64>,
@@ -159,17 +204,21 @@ impl FoldoverStepper {
     /// One guarded step of `deformer` with a velocity per handle (see the module's
     /// description). On error (bad velocities, or a plain step that fails) the deformer is
     /// back where it was and the error returned.
-    pub fn step(&mut self, deformer: &mut dyn Deform, velocities: &[[f64; 2]]) -> Result<&GuardedStep, DeformError> {
+    pub fn step(
+        &mut self,
+        deformer: &mut (impl Undoable + ?Sized),
+        velocities: &[[f64; 2]],
+    ) -> Result<&GuardedStep, DeformError> {
         self.turns.clear();
         self.run(deformer, velocities)
     }
 
-    /// [`Self::step`] of a step in which handles also turn ([`Deform::step_turning`]): each
+    /// [`Self::step`] of a step in which handles also turn ([`Deformer::step_turning`]): each
     /// piece turns them by the same fraction of `turns` as it moves them, so the report's
     /// fractions replay with `step_turning(velocities * f, turns * f)`.
     pub fn step_turning(
         &mut self,
-        deformer: &mut dyn Deform,
+        deformer: &mut (impl Undoable + ?Sized),
         velocities: &[[f64; 2]],
         turns: &[f64],
     ) -> Result<&GuardedStep, DeformError> {
@@ -181,7 +230,11 @@ impl FoldoverStepper {
         self.run(deformer, velocities)
     }
 
-    fn run(&mut self, deformer: &mut dyn Deform, velocities: &[[f64; 2]]) -> Result<&GuardedStep, DeformError> {
+    fn run(
+        &mut self,
+        deformer: &mut (impl Undoable + ?Sized),
+        velocities: &[[f64; 2]],
+    ) -> Result<&GuardedStep, DeformError> {
         self.report.steps.clear();
         self.report.clamped = false;
         self.report.attempts = 1;
@@ -207,7 +260,7 @@ impl FoldoverStepper {
 
     /// The rest of a step whose whole flipped (and was undone), from the state in `piece`,
     /// which the deformer is in.
-    fn pieces(&mut self, deformer: &mut dyn Deform, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
+    fn pieces(&mut self, deformer: &mut (impl Undoable + ?Sized), velocities: &[[f64; 2]]) -> Result<(), DeformError> {
         deformer.save_checkpoint(&mut self.start);
         self.pending.clear();
         if self.split_or_clamp(deformer, velocities, 0)? {
@@ -240,7 +293,7 @@ impl FoldoverStepper {
     /// (`true`).
     fn split_or_clamp(
         &mut self,
-        deformer: &mut dyn Deform,
+        deformer: &mut (impl Undoable + ?Sized),
         velocities: &[[f64; 2]],
         depth: u32,
     ) -> Result<bool, DeformError> {
@@ -258,14 +311,14 @@ impl FoldoverStepper {
     }
 
     /// Whether the deformer's step from the state in `piece` flipped a triangle.
-    fn flipped(&self, deformer: &dyn Deform) -> bool {
+    fn flipped(&self, deformer: &(impl Undoable + ?Sized)) -> bool {
         flips(&self.piece.positions, deformer.positions(), deformer.mesh().triangles())
     }
 
     /// A plain step of `velocities * fraction`.
     fn attempt(
         &mut self,
-        deformer: &mut dyn Deform,
+        deformer: &mut (impl Undoable + ?Sized),
         velocities: &[[f64; 2]],
         fraction: f64,
     ) -> Result<(), DeformError> {
@@ -283,7 +336,12 @@ impl FoldoverStepper {
     /// The largest fraction `t` of the piece `velocities * piece` that the bisection finds
     /// flip-free (0 when none), from the state in `piece`; the deformer is left after that
     /// step (or in `piece` for 0).
-    fn clamp(&mut self, deformer: &mut dyn Deform, velocities: &[[f64; 2]], piece: f64) -> Result<f64, DeformError> {
+    fn clamp(
+        &mut self,
+        deformer: &mut (impl Undoable + ?Sized),
+        velocities: &[[f64; 2]],
+        piece: f64,
+    ) -> Result<f64, DeformError> {
         let (mut good, mut bad) = (0.0, 1.0);
         // Whether the deformer is after the step of `good` (else in `piece`).
         let mut at_good = false;
@@ -313,7 +371,7 @@ impl FoldoverStepper {
 /// [`FoldoverStepper::step`] with a stepper made for this one step (a caller stepping
 /// every frame keeps a [`FoldoverStepper`] instead, whose buffers are reused).
 pub fn step_without_foldovers(
-    deformer: &mut dyn Deform,
+    deformer: &mut (impl Undoable + ?Sized),
     velocities: &[[f64; 2]],
     guard: &FoldoverGuard,
 ) -> Result<GuardedStep, DeformError> {

@@ -29,7 +29,7 @@ impl HandlePoint {
     }
 }
 
-/// Handle points as [`super::Deform::handle_points`] gives them: triangles and weights.
+/// Handle points as [`super::Deformer::handle_points`] gives them: triangles and weights.
 pub(crate) fn as_points<'a>(points: impl Iterator<Item = &'a HandlePoint>) -> (Vec<u32>, Vec<[f64; 3]>) {
     points.map(|p| (p.triangle as u32, p.weights)).unzip()
 }

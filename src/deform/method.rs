@@ -1,34 +1,63 @@
-//! One interface for every deformation method, so that callers (the JavaScript bindings,
-//! session replay, the comparison) can switch between them: the [`Deform`] trait, which
-//! every deformer implements beside its type, [`MethodOptions::build`], which makes the
-//! deformer a method's options name, the [`Orders`] its set-up can compute apart, and the
-//! stage [`Timings`] of a step.
+//! What every deformation method plugs into the one [`Deformer`]: the `Solve` trait, the
+//! narrow part that differs between methods (each method's solver implements it beside its
+//! type), the `Build` trait by which a method's options make its solver, the enum of
+//! solvers written from the list of methods, the [`Orders`] a set-up can compute apart, the
+//! stage [`Timings`] of a step and the [`Checkpoint`] a step is undone with.
 
 use std::fmt;
 
+use super::bones::Bones;
 use super::error::DeformError;
-use super::metrics::Metrics;
-use super::options::{methods, ArapOptions, CauchyGreenOptions, DeformerOptions, Method, MethodOptions, MlsOptions};
+use super::handles::HandlePoint;
+use super::options::{methods, AkapOptions, ArapOptions, CauchyGreenOptions, Method, MethodOptions, MlsOptions};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 
-/// How a method's options make its deformer: implemented for each options type beside its
-/// deformer, so that [`MethodOptions`] reaches every method through the list of methods
-/// alone.
+#[cfg(doc)]
+use super::Deformer;
+
+/// How a method's options make its solver: implemented for each options type beside its
+/// solver, so that [`MethodOptions`] reaches every method through the list of methods alone.
 pub(crate) trait Build {
-    /// Checks the settings' ranges, as building a deformer with them would.
+    /// The method's solver.
+    type Solver: Solve;
+    /// Checks the settings' ranges, as building a solver with them would.
     fn check(&self) -> Result<(), DeformError>;
-    /// The fill-reducing orders the method's deformer needs for `mesh`.
+    /// The fill-reducing orders the method's solver needs for `mesh`.
     fn orders(&self, mesh: &Mesh) -> Orders;
-    /// The method's deformer with orders from [`Build::orders`].
-    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError>;
+    /// The method's solver for a connected mesh, with orders from [`Build::orders`]
+    /// (checked here), at rest and without handles.
+    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<Self::Solver, DeformError>;
 }
 
-/// Writes [`MethodOptions`]' dispatch to [`Build`] from the list of methods.
+/// Writes, from the list of methods, the enum of solvers and [`MethodOptions`]' dispatch
+/// to [`Build`].
 macro_rules! method_dispatch {
     ($($(#[$doc:meta])* $variant:ident($name:literal, $options:ident),)*) => {
+        /// One method's solver (the [`Deformer`] holds one).
+        #[derive(Debug)]
+        pub(crate) enum Solver {
+            $($(#[$doc])* $variant(<$options as Build>::Solver),)*
+        }
+
+        impl Solver {
+            /// The solver behind its method's interface.
+            pub(crate) fn get(&self) -> &dyn Solve {
+                match self {
+                    $(Self::$variant(solver) => solver,)*
+                }
+            }
+
+            /// The solver behind its method's interface, to change.
+            pub(crate) fn get_mut(&mut self) -> &mut dyn Solve {
+                match self {
+                    $(Self::$variant(solver) => solver,)*
+                }
+            }
+        }
+
         impl MethodOptions {
-            /// Checks the settings' ranges, as building a deformer with them would.
+            /// Checks the settings' ranges, as making a deformer with them would.
             pub fn check(&self) -> Result<(), DeformError> {
                 match self {
                     $(Self::$variant(options) => Build::check(options),)*
@@ -42,15 +71,23 @@ macro_rules! method_dispatch {
                 }
             }
 
-            /// [`Self::build`] with orders from [`Self::orders`] (for this method and mesh).
-            pub fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
+            /// This method's solver for `mesh`, with orders from [`Self::orders`].
+            pub(crate) fn solver(self, mesh: &Mesh, orders: &Orders) -> Result<Solver, DeformError> {
                 match self {
-                    $(Self::$variant(options) => Build::build_with_orders(options, mesh, orders),)*
+                    $(Self::$variant(options) => Ok(Solver::$variant(Build::build(options, mesh, orders)?)),)*
                 }
             }
         }
 
-        // Every options type of the list makes a deformer.
+        $(
+            impl From<$options> for MethodOptions {
+                fn from(options: $options) -> Self {
+                    Self::$variant(options)
+                }
+            }
+        )*
+
+        // Every options type of the list makes a solver.
         const _: fn() = || {
             fn builds<T: Build>() {}
             $(builds::<$options>();)*
@@ -60,51 +97,10 @@ macro_rules! method_dispatch {
 
 methods!(method_dispatch);
 
-impl MethodOptions {
-    /// A deformer of this method for a connected mesh.
-    pub fn build(self, mesh: Mesh) -> Result<Box<dyn Deform>, DeformError> {
-        let orders = self.orders(&mesh);
-        self.build_with_orders(mesh, &orders)
-    }
-}
-
-impl MethodOptions {
-    /// Puts these options into effect on `deformer`, as the bindings' `setOptions`, the
-    /// widget's method list and session replay do: options of its method change its
-    /// settings; another method's replace it with a deformer of that method on the same
-    /// mesh (its set-up runs), with the pose, the handles and the stiffness (where the new
-    /// method has it) carried over and the clock reset to the default. On error `deformer`
-    /// is unchanged.
-    pub fn apply(self, deformer: &mut Box<dyn Deform>) -> Result<(), DeformError> {
-        if self.method() == deformer.method_options().method() {
-            return deformer.set_method_options(self);
-        }
-        let mut next = self.build(deformer.mesh().clone())?;
-        next.set_positions(deformer.positions())?;
-        // Stiffness carries over to the methods that have it.
-        if let Some(stiffness) = deformer.stiffness() {
-            match next.set_stiffness(Some(stiffness)) {
-                Ok(()) | Err(DeformError::Unsupported { .. }) => {}
-                Err(other) => return Err(other),
-            }
-        }
-        // So do bones, laid in the same pose.
-        let (triangles, barycentric) = deformer.bone_points();
-        match next.set_bones(&triangles, &barycentric) {
-            Ok(()) | Err(DeformError::Unsupported { .. }) => {}
-            Err(other) => return Err(other),
-        }
-        let (triangles, barycentric) = deformer.handle_points();
-        next.set_handle_points(&triangles, &barycentric)?;
-        *deformer = next;
-        Ok(())
-    }
-}
-
 /// The fill-reducing vertex orders a deformer's linear systems are factored in: the bulk
 /// of its set-up (ordering the mesh's vertex graph). [`MethodOptions::orders`] computes them
-/// for a mesh, possibly elsewhere (a worker), and [`MethodOptions::build_with_orders`] makes
-/// the deformer with them, which then only analyses the systems and allocates.
+/// for a mesh, possibly elsewhere (a worker), and [`Deformer::with_orders`] makes the
+/// deformer with them, which then only analyses the systems and allocates.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Orders {
     /// One vertex order per system, in the method's order (AKAP: step 1 over every vertex,
@@ -130,143 +126,97 @@ impl Orders {
     }
 }
 
-/// What every deformer offers. Handles are vertices or points in triangles; each
-/// [`Deform::step`] takes one velocity per handle, the motion asked of the handle in this
-/// step (its target is its current position plus the velocity). Every method refuses bad
-/// input with a [`DeformError`] and is then unchanged.
-pub trait Deform: fmt::Debug {
-    /// The method and its current settings.
-    fn method_options(&self) -> MethodOptions;
-    /// Changes the settings; refuses options of another method
-    /// ([`DeformError::WrongMethod`]).
-    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError>;
-    /// Sets the clock used for the timings (milliseconds).
-    fn set_clock(&mut self, clock: Clock);
-    /// The mesh in its rest pose.
-    fn mesh(&self) -> &Mesh;
-    /// One handle on each of these vertices, replacing any handles.
-    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError>;
-    /// Handles at points in triangles (triangle index, barycentric coordinates),
-    /// replacing any handles.
-    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError>;
-    /// Number of handles.
-    fn handle_count(&self) -> usize;
-    /// Where the handles are on the mesh, as [`Deform::set_handle_points`] takes them: a
-    /// triangle and barycentric coordinates each (a handle set on a vertex is weight 1 at
-    /// that corner of a triangle using it).
-    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>);
-    /// Current positions of the handle points (Cauchy-Green: the handles' targets, which
-    /// the shape's points under them meet in the least-squares sense).
-    fn handle_positions(&self) -> Vec<Point>;
-    /// Where the shape is under each handle in the current pose (the handles' points of the
-    /// mesh placed on the current positions): [`Deform::handle_positions`] for every
-    /// method but Cauchy-Green, whose handle positions are its targets.
-    fn shape_under_handles(&self) -> Vec<Point> {
-        let (triangles, weights) = self.handle_points();
-        let (corners, positions) = (self.mesh().triangles(), self.positions());
-        triangles
-            .iter()
-            .zip(&weights)
-            .map(|(&t, w)| {
-                let c = corners[t as usize].map(|v| positions[v as usize]);
-                [0, 1].map(|i| w[0] * c[0][i] + w[1] * c[1][i] + w[2] * c[2][i])
-            })
-            .collect()
-    }
-    /// One step with a velocity per handle, in handle order.
-    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError>;
-    /// One step in which handles also turn: `turns[i]` radians counter-clockwise about
-    /// handle `i`'s point, its neighbourhood following that rigid motion (AKAP: its Killing
-    /// field; ARAP: held in the turned frame for the step; see the README). All turns zero is exactly [`Deform::step`]; methods
-    /// without turning handles refuse other turns ([`DeformError::Unsupported`]).
-    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
-        crate::deform::handles::check_turns(turns, self.handle_count())?;
-        if turns.iter().any(|&w| w != 0.0) {
-            return Err(DeformError::Unsupported { method: self.method_options().method(), what: "turning handles" });
-        }
-        self.step(velocities)
-    }
-    /// Current vertex positions.
-    fn positions(&self) -> &[Point];
-    /// Puts the mesh into a given pose; handles stay (ARAP: their targets move with them).
-    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError>;
-    /// The last step's velocity per vertex: AKAP's field after the Dirichlet step, ARAP's
-    /// displacement.
+/// What a solver reads of its [`Deformer`]'s state: the rest mesh, the handles, the current
+/// pose, the bones and the clock. The deformer owns them; a solver holds only what its method
+/// derives from them (matrices, factors, fields, targets).
+#[derive(Clone, Copy)]
+pub(crate) struct Shared<'a> {
+    pub(crate) mesh: &'a Mesh,
+    pub(crate) handles: &'a [HandlePoint],
+    pub(crate) positions: &'a [Point],
+    pub(crate) bones: &'a Bones,
+    pub(crate) clock: Clock,
+}
+
+/// What a method can do beyond plain steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Abilities {
+    /// Per-triangle stiffness ([`Deformer::set_stiffness`]).
+    pub(crate) stiffness: bool,
+    /// Bones ([`Deformer::set_bones`]).
+    pub(crate) bones: bool,
+    /// Turning handles ([`Deformer::step_turning`]).
+    pub(crate) turning: bool,
+}
+
+impl Abilities {
+    /// Stiffness, bones and turning handles (AKAP, ARAP).
+    pub(crate) const ALL: Self = Self { stiffness: true, bones: true, turning: true };
+    /// Plain steps only (MLS, Cauchy-Green).
+    pub(crate) const NONE: Self = Self { stiffness: false, bones: false, turning: false };
+}
+
+/// One method's solver behind a [`Deformer`]: the narrow part that differs between methods.
+/// The deformer checks every input (handles, velocities, turns, poses, stiffness) and keeps
+/// the shared state; a solver is told of each change and makes the steps. Each method
+/// implements it beside its type.
+pub(crate) trait Solve: fmt::Debug {
+    /// The method and its settings.
+    fn options(&self) -> MethodOptions;
+    /// New settings of this method (the deformer has checked that they are of this
+    /// method); on error nothing changes.
+    fn set_options(&mut self, options: MethodOptions, shared: Shared<'_>) -> Result<(), DeformError>;
+    /// What the method can do beyond plain steps.
+    fn abilities(&self) -> Abilities;
+    /// A new handle set, `handles` (checked), replacing `shared.handles`, in the pose
+    /// `shared.positions`; on error nothing changes.
+    fn set_handles(&mut self, shared: Shared<'_>, handles: &[HandlePoint]) -> Result<(), DeformError>;
+    /// Each triangle's weight on its energy (the painted stiffness raised on bones), or
+    /// `None` for 1 everywhere: called only for methods with stiffness (checked values),
+    /// with the bones in `shared` those the weights were raised on.
+    fn set_weights(&mut self, _shared: Shared<'_>, _weights: Option<&[f64]>) {}
+    /// One step with a velocity per handle (checked), and for methods with turning handles
+    /// `turns` (one per handle, not all zero), into `next`, the stage timings into
+    /// `timings`. Returns whether `next` holds the new pose (`false`: the pose stays). On
+    /// error the solver is unchanged.
+    fn step(
+        &mut self,
+        shared: Shared<'_>,
+        velocities: &[[f64; 2]],
+        turns: Option<&[f64]>,
+        next: &mut [Point],
+        timings: &mut Timings,
+    ) -> Result<bool, DeformError>;
+    /// The pose was set to `shared.positions` ([`Deformer::set_positions`]), or, with
+    /// `rest`, put back to the rest pose ([`Deformer::reset`]).
+    fn pose_set(&mut self, shared: Shared<'_>, rest: bool);
+    /// The last step's velocity per vertex.
     fn field(&self) -> &[[f64; 2]];
-    /// The last step's field before any smoothing: AKAP's soft-constraint field, ARAP's
-    /// displacement.
+    /// The last step's field before any smoothing.
     fn soft_field(&self) -> &[[f64; 2]] {
         self.field()
     }
-    /// Sets each triangle's stiffness, the factor on its energy (stiff regions bend less;
-    /// one value per triangle in [`super::STIFFNESS_RANGE`], `None` for 1 everywhere):
-    /// AKAP weighs its Killing energy, ARAP its element energy. Methods without a
-    /// per-triangle energy (MLS, Cauchy-Green) refuse it ([`DeformError::Unsupported`]).
-    fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
-        match stiffness {
-            None => Ok(()),
-            Some(_) => Err(DeformError::Unsupported { method: self.method_options().method(), what: "stiffness" }),
-        }
-    }
-    /// Each triangle's stiffness, if set.
-    fn stiffness(&self) -> Option<&[f64]> {
+    /// Where the method holds its handles when that is not their points in the pose
+    /// (Cauchy-Green: its targets, met in the least-squares sense).
+    fn held_at(&self) -> Option<&[Point]> {
         None
     }
-    /// Whether the method takes per-triangle stiffness ([`Deform::set_stiffness`]).
-    fn has_stiffness(&self) -> bool {
-        false
-    }
-    /// Sets the bones (see [`super::bones`]): two mesh points per bone, its ends, given as
-    /// [`Deform::set_handle_points`] takes points, replacing any bones; none removes them.
-    /// Each bone covers the triangles its segment meets in the current pose, which from
-    /// then on move as one rigid body. Methods without bones (MLS, Cauchy-Green) refuse any
-    /// ([`DeformError::Unsupported`]). Refused, changing nothing, for a bone that cannot be
-    /// used ([`DeformError::InvalidBone`]).
-    fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        if triangles.is_empty() && barycentric.is_empty() {
-            return Ok(());
-        }
-        Err(DeformError::Unsupported { method: self.method_options().method(), what: "bones" })
-    }
-    /// The bones' ends, two per bone, as [`Deform::set_bones`] took them.
-    fn bone_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
-        (Vec::new(), Vec::new())
-    }
-    /// Whether the method has bones ([`Deform::set_bones`]).
-    fn has_bones(&self) -> bool {
-        false
-    }
-    /// The polygon the method deforms the shape through, where it has one, as the last step
-    /// left it: Cauchy-Green's cage (the cage values; its rest cage after a reset). `None`
-    /// for methods without one.
+    /// The polygon the method deforms the shape through, if it has one.
     fn cage_image(&self) -> Option<&[Point]> {
         None
     }
-    /// Saves the state steps change (see [`Checkpoint`]) into `checkpoint`, replacing what
-    /// it held and reusing its buffers.
-    fn save_checkpoint(&self, checkpoint: &mut Checkpoint);
-    /// Puts back the state saved in `checkpoint`: the next step then gives exactly the bits
-    /// it would have given had nothing happened since the save (for the handles, options
-    /// and stiffness in place; changing those is not undone). Refused with
-    /// [`DeformError::ForeignCheckpoint`], changing nothing, for a checkpoint saved by a
-    /// deformer of another method or of other sizes (vertices, handles, triangles).
-    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError>;
-    /// A new checkpoint of the current state ([`Deform::save_checkpoint`] into a fresh one).
-    fn checkpoint(&self) -> Checkpoint {
-        let mut checkpoint = Checkpoint::new();
-        self.save_checkpoint(&mut checkpoint);
-        checkpoint
-    }
-    /// Distortion of the current pose against the rest pose.
-    fn metrics(&self) -> Metrics;
-    /// Stage timings of the last step.
-    fn timings(&self) -> Timings;
-    /// Back to the rest pose; handles stay.
-    fn reset(&mut self);
+    /// Saves the state steps change beyond the pose and timings into `checkpoint`, which
+    /// the deformer has begun.
+    fn save(&self, checkpoint: &mut Checkpoint);
+    /// The lengths [`Solve::restore`] needs: each pair the length saved in `checkpoint` and
+    /// the solver's own, so that a restore can be refused before anything changes.
+    fn saved_lengths(&self, checkpoint: &Checkpoint) -> Vec<(usize, usize)>;
+    /// Puts back what [`Solve::save`] saved (the lengths checked).
+    fn restore(&mut self, checkpoint: &Checkpoint);
 }
 
-/// How the last call of ARAP's [`step`](super::ArapDeformer::step) or
-/// [`iterate`](super::ArapDeformer::iterate) ended.
+/// How the last call of an ARAP step or of [`iterate`](super::Deformer::iterate) ended (see
+/// [`super::ArapSolver::report`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct IterationReport {
     /// Iterations run.
@@ -277,8 +227,8 @@ pub struct IterationReport {
     pub converged: bool,
 }
 
-/// The state a deformer's steps change, saved by [`Deform::save_checkpoint`] and put back by
-/// [`Deform::restore_checkpoint`], so that a step can be undone exactly (the guarded step of
+/// The state a deformer's steps change, saved by [`Deformer::save_checkpoint`] and put back by
+/// [`Deformer::restore_checkpoint`], so that a step can be undone exactly (the guarded step of
 /// [`super::foldover`] does). One type for every method, each filling the buffers it has:
 /// every method its positions, field and timings; AKAP its soft field; ARAP its targets,
 /// the rotations its next local step starts from and its [`IterationReport`]; Cauchy-Green

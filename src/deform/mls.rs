@@ -15,51 +15,45 @@
 //! reproduces.
 
 use super::error::DeformError;
-use super::handles::{self, check_connected, check_pose, check_velocities, in_range, HandlePoint};
-use super::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
-use super::metrics::{metrics, Metrics};
+use super::handles::{in_range, HandlePoint};
+use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 use super::options::{Method, MethodOptions, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
 use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
-/// The moving-least-squares deformer of one mesh.
+/// The moving-least-squares solver of one mesh (the mesh, handles and pose are its
+/// [`Deformer`](super::Deformer)'s).
 #[derive(Debug, Clone)]
-pub struct MlsDeformer {
-    mesh: Mesh,
+pub struct MlsSolver {
     /// The mesh's positions times `2^exponent` (largest coordinate in [1, 2)), where the
     /// map is evaluated: MLS commutes with scaling, and there the weights `1 / d^(2 alpha)`
     /// neither overflow nor underflow at any scale of the mesh.
     unit: Vec<Point>,
     exponent: i32,
     options: MlsOptions,
-    handles: Vec<HandlePoint>,
-    positions: Vec<Point>,
     field: Vec<[f64; 2]>,
-    timings: Timings,
-    clock: Clock,
+    // Scratch for a step: the handles' rest points and targets in the unit scale, weights.
+    rest: Vec<Point>,
+    targets: Vec<Point>,
+    weights: Vec<f64>,
 }
 
-impl MlsDeformer {
-    /// A deformer for a connected mesh.
-    pub fn new(mesh: Mesh, options: MlsOptions) -> Result<Self, DeformError> {
+impl MlsSolver {
+    /// The solver for a connected mesh.
+    fn new(mesh: &Mesh, options: MlsOptions) -> Result<Self, DeformError> {
         check_options(&options)?;
-        check_connected(&mesh)?;
-        let n = mesh.vertex_count();
-        let positions = mesh.positions().to_vec();
         // (Clamped: a validated mesh never needs it, and 2^exponent and 2^-exponent are then
         // normal, multiplied by directly in a step, as ARAP does.)
         let exponent = normalising_exponent(mesh.positions().iter().copied()).clamp(-1022, 1022);
         let unit = mesh.positions().iter().map(|p| p.map(|x| scale_by_power_of_two(x, exponent))).collect();
         Ok(Self {
-            mesh,
             unit,
             exponent,
             options,
-            handles: Vec::new(),
-            positions,
-            field: vec![[0.0; 2]; n],
-            timings: Timings::default(),
-            clock: default_clock,
+            field: vec![[0.0; 2]; mesh.vertex_count()],
+            rest: Vec::new(),
+            targets: Vec::new(),
+            weights: Vec::new(),
         })
     }
 
@@ -67,90 +61,97 @@ impl MlsDeformer {
     pub fn options(&self) -> MlsOptions {
         self.options
     }
+}
 
-    /// Changes the settings (the next step uses them).
-    pub fn set_options(&mut self, options: MlsOptions) -> Result<(), DeformError> {
-        check_options(&options)?;
-        self.options = options;
-        Ok(())
+impl Solve for MlsSolver {
+    fn options(&self) -> MethodOptions {
+        MethodOptions::Mls(self.options)
     }
 
-    /// One handle on each of these vertices, replacing any handles.
-    pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        self.handles = handles::at_vertices(&self.mesh, vertices)?;
-        Ok(())
-    }
-
-    /// Handles at points in triangles, replacing any handles.
-    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        self.handles = handles::in_triangles(&self.mesh, triangles, barycentric)?;
-        Ok(())
-    }
-
-    /// Current positions of the handle points.
-    pub fn handle_positions(&self) -> Vec<Point> {
-        self.handles.iter().map(|h| h.position(&self.positions)).collect()
-    }
-
-    /// One step: each handle's target is its current position plus its velocity, and every
-    /// vertex moves to the MLS map of its rest position for those targets. With no handles
-    /// nothing moves. Refused, changing nothing, for bad velocities, for an affine map the
-    /// handles do not determine (fewer than three, or all on one line) and for a result
-    /// beyond the coordinate limit.
-    pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        check_velocities(velocities, self.handles.len())?;
-        if self.handles.is_empty() {
-            self.field.fill([0.0; 2]);
-            return Ok(());
+    fn set_options(&mut self, options: MethodOptions, _shared: Shared<'_>) -> Result<(), DeformError> {
+        match options {
+            MethodOptions::Mls(options) => {
+                check_options(&options)?;
+                self.options = options;
+                Ok(())
+            }
+            other => Err(DeformError::WrongMethod { current: Method::Mls, given: other.method() }),
         }
-        let start = (self.clock)();
+    }
+
+    fn abilities(&self) -> Abilities {
+        Abilities::NONE
+    }
+
+    fn set_handles(&mut self, _shared: Shared<'_>, handles: &[HandlePoint]) -> Result<(), DeformError> {
+        self.rest = handles.iter().map(|h| h.position(&self.unit)).collect();
+        self.targets = vec![[0.0; 2]; handles.len()];
+        self.weights = Vec::with_capacity(handles.len());
+        Ok(())
+    }
+
+    /// Each handle's target is its current position plus its velocity, and every vertex
+    /// moves to the MLS map of its rest position for those targets. With no handles nothing
+    /// moves. Refused, changing nothing, for an affine map the handles do not determine
+    /// (fewer than three, or all on one line) and for a result beyond the coordinate limit.
+    fn step(
+        &mut self,
+        shared: Shared<'_>,
+        velocities: &[[f64; 2]],
+        _turns: Option<&[f64]>,
+        next: &mut [Point],
+        timings: &mut Timings,
+    ) -> Result<bool, DeformError> {
+        if shared.handles.is_empty() {
+            self.field.fill([0.0; 2]);
+            return Ok(false);
+        }
+        let start = (shared.clock)();
         let (down, up) = (power_of_two(self.exponent), power_of_two(-self.exponent));
-        let rest: Vec<Point> = self.handles.iter().map(|h| h.position(&self.unit)).collect();
-        let targets: Vec<Point> = self
-            .handle_positions()
-            .iter()
-            .zip(velocities)
-            .map(|(p, v)| [p[0] + v[0], p[1] + v[1]].map(|x| x * down))
-            .collect();
-        let map = Map { rest: &rest, targets: &targets, alpha: self.options.alpha, variant: self.options.variant };
-        let mut next = Vec::with_capacity(self.positions.len());
-        let mut weights = Vec::with_capacity(rest.len());
-        for &v in &self.unit {
-            let q = map.at(v, &mut weights).ok_or(DeformError::TooFewHandles {
+        for ((target, h), v) in self.targets.iter_mut().zip(shared.handles).zip(velocities) {
+            let p = h.position(shared.positions);
+            *target = [p[0] + v[0], p[1] + v[1]].map(|x| x * down);
+        }
+        let map =
+            Map { rest: &self.rest, targets: &self.targets, alpha: self.options.alpha, variant: self.options.variant };
+        for (&v, out) in self.unit.iter().zip(next.iter_mut()) {
+            let q = map.at(v, &mut self.weights).ok_or(DeformError::TooFewHandles {
                 method: Method::Mls,
                 needed: "three handles not all on one line for the affine map",
             })?;
-            next.push(q.map(|x| x * up));
+            *out = q.map(|x| x * up);
         }
-        if !in_range(&next) {
+        if !in_range(next) {
             return Err(DeformError::NonFiniteResult);
         }
-        for ((f, p), q) in self.field.iter_mut().zip(&self.positions).zip(&next) {
+        for ((f, p), q) in self.field.iter_mut().zip(shared.positions).zip(next.iter()) {
             *f = [q[0] - p[0], q[1] - p[1]];
         }
-        self.positions = next;
-        self.timings = Timings { integration: (self.clock)() - start, ..Timings::default() };
-        Ok(())
+        timings.integration = (shared.clock)() - start;
+        Ok(true)
     }
 
-    /// Current vertex positions.
-    pub fn positions(&self) -> &[Point] {
-        &self.positions
-    }
-
-    /// Puts the mesh into a given pose; handles stay. (The next step maps the rest mesh
-    /// again, for targets taken from this pose.)
-    pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        check_pose(positions, self.positions.len())?;
-        self.positions.copy_from_slice(positions);
+    /// The next step maps the rest mesh again, for targets taken from the pose.
+    fn pose_set(&mut self, _shared: Shared<'_>, _rest: bool) {
         self.field.fill([0.0; 2]);
-        Ok(())
     }
 
-    /// Back to the rest pose; handles stay.
-    pub fn reset(&mut self) {
-        self.positions.copy_from_slice(self.mesh.positions());
-        self.field.fill([0.0; 2]);
+    fn field(&self) -> &[[f64; 2]] {
+        &self.field
+    }
+
+    /// The field: a step maps the rest mesh for targets taken from the positions, and keeps
+    /// nothing else.
+    fn save(&self, checkpoint: &mut Checkpoint) {
+        copy_into(&mut checkpoint.field, &self.field);
+    }
+
+    fn saved_lengths(&self, checkpoint: &Checkpoint) -> Vec<(usize, usize)> {
+        vec![(checkpoint.field.len(), self.field.len())]
+    }
+
+    fn restore(&mut self, checkpoint: &Checkpoint) {
+        self.field.copy_from_slice(&checkpoint.field);
     }
 }
 
@@ -258,86 +259,20 @@ fn check_options(options: &MlsOptions) -> Result<(), DeformError> {
     Ok(())
 }
 
-impl Deform for MlsDeformer {
-    fn method_options(&self) -> MethodOptions {
-        MethodOptions::Mls(self.options)
-    }
-    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
-        match options {
-            MethodOptions::Mls(options) => self.set_options(options),
-            other => Err(DeformError::WrongMethod { current: Method::Mls, given: other.method() }),
-        }
-    }
-    fn set_clock(&mut self, clock: Clock) {
-        self.clock = clock;
-    }
-    fn mesh(&self) -> &Mesh {
-        &self.mesh
-    }
-    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        MlsDeformer::set_handle_vertices(self, vertices)
-    }
-    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        MlsDeformer::set_handle_points(self, triangles, barycentric)
-    }
-    fn handle_count(&self) -> usize {
-        self.handles.len()
-    }
-    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
-        handles::as_points(self.handles.iter())
-    }
-    fn handle_positions(&self) -> Vec<Point> {
-        MlsDeformer::handle_positions(self)
-    }
-    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        MlsDeformer::step(self, velocities)
-    }
-    fn positions(&self) -> &[Point] {
-        &self.positions
-    }
-    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        MlsDeformer::set_positions(self, positions)
-    }
-    fn field(&self) -> &[[f64; 2]] {
-        &self.field
-    }
-    /// Positions, field and timings: a step maps the rest mesh for targets taken from the
-    /// positions, and keeps nothing else.
-    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
-        checkpoint.begin(Method::Mls);
-        copy_into(&mut checkpoint.positions, &self.positions);
-        copy_into(&mut checkpoint.field, &self.field);
-        checkpoint.timings = self.timings;
-    }
-    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
-        let n = self.positions.len();
-        checkpoint.check(Method::Mls, &[(checkpoint.positions.len(), n), (checkpoint.field.len(), n)])?;
-        self.positions.copy_from_slice(&checkpoint.positions);
-        self.field.copy_from_slice(&checkpoint.field);
-        self.timings = checkpoint.timings;
-        Ok(())
-    }
-    fn metrics(&self) -> Metrics {
-        metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
-    }
-    fn timings(&self) -> Timings {
-        self.timings
-    }
-    fn reset(&mut self) {
-        MlsDeformer::reset(self);
-    }
-}
-
 impl Build for MlsOptions {
+    type Solver = MlsSolver;
+
     fn check(&self) -> Result<(), DeformError> {
         check_options(self)
     }
+
     /// MLS solves no linear system.
     fn orders(&self, _mesh: &Mesh) -> Orders {
         Orders { systems: Vec::new() }
     }
-    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
+
+    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<MlsSolver, DeformError> {
         orders.check(&[])?;
-        Ok(Box::new(MlsDeformer::new(mesh, self)?))
+        MlsSolver::new(mesh, self)
     }
 }

@@ -2,8 +2,7 @@
 //! each), the [`Method`] and [`MethodOptions`] enums made from it, and each method's options
 //! with their ranges and their settings by name ([`Settings`], which every reader of
 //! options goes through). Plain data: nothing here knows a deformer, so every file of
-//! `deform` can use it (the `Deform` trait returns [`MethodOptions`]; the deformers implement
-//! that trait).
+//! `deform` can use it.
 
 use std::fmt;
 use std::ops::RangeInclusive;
@@ -11,14 +10,14 @@ use std::ops::RangeInclusive;
 /// The list of methods, one line each: `Variant("name", Options)`, after the documentation
 /// of the [`Method`] variant. `methods!(callback)` hands the list to `callback!`, which
 /// writes whatever needs a case per method: the enums below,
-/// [`MethodOptions::build_with_orders`]'s dispatch in `method.rs` (through the `Build`
-/// trait each options type implements beside its deformer) and the settings by name in
+/// the enum of solvers and [`MethodOptions::orders`]' dispatch in `method.rs` (through the
+/// `Build` trait each options type implements beside its solver) and the settings by name in
 /// `settings.rs` (through [`Settings`], implemented beside each options type here).
 macro_rules! methods {
     ($callback:ident) => {
         $callback! {
             /// As-Killing-As-Possible vector fields (the paper).
-            Akap("akap", DeformerOptions),
+            Akap("akap", AkapOptions),
             /// As-rigid-as-possible local/global iterations.
             Arap("arap", ArapOptions),
             /// Moving least squares (Schaefer et al. 2006): rigid, similarity or affine.
@@ -77,7 +76,7 @@ impl fmt::Display for Method {
 
 impl Default for MethodOptions {
     fn default() -> Self {
-        Self::Akap(DeformerOptions::default())
+        Self::Akap(AkapOptions::default())
     }
 }
 
@@ -120,7 +119,7 @@ pub enum Integrator {
     Linear,
 }
 
-/// The values [`DeformerOptions::lambda`] may take: 1e-6 to 1e10.
+/// The values [`AkapOptions::lambda`] may take: 1e-6 to 1e10.
 ///
 /// lambda weighs the handle penalties (eq. (3)) against the Killing energy, whose matrix
 /// entries are dimensionless: a few units per vertex (about 1 to 10; up to 1e6 on slivers,
@@ -143,9 +142,9 @@ pub const LAMBDA_RANGE: RangeInclusive<f64> = 1e-6..=1e10;
 /// stay within the range `LAMBDA_RANGE` was measured for.
 pub const STIFFNESS_RANGE: RangeInclusive<f64> = 1e-3..=1e3;
 
-/// AKAP's settings ([`super::Deformer`]), with builders.
+/// AKAP's settings ([`super::AkapSolver`], behind a [`super::Deformer`]), with builders.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DeformerOptions {
+pub struct AkapOptions {
     /// Weight of the soft handle constraints of step 1, in [`LAMBDA_RANGE`] (1e-6 to 1e10;
     /// default 100).
     pub lambda: f64,
@@ -155,13 +154,17 @@ pub struct DeformerOptions {
     pub integrator: Integrator,
 }
 
-impl Default for DeformerOptions {
+/// AKAP's settings under their old name, from when `Deformer` meant AKAP.
+#[deprecated(note = "AKAP's options are `AkapOptions`; `Deformer` is now any method's deformer")]
+pub type DeformerOptions = AkapOptions;
+
+impl Default for AkapOptions {
     fn default() -> Self {
         Self { lambda: 100.0, dirichlet: true, integrator: Integrator::Spiral }
     }
 }
 
-impl Settings for DeformerOptions {
+impl Settings for AkapOptions {
     const SETTINGS: &'static [Setting<Self>] = &[
         Setting { name: "lambda", access: Access::Number(|o| o.lambda, |o, x| o.lambda = x) },
         Setting { name: "dirichlet", access: Access::Bool(|o| o.dirichlet, |o, b| o.dirichlet = b) },
@@ -176,7 +179,7 @@ impl Settings for DeformerOptions {
     ];
 }
 
-impl DeformerOptions {
+impl AkapOptions {
     /// Sets lambda.
     pub fn with_lambda(mut self, lambda: f64) -> Self {
         self.lambda = lambda;
@@ -200,15 +203,15 @@ impl DeformerOptions {
 /// vertices, growing like n log n), so 1000 of them take about 0.12 s there. That is far
 /// more than a frame needs: iterations converge linearly, each step starts from the last
 /// pose, and the widget runs 10. Convergence runs ([`ArapOptions::until_converged`],
-/// [`super::ArapDeformer::iterate`]) stop when converged and take a larger count.
+/// [`super::Deformer::iterate`]) stop when converged and take a larger count.
 pub const MAX_ITERATIONS: usize = 1000;
 
 /// The most iterations an ARAP convergence run (a `tolerance` above 0:
-/// [`ArapOptions::until_converged`], [`super::ArapDeformer::iterate`]) may be allowed: it
+/// [`ArapOptions::until_converged`], [`super::Deformer::iterate`]) may be allowed: it
 /// stops when converged, but a tolerance finer than rounding never is, and a step must end.
 pub const MAX_CONVERGENCE_ITERATIONS: usize = 1_000_000;
 
-/// ARAP's settings ([`super::ArapDeformer`]), with builders.
+/// ARAP's settings ([`super::ArapSolver`]), with builders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ArapOptions {
     /// Local/global iterations per step (at most): from 1 to [`MAX_ITERATIONS`] when
@@ -271,7 +274,7 @@ pub enum MlsVariant {
 /// steep enough for any use).
 pub const MLS_ALPHA_RANGE: RangeInclusive<f64> = 0.1..=4.0;
 
-/// Moving least squares' settings ([`super::MlsDeformer`]), with builders.
+/// Moving least squares' settings ([`super::MlsSolver`]), with builders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MlsOptions {
     /// The maps fitted.
@@ -326,7 +329,7 @@ pub const CAGE_VERTICES_RANGE: RangeInclusive<usize> = 8..=1000;
 /// dense system loses its precision); above, the map is a similarity fitted to the handles.
 pub const SMOOTHNESS_RANGE: RangeInclusive<f64> = 1e-8..=1e4;
 
-/// Point-to-point Cauchy-Green settings ([`super::CauchyGreenDeformer`]), with builders.
+/// Point-to-point Cauchy-Green settings ([`super::CauchyGreenSolver`]), with builders.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CauchyGreenOptions {
     /// The automatic cage's vertex count, in [`CAGE_VERTICES_RANGE`] (default 64): the map's

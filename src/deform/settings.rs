@@ -199,12 +199,11 @@ impl MethodOptions {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::deform::{ArapOptions, DeformerOptions, Integrator};
+    use crate::deform::{AkapOptions, ArapOptions, Integrator};
 
     #[test]
     fn values_written_read_back_to_the_same_options() {
-        let akap =
-            MethodOptions::Akap(DeformerOptions::default().with_lambda(0.25).with_integrator(Integrator::Linear));
+        let akap = MethodOptions::Akap(AkapOptions::default().with_lambda(0.25).with_integrator(Integrator::Linear));
         let arap = MethodOptions::Arap(ArapOptions::default().with_iterations(7));
         for options in [akap, arap] {
             let values = options.values();

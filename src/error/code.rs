@@ -277,7 +277,10 @@ impl DeformError {
             | Self::InvalidBone { .. }
             | Self::InvalidStiffness { .. }
             | Self::Unsupported { .. }
-            | Self::ForeignCheckpoint { .. } => ErrorCode::InvalidArgument,
+            | Self::ForeignCheckpoint { .. }
+            | Self::HandleOutOfRange { .. }
+            | Self::InvalidTarget { .. }
+            | Self::RigMismatch { .. } => ErrorCode::InvalidArgument,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,
             Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,

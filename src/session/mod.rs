@@ -1,6 +1,6 @@
 //! Recorded interaction sessions: the one definition of the JSON format the app records
 //! (the widget records through the bindings' `SessionRecorder` and reads through
-//! `sessionJson`, both this module), and its replay on any [`Deform`] method.
+//! `sessionJson`, both this module), and its replay on a [`Deformer`] of any method.
 //!
 //! ```json
 //! { "format": "akap-session", "version": 2,
@@ -38,7 +38,7 @@
 //! or `null` for 1 everywhere; `turn` is a frame in which handles also turn (`velocities` as
 //! a `step`'s, `turns` one angle per handle in radians, counter-clockwise; AKAP and ARAP);
 //! `bones` replaces the bones (two points per bone, its ends, given as handles are;
-//! [`Deform::set_bones`]), laid in the pose at that point. Stiffness and bones are for
+//! [`Deformer::set_bones`]), laid in the pose at that point. Stiffness and bones are for
 //! the methods that have them (AKAP, ARAP: such an event
 //! under another method is refused on replay as the deformer refuses it, and passed over by
 //! [`replay_to_targets`], whose method is a comparison's).
@@ -53,17 +53,13 @@
 //! recording's *targets* instead, each handle's position before a step plus its velocity in
 //! the recording: [`replay_to_targets`].
 
-mod replay;
-
 use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
-pub use replay::{replay, replay_to_targets, Replay};
-
 use crate::deform::handles::check_stiffness;
 use crate::deform::settings::is_whole;
-use crate::deform::{Deform, DeformError, DeformerOptions, Method, MethodOptions, SettingValue};
+use crate::deform::{AkapOptions, DeformError, Deformer, Method, MethodOptions, SettingValue};
 use crate::mesh::{Mesh, MeshError};
 use crate::shapes;
 use crate::triangulate::{triangulate, TriangulationError, TriangulationOptions};
@@ -288,8 +284,8 @@ impl<'de> serde::de::Visitor<'de> for OptionsVisitor {
     }
 }
 
-impl From<DeformerOptions> for RecordedOptions {
-    fn from(o: DeformerOptions) -> Self {
+impl From<AkapOptions> for RecordedOptions {
+    fn from(o: AkapOptions) -> Self {
         Self::of(MethodOptions::Akap(o))
     }
 }
@@ -315,7 +311,7 @@ pub enum Event {
     Reset(bool),
     /// Each triangle's stiffness (one number per triangle), or `null` for 1 everywhere.
     Stiffness(Option<Vec<f64>>),
-    /// New bones ([`Deform::set_bones`]): a triangle and three barycentric coordinates for
+    /// New bones ([`Deformer::set_bones`]): a triangle and three barycentric coordinates for
     /// each end, two ends per bone.
     Bones {
         /// Triangle of each end.
@@ -323,7 +319,7 @@ pub enum Event {
         /// Barycentric coordinates, three per end.
         barycentric: Vec<f64>,
     },
-    /// One frame in which handles also turn ([`Deform::step_turning`]).
+    /// One frame in which handles also turn ([`Deformer::step_turning`]).
     Turn {
         /// x and y velocity of each handle.
         velocities: Vec<f64>,
@@ -442,7 +438,7 @@ impl From<TriangulationError> for SessionError {
 
 impl Session {
     /// An empty AKAP session of a built-in shape (nothing checked until [`Self::mesh`]).
-    pub fn new(shape: ShapeSpec, mesh: MeshCounts, options: DeformerOptions) -> Self {
+    pub fn new(shape: ShapeSpec, mesh: MeshCounts, options: AkapOptions) -> Self {
         Self {
             format: FORMAT.to_owned(),
             version: VERSION,
@@ -611,8 +607,8 @@ impl Session {
     }
 
     /// A deformer of the recorded method and options on the session's mesh.
-    pub fn recorded_deformer(&self) -> Result<Box<dyn Deform>, SessionError> {
-        self.method_options()?.build(self.mesh()?).map_err(SessionError::Setup)
+    pub fn recorded_deformer(&self) -> Result<Deformer, SessionError> {
+        Deformer::new(self.mesh()?, self.method_options()?).map_err(SessionError::Setup)
     }
 
     /// Number of `step` events.

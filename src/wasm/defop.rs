@@ -288,6 +288,11 @@ pub struct JsDefOp {
 }
 
 impl JsDefOp {
+    /// The trained operator (a deformer poses with a copy).
+    pub(super) fn operator(&self) -> &Operator {
+        &self.operator
+    }
+
     fn new(mesh: Mesh, operator: Operator) -> Self {
         let n = 2 * operator.vertex_count();
         Self { mesh, operator, scratch: vec![0.0; n], scratch32: vec![0.0; n] }

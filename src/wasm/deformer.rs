@@ -1,4 +1,7 @@
-//! The deformers (AKAP or ARAP behind one class) and their options.
+//! The deformer of any method and its interaction loop, behind one class: the JavaScript
+//! `Deformer` is a `crate::pose::Poser`, which owns a `crate::deform::Deformer`; plain
+//! steps and the poses, handles, options, stiffness and bones set through it are recorded
+//! while a recording runs, and `advance` is the frame of the interaction loop.
 
 use std::sync::OnceLock;
 
@@ -6,20 +9,32 @@ use js_sys::{Array, Function, Object, Reflect, Uint32Array};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
+use super::defop::JsDefOp;
 use super::error::BindingError;
 use super::mesh::read_mesh;
 use super::read::{self, Options};
+use super::session::shape_spec;
 use super::{limits, max_coordinates, object, pairs};
 use crate::deform::foldover::{MAX_CLAMP_TRIALS, MAX_SPLITS};
-use crate::deform::{Deform, FoldoverGuard, FoldoverStepper, Method, MethodOptions, Orders, SettingValue};
+use crate::deform::{Deformer, FoldoverGuard, Method, MethodOptions, Orders, SettingValue, Timings};
+use crate::pose::{Poser, MAX_SUBSTEPS};
 
-/// A deformer for one mesh: AKAP (`crate::deform::Deformer`) or ARAP
-/// (`crate::deform::ArapDeformer`), chosen by the `method` option.
+/// A deformer for one mesh (`crate::deform::Deformer`), of the method the `method` option
+/// names, with its interaction loop (`crate::pose::Poser`).
 #[wasm_bindgen(js_name = Deformer)]
 pub struct JsDeformer {
-    inner: Box<dyn Deform>,
-    /// The buffers of `stepWithoutFoldovers`, kept from frame to frame.
-    stepper: FoldoverStepper,
+    inner: Poser,
+}
+
+impl JsDeformer {
+    fn made(mut deformer: Deformer) -> Self {
+        deformer.set_clock(performance_now);
+        Self { inner: Poser::new(deformer) }
+    }
+
+    fn deformer(&self) -> &Deformer {
+        self.inner.deformer()
+    }
 }
 
 /// The fill-reducing orders a deformer of the method in `options` needs for this mesh (the
@@ -61,9 +76,7 @@ impl JsDeformer {
     pub fn new(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<JsDeformer, BindingError> {
         let options = deformer_options(&options, MethodOptions::default())?;
         let mesh = read_mesh(&positions, &triangles)?;
-        let mut inner = options.build(mesh)?;
-        inner.set_clock(performance_now);
-        Ok(Self { inner, stepper: FoldoverStepper::default() })
+        Ok(Self::made(Deformer::new(mesh, options)?))
     }
 
     /// The constructor with the fill-reducing orders computed beforehand by
@@ -86,26 +99,22 @@ impl JsDeformer {
                 Ok(order.into_iter().map(|v| v as usize).collect())
             })
             .collect::<Result<Vec<_>, BindingError>>()?;
-        let mut inner = options.build_with_orders(mesh, &Orders { systems })?;
-        inner.set_clock(performance_now);
-        Ok(Self { inner, stepper: FoldoverStepper::default() })
+        Ok(Self::made(Deformer::with_orders(mesh, options, &Orders { systems })?))
     }
 
     /// Changes some options; the others keep their values. A different `method` switches
     /// to that method (its defaults, with the options given) on the same mesh, keeping the
-    /// pose and the handles: a new solver is set up (`MethodOptions::apply`).
+    /// pose and the handles: a new solver is set up (`Deformer::set_options`).
     #[wasm_bindgen(js_name = setOptions)]
     pub fn set_options(&mut self, options: JsValue) -> Result<(), BindingError> {
-        let options = deformer_options(&options, self.inner.method_options())?;
-        options.apply(&mut self.inner)?;
-        self.inner.set_clock(performance_now);
-        Ok(())
+        let options = deformer_options(&options, self.deformer().options())?;
+        Ok(self.inner.set_options(options)?)
     }
 
     /// `"akap"` or `"arap"`.
     #[wasm_bindgen(getter)]
     pub fn method(&self) -> String {
-        self.inner.method_options().method().name().to_owned()
+        self.deformer().method().name().to_owned()
     }
 
     /// One handle on each of these vertices (a `Uint32Array`), replacing the handles.
@@ -155,13 +164,13 @@ impl JsDeformer {
     /// Whether the method has bones (`setBones`): AKAP and ARAP.
     #[wasm_bindgen(getter, js_name = hasBones)]
     pub fn has_bones(&self) -> bool {
-        self.inner.has_bones()
+        self.deformer().has_bones()
     }
 
     /// One step with two velocity components per handle, in handle order (`Float64Array`).
     pub fn step(&mut self, velocities: JsValue) -> Result<(), BindingError> {
         let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
-        Ok(self.inner.step(&pairs(&velocities, "velocities")?)?)
+        Ok(self.inner.step(&pairs(&velocities, "velocities")?, None)?)
     }
 
     /// One step that turns no triangle over (`crate::deform::foldover`): the plain step
@@ -187,11 +196,7 @@ impl JsDeformer {
         let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
         let velocities = pairs(&velocities, "velocities")?;
         let turns = if turns.is_undefined() { None } else { Some(read::float64s(&turns, "turns", max_handles())?) };
-        self.stepper.set_guard(guard)?;
-        let report = match &turns {
-            None => self.stepper.step(self.inner.as_mut(), &velocities)?,
-            Some(turns) => self.stepper.step_turning(self.inner.as_mut(), &velocities, turns)?,
-        };
+        let report = self.inner.step_without_foldovers(&velocities, turns.as_deref(), guard)?;
         let steps: Array = report.steps.iter().map(|&f| JsValue::from_f64(f)).collect();
         object(&[
             ("steps", steps.into()),
@@ -207,12 +212,12 @@ impl JsDeformer {
     pub fn step_turning(&mut self, velocities: JsValue, turns: JsValue) -> Result<(), BindingError> {
         let velocities = read::float64s(&velocities, "velocities", 2 * max_handles())?;
         let turns = read::float64s(&turns, "turns", max_handles())?;
-        Ok(self.inner.step_turning(&pairs(&velocities, "velocities")?, &turns)?)
+        Ok(self.inner.step(&pairs(&velocities, "velocities")?, Some(&turns))?)
     }
 
     /// A copy of the current positions, x and y interleaved.
     pub fn positions(&self) -> Vec<f64> {
-        self.inner.positions().iter().flatten().copied().collect()
+        self.deformer().positions().iter().flatten().copied().collect()
     }
 
     /// Where the current positions live in wasm memory: the byte offset of `2 * vertexCount`
@@ -221,7 +226,7 @@ impl JsDeformer {
     /// two buffers), and a view detaches when the memory grows: ask again each frame.
     #[wasm_bindgen(js_name = positionsPointer)]
     pub fn positions_pointer(&self) -> usize {
-        self.inner.positions().as_ptr() as usize
+        self.deformer().positions().as_ptr() as usize
     }
 
     /// Puts the mesh into the given pose (`Float64Array`, xy-interleaved, length
@@ -246,32 +251,32 @@ impl JsDeformer {
     /// Whether the method takes per-triangle stiffness (AKAP and ARAP).
     #[wasm_bindgen(getter, js_name = hasStiffness)]
     pub fn has_stiffness(&self) -> bool {
-        self.inner.has_stiffness()
+        self.deformer().has_stiffness()
     }
 
     /// The last velocity field after the Dirichlet step (`U_opt`; ARAP: the last step's
     /// displacement), interleaved.
     pub fn field(&self) -> Vec<f64> {
-        self.inner.field().iter().flatten().copied().collect()
+        self.deformer().field().iter().flatten().copied().collect()
     }
 
     /// The last velocity field after the soft-constraint step (`U0`; ARAP: the last
     /// step's displacement), interleaved.
     #[wasm_bindgen(js_name = softField)]
     pub fn soft_field(&self) -> Vec<f64> {
-        self.inner.soft_field().iter().flatten().copied().collect()
+        self.deformer().soft_field().iter().flatten().copied().collect()
     }
 
     /// The deformed cage of Cauchy-Green (its vertices as the last step left them),
     /// interleaved; `undefined` for the methods without a cage.
     pub fn cage(&self) -> Option<Vec<f64>> {
-        self.inner.cage_image().map(|cage| cage.iter().flatten().copied().collect())
+        self.deformer().cage_image().map(|cage| cage.iter().flatten().copied().collect())
     }
 
     /// Current positions of the handle points, interleaved.
     #[wasm_bindgen(js_name = handlePositions)]
     pub fn handle_positions(&self) -> Vec<f64> {
-        self.inner.handle_positions().iter().flatten().copied().collect()
+        self.deformer().handle_positions().iter().flatten().copied().collect()
     }
 
     /// Number of handles.
@@ -283,12 +288,12 @@ impl JsDeformer {
     /// Number of vertices.
     #[wasm_bindgen(getter, js_name = vertexCount)]
     pub fn vertex_count(&self) -> usize {
-        self.inner.mesh().vertex_count()
+        self.deformer().mesh().vertex_count()
     }
 
     /// `{ areaDistortion, angleDistortion, flipped }` of the current pose.
     pub fn metrics(&self) -> Result<Object, BindingError> {
-        let m = self.inner.metrics();
+        let m = self.deformer().metrics();
         object(&[
             ("areaDistortion", m.area_distortion.into()),
             ("angleDistortion", m.angle_distortion.into()),
@@ -300,20 +305,210 @@ impl JsDeformer {
     /// milliseconds of the last step (`dirichletFactorisation` is the part of
     /// `factorisation` spent on AKAP's step 2).
     pub fn timings(&self) -> Result<Object, BindingError> {
-        let t = self.inner.timings();
-        object(&[
-            ("assembly", t.assembly.into()),
-            ("factorisation", t.factorisation.into()),
-            ("dirichletFactorisation", t.dirichlet_factorisation.into()),
-            ("solve", t.solve.into()),
-            ("integration", t.integration.into()),
-        ])
+        timings_object(&self.deformer().timings())
     }
 
-    /// Back to the rest pose (handles stay).
+    /// Back to the rest pose; handles stay, each with its target at its rest place.
     pub fn reset(&mut self) {
         self.inner.reset();
     }
+
+    /// Whether the pose is the rest pose: new or just reset, no step or pose since.
+    #[wasm_bindgen(getter, js_name = atRest)]
+    pub fn at_rest(&self) -> bool {
+        self.inner.at_rest()
+    }
+
+    /// The rest shape's size, its bounding box's larger side (the unit of `maxStep`).
+    #[wasm_bindgen(getter)]
+    pub fn size(&self) -> f64 {
+        self.inner.size()
+    }
+
+    // ------------------------------------------------------------------ the interaction loop
+
+    /// How `advance` moves the handles toward their targets (`crate::pose::Tracking`):
+    /// `{ maxStep?, maxSubsteps?, noFoldovers?, maxSplits?, clampTrials?, paper? }` over
+    /// the current policy (`maxStep` a share of `size`, default 0.02; `maxSubsteps` 1 to
+    /// 10000, default 8; `noFoldovers` default true; the guard's limits as
+    /// `stepWithoutFoldovers` takes them; `paper`, the paper's mode, default false).
+    #[wasm_bindgen(js_name = setTracking)]
+    pub fn set_tracking(&mut self, options: JsValue) -> Result<(), BindingError> {
+        const NAMES: &[&str] = &["maxStep", "maxSubsteps", "noFoldovers", "maxSplits", "clampTrials", "paper"];
+        let given = Options::read(&options, "tracking", NAMES)?;
+        let mut tracking = self.inner.tracking();
+        if let Some(x) = given.number("maxStep")? {
+            tracking.max_step = x;
+        }
+        if let Some(n) = given.count("maxSubsteps", MAX_SUBSTEPS)? {
+            tracking.max_substeps = n;
+        }
+        if let Some(b) = given.boolean("noFoldovers")? {
+            tracking.no_foldovers = b;
+        }
+        if let Some(n) = given.count("maxSplits", MAX_SPLITS as usize)? {
+            tracking.guard.max_splits = n as u32;
+        }
+        if let Some(n) = given.count("clampTrials", MAX_CLAMP_TRIALS as usize)? {
+            tracking.guard.clamp_trials = n as u32;
+        }
+        if let Some(b) = given.boolean("paper")? {
+            tracking.paper = b;
+        }
+        Ok(self.inner.set_tracking(tracking)?)
+    }
+
+    /// One more handle at a point of the mesh (a triangle and three barycentric
+    /// coordinates, `Float64Array`), last, its target where it is; the others keep theirs.
+    /// Returns its index.
+    #[wasm_bindgen(js_name = addHandle)]
+    pub fn add_handle(&mut self, triangle: JsValue, barycentric: JsValue) -> Result<usize, BindingError> {
+        let triangle = read::count(&triangle, "triangle", u32::MAX as usize)? as u32;
+        let weights = read::float64s(&barycentric, "barycentric", 3)?;
+        let Ok(weights) = <[f64; 3]>::try_from(weights.as_slice()) else {
+            return Err(BindingError::argument(format!("barycentric has {} numbers, not 3", weights.len())));
+        };
+        Ok(self.inner.add_handle(triangle, weights)?)
+    }
+
+    /// Removes handle `index`; the others keep their targets and turns.
+    #[wasm_bindgen(js_name = removeHandle)]
+    pub fn remove_handle(&mut self, index: JsValue) -> Result<(), BindingError> {
+        let index = read::count(&index, "index", max_handles())?;
+        Ok(self.inner.remove_handle(index)?)
+    }
+
+    /// Sets handle `index`'s target (`x`, `y`): where the next frames take it.
+    #[wasm_bindgen(js_name = setTarget)]
+    pub fn set_target(&mut self, index: JsValue, x: JsValue, y: JsValue) -> Result<(), BindingError> {
+        let index = read::count(&index, "index", max_handles())?;
+        let target = [read::number(&x, "x")?, read::number(&y, "y")?];
+        Ok(self.inner.set_target(index, target)?)
+    }
+
+    /// Places every handle's target (`Float64Array`, x and y per handle): undo, a shown
+    /// frame of an animation.
+    #[wasm_bindgen(js_name = setTargets)]
+    pub fn set_targets(&mut self, targets: JsValue) -> Result<(), BindingError> {
+        let targets = read::float64s(&targets, "targets", 2 * max_handles())?;
+        Ok(self.inner.set_targets(&pairs(&targets, "targets")?)?)
+    }
+
+    /// Sets how far handle `index` is to turn in all, radians counter-clockwise.
+    #[wasm_bindgen(js_name = setTurn)]
+    pub fn set_turn(&mut self, index: JsValue, turn: JsValue) -> Result<(), BindingError> {
+        let index = read::count(&index, "index", max_handles())?;
+        Ok(self.inner.set_turn(index, read::number(&turn, "turn")?)?)
+    }
+
+    /// A pointer takes handle `index`: held, its target where it is. Returns where it is
+    /// (`Float64Array` of x and y).
+    pub fn grab(&mut self, index: JsValue) -> Result<Vec<f64>, BindingError> {
+        let index = read::count(&index, "index", max_handles())?;
+        Ok(self.inner.grab(index)?.to_vec())
+    }
+
+    /// The pointer lets handle `index` go: it stays at its target.
+    pub fn release(&mut self, index: JsValue) -> Result<(), BindingError> {
+        let index = read::count(&index, "index", max_handles())?;
+        Ok(self.inner.release(index)?)
+    }
+
+    /// Every handle's target where it is now: the handles stay where they are.
+    #[wasm_bindgen(js_name = pinHandles)]
+    pub fn pin_handles(&mut self) {
+        self.inner.pin_handles();
+    }
+
+    /// Where each handle is going, x and y interleaved.
+    pub fn targets(&self) -> Vec<f64> {
+        self.inner.targets().flatten().collect()
+    }
+
+    /// How far each handle is to turn in all, and has turned, radians: `turns` then
+    /// `turned`, one per handle each.
+    pub fn turns(&self) -> Vec<f64> {
+        self.inner.turns().chain(self.inner.turned()).collect()
+    }
+
+    /// One frame: the handles moved toward their targets (`crate::pose::Poser::advance`),
+    /// or the rig's pose. Returns `{ steps, clamped, evaluation, timings }`: the substeps
+    /// taken, whether a step stopped short to keep triangles from folding over, the rig's
+    /// evaluation in milliseconds, and the stage timings summed over the substeps (as
+    /// `timings()` gives them).
+    pub fn advance(&mut self) -> Result<Object, BindingError> {
+        let report = self.inner.advance()?;
+        object(&[
+            ("steps", (report.steps as f64).into()),
+            ("clamped", report.clamped.into()),
+            ("evaluation", report.evaluation.into()),
+            ("timings", timings_object(&report.timings)?.into()),
+        ])
+    }
+
+    /// Poses with a trained rig (`DefOp`, copied) instead of stepping, until `clearRig` or a
+    /// new handle set: each frame the pose is the rig's for the targets. Refused for a rig
+    /// of other handle or vertex counts; the caller checks it was trained for this mesh and
+    /// these handle points.
+    #[wasm_bindgen(js_name = setRig)]
+    pub fn set_rig(&mut self, rig: &JsDefOp) -> Result<(), BindingError> {
+        Ok(self.inner.set_rig(Some(rig.operator().clone()))?)
+    }
+
+    /// Poses by stepping again.
+    #[wasm_bindgen(js_name = clearRig)]
+    pub fn clear_rig(&mut self) {
+        self.inner.set_rig(None).expect("clearing a rig cannot fail");
+    }
+
+    /// Whether a rig poses the shape.
+    #[wasm_bindgen(getter, js_name = hasRig)]
+    pub fn has_rig(&self) -> bool {
+        self.inner.has_rig()
+    }
+
+    // ------------------------------------------------------------------ recording
+
+    /// Starts recording a session of everything done through this deformer from now on,
+    /// replacing any recording. `shape` (`{ name, targetEdgeLength?, minAngle?, maxArea? }`)
+    /// names the built-in shape the mesh was triangulated from; without it (`undefined`) the
+    /// session carries the mesh.
+    #[wasm_bindgen(js_name = startRecording)]
+    pub fn start_recording(&mut self, shape: JsValue) -> Result<(), BindingError> {
+        let shape = if shape.is_undefined() || shape.is_null() { None } else { Some(shape_spec(&shape)?) };
+        self.inner.start_recording(shape);
+        Ok(())
+    }
+
+    /// Whether a recording runs.
+    #[wasm_bindgen(getter)]
+    pub fn recording(&self) -> bool {
+        self.inner.recording()
+    }
+
+    /// Ends the recording and returns it as JSON (version 2), checked by reading it back;
+    /// `undefined` if none ran.
+    #[wasm_bindgen(js_name = stopRecording)]
+    pub fn stop_recording(&mut self) -> Result<Option<String>, BindingError> {
+        self.inner.stop_recording().map(|session| super::session::checked_json(&session)).transpose()
+    }
+
+    /// Pauses the recording (while a session replays) or resumes it.
+    #[wasm_bindgen(js_name = pauseRecording)]
+    pub fn pause_recording(&mut self, paused: bool) {
+        self.inner.pause_recording(paused);
+    }
+}
+
+/// `{ assembly, factorisation, dirichletFactorisation, solve, integration }`.
+fn timings_object(t: &Timings) -> Result<Object, BindingError> {
+    object(&[
+        ("assembly", t.assembly.into()),
+        ("factorisation", t.factorisation.into()),
+        ("dirichletFactorisation", t.dirichlet_factorisation.into()),
+        ("solve", t.solve.into()),
+        ("integration", t.integration.into()),
+    ])
 }
 
 /// Reads `{ maxSplits?, clampTrials? }` over the defaults.

@@ -185,20 +185,12 @@ impl JsSessionRecorder {
     /// The session as JSON (version 2), checked by reading it back.
     #[wasm_bindgen(js_name = toJson)]
     pub fn to_json(&self) -> Result<String, BindingError> {
-        let text = self.session.to_json();
-        if text.len() > MAX_BYTES {
-            return Err(BindingError::argument(format!(
-                "the session is {} bytes, more than the {MAX_BYTES} a session may have",
-                text.len()
-            )));
-        }
-        Session::from_json(&text)?;
-        Ok(text)
+        checked_json(&self.session)
     }
 }
 
 /// `{ name, targetEdgeLength?, minAngle?, maxArea? }`.
-fn shape_spec(value: &JsValue) -> Result<ShapeSpec, BindingError> {
+pub(super) fn shape_spec(value: &JsValue) -> Result<ShapeSpec, BindingError> {
     let given = Options::read(value, "shape", &["name", "targetEdgeLength", "minAngle", "maxArea"])?;
     let shapes: Vec<(&str, &str)> = crate::shapes::NAMES.iter().map(|&name| (name, name)).collect();
     let Some(name) = given.choice("name", &shapes)? else {
@@ -210,6 +202,20 @@ fn shape_spec(value: &JsValue) -> Result<ShapeSpec, BindingError> {
         max_area: given.number("maxArea")?,
         min_angle: given.number("minAngle")?,
     })
+}
+
+/// A recorded session as JSON (version 2), checked by reading it back and refused beyond
+/// the size a session may have.
+pub(super) fn checked_json(session: &Session) -> Result<String, BindingError> {
+    let text = session.to_json();
+    if text.len() > MAX_BYTES {
+        return Err(BindingError::argument(format!(
+            "the session is {} bytes, more than the {MAX_BYTES} a session may have",
+            text.len()
+        )));
+    }
+    Session::from_json(&text)?;
+    Ok(text)
 }
 
 /// `values`, refused when one is NaN or infinite (JSON has no such numbers).

@@ -36,7 +36,7 @@
 //! numeric factorisation once per handle set (in the first step after the handles change),
 //! and every iteration only solves.
 //!
-//! Each [`ArapDeformer::step`] sets the targets (current handle position plus velocity)
+//! Each step sets the targets (current handle position plus velocity)
 //! and runs the configured iterations warm-started from the current pose; buffers are
 //! sized when the mesh or the handle set changes, so a step allocates nothing.
 
@@ -44,12 +44,10 @@ use std::sync::Arc;
 
 use sprs::CsMat;
 
-use super::bones::Bones;
 use super::error::{out_of_memory, DeformError};
-use super::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
+use super::handles::{diagonal, in_range, HandlePoint};
 pub use super::method::IterationReport;
-use super::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
-use super::metrics::{metrics, Metrics};
+use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 pub use super::options::{ArapOptions, MAX_CONVERGENCE_ITERATIONS, MAX_ITERATIONS};
 use super::options::{Method, MethodOptions};
 use super::pattern::BlockPattern;
@@ -70,20 +68,11 @@ const PENALTY: f64 = 1e6;
 /// A weight this close to 1 puts a handle on a vertex (a hard constraint).
 const AT_VERTEX: f64 = 1e-12;
 
-/// A handle point and how it holds the mesh.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Handle {
-    point: HandlePoint,
-    /// The vertex this handle pins (a hard constraint), or `NONE` for a penalty handle.
-    pinned: usize,
-}
-
-/// The ARAP deformer for one mesh.
+/// The ARAP solver of one mesh (the state it derives from the mesh and the handles; the
+/// mesh, handles and pose are its [`Deformer`](crate::deform::Deformer)'s).
 #[derive(Debug, Clone)]
-pub struct ArapDeformer {
-    mesh: Mesh,
+pub struct ArapSolver {
     options: ArapOptions,
-    clock: Clock,
     /// The rest shape's bounding-box diagonal.
     size: f64,
     /// The local and global steps work on positions scaled by `2^unit`, the power of two
@@ -97,10 +86,6 @@ pub struct ArapDeformer {
     cot: Vec<[f64; 3]>,
     /// The cotangents of the rest mesh (stiffness 1).
     rest_cot: Vec<[f64; 3]>,
-    /// Each triangle's stiffness, if set.
-    stiffness: Option<Vec<f64>>,
-    /// The bones ([`Self::set_bones`]); their triangles' stiffness is raised in `cot`.
-    bones: Bones,
     /// Per triangle, the rest edge vectors `x[v[k + 1]] - x[v[k + 2]]`, scaled by `2^unit`.
     rest_edges: Vec<[Point; 3]>,
     /// The cotangent Laplacian on the pattern of `matrix` (full symmetric CSC storage).
@@ -113,21 +98,19 @@ pub struct ArapDeformer {
     /// Whether `numeric` holds the factor of the current handle set.
     factored: bool,
     penalty: f64,
-    handles: Vec<Handle>,
+    /// Per handle, the vertex it pins (a hard constraint), or `NONE` for a penalty handle.
+    pinned: Vec<usize>,
     /// Per vertex: the number of handles pinning it (0 for a free vertex).
     pin_count: Vec<u32>,
     /// Entries coupling a free row to a pinned column: (value, row, column).
     coupling: Vec<(f64, usize, usize)>,
     targets: Vec<Point>,
-    positions: Vec<Point>,
     /// Per triangle `(cos, sin)` of the rotation of the last local step.
     rotations: Vec<[f64; 2]>,
     /// The displacement of the last step, per vertex.
     field: Vec<[f64; 2]>,
     report: IterationReport,
-    timings: Timings,
     // Scratch for a step, committed only on success.
-    next_positions: Vec<Point>,
     next_rotations: Vec<[f64; 2]>,
     next_targets: Vec<Point>,
     pin_target: Vec<Point>,
@@ -138,33 +121,26 @@ pub struct ArapDeformer {
     turning: Vec<(usize, Point)>,
 }
 
-impl ArapDeformer {
-    /// Prepares a deformer for a connected mesh: cotangent weights, the Laplacian, its
-    /// ordering and symbolic analysis, and every buffer.
-    pub fn new(mesh: Mesh, options: ArapOptions) -> Result<Self, DeformError> {
-        let orders = Self::orders(&mesh);
-        Self::with_orders(mesh, options, &orders)
-    }
-
+impl ArapSolver {
     /// The fill-reducing order of the Laplacian (one system), the bulk of the set-up.
     pub fn orders(mesh: &Mesh) -> Orders {
         let (ptr, adj) = mesh.vertex_graph();
         Orders { systems: vec![fill_reducing_order(&ptr, &adj, mesh.positions(), 1)] }
     }
 
-    /// [`Self::new`] with the order computed beforehand by [`Self::orders`].
-    pub fn with_orders(mesh: Mesh, options: ArapOptions, orders: &Orders) -> Result<Self, DeformError> {
+    /// The solver for a connected mesh with the order from [`Self::orders`]: cotangent
+    /// weights, the Laplacian, its symbolic analysis, and every buffer.
+    fn new(mesh: &Mesh, options: ArapOptions, orders: &Orders) -> Result<Self, DeformError> {
         check_options(&options)?;
-        check_connected(&mesh)?;
         let n = mesh.vertex_count();
         orders.check(&[n])?;
         let m = mesh.triangle_count();
         let x = mesh.positions();
 
         // Pattern: column v holds rows N(v) and v, ascending (full symmetric storage).
-        let pattern = BlockPattern::new(&mesh, 1);
+        let pattern = BlockPattern::new(mesh, 1);
         let slot = |row: usize, col: usize| pattern.slot(row, col).expect("a vertex pair of the pattern");
-        let all_slots = pattern.triangle_slots(&mesh);
+        let all_slots = pattern.triangle_slots(mesh);
         let mut cot = Vec::with_capacity(m);
         let mut rest_edges = Vec::with_capacity(m);
         // Cotangents and rest edges from the mesh scaled by `2^unit` (exact): free of
@@ -192,12 +168,9 @@ impl ArapDeformer {
 
         Ok(Self {
             options,
-            clock: default_clock,
             unit,
             size: diagonal(x),
             rest_cot: cot.clone(),
-            stiffness: None,
-            bones: Bones::default(),
             cot,
             rest_edges,
             laplacian,
@@ -206,46 +179,25 @@ impl ArapDeformer {
             numeric: Numeric::try_new(Arc::new(best)).map_err(out_of_memory)?,
             factored: false,
             penalty,
-            handles: Vec::new(),
+            pinned: Vec::new(),
             pin_count: vec![0; n],
             coupling: Vec::new(),
             targets: Vec::new(),
-            positions: x.to_vec(),
             rotations: vec![[1.0, 0.0]; m],
             field: vec![[0.0; 2]; n],
             report: IterationReport::default(),
-            timings: Timings::default(),
-            next_positions: x.to_vec(),
             next_rotations: vec![[1.0, 0.0]; m],
             next_targets: Vec::new(),
             pin_target: vec![[0.0; 2]; n],
             turning: Vec::new(),
             rhs_x: vec![0.0; n],
             rhs_y: vec![0.0; n],
-            mesh,
         })
     }
 
-    /// Sets the clock used for [`Self::timings`] (milliseconds).
-    pub fn set_clock(&mut self, clock: Clock) {
-        self.clock = clock;
-    }
-
-    /// The mesh in its rest pose.
-    pub fn mesh(&self) -> &Mesh {
-        &self.mesh
-    }
-
-    /// Current options.
+    /// The settings.
     pub fn options(&self) -> ArapOptions {
         self.options
-    }
-
-    /// Changes the options (they apply from the next step).
-    pub fn set_options(&mut self, options: ArapOptions) -> Result<(), DeformError> {
-        check_options(&options)?;
-        self.options = options;
-        Ok(())
     }
 
     /// The penalty weight `w` of handles inside triangles.
@@ -253,30 +205,25 @@ impl ArapDeformer {
         self.penalty
     }
 
-    /// Puts one handle on each of these vertices (replacing any handles); each is a hard
-    /// constraint.
-    pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        let points = handles::at_vertices(&self.mesh, vertices)?;
-        self.install(points.iter().zip(vertices).map(|(p, &v)| Handle { point: *p, pinned: v as usize }).collect());
-        Ok(())
+    /// The handles' targets of the last step (their positions when the handles were set).
+    pub fn targets(&self) -> &[Point] {
+        &self.targets
     }
 
-    /// Puts handles at points inside triangles, given by triangle index and barycentric
-    /// coordinates (replacing any handles). A point at a vertex pins that vertex; any
-    /// other point is held by the penalty.
-    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        let points = handles::in_triangles(&self.mesh, triangles, barycentric)?;
-        self.install(
-            points
-                .iter()
-                .map(|p| {
-                    let pinned =
-                        (0..3).find(|&k| p.weights[k] >= 1.0 - AT_VERTEX).map_or(NONE, |k| p.vertices[k] as usize);
-                    Handle { point: *p, pinned }
-                })
-                .collect(),
-        );
-        Ok(())
+    /// Per triangle, `(cos, sin)` of the rotation found by the last local step.
+    pub fn rotations(&self) -> &[[f64; 2]] {
+        &self.rotations
+    }
+
+    /// How the last step's iterations ended.
+    pub fn report(&self) -> IterationReport {
+        self.report
+    }
+
+    /// Factor statistics of the global system: (nnz(L), flops).
+    pub fn factor_stats(&self) -> (usize, f64) {
+        let s = self.numeric.symbolic();
+        (s.nnz_l(), s.flops())
     }
 
     /// The slot of the diagonal entry `(v, v)` in `matrix`'s data.
@@ -285,31 +232,20 @@ impl ArapDeformer {
         start + self.matrix.indices()[start..end].binary_search(&v).expect("the diagonal is in the pattern")
     }
 
-    /// Builds the matrix of a new handle set (its factorisation waits for the next step)
-    /// and sets the targets to the handles' current positions.
-    fn install(&mut self, handles: Vec<Handle>) {
-        self.handles = handles;
-        self.assemble_matrix();
-        self.targets = self.handle_positions();
-        self.next_targets = self.targets.clone();
-        self.factored = false;
-    }
-
     /// The Laplacian plus the penalties of the handles, with pinned rows and columns
     /// replaced by the identity (and their couplings kept aside).
-    fn assemble_matrix(&mut self) {
-        let handles = &self.handles;
+    fn assemble_matrix(&mut self, handles: &[HandlePoint]) {
         self.pin_count.fill(0);
-        for h in handles.iter().filter(|h| h.pinned != NONE) {
-            self.pin_count[h.pinned] += 1;
+        for &v in self.pinned.iter().filter(|&&v| v != NONE) {
+            self.pin_count[v] += 1;
         }
         let data = self.matrix.data_mut();
         data.copy_from_slice(&self.laplacian);
-        for h in handles.iter().filter(|h| h.pinned == NONE) {
-            let slots = self.triangle_slots[h.point.triangle];
+        for (h, _) in handles.iter().zip(&self.pinned).filter(|(_, &pinned)| pinned == NONE) {
+            let slots = self.triangle_slots[h.triangle];
             for i in 0..3 {
                 for j in 0..3 {
-                    data[slots[3 * i + j]] += self.penalty * h.point.weights[i] * h.point.weights[j];
+                    data[slots[3 * i + j]] += self.penalty * h.weights[i] * h.weights[j];
                 }
             }
         }
@@ -332,57 +268,41 @@ impl ArapDeformer {
         }
     }
 
-    /// Number of handles.
-    pub fn handle_count(&self) -> usize {
-        self.handles.len()
-    }
-
-    /// Current positions of the handle points.
-    pub fn handle_positions(&self) -> Vec<Point> {
-        self.handles.iter().map(|h| h.point.position(&self.positions)).collect()
-    }
-
-    /// The handles' targets of the last step (their positions when the handles were set).
-    pub fn targets(&self) -> &[Point] {
-        &self.targets
-    }
-
-    /// One step: each handle's target becomes its current position plus its velocity (in
-    /// handle order), then the configured local/global iterations run from the current
-    /// pose. With no handles nothing moves.
-    pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        check_velocities(velocities, self.handles.len())?;
-        for (k, (h, v)) in self.handles.iter().zip(velocities).enumerate() {
-            let p = h.point.position(&self.positions);
-            self.next_targets[k] = [p[0] + v[0], p[1] + v[1]];
-        }
-        let options = self.options;
-        self.run(options.iterations, options.tolerance)?;
-        std::mem::swap(&mut self.targets, &mut self.next_targets);
-        Ok(())
-    }
-
     /// More iterations towards the current targets (at most `max_iterations`, stopping
     /// once an iteration moves no vertex further than `tolerance` times the shape's
-    /// size), without changing the targets. As for the options, a tolerance of 0 allows
-    /// at most [`MAX_ITERATIONS`], a tolerance (up to 1) at most
-    /// [`MAX_CONVERGENCE_ITERATIONS`].
-    pub fn iterate(&mut self, max_iterations: usize, tolerance: f64) -> Result<IterationReport, DeformError> {
+    /// size), without changing the targets, into `next` ([`crate::deform::Deformer::iterate`]).
+    /// As for the options, a tolerance of 0 allows at most [`MAX_ITERATIONS`], a tolerance
+    /// (up to 1) at most [`MAX_CONVERGENCE_ITERATIONS`]. Returns the report and whether
+    /// `next` holds the new pose.
+    pub(crate) fn iterate(
+        &mut self,
+        shared: Shared<'_>,
+        max_iterations: usize,
+        tolerance: f64,
+        next: &mut [Point],
+        timings: &mut Timings,
+    ) -> Result<(IterationReport, bool), DeformError> {
         check_options(&ArapOptions { iterations: max_iterations, tolerance })?;
         self.next_targets.copy_from_slice(&self.targets);
-        self.run(max_iterations, tolerance)?;
-        Ok(self.report)
+        let moved = self.run(shared, max_iterations, tolerance, next, timings)?;
+        Ok((self.report, moved))
     }
 
-    /// Iterations towards `next_targets`, committed only if all succeed.
-    fn run(&mut self, max_iterations: usize, tolerance: f64) -> Result<(), DeformError> {
-        let clock = self.clock;
-        let mut timings = Timings::default();
-        if self.handles.is_empty() {
+    /// Iterations towards `next_targets` into `next`, committed only if all succeed;
+    /// whether `next` holds the new pose.
+    fn run(
+        &mut self,
+        shared: Shared<'_>,
+        max_iterations: usize,
+        tolerance: f64,
+        next: &mut [Point],
+        timings: &mut Timings,
+    ) -> Result<bool, DeformError> {
+        let clock = shared.clock;
+        if shared.handles.is_empty() {
             self.field.fill([0.0, 0.0]);
             self.report = IterationReport { iterations: 0, last_move: 0.0, converged: true };
-            self.timings = timings;
-            return Ok(());
+            return Ok(false);
         }
         if !self.factored {
             let t0 = clock();
@@ -391,23 +311,23 @@ impl ArapDeformer {
             timings.factorisation = clock() - t0;
         }
         // Pinned vertices go to the mean target of the handles pinning them.
-        for h in self.handles.iter().filter(|h| h.pinned != NONE) {
-            self.pin_target[h.pinned] = [0.0, 0.0];
+        for &v in self.pinned.iter().filter(|&&v| v != NONE) {
+            self.pin_target[v] = [0.0, 0.0];
         }
-        for (h, t) in self.handles.iter().zip(&self.next_targets) {
-            if h.pinned != NONE {
-                let k = f64::from(self.pin_count[h.pinned]);
-                self.pin_target[h.pinned][0] += t[0] / k;
-                self.pin_target[h.pinned][1] += t[1] / k;
+        for (&v, t) in self.pinned.iter().zip(&self.next_targets) {
+            if v != NONE {
+                let k = f64::from(self.pin_count[v]);
+                self.pin_target[v][0] += t[0] / k;
+                self.pin_target[v][1] += t[1] / k;
             }
         }
-        self.next_positions.copy_from_slice(&self.positions);
+        next.copy_from_slice(shared.positions);
         self.next_rotations.copy_from_slice(&self.rotations);
         let mut report = IterationReport::default();
         while report.iterations < max_iterations {
             let t0 = clock();
-            self.local_step();
-            self.assemble_rhs();
+            self.local_step(shared.mesh, next);
+            self.assemble_rhs(shared);
             let t1 = clock();
             self.numeric.solve_in_place(&mut self.rhs_x)?;
             self.numeric.solve_in_place(&mut self.rhs_y)?;
@@ -415,7 +335,7 @@ impl ArapDeformer {
             let mut moved: f64 = 0.0;
             let back = power_of_two(-self.unit);
             let back = |x: f64| x * back;
-            for (v, p) in self.next_positions.iter_mut().enumerate() {
+            for (v, p) in next.iter_mut().enumerate() {
                 let q =
                     if self.pin_count[v] > 0 { self.pin_target[v] } else { [back(self.rhs_x[v]), back(self.rhs_y[v])] };
                 if !in_range(&[q]) {
@@ -424,7 +344,7 @@ impl ArapDeformer {
                 moved = moved.max(libm::hypot(q[0] - p[0], q[1] - p[1]));
                 *p = q;
             }
-            self.bones.project(&mut self.next_positions);
+            shared.bones.project(next);
             let t3 = clock();
             timings.assembly += t1 - t0;
             timings.solve += t2 - t1;
@@ -436,22 +356,19 @@ impl ArapDeformer {
                 break;
             }
         }
-        for ((f, p), q) in self.field.iter_mut().zip(&self.positions).zip(&self.next_positions) {
+        for ((f, p), q) in self.field.iter_mut().zip(shared.positions).zip(next.iter()) {
             *f = [q[0] - p[0], q[1] - p[1]];
         }
-        std::mem::swap(&mut self.positions, &mut self.next_positions);
         std::mem::swap(&mut self.rotations, &mut self.next_rotations);
         self.report = report;
-        self.timings = timings;
-        Ok(())
+        Ok(true)
     }
 
-    /// The local step at `next_positions` into `next_rotations`.
-    fn local_step(&mut self) {
-        let u = &self.next_positions;
+    /// The local step at `u` into `next_rotations`.
+    fn local_step(&mut self, mesh: &Mesh, u: &[Point]) {
         let unit = power_of_two(self.unit);
         for (((t, c), e), r) in
-            self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&mut self.next_rotations)
+            mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&mut self.next_rotations)
         {
             let p = t.map(|v| u[v as usize].map(|x| x * unit));
             if let Some(rotation) = best_rotation(p, c, e) {
@@ -462,13 +379,13 @@ impl ArapDeformer {
 
     /// The global step's right-hand sides for the rotations in `next_rotations`, in the
     /// units of positions scaled by `2^unit`.
-    fn assemble_rhs(&mut self) {
+    fn assemble_rhs(&mut self, shared: Shared<'_>) {
         let unit = power_of_two(self.unit);
         let into = |p: Point| p.map(|x| x * unit);
         self.rhs_x.fill(0.0);
         self.rhs_y.fill(0.0);
         for (((t, c), e), r) in
-            self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&self.next_rotations)
+            shared.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges).zip(&self.next_rotations)
         {
             for k in 0..3 {
                 let d = [c[k] * (r[0] * e[k][0] - r[1] * e[k][1]), c[k] * (r[1] * e[k][0] + r[0] * e[k][1])];
@@ -479,10 +396,10 @@ impl ArapDeformer {
                 self.rhs_y[j] -= d[1];
             }
         }
-        for (h, target) in self.handles.iter().zip(&self.next_targets) {
-            if h.pinned == NONE {
+        for ((h, &pinned), target) in shared.handles.iter().zip(&self.pinned).zip(&self.next_targets) {
+            if pinned == NONE {
                 let target = into(*target);
-                for (v, w) in h.point.vertices.iter().zip(h.point.weights) {
+                for (v, w) in h.vertices.iter().zip(h.weights) {
                     self.rhs_x[*v as usize] += self.penalty * w * target[0];
                     self.rhs_y[*v as usize] += self.penalty * w * target[1];
                 }
@@ -507,15 +424,15 @@ impl ArapDeformer {
         }
     }
 
-    /// The energy `E` of the current pose with the best rotations and the current
+    /// The energy `E` of the pose in `shared` with the best rotations and the current
     /// targets (the quantity each iteration lowers).
-    pub fn energy(&self) -> f64 {
+    pub(crate) fn energy(&self, shared: Shared<'_>) -> f64 {
         // Computed on positions scaled by 2^unit, like the rest edges, and scaled back.
         let unit = power_of_two(self.unit);
         let into = |p: Point| p.map(|x| x * unit);
-        let u = &self.positions;
+        let u = shared.positions;
         let mut energy = 0.0;
-        for ((t, c), e) in self.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges) {
+        for ((t, c), e) in shared.mesh.triangles().iter().zip(&self.cot).zip(&self.rest_edges) {
             let p = t.map(|v| into(u[v as usize]));
             let r = best_rotation(p, c, e).unwrap_or([1.0, 0.0]);
             for k in 0..3 {
@@ -524,192 +441,137 @@ impl ArapDeformer {
                 energy += 0.5 * c[k] * ((d[0] - re[0]).powi(2) + (d[1] - re[1]).powi(2));
             }
         }
-        for (h, target) in self.handles.iter().zip(&self.targets) {
-            if h.pinned == NONE {
-                let (p, target) = (into(h.point.position(u)), into(*target));
+        for ((h, &pinned), target) in shared.handles.iter().zip(&self.pinned).zip(&self.targets) {
+            if pinned == NONE {
+                let (p, target) = (into(h.position(u)), into(*target));
                 energy += 0.5 * self.penalty * ((p[0] - target[0]).powi(2) + (p[1] - target[1]).powi(2));
             }
         }
         scale_by_power_of_two(energy, -2 * self.unit)
     }
-
-    /// Back to the rest pose with identity rotations; handles stay, their targets become
-    /// their rest positions.
-    pub fn reset(&mut self) {
-        self.positions.copy_from_slice(self.mesh.positions());
-        self.rotations.fill([1.0, 0.0]);
-        self.field.fill([0.0, 0.0]);
-        let targets = self.handle_positions();
-        self.targets.copy_from_slice(&targets);
-    }
-
-    /// Puts the mesh into a given pose (undo, saved poses); handles stay, their targets
-    /// become their positions in that pose. Fails, changing nothing, for a wrong length or a
-    /// non-finite coordinate.
-    pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        check_pose(positions, self.positions.len())?;
-        self.positions.copy_from_slice(positions);
-        self.field.fill([0.0, 0.0]);
-        let targets = self.handle_positions();
-        self.targets.copy_from_slice(&targets);
-        Ok(())
-    }
-
-    /// Current vertex positions.
-    pub fn positions(&self) -> &[Point] {
-        &self.positions
-    }
-
-    /// Per triangle, `(cos, sin)` of the rotation found by the last local step.
-    pub fn rotations(&self) -> &[[f64; 2]] {
-        &self.rotations
-    }
-
-    /// How far each vertex moved in the last step.
-    pub fn field(&self) -> &[[f64; 2]] {
-        &self.field
-    }
-
-    /// How the last step's iterations ended.
-    pub fn report(&self) -> IterationReport {
-        self.report
-    }
-
-    /// Stage timings of the last step: `assembly` the local steps and right-hand sides,
-    /// `factorisation` the refactorisation after a change of handles (0 otherwise),
-    /// `solve` the triangular solves, `integration` the update of the positions.
-    pub fn timings(&self) -> Timings {
-        self.timings
-    }
-
-    /// Distortion of the current pose against the rest pose.
-    pub fn metrics(&self) -> Metrics {
-        metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
-    }
-
-    /// Factor statistics of the global system: (nnz(L), flops).
-    pub fn factor_stats(&self) -> (usize, f64) {
-        let s = self.numeric.symbolic();
-        (s.nnz_l(), s.flops())
-    }
 }
 
-impl Deform for ArapDeformer {
-    fn method_options(&self) -> MethodOptions {
-        MethodOptions::Arap(self.options())
+impl Solve for ArapSolver {
+    fn options(&self) -> MethodOptions {
+        MethodOptions::Arap(self.options)
     }
-    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
+
+    fn set_options(&mut self, options: MethodOptions, _shared: Shared<'_>) -> Result<(), DeformError> {
         match options {
-            MethodOptions::Arap(options) => self.set_options(options),
+            MethodOptions::Arap(options) => {
+                check_options(&options)?;
+                self.options = options;
+                Ok(())
+            }
             other => Err(DeformError::WrongMethod { current: Method::Arap, given: other.method() }),
         }
     }
-    fn set_clock(&mut self, clock: Clock) {
-        ArapDeformer::set_clock(self, clock);
+
+    fn abilities(&self) -> Abilities {
+        Abilities::ALL
     }
-    fn mesh(&self) -> &Mesh {
-        ArapDeformer::mesh(self)
+
+    /// Builds the matrix of a new handle set (its factorisation waits for the next step)
+    /// and sets the targets to the handles' current positions. A point at a vertex (weight
+    /// 1 there, within [`AT_VERTEX`]) pins that vertex; any other point is held by the
+    /// penalty.
+    fn set_handles(&mut self, shared: Shared<'_>, handles: &[HandlePoint]) -> Result<(), DeformError> {
+        self.pinned = handles
+            .iter()
+            .map(|p| (0..3).find(|&k| p.weights[k] >= 1.0 - AT_VERTEX).map_or(NONE, |k| p.vertices[k] as usize))
+            .collect();
+        self.assemble_matrix(handles);
+        self.targets = handles.iter().map(|h| h.position(shared.positions)).collect();
+        self.next_targets = self.targets.clone();
+        self.factored = false;
+        Ok(())
     }
-    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        ArapDeformer::set_handle_vertices(self, vertices)
+
+    fn set_weights(&mut self, shared: Shared<'_>, weights: Option<&[f64]>) {
+        self.weigh(shared.handles, weights);
     }
-    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        ArapDeformer::set_handle_points(self, triangles, barycentric)
+
+    /// Each handle's target becomes its current position plus its velocity (in handle
+    /// order), then the configured local/global iterations run from the current pose. With
+    /// no handles nothing moves. Turning handles: see `turning`.
+    fn step(
+        &mut self,
+        shared: Shared<'_>,
+        velocities: &[[f64; 2]],
+        turns: Option<&[f64]>,
+        next: &mut [Point],
+        timings: &mut Timings,
+    ) -> Result<bool, DeformError> {
+        if let Some(turns) = turns {
+            return self.step_turning(shared, velocities, turns, next, timings);
+        }
+        for (k, (h, v)) in shared.handles.iter().zip(velocities).enumerate() {
+            let p = h.position(shared.positions);
+            self.next_targets[k] = [p[0] + v[0], p[1] + v[1]];
+        }
+        let options = self.options;
+        let moved = self.run(shared, options.iterations, options.tolerance, next, timings)?;
+        std::mem::swap(&mut self.targets, &mut self.next_targets);
+        Ok(moved)
     }
-    fn handle_count(&self) -> usize {
-        ArapDeformer::handle_count(self)
+
+    /// Handles stay, their targets become their positions in the pose; a reset also puts
+    /// the rotations back to the identity.
+    fn pose_set(&mut self, shared: Shared<'_>, rest: bool) {
+        if rest {
+            self.rotations.fill([1.0, 0.0]);
+        }
+        self.field.fill([0.0, 0.0]);
+        for (target, h) in self.targets.iter_mut().zip(shared.handles) {
+            *target = h.position(shared.positions);
+        }
     }
-    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
-        handles::as_points(self.handles.iter().map(|h| &h.point))
-    }
-    fn handle_positions(&self) -> Vec<Point> {
-        ArapDeformer::handle_positions(self)
-    }
-    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        ArapDeformer::step(self, velocities)
-    }
-    fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
-        ArapDeformer::step_turning(self, velocities, turns)
-    }
-    fn positions(&self) -> &[Point] {
-        ArapDeformer::positions(self)
-    }
-    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        ArapDeformer::set_positions(self, positions)
-    }
+
+    /// How far each vertex moved in the last step.
     fn field(&self) -> &[[f64; 2]] {
-        ArapDeformer::field(self)
+        &self.field
     }
-    fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
-        ArapDeformer::set_stiffness(self, stiffness)
-    }
-    fn has_stiffness(&self) -> bool {
-        true
-    }
-    fn stiffness(&self) -> Option<&[f64]> {
-        self.stiffness.as_deref()
-    }
-    fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        ArapDeformer::set_bones(self, triangles, barycentric)
-    }
-    fn bone_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
-        self.bones.points()
-    }
-    fn has_bones(&self) -> bool {
-        true
-    }
-    /// Positions, targets, the rotations the next local step starts from (kept where a
-    /// triangle's `S` has no rotational part), the field, the report and the timings. The
-    /// factor is not saved: it changes only with the handles or the stiffness, and a restore
-    /// after the first step of a handle set keeps the factor that step made, the same one.
-    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
-        checkpoint.begin(Method::Arap);
-        copy_into(&mut checkpoint.positions, &self.positions);
+
+    /// Targets, the rotations the next local step starts from (kept where a triangle's `S`
+    /// has no rotational part), the field and the report. The factor is not saved: it
+    /// changes only with the handles or the stiffness, and a restore after the first step
+    /// of a handle set keeps the factor that step made, the same one.
+    fn save(&self, checkpoint: &mut Checkpoint) {
         copy_into(&mut checkpoint.targets, &self.targets);
         copy_into(&mut checkpoint.rotations, &self.rotations);
         copy_into(&mut checkpoint.field, &self.field);
         checkpoint.report = self.report;
-        checkpoint.timings = self.timings;
     }
-    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
-        let (n, m) = (self.positions.len(), self.rotations.len());
-        checkpoint.check(
-            Method::Arap,
-            &[
-                (checkpoint.positions.len(), n),
-                (checkpoint.field.len(), n),
-                (checkpoint.targets.len(), self.targets.len()),
-                (checkpoint.rotations.len(), m),
-            ],
-        )?;
-        self.positions.copy_from_slice(&checkpoint.positions);
+
+    fn saved_lengths(&self, checkpoint: &Checkpoint) -> Vec<(usize, usize)> {
+        vec![
+            (checkpoint.field.len(), self.field.len()),
+            (checkpoint.targets.len(), self.targets.len()),
+            (checkpoint.rotations.len(), self.rotations.len()),
+        ]
+    }
+
+    fn restore(&mut self, checkpoint: &Checkpoint) {
         self.targets.copy_from_slice(&checkpoint.targets);
         self.rotations.copy_from_slice(&checkpoint.rotations);
         self.field.copy_from_slice(&checkpoint.field);
         self.report = checkpoint.report;
-        self.timings = checkpoint.timings;
-        Ok(())
-    }
-    fn metrics(&self) -> Metrics {
-        ArapDeformer::metrics(self)
-    }
-    fn timings(&self) -> Timings {
-        ArapDeformer::timings(self)
-    }
-    fn reset(&mut self) {
-        ArapDeformer::reset(self);
     }
 }
 
 impl Build for ArapOptions {
+    type Solver = ArapSolver;
+
     fn check(&self) -> Result<(), DeformError> {
         check_options(self)
     }
+
     fn orders(&self, mesh: &Mesh) -> Orders {
-        ArapDeformer::orders(mesh)
+        ArapSolver::orders(mesh)
     }
-    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
-        Ok(Box::new(ArapDeformer::with_orders(mesh, self, orders)?))
+
+    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<ArapSolver, DeformError> {
+        ArapSolver::new(mesh, self, orders)
     }
 }
 

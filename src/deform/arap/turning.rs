@@ -6,33 +6,37 @@
 //! the matrix of the plain handle set is put back after it. A rigid motion of every handle
 //! is then a pose of zero energy meeting every target, which the iterations approach.
 
-use super::ArapDeformer;
+use super::ArapSolver;
 use crate::deform::error::DeformError;
-use crate::deform::handles::{check_turns, check_velocities, neighbourhood};
+use crate::deform::handles::neighbourhood;
+use crate::deform::method::{Shared, Solve, Timings};
+use crate::geometry::Point;
 
-impl ArapDeformer {
+impl ArapSolver {
     /// One step in which handles also turn: `turns[i]` radians counter-clockwise about
-    /// handle `i`'s point, its neighbourhood held in the turned frame for this step. All
-    /// zero is exactly [`Self::step`]; on error the deformer is unchanged.
-    pub fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {
-        check_velocities(velocities, self.handles.len())?;
-        check_turns(turns, self.handles.len())?;
-        if turns.iter().all(|&w| w == 0.0) {
-            return self.step(velocities);
-        }
+    /// handle `i`'s point, its neighbourhood held in the turned frame for this step (not
+    /// all zero: the deformer takes a plain step then). On error the solver is unchanged.
+    pub(super) fn step_turning(
+        &mut self,
+        shared: Shared<'_>,
+        velocities: &[[f64; 2]],
+        turns: &[f64],
+        next: &mut [Point],
+        timings: &mut Timings,
+    ) -> Result<bool, DeformError> {
         self.turning.clear();
-        for ((h, d), &omega) in self.handles.iter().zip(velocities).zip(turns) {
+        for ((h, d), &omega) in shared.handles.iter().zip(velocities).zip(turns) {
             if omega == 0.0 {
                 continue;
             }
-            let c = h.point.position(&self.positions);
+            let c = h.position(shared.positions);
             let (s, k) = (libm::sin(omega), libm::cos(omega));
-            for v in neighbourhood(&self.mesh, &h.point) {
+            for v in neighbourhood(shared.mesh, h) {
                 let v = v as usize;
                 if self.pin_count[v] > 0 {
                     continue; // held by a handle of its own
                 }
-                let (x, y) = (self.positions[v][0] - c[0], self.positions[v][1] - c[1]);
+                let (x, y) = (shared.positions[v][0] - c[0], shared.positions[v][1] - c[1]);
                 self.turning.push((v, [c[0] + d[0] + k * x - s * y, c[1] + d[1] + s * x + k * y]));
             }
         }
@@ -42,10 +46,10 @@ impl ArapDeformer {
             data[slot] += self.penalty;
         }
         self.factored = false;
-        let result = self.step(velocities);
+        let result = self.step(shared, velocities, None, next, timings);
         // Back to the plain handle set's matrix, factored again by the next step.
         self.turning.clear();
-        self.assemble_matrix();
+        self.assemble_matrix(shared.handles);
         self.factored = false;
         result
     }

@@ -21,7 +21,7 @@
 //! map is the translation that takes the handles' mean to their targets' mean.
 //!
 //! Handles are met in the least-squares sense, so a handle's point of the shape may lie
-//! short of its target. [`CauchyGreenDeformer::handle_positions`] are the targets, which
+//! short of its target. The deformer's `handle_positions` are the targets, which
 //! each step moves by the velocities: steps with no motion change nothing, and the pose is a
 //! function of the targets alone (no history).
 //!
@@ -38,9 +38,8 @@ pub use coordinates::{coordinates, second_derivative};
 
 use self::coordinates::complex;
 use super::error::DeformError;
-use super::handles::{self, check_connected, check_pose, check_velocities, diagonal, in_range, HandlePoint};
-use super::method::{copy_into, default_clock, Build, Checkpoint, Clock, Deform, Orders, Timings};
-use super::metrics::{metrics, Metrics};
+use super::handles::{self, diagonal, in_range, HandlePoint};
+use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 use super::options::{CauchyGreenOptions, Method, MethodOptions, CAGE_VERTICES_RANGE, SMOOTHNESS_RANGE};
 use crate::geometry::{bounding_box, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
@@ -54,10 +53,10 @@ const ZERO: C64 = Complex { re: 0.0, im: 0.0 };
 /// or a smaller cage fits).
 const MAX_COORDINATES: usize = 1 << 25;
 
-/// The Cauchy-Green deformer of one mesh.
+/// The Cauchy-Green solver of one mesh (the mesh, handles and pose are its
+/// [`Deformer`](super::Deformer)'s).
 #[derive(Debug, Clone)]
-pub struct CauchyGreenDeformer {
-    mesh: Mesh,
+pub struct CauchyGreenSolver {
     /// The mesh's positions times `2^exponent` (largest coordinate in [1, 2)): the
     /// coordinates, the cage and the fit are computed on them (the coordinates are the same
     /// at every scale), so that no length overflows or underflows.
@@ -65,14 +64,10 @@ pub struct CauchyGreenDeformer {
     exponent: i32,
     options: CauchyGreenOptions,
     cage: Cage,
-    handles: Vec<HandlePoint>,
     fit: Fit,
     targets: Vec<Point>,
     cage_image: Vec<Point>,
-    positions: Vec<Point>,
     field: Vec<[f64; 2]>,
-    timings: Timings,
-    clock: Clock,
 }
 
 /// What depends on the cage alone.
@@ -243,30 +238,22 @@ fn solve(l: &[C64], n: usize, b: &mut [C64]) {
     }
 }
 
-impl CauchyGreenDeformer {
-    /// A deformer for a connected mesh, with an automatic cage of `options.cage` vertices.
-    pub fn new(mesh: Mesh, options: CauchyGreenOptions) -> Result<Self, DeformError> {
+impl CauchyGreenSolver {
+    /// The solver for a connected mesh, with an automatic cage of `options.cage` vertices.
+    fn new(mesh: &Mesh, options: CauchyGreenOptions) -> Result<Self, DeformError> {
         check_options(&options)?;
-        check_connected(&mesh)?;
         let exponent = normalising_exponent(mesh.positions().iter().copied());
         let unit: Vec<Point> = mesh.positions().iter().map(|p| p.map(|x| scale_by_power_of_two(x, exponent))).collect();
-        let cage = Cage::new(&unit, cage::automatic(&mesh, &unit, options.cage)?, exponent, false)?;
-        let positions = mesh.positions().to_vec();
-        let n = mesh.vertex_count();
+        let cage = Cage::new(&unit, cage::automatic(mesh, &unit, options.cage)?, exponent, false)?;
         Ok(Self {
             cage_image: cage.actual.clone(),
-            mesh,
             unit,
             exponent,
             options,
             cage,
-            handles: Vec::new(),
             fit: Fit::Translation { rest: [0.0; 2] },
             targets: Vec::new(),
-            positions,
-            field: vec![[0.0; 2]; n],
-            timings: Timings::default(),
-            clock: default_clock,
+            field: vec![[0.0; 2]; mesh.vertex_count()],
         })
     }
 
@@ -275,54 +262,29 @@ impl CauchyGreenDeformer {
         self.options
     }
 
-    /// Changes the settings: a new cage vertex count builds a new automatic cage (unless a
-    /// cage was given), a new smoothness refits the handles. The next step uses them.
-    pub fn set_options(&mut self, options: CauchyGreenOptions) -> Result<(), DeformError> {
-        check_options(&options)?;
-        let cage = match options.cage != self.options.cage && !self.cage.given {
-            true => Some(self.automatic_cage(options.cage)?),
-            false => None,
-        };
-        let fit = self.fit_for(cage.as_ref().unwrap_or(&self.cage), &self.handles, options.smoothness)?;
-        if let Some(cage) = cage {
-            self.cage_image = cage.actual.clone();
-            self.cage = cage;
-        }
-        self.options = options;
-        self.fit = fit;
-        Ok(())
-    }
-
     /// The cage, counter-clockwise, in the rest pose.
     pub fn cage(&self) -> &[Point] {
         &self.cage.actual
     }
 
-    fn automatic_cage(&self, vertices: usize) -> Result<Cage, DeformError> {
-        Cage::new(&self.unit, cage::automatic(&self.mesh, &self.unit, vertices)?, self.exponent, false)
-    }
-
-    /// Where the last step took the cage's vertices (the cage values; the rest cage after
-    /// a reset). Drawn with straight edges, this is the polygon whose Cauchy integral the
-    /// map is.
-    pub fn cage_image(&self) -> &[Point] {
-        &self.cage_image
+    fn automatic_cage(&self, mesh: &Mesh, vertices: usize) -> Result<Cage, DeformError> {
+        Cage::new(&self.unit, cage::automatic(mesh, &self.unit, vertices)?, self.exponent, false)
     }
 
     /// Uses this cage (a simple polygon, either orientation, with the shape strictly
-    /// inside), or an automatic one again with `None`. Refused with
-    /// [`DeformError::InvalidCage`], changing nothing, when the cage cannot be used. The
-    /// pose stays until the next step.
-    pub fn set_cage(&mut self, cage: Option<&[Point]>) -> Result<(), DeformError> {
+    /// inside), or an automatic one again with `None` ([`super::Deformer::set_cage`]).
+    /// Refused with [`DeformError::InvalidCage`], changing nothing, when the cage cannot be
+    /// used. The pose stays until the next step.
+    pub(crate) fn set_cage(&mut self, shared: Shared<'_>, cage: Option<&[Point]>) -> Result<(), DeformError> {
         let cage = match cage {
             Some(points) => {
                 let scaled: Vec<Point> =
                     points.iter().map(|p| p.map(|x| scale_by_power_of_two(x, self.exponent))).collect();
-                Cage::new(&self.unit, cage::checked(&self.mesh, &self.unit, &scaled)?, self.exponent, true)?
+                Cage::new(&self.unit, cage::checked(shared.mesh, &self.unit, &scaled)?, self.exponent, true)?
             }
-            None => self.automatic_cage(self.options.cage)?,
+            None => self.automatic_cage(shared.mesh, self.options.cage)?,
         };
-        self.fit = self.fit_for(&cage, &self.handles, self.options.smoothness)?;
+        self.fit = self.fit_for(&cage, shared.handles, self.options.smoothness)?;
         self.cage_image = cage.actual.clone();
         self.cage = cage;
         Ok(())
@@ -332,105 +294,142 @@ impl CauchyGreenDeformer {
         let rest: Vec<Point> = handles.iter().map(|h| h.position(&self.unit)).collect();
         Fit::new(cage, &rest, self.exponent, smoothness)
     }
+}
 
-    /// One handle on each of these vertices, replacing any handles.
-    pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        let handles = handles::at_vertices(&self.mesh, vertices)?;
-        self.install(handles)
+impl Solve for CauchyGreenSolver {
+    fn options(&self) -> MethodOptions {
+        MethodOptions::CauchyGreen(self.options)
     }
 
-    /// Handles at points in triangles, replacing any handles.
-    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        let handles = handles::in_triangles(&self.mesh, triangles, barycentric)?;
-        self.install(handles)
+    /// A new cage vertex count builds a new automatic cage (unless a cage was given), a new
+    /// smoothness refits the handles. The next step uses them.
+    fn set_options(&mut self, options: MethodOptions, shared: Shared<'_>) -> Result<(), DeformError> {
+        let MethodOptions::CauchyGreen(options) = options else {
+            return Err(DeformError::WrongMethod { current: Method::CauchyGreen, given: options.method() });
+        };
+        check_options(&options)?;
+        let cage = match options.cage != self.options.cage && !self.cage.given {
+            true => Some(self.automatic_cage(shared.mesh, options.cage)?),
+            false => None,
+        };
+        let fit = self.fit_for(cage.as_ref().unwrap_or(&self.cage), shared.handles, options.smoothness)?;
+        if let Some(cage) = cage {
+            self.cage_image = cage.actual.clone();
+            self.cage = cage;
+        }
+        self.options = options;
+        self.fit = fit;
+        Ok(())
+    }
+
+    fn abilities(&self) -> Abilities {
+        Abilities::NONE
     }
 
     /// Fits the new handle set. A handle at the same place as one before keeps its target;
     /// the others start where their point is in the current pose.
-    fn install(&mut self, handles: Vec<HandlePoint>) -> Result<(), DeformError> {
-        let fit = self.fit_for(&self.cage, &handles, self.options.smoothness)?;
+    fn set_handles(&mut self, shared: Shared<'_>, handles: &[HandlePoint]) -> Result<(), DeformError> {
+        let fit = self.fit_for(&self.cage, handles, self.options.smoothness)?;
         self.targets = handles
             .iter()
-            .map(|h| match self.handles.iter().position(|old| old == h) {
+            .map(|h| match shared.handles.iter().position(|old| old == h) {
                 Some(k) => self.targets[k],
-                None => h.position(&self.positions),
+                None => h.position(shared.positions),
             })
             .collect();
-        self.handles = handles;
         self.fit = fit;
         Ok(())
+    }
+
+    /// Each handle's target moves by its velocity, and every vertex goes where the map
+    /// fitted to the targets takes its rest position. With no handles nothing moves.
+    /// Refused, changing nothing, for a result beyond the coordinate limit.
+    fn step(
+        &mut self,
+        shared: Shared<'_>,
+        velocities: &[[f64; 2]],
+        _turns: Option<&[f64]>,
+        next: &mut [Point],
+        timings: &mut Timings,
+    ) -> Result<bool, DeformError> {
+        if shared.handles.is_empty() {
+            self.field.fill([0.0; 2]);
+            return Ok(false);
+        }
+        let start = (shared.clock)();
+        let targets: Vec<Point> =
+            self.targets.iter().zip(velocities).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect();
+        let f = self.fit.cage_values(&self.cage, &targets);
+        let solved = (shared.clock)();
+        let n = self.cage.len();
+        for (row, out) in self.cage.at_vertices.chunks_exact(n).zip(next.iter_mut()) {
+            let z: C64 = row.iter().zip(&f).map(|(c, f)| c * f).sum();
+            *out = [z.re, z.im];
+        }
+        let image: Vec<Point> = f.iter().map(|z| [z.re, z.im]).collect();
+        // (The cage lies outside the shape: its image may go beyond the limits where the
+        // shape's does not.)
+        if !in_range(next) || next.iter().flatten().any(|x| x.is_nan()) {
+            return Err(DeformError::NonFiniteResult);
+        }
+        for ((d, p), q) in self.field.iter_mut().zip(shared.positions).zip(next.iter()) {
+            *d = [q[0] - p[0], q[1] - p[1]];
+        }
+        self.cage_image = image;
+        self.targets = targets;
+        *timings = Timings { solve: solved - start, integration: (shared.clock)() - solved, ..Timings::default() };
+        Ok(true)
+    }
+
+    /// Handles stay, their targets become their points in the pose (the next step maps the
+    /// rest mesh again, for those targets moved); at rest the cage is the rest cage again.
+    fn pose_set(&mut self, shared: Shared<'_>, rest: bool) {
+        self.targets = shared.handles.iter().map(|h| h.position(shared.positions)).collect();
+        if rest {
+            self.cage_image.clone_from(&self.cage.actual);
+        }
+        self.field.fill([0.0; 2]);
+    }
+
+    fn field(&self) -> &[[f64; 2]] {
+        &self.field
     }
 
     /// The handles' targets: where each step has asked them to be (their points in the pose
     /// when they were set, moved by every step's velocities since). The shape's point under
     /// a handle lies near its target, not on it: handles are fitted in the least-squares
     /// sense.
-    pub fn handle_positions(&self) -> Vec<Point> {
-        self.targets.clone()
+    fn held_at(&self) -> Option<&[Point]> {
+        Some(&self.targets)
     }
 
-    /// One step: each handle's target moves by its velocity, and every vertex goes where the
-    /// map fitted to the targets takes its rest position. With no handles nothing moves.
-    /// Refused, changing nothing, for bad velocities and for a result beyond the coordinate
-    /// limit.
-    pub fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        check_velocities(velocities, self.handles.len())?;
-        if self.handles.is_empty() {
-            self.field.fill([0.0; 2]);
-            return Ok(());
-        }
-        let start = (self.clock)();
-        let targets: Vec<Point> =
-            self.targets.iter().zip(velocities).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect();
-        let f = self.fit.cage_values(&self.cage, &targets);
-        let solved = (self.clock)();
-        let n = self.cage.len();
-        let next: Vec<Point> = self
-            .cage
-            .at_vertices
-            .chunks_exact(n)
-            .map(|row| {
-                let z: C64 = row.iter().zip(&f).map(|(c, f)| c * f).sum();
-                [z.re, z.im]
-            })
-            .collect();
-        let image: Vec<Point> = f.iter().map(|z| [z.re, z.im]).collect();
-        // (The cage lies outside the shape: its image may go beyond the limits where the
-        // shape's does not.)
-        if !in_range(&next) || next.iter().flatten().any(|x| x.is_nan()) {
-            return Err(DeformError::NonFiniteResult);
-        }
-        for ((d, p), q) in self.field.iter_mut().zip(&self.positions).zip(&next) {
-            *d = [q[0] - p[0], q[1] - p[1]];
-        }
-        self.positions = next;
-        self.cage_image = image;
-        self.targets = targets;
-        self.timings = Timings { solve: solved - start, integration: (self.clock)() - solved, ..Timings::default() };
-        Ok(())
+    /// Where the last step took the cage's vertices (the cage values; the rest cage after
+    /// a reset). Drawn with straight edges, this is the polygon whose Cauchy integral the
+    /// map is.
+    fn cage_image(&self) -> Option<&[Point]> {
+        Some(&self.cage_image)
     }
 
-    /// Current vertex positions.
-    pub fn positions(&self) -> &[Point] {
-        &self.positions
+    /// Targets (apart from the positions: setting the pose would reset them), the deformed
+    /// cage and the field.
+    fn save(&self, checkpoint: &mut Checkpoint) {
+        copy_into(&mut checkpoint.targets, &self.targets);
+        copy_into(&mut checkpoint.cage_image, &self.cage_image);
+        copy_into(&mut checkpoint.field, &self.field);
     }
 
-    /// Puts the mesh into a given pose; handles stay, their targets become their points in
-    /// this pose. (The next step maps the rest mesh again, for those targets moved.)
-    pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        check_pose(positions, self.positions.len())?;
-        self.positions.copy_from_slice(positions);
-        self.targets = self.handles.iter().map(|h| h.position(positions)).collect();
-        self.field.fill([0.0; 2]);
-        Ok(())
+    fn saved_lengths(&self, checkpoint: &Checkpoint) -> Vec<(usize, usize)> {
+        vec![
+            (checkpoint.field.len(), self.field.len()),
+            (checkpoint.targets.len(), self.targets.len()),
+            (checkpoint.cage_image.len(), self.cage_image.len()),
+        ]
     }
 
-    /// Back to the rest pose; handles stay, their targets at their rest points.
-    pub fn reset(&mut self) {
-        self.positions.copy_from_slice(self.mesh.positions());
-        self.targets = self.handles.iter().map(|h| h.position(self.mesh.positions())).collect();
-        self.cage_image.clone_from(&self.cage.actual);
-        self.field.fill([0.0; 2]);
+    fn restore(&mut self, checkpoint: &Checkpoint) {
+        self.targets.copy_from_slice(&checkpoint.targets);
+        self.cage_image.copy_from_slice(&checkpoint.cage_image);
+        self.field.copy_from_slice(&checkpoint.field);
     }
 }
 
@@ -452,101 +451,20 @@ fn check_options(options: &CauchyGreenOptions) -> Result<(), DeformError> {
     Ok(())
 }
 
-impl Deform for CauchyGreenDeformer {
-    fn method_options(&self) -> MethodOptions {
-        MethodOptions::CauchyGreen(self.options)
-    }
-    fn set_method_options(&mut self, options: MethodOptions) -> Result<(), DeformError> {
-        match options {
-            MethodOptions::CauchyGreen(options) => self.set_options(options),
-            other => Err(DeformError::WrongMethod { current: Method::CauchyGreen, given: other.method() }),
-        }
-    }
-    fn set_clock(&mut self, clock: Clock) {
-        self.clock = clock;
-    }
-    fn mesh(&self) -> &Mesh {
-        &self.mesh
-    }
-    fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
-        CauchyGreenDeformer::set_handle_vertices(self, vertices)
-    }
-    fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
-        CauchyGreenDeformer::set_handle_points(self, triangles, barycentric)
-    }
-    fn handle_count(&self) -> usize {
-        self.handles.len()
-    }
-    fn handle_points(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
-        handles::as_points(self.handles.iter())
-    }
-    fn handle_positions(&self) -> Vec<Point> {
-        CauchyGreenDeformer::handle_positions(self)
-    }
-    fn step(&mut self, velocities: &[[f64; 2]]) -> Result<(), DeformError> {
-        CauchyGreenDeformer::step(self, velocities)
-    }
-    fn positions(&self) -> &[Point] {
-        &self.positions
-    }
-    fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
-        CauchyGreenDeformer::set_positions(self, positions)
-    }
-    fn field(&self) -> &[[f64; 2]] {
-        &self.field
-    }
-    fn cage_image(&self) -> Option<&[Point]> {
-        Some(&self.cage_image)
-    }
-    /// Positions, targets (apart from the positions: [`CauchyGreenDeformer::set_positions`]
-    /// would reset them), the deformed cage, field and timings.
-    fn save_checkpoint(&self, checkpoint: &mut Checkpoint) {
-        checkpoint.begin(Method::CauchyGreen);
-        copy_into(&mut checkpoint.positions, &self.positions);
-        copy_into(&mut checkpoint.targets, &self.targets);
-        copy_into(&mut checkpoint.cage_image, &self.cage_image);
-        copy_into(&mut checkpoint.field, &self.field);
-        checkpoint.timings = self.timings;
-    }
-    fn restore_checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), DeformError> {
-        let n = self.positions.len();
-        checkpoint.check(
-            Method::CauchyGreen,
-            &[
-                (checkpoint.positions.len(), n),
-                (checkpoint.field.len(), n),
-                (checkpoint.targets.len(), self.targets.len()),
-                (checkpoint.cage_image.len(), self.cage_image.len()),
-            ],
-        )?;
-        self.positions.copy_from_slice(&checkpoint.positions);
-        self.targets.copy_from_slice(&checkpoint.targets);
-        self.cage_image.copy_from_slice(&checkpoint.cage_image);
-        self.field.copy_from_slice(&checkpoint.field);
-        self.timings = checkpoint.timings;
-        Ok(())
-    }
-    fn metrics(&self) -> Metrics {
-        metrics(self.mesh.positions(), &self.positions, self.mesh.triangles())
-    }
-    fn timings(&self) -> Timings {
-        self.timings
-    }
-    fn reset(&mut self) {
-        CauchyGreenDeformer::reset(self);
-    }
-}
-
 impl Build for CauchyGreenOptions {
+    type Solver = CauchyGreenSolver;
+
     fn check(&self) -> Result<(), DeformError> {
         check_options(self)
     }
+
     /// Cauchy-Green solves dense systems only.
     fn orders(&self, _mesh: &Mesh) -> Orders {
         Orders { systems: Vec::new() }
     }
-    fn build_with_orders(self, mesh: Mesh, orders: &Orders) -> Result<Box<dyn Deform>, DeformError> {
+
+    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<CauchyGreenSolver, DeformError> {
         orders.check(&[])?;
-        Ok(Box::new(CauchyGreenDeformer::new(mesh, self)?))
+        CauchyGreenSolver::new(mesh, self)
     }
 }

@@ -1,10 +1,11 @@
-//! Replaying a session's events on a deformer: as recorded ([`replay`], the recorded
+//! Replaying a session's events on a poser: as recorded ([`replay`], the recorded
 //! method, switching methods where the recording did), or driving another method to the
 //! recorded targets ([`replay_to_targets`]).
 
-use super::{Event, Session, SessionError};
-use crate::deform::{Deform, DeformError};
+use super::Poser;
+use crate::deform::{DeformError, Deformer};
 use crate::geometry::Point;
+use crate::session::{Event, Session, SessionError};
 
 /// What a replay did.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -19,57 +20,48 @@ pub struct Replay {
 }
 
 /// Replays the events as recorded, the velocities as given, on `deformer` (normally
-/// [`Session::recorded_deformer`]). An `options` event is put into effect by
-/// [`crate::deform::MethodOptions::apply`], as the widget does: one of another method
-/// replaces `deformer` with one of that method, the pose and the handles carried over. With the recorded method and options this repeats the
-/// recording exactly.
-pub fn replay(session: &Session, deformer: &mut Box<dyn Deform>) -> Result<Replay, SessionError> {
-    run(session, Slot::Recorded(deformer), None)
+/// [`Session::recorded_deformer`]), through a [`Poser`] of it. An `options` event is put
+/// into effect by [`Poser::set_options`], as the widget does: one of another method puts a
+/// solver of that method behind the deformer, the pose and the handles carried over. With
+/// the recorded method and options this repeats the recording exactly.
+pub fn replay(session: &Session, deformer: &mut Deformer) -> Result<Replay, SessionError> {
+    run(session, &mut Poser::new(deformer), None)
 }
 
 /// Replays the events driving every handle to the recorded targets (see [`Replay::targets`]
-/// of a [`replay`] with the recorded deformer): each step's velocity is the target minus
-/// the handle's current position in `deformer`. `options` events are passed over: the
-/// method compared keeps its settings. `positions` events put it into the recorded pose.
-/// `stiffness` and `bones` events paint it or set them, or are passed over by a method
-/// without stiffness or bones.
+/// of a [`replay`] with the recorded deformer): each step is [`Poser::step_to_targets`],
+/// its velocity the target minus the handle's current position. `options` events are
+/// passed over: the method compared keeps its settings. `positions` events put it into the
+/// recorded pose. `stiffness` and `bones` events paint it or set them, or are passed over
+/// by a method without stiffness or bones.
 pub fn replay_to_targets(
     session: &Session,
     targets: &[Vec<Point>],
-    deformer: &mut dyn Deform,
+    deformer: &mut Deformer,
 ) -> Result<Replay, SessionError> {
-    run(session, Slot::Compared(deformer), Some(targets))
+    run(session, &mut Poser::new(deformer), Some(targets))
 }
 
-/// The deformer a replay drives: the recording's, which `options` events may replace, or
-/// a compared method's, which keeps its settings.
-enum Slot<'a> {
-    Recorded(&'a mut Box<dyn Deform>),
-    Compared(&'a mut dyn Deform),
-}
-
-impl Slot<'_> {
-    fn get(&mut self) -> &mut dyn Deform {
-        match self {
-            Self::Recorded(d) => d.as_mut(),
-            Self::Compared(d) => &mut **d,
-        }
-    }
-
-    /// Sets stiffness or bones with `set`; a compared method without them passes over it
-    /// and poses the shape as it can.
-    fn set(&mut self, set: impl FnOnce(&mut dyn Deform) -> Result<(), DeformError>) -> Result<(), DeformError> {
-        let compared = matches!(self, Self::Compared(_));
-        match set(self.get()) {
-            Err(DeformError::Unsupported { .. }) if compared => Ok(()),
-            result => result,
-        }
+/// Sets stiffness or bones with `set`; a compared method (`compared`) without them passes
+/// over it and poses the shape as it can.
+fn set<P>(
+    poser: &mut P,
+    compared: bool,
+    set: impl FnOnce(&mut P) -> Result<(), DeformError>,
+) -> Result<(), DeformError> {
+    match set(poser) {
+        Err(DeformError::Unsupported { .. }) if compared => Ok(()),
+        result => result,
     }
 }
 
-fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) -> Result<Replay, SessionError> {
+fn run(
+    session: &Session,
+    poser: &mut Poser<&mut Deformer>,
+    targets: Option<&[Vec<Point>]>,
+) -> Result<Replay, SessionError> {
+    let compared = targets.is_some();
     let mut replay = Replay::default();
-    let mut velocities = Vec::new();
     let mut last_was_step = false;
     for (index, event) in session.events.iter().enumerate() {
         let refused = |error| SessionError::Event { index, error };
@@ -78,56 +70,54 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
         match event {
             Event::Handles { triangles, barycentric } => {
                 let weights = triples(barycentric, triangles.len(), "barycentric", "handles").map_err(refused)?;
-                slot.get().set_handle_points(triangles, weights).map_err(refused)?;
+                poser.set_handle_points(triangles, weights).map_err(refused)?;
             }
             Event::Step(flat) | Event::Turn { velocities: flat, .. } => {
                 let turns = match event {
                     Event::Turn { turns, .. } => Some(turns),
                     _ => None,
                 };
-                let deformer = slot.get();
-                let before = deformer.handle_positions();
+                let before = poser.deformer().handle_positions();
                 let pairs = pairs(flat, "velocities", before.len(), "handles").map_err(refused)?;
                 let goal: Vec<Point> = match targets {
                     None => before.iter().zip(pairs).map(|(p, v)| [p[0] + v[0], p[1] + v[1]]).collect(),
                     Some(all) => all.get(replay.targets.len()).ok_or(SessionError::MissingTargets { index })?.clone(),
                 };
-                velocities.clear();
                 match targets {
-                    None => velocities.extend_from_slice(pairs),
+                    None => poser.step(pairs, turns.map(Vec::as_slice)),
                     Some(_) => {
                         if goal.len() != before.len() {
                             return Err(SessionError::MissingTargets { index });
                         }
-                        velocities.extend(before.iter().zip(&goal).map(|(p, t)| [t[0] - p[0], t[1] - p[1]]));
+                        poser.set_targets(&goal).and_then(|()| poser.step_to_targets(turns.map(Vec::as_slice)))
                     }
                 }
-                match turns {
-                    None => deformer.step(&velocities),
-                    Some(turns) => deformer.step_turning(&velocities, turns),
-                }
                 .map_err(refused)?;
-                let t = deformer.timings();
+                let t = poser.deformer().timings();
                 replay.frame_ms.push(t.assembly + t.factorisation + t.solve + t.integration);
                 replay.targets.push(goal);
                 last_was_step = true;
             }
             Event::Positions(flat) => {
-                let deformer = slot.get();
-                let pairs = pairs(flat, "positions", deformer.mesh().vertex_count(), "vertices").map_err(refused)?;
-                deformer.set_positions(pairs).map_err(refused)?;
+                let count = poser.deformer().mesh().vertex_count();
+                let pairs = pairs(flat, "positions", count, "vertices").map_err(refused)?;
+                poser.set_positions(pairs).map_err(refused)?;
             }
             Event::Options(recorded) => {
-                let Slot::Recorded(deformer) = &mut slot else { continue };
-                let options = recorded.over(deformer.method_options(), Some(index))?;
-                options.apply(deformer).map_err(refused)?;
+                if compared {
+                    continue;
+                }
+                let options = recorded.over(poser.deformer().options(), Some(index))?;
+                poser.set_options(options).map_err(refused)?;
             }
-            Event::Stiffness(values) => slot.set(|d| d.set_stiffness(values.as_deref())).map_err(refused)?,
+            Event::Stiffness(values) => {
+                set(poser, compared, |p| p.set_stiffness(values.as_deref())).map_err(refused)?;
+            }
             Event::Bones { triangles, barycentric } => {
                 let ends = triples(barycentric, triangles.len(), "bone barycentric", "bone ends").map_err(refused)?;
-                slot.set(|d| d.set_bones(triangles, ends)).map_err(refused)?;
+                set(poser, compared, |p| p.set_bones(triangles, ends)).map_err(refused)?;
             }
-            Event::Reset(true) => slot.get().reset(),
+            Event::Reset(true) => poser.reset(),
             Event::Reset(false) => {}
         }
     }
@@ -135,7 +125,7 @@ fn run(session: &Session, mut slot: Slot<'_>, targets: Option<&[Vec<Point>]>) ->
         let goal = replay.targets.last().expect("a step was replayed");
         // The shape's points under the handles (Cauchy-Green's handle positions are its
         // targets, which it meets in the least-squares sense only).
-        let handles = slot.get().shape_under_handles();
+        let handles = poser.deformer().shape_under_handles();
         let total: f64 = handles.iter().zip(goal).map(|(p, t)| libm::hypot(p[0] - t[0], p[1] - t[1])).sum();
         replay.handle_error = Some(if handles.is_empty() { 0.0 } else { total / handles.len() as f64 });
     }

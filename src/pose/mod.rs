@@ -1,0 +1,913 @@
+//! The interaction loop, once: a [`Poser`] owns a [`Deformer`] and moves its handles toward
+//! targets the caller sets, one call a frame ([`Poser::advance`]), with the tracking policy
+//! every caller shares ([`Tracking`]: the largest step, substeps, the guarded step without
+//! foldovers, retries of a failed step, the largest turn per step), records what it does
+//! into a session as it does it, and poses with a trained rig instead where one is given.
+//! The widget's posing (through the bindings), its animation frames, `examples/pose_obj.rs`,
+//! `examples/make_sessions.rs` and session replay ([`replay`]) all pose through it.
+//!
+//! A frame in tracking mode (the default): every handle's velocity is the rest of the way to
+//! its target over the substeps left, `(target - current) / remaining`, so handles track
+//! the pointer without drift; a long way is split into substeps no longer than
+//! [`Tracking::max_step`] of the shape's size (one large step along a field that is only
+//! infinitesimally rigid distorts the shape, the paper's Figure 2), at most
+//! [`Tracking::max_substeps`] a frame, and turns into steps of at most [`MAX_TURN_STEP`].
+//! With [`Tracking::no_foldovers`] each substep is the guarded step of
+//! [`crate::deform::foldover`]; one that stops short ends the frame, and the handles not
+//! held then stay where they stopped. A step that fails is tried again with smaller
+//! velocities ([`RETRY_SCALES`]). In the paper's mode ([`Tracking::paper`]) a handle's
+//! velocity is instead the raw motion of its target since the last frame, split evenly,
+//! and errors accumulate, as in the paper's interface.
+//!
+//! Each plain step taken is recorded, when a recording runs, as it was taken (a guarded
+//! step's pieces each as its own `step` or `turn` event), so that a replay repeats it to
+//! the bit; so are the handles, poses, options, stiffness and bones set through the poser.
+
+mod replay;
+
+use std::borrow::BorrowMut;
+
+use crate::defop::Operator;
+use crate::deform::{DeformError, Deformer, FoldoverGuard, FoldoverStepper, GuardedStep, MethodOptions, Timings};
+use crate::geometry::{Point, MAX_COORDINATE};
+use crate::mesh::MeshPoint;
+use crate::session::{Event, MeshCounts, RecordedOptions, Session, SessionMesh, ShapeSpec};
+
+pub use replay::{replay, replay_to_targets, Replay};
+
+/// The largest turn of a handle in one step, radians.
+pub const MAX_TURN_STEP: f64 = 0.1;
+
+/// A failed step is tried again with its velocities (and turns) scaled by these, in turn.
+pub const RETRY_SCALES: [f64; 3] = [0.5, 0.25, 0.125];
+
+/// A handle's target nearer than this share of the shape's size is reached: no step.
+pub const REACHED: f64 = 1e-5;
+
+/// Most substeps a frame may take ([`Tracking::max_substeps`]): a way longer than that
+/// many steps is left to the frames after.
+pub const MAX_SUBSTEPS: usize = 10_000;
+
+/// How a [`Poser`] moves its handles toward their targets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tracking {
+    /// The longest handle move of one substep, as a share of the shape's size (its
+    /// bounding box's larger side); default 0.02. Above 0.
+    pub max_step: f64,
+    /// Most substeps a frame takes (the rest of the way is left to the next frame);
+    /// default 8, at most [`MAX_SUBSTEPS`].
+    pub max_substeps: usize,
+    /// Whether each substep is the guarded step that turns no triangle over (default on).
+    pub no_foldovers: bool,
+    /// How far the guarded step splits and clamps.
+    pub guard: FoldoverGuard,
+    /// The paper's mode: a handle's velocity is the motion of its target since the last
+    /// frame (default off).
+    pub paper: bool,
+}
+
+impl Default for Tracking {
+    fn default() -> Self {
+        Self { max_step: 0.02, max_substeps: 8, no_foldovers: true, guard: FoldoverGuard::default(), paper: false }
+    }
+}
+
+impl Tracking {
+    /// Checks every setting against its range.
+    pub fn check(&self) -> Result<(), DeformError> {
+        if !(self.max_step > 0.0 && self.max_step <= 1e300) {
+            return Err(DeformError::InvalidOption {
+                name: "maxStep",
+                value: self.max_step,
+                expected: "a number above 0 (a share of the shape's size; 0.02 is the default)",
+            });
+        }
+        if !(1..=MAX_SUBSTEPS).contains(&self.max_substeps) {
+            return Err(DeformError::InvalidOption {
+                name: "maxSubsteps",
+                value: self.max_substeps as f64,
+                expected: "a whole number from 1 to 10000",
+            });
+        }
+        self.guard.check()
+    }
+}
+
+/// What one [`Poser::advance`] did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Advance {
+    /// Substeps taken (a rig's evaluation counts as one); 0 when nothing moved.
+    pub steps: usize,
+    /// Whether a step stopped short to keep triangles from folding over.
+    pub clamped: bool,
+    /// The deformer's stage timings, summed over the substeps (milliseconds).
+    pub timings: Timings,
+    /// Milliseconds of the rig's evaluation (0 when the frame stepped the deformer).
+    pub evaluation: f64,
+}
+
+/// What the poser keeps of each handle beyond its point of the mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct HandleState {
+    /// Where the handle is going.
+    target: Point,
+    /// How far it is to turn, and has turned, radians counter-clockwise.
+    turn: f64,
+    turned: f64,
+    /// Whether a pointer holds it (a handle not held stays where a stopped step left it).
+    held: bool,
+    /// The paper's mode: motion of the target not yet turned into steps.
+    pending: Point,
+}
+
+/// A trained rig posing the shape: the operator, and the targets it was last evaluated at.
+#[derive(Debug, Clone)]
+struct Rig {
+    operator: Operator,
+    /// The targets of the last evaluation, x and y interleaved (empty: none yet).
+    evaluated: Vec<f64>,
+    /// The targets to evaluate at, x and y interleaved (scratch).
+    targets: Vec<f64>,
+}
+
+/// A deformer posed toward targets: see the module's description. It owns its deformer
+/// (`Poser<Deformer>`, the default), or borrows one (`Poser<&mut Deformer>`) for a while.
+#[derive(Debug)]
+pub struct Poser<D: BorrowMut<Deformer> = Deformer> {
+    deformer: D,
+    stepper: FoldoverStepper,
+    tracking: Tracking,
+    handles: Vec<HandleState>,
+    /// The rest shape's size: its bounding box's larger side.
+    size: f64,
+    /// Whether the pose is the rest pose (a new deformer, or just reset).
+    at_rest: bool,
+    /// The session being recorded, and whether recording is paused (a replay runs).
+    recording: Option<Session>,
+    paused: bool,
+    rig: Option<Rig>,
+    // Scratch of a frame, sized with the handles.
+    current: Vec<Point>,
+    velocities: Vec<[f64; 2]>,
+    turns: Vec<f64>,
+    scaled: Vec<[f64; 2]>,
+    scaled_turns: Vec<f64>,
+    /// The last step's plain steps, as fractions of its velocities, and the plain steps it
+    /// tried.
+    fractions: Vec<f64>,
+    attempts: usize,
+}
+
+impl<D: BorrowMut<Deformer>> Poser<D> {
+    /// A poser of `deformer` (its handles, at their places, become the poser's, each with
+    /// its target where it is), tracking with the default policy.
+    pub fn new(deformer: D) -> Self {
+        let positions = deformer.borrow().mesh().positions();
+        let extent = |axis: usize| {
+            let (lo, hi) = positions
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p[axis]), hi.max(p[axis])));
+            hi - lo
+        };
+        let size = extent(0).max(extent(1));
+        let mut poser = Self {
+            at_rest: deformer.borrow().positions() == positions,
+            deformer,
+            stepper: FoldoverStepper::default(),
+            tracking: Tracking::default(),
+            handles: Vec::new(),
+            size: if size > 0.0 { size } else { 1.0 },
+            recording: None,
+            paused: false,
+            rig: None,
+            current: Vec::new(),
+            velocities: Vec::new(),
+            turns: Vec::new(),
+            scaled: Vec::new(),
+            scaled_turns: Vec::new(),
+            fractions: Vec::new(),
+            attempts: 0,
+        };
+        poser.reset_handle_states();
+        poser
+    }
+
+    /// The deformer posed (read it for the pose, fields, metrics, timings).
+    pub fn deformer(&self) -> &Deformer {
+        self.deformer.borrow()
+    }
+
+    /// The deformer, taken back.
+    pub fn into_deformer(self) -> D {
+        self.deformer
+    }
+
+    /// The rest shape's size, its bounding box's larger side: the unit of
+    /// [`Tracking::max_step`].
+    pub fn size(&self) -> f64 {
+        self.size
+    }
+
+    /// The tracking policy.
+    pub fn tracking(&self) -> Tracking {
+        self.tracking
+    }
+
+    /// Changes the tracking policy (checked; unchanged on error).
+    pub fn set_tracking(&mut self, tracking: Tracking) -> Result<(), DeformError> {
+        tracking.check()?;
+        self.stepper.set_guard(tracking.guard)?;
+        self.tracking = tracking;
+        Ok(())
+    }
+
+    /// Whether the pose is the rest pose: the deformer new or just reset, no step or pose
+    /// since.
+    pub fn at_rest(&self) -> bool {
+        self.at_rest
+    }
+
+    // ------------------------------------------------------------------ handles
+
+    /// Every handle's state anew: targets where the handles are, no turn, not held.
+    fn reset_handle_states(&mut self) {
+        let at = self.deformer.borrow().handle_positions();
+        self.handles = at.iter().map(|&target| HandleState { target, ..HandleState::default() }).collect();
+        self.size_scratch();
+    }
+
+    fn size_scratch(&mut self) {
+        let n = self.handles.len();
+        for buffer in [&mut self.current, &mut self.velocities, &mut self.scaled] {
+            buffer.clear();
+            buffer.resize(n, [0.0; 2]);
+        }
+        for buffer in [&mut self.turns, &mut self.scaled_turns] {
+            buffer.clear();
+            buffer.resize(n, 0.0);
+        }
+        if let Some(rig) = &mut self.rig {
+            rig.evaluated.clear();
+        }
+    }
+
+    /// Handles at these points of the mesh (triangle, barycentric coordinates each),
+    /// replacing any: each starts with its target where it is, not turning, not held.
+    /// Recorded. A rig no longer fitting is dropped.
+    pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.deformer.borrow_mut().set_handle_points(triangles, barycentric)?;
+        self.reset_handle_states();
+        self.drop_unfitting_rig();
+        self.record_handles();
+        Ok(())
+    }
+
+    /// One handle on each of these vertices, replacing any (as [`Self::set_handle_points`]).
+    pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        self.deformer.borrow_mut().set_handle_vertices(vertices)?;
+        self.reset_handle_states();
+        self.drop_unfitting_rig();
+        self.record_handles();
+        Ok(())
+    }
+
+    /// One more handle at a point of the mesh, last, with its target where it is; the other
+    /// handles keep their targets and turns. Recorded.
+    pub fn add_handle(&mut self, triangle: u32, barycentric: [f64; 3]) -> Result<usize, DeformError> {
+        let (mut triangles, mut weights) = self.deformer.borrow().handle_points();
+        triangles.push(triangle);
+        weights.push(barycentric);
+        self.deformer.borrow_mut().set_handle_points(&triangles, &weights)?;
+        let target = *self.deformer.borrow().handle_positions().last().expect("the handle just added");
+        self.handles.push(HandleState { target, ..HandleState::default() });
+        self.size_scratch();
+        self.drop_unfitting_rig();
+        self.record_handles();
+        Ok(self.handles.len() - 1)
+    }
+
+    /// Removes handle `index`; the others keep their targets and turns. Recorded.
+    pub fn remove_handle(&mut self, index: usize) -> Result<(), DeformError> {
+        self.check_handle(index)?;
+        let (mut triangles, mut weights) = self.deformer.borrow().handle_points();
+        triangles.remove(index);
+        weights.remove(index);
+        self.deformer.borrow_mut().set_handle_points(&triangles, &weights)?;
+        self.handles.remove(index);
+        self.size_scratch();
+        self.drop_unfitting_rig();
+        self.record_handles();
+        Ok(())
+    }
+
+    fn check_handle(&self, index: usize) -> Result<(), DeformError> {
+        match index < self.handles.len() {
+            true => Ok(()),
+            false => Err(DeformError::HandleOutOfRange { handle: index, handle_count: self.handles.len() }),
+        }
+    }
+
+    /// Number of handles.
+    pub fn handle_count(&self) -> usize {
+        self.handles.len()
+    }
+
+    /// Where each handle is going.
+    pub fn targets(&self) -> impl ExactSizeIterator<Item = Point> + '_ {
+        self.handles.iter().map(|h| h.target)
+    }
+
+    /// How far each handle is to turn, radians counter-clockwise (its turns so far and
+    /// those still to make).
+    pub fn turns(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.handles.iter().map(|h| h.turn)
+    }
+
+    /// How far each handle has turned, radians counter-clockwise.
+    pub fn turned(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.handles.iter().map(|h| h.turned)
+    }
+
+    /// Sets handle `index`'s target (in the paper's mode, the motion since the last frame is
+    /// what the next frame moves it by). Refused for an index out of range or a coordinate
+    /// not finite or beyond ±[`MAX_COORDINATE`].
+    pub fn set_target(&mut self, index: usize, target: Point) -> Result<(), DeformError> {
+        self.check_handle(index)?;
+        check_target(index, &target)?;
+        let h = &mut self.handles[index];
+        h.pending = [h.pending[0] + target[0] - h.target[0], h.pending[1] + target[1] - h.target[1]];
+        h.target = target;
+        Ok(())
+    }
+
+    /// Places every handle's target, one per handle in order (undo, a re-meshing, a frame
+    /// of an animation shown): no motion pending from it in the paper's mode. All checked
+    /// before any is set.
+    pub fn set_targets(&mut self, targets: &[Point]) -> Result<(), DeformError> {
+        if targets.len() != self.handles.len() {
+            return Err(DeformError::Length {
+                what: "targets",
+                expected: 2 * self.handles.len(),
+                found: 2 * targets.len(),
+                per: 2,
+                items: "handles",
+            });
+        }
+        for (index, target) in targets.iter().enumerate() {
+            check_target(index, target)?;
+        }
+        for (h, &target) in self.handles.iter_mut().zip(targets) {
+            h.target = target;
+            h.pending = [0.0; 2];
+        }
+        Ok(())
+    }
+
+    /// Sets how far handle `index` is to turn in all, radians counter-clockwise (turns add
+    /// up: [`Self::turned`] is how far it has so far). Methods without turning handles
+    /// drop the turn at the next frame.
+    pub fn set_turn(&mut self, index: usize, turn: f64) -> Result<(), DeformError> {
+        self.check_handle(index)?;
+        if !turn.is_finite() {
+            return Err(DeformError::NonFiniteTurn { handle: index });
+        }
+        self.handles[index].turn = turn;
+        Ok(())
+    }
+
+    /// Every handle's target where it is now, no motion pending: the handles stay where
+    /// they are.
+    pub fn pin_handles(&mut self) {
+        let at = self.deformer.borrow().handle_positions();
+        for (h, p) in self.handles.iter_mut().zip(at) {
+            h.target = p;
+            h.pending = [0.0; 2];
+        }
+    }
+
+    /// A pointer takes handle `index`: it is held, its target where it is now (no motion
+    /// pending from it). Returns where it is.
+    pub fn grab(&mut self, index: usize) -> Result<Point, DeformError> {
+        self.check_handle(index)?;
+        let at = self.deformer.borrow().handle_positions()[index];
+        let h = &mut self.handles[index];
+        h.held = true;
+        h.target = at;
+        Ok(at)
+    }
+
+    /// The pointer lets handle `index` go: it stays a pin at its target.
+    pub fn release(&mut self, index: usize) -> Result<(), DeformError> {
+        self.check_handle(index)?;
+        self.handles[index].held = false;
+        Ok(())
+    }
+
+    /// The handles no pointer holds stay where they are (after a step stopped short).
+    fn pin_unheld(&mut self) {
+        let at = self.deformer.borrow().handle_positions();
+        for (h, p) in self.handles.iter_mut().zip(at) {
+            if !h.held {
+                h.target = p;
+                h.turn = h.turned;
+            }
+        }
+    }
+
+    // ------------------------------------------------------------------ the frame
+
+    /// Moves the handles toward their targets (see the module's description), or poses with
+    /// the rig; returns what it did. On error (a step that failed even with smaller
+    /// velocities) the pose is where the steps before it left it, the turns asked for are
+    /// dropped, and the error is returned.
+    pub fn advance(&mut self) -> Result<Advance, DeformError> {
+        let mut report = Advance::default();
+        if self.handles.is_empty() {
+            return Ok(report);
+        }
+        if self.rig.is_some() {
+            return self.evaluate_rig();
+        }
+        let longest = self.tracking.max_step * self.size;
+        if self.tracking.paper {
+            for (v, h) in self.velocities.iter_mut().zip(&mut self.handles) {
+                *v = std::mem::take(&mut h.pending);
+            }
+            let distance = self.velocities.iter().fold(0.0f64, |m, d| m.max(libm::hypot(d[0], d[1])));
+            if distance == 0.0 {
+                return Ok(report);
+            }
+            let count = (self.tracking.max_substeps as f64).min(substeps(distance, longest)) as usize;
+            for v in &mut self.velocities {
+                *v = [v[0] / count as f64, v[1] / count as f64];
+            }
+            for _ in 0..count {
+                self.substep(false, &mut report)?;
+                if report.clamped {
+                    break;
+                }
+            }
+            report.steps = count;
+            // The handles end where the deformation took them; pins stay pins.
+            let at = self.deformer.borrow().handle_positions();
+            for (h, p) in self.handles.iter_mut().zip(at) {
+                if !h.held {
+                    h.target = p;
+                }
+            }
+            return Ok(report);
+        }
+        self.current.copy_from_slice(&self.deformer.borrow().handle_positions());
+        let gap = self
+            .current
+            .iter()
+            .zip(&self.handles)
+            .fold(0.0f64, |m, (p, h)| m.max(libm::hypot(h.target[0] - p[0], h.target[1] - p[1])));
+        let turn_gap = self.handles.iter().fold(f64::NEG_INFINITY, |m, h| m.max((h.turn - h.turned).abs()));
+        let moves = gap > REACHED * self.size;
+        let turning = turn_gap > 1e-9;
+        if !moves && !turning {
+            return Ok(report);
+        }
+        // Counts as numbers: a way far longer than the shape needs more substeps than a
+        // frame takes, and the velocities are its share of them.
+        let needed = (if moves { substeps(gap, longest) } else { 1.0 }).max((turn_gap / MAX_TURN_STEP - 1e-9).ceil());
+        let count = (self.tracking.max_substeps as f64).min(needed) as usize;
+        while report.steps < count && !report.clamped {
+            let remaining = needed - report.steps as f64;
+            match moves {
+                true => toward(&self.handles, &self.current, remaining, &mut self.velocities),
+                false => self.velocities.fill([0.0; 2]),
+            }
+            if turning {
+                for (w, h) in self.turns.iter_mut().zip(&self.handles) {
+                    *w = (h.turn - h.turned) / remaining;
+                }
+            }
+            self.substep(turning, &mut report)?;
+            report.steps += 1;
+            self.current.copy_from_slice(&self.deformer.borrow().handle_positions());
+        }
+        // Stopped short to keep the triangles unfolded: handles let go stay where they are
+        // (they would only stop short again), held ones keep their targets.
+        if report.clamped {
+            self.pin_unheld();
+        }
+        Ok(report)
+    }
+
+    /// One step of `velocities` (and `turns`, when `turning`), guarded when the policy says
+    /// so, retried smaller when it fails; each plain step taken recorded as taken.
+    fn substep(&mut self, turning: bool, report: &mut Advance) -> Result<(), DeformError> {
+        let first = match self.attempt(1.0, turning, report) {
+            Ok(pieces) => return self.took(pieces, report),
+            Err(error) => error,
+        };
+        for scale in RETRY_SCALES {
+            if let Ok(pieces) = self.attempt(scale, turning, report) {
+                return self.took(pieces, report);
+            }
+        }
+        // A method without turning handles, say: the turns asked for are dropped.
+        for h in &mut self.handles {
+            h.turn = h.turned;
+        }
+        Err(first)
+    }
+
+    /// After a step that took `pieces` plain steps: the deformer's timings added to the
+    /// frame's.
+    fn took(&mut self, pieces: usize, report: &mut Advance) -> Result<(), DeformError> {
+        if pieces == 0 {
+            return Ok(());
+        }
+        let t = self.deformer.borrow().timings();
+        let sum = &mut report.timings;
+        sum.assembly += t.assembly;
+        sum.factorisation += t.factorisation;
+        sum.dirichlet_factorisation += t.dirichlet_factorisation;
+        sum.solve += t.solve;
+        sum.integration += t.integration;
+        Ok(())
+    }
+
+    /// The step of `velocities * scale` (and turns), guarded or plain as the policy says.
+    /// Returns how many plain steps it took.
+    fn attempt(&mut self, scale: f64, turning: bool, report: &mut Advance) -> Result<usize, DeformError> {
+        scale_into(&mut self.scaled, &self.velocities, scale);
+        if turning {
+            scale_into(&mut self.scaled_turns, &self.turns, scale);
+        }
+        let (velocities, turns) = (std::mem::take(&mut self.scaled), std::mem::take(&mut self.scaled_turns));
+        let guard = self.tracking.no_foldovers.then_some(self.tracking.guard);
+        let taken = self.take(&velocities, turning.then_some(&turns[..]), guard);
+        (self.scaled, self.scaled_turns) = (velocities, turns);
+        let (pieces, clamped) = taken?;
+        report.clamped |= clamped;
+        Ok(pieces)
+    }
+
+    /// A plain step of `velocities` (and `turns`), or with `guard` the guarded step; each
+    /// plain step taken recorded as it was taken, its turns counted as made, its fraction
+    /// in `fractions`. Returns how many plain steps it took and whether it stopped short.
+    fn take(
+        &mut self,
+        velocities: &[[f64; 2]],
+        turns: Option<&[f64]>,
+        guard: Option<FoldoverGuard>,
+    ) -> Result<(usize, bool), DeformError> {
+        self.fractions.clear();
+        let clamped = match guard {
+            None => {
+                match turns {
+                    Some(turns) => self.deformer.borrow_mut().step_turning(velocities, turns)?,
+                    None => self.deformer.borrow_mut().step(velocities)?,
+                }
+                self.fractions.push(1.0);
+                self.attempts = 1;
+                false
+            }
+            Some(guard) => {
+                self.stepper.set_guard(guard)?;
+                let deformer = self.deformer.borrow_mut();
+                let guarded = match turns {
+                    Some(turns) => self.stepper.step_turning(deformer, velocities, turns),
+                    None => self.stepper.step(deformer, velocities),
+                };
+                let guarded = match guarded {
+                    Ok(guarded) => guarded,
+                    Err(error) => {
+                        self.stepper.set_guard(self.tracking.guard)?;
+                        return Err(error);
+                    }
+                };
+                self.fractions.extend_from_slice(&guarded.steps);
+                self.attempts = guarded.attempts;
+                let clamped = guarded.clamped;
+                self.stepper.set_guard(self.tracking.guard)?;
+                clamped
+            }
+        };
+        for k in 0..self.fractions.len() {
+            self.stepped(velocities, turns, self.fractions[k]);
+        }
+        Ok((self.fractions.len(), clamped))
+    }
+
+    /// A plain step of `velocities * fraction` (and turns) was taken: its turns counted as
+    /// made, recorded.
+    fn stepped(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>, fraction: f64) {
+        self.at_rest = false;
+        // The stepper's own products: `step` with these repeats the piece to the bit.
+        let velocities: Vec<f64> = match fraction == 1.0 {
+            true => velocities.as_flattened().to_vec(),
+            false => velocities.iter().flat_map(|v| [v[0] * fraction, v[1] * fraction]).collect(),
+        };
+        let Some(turns) = turns else {
+            self.record(|| Event::Step(velocities));
+            return;
+        };
+        let turns: Vec<f64> = turns.iter().map(|w| if fraction == 1.0 { *w } else { w * fraction }).collect();
+        for (h, w) in self.handles.iter_mut().zip(&turns) {
+            h.turned += w;
+        }
+        self.record(|| Event::Turn { velocities, turns });
+    }
+
+    /// One plain step with a velocity per handle and, where given, a turn per handle, as
+    /// given: no substeps, no guard, no retry (a replay's recorded step, a caller stepping by
+    /// hand). The turns count as asked and made. Recorded.
+    pub fn step(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>) -> Result<(), DeformError> {
+        let before = self.turned_before(turns);
+        self.take(velocities, turns, None)?;
+        self.turns_asked_as_made(&before);
+        Ok(())
+    }
+
+    /// The guarded step of [`crate::deform::foldover`] with these limits, velocities and,
+    /// where given, turns, as given: no substeps, no retry. Each plain step it takes is
+    /// recorded; the turns it made count as asked. On error the deformer is where it was.
+    pub fn step_without_foldovers(
+        &mut self,
+        velocities: &[[f64; 2]],
+        turns: Option<&[f64]>,
+        guard: FoldoverGuard,
+    ) -> Result<GuardedStep, DeformError> {
+        guard.check()?;
+        let before = self.turned_before(turns);
+        let (_, clamped) = self.take(velocities, turns, Some(guard))?;
+        self.turns_asked_as_made(&before);
+        Ok(GuardedStep { steps: self.fractions.clone(), clamped, attempts: self.attempts })
+    }
+
+    /// How far the handles have turned, before a step asked for by hand with `turns`.
+    fn turned_before(&self, turns: Option<&[f64]>) -> Vec<f64> {
+        turns.map_or_else(Vec::new, |_| self.handles.iter().map(|h| h.turned).collect())
+    }
+
+    /// After a step asked for by hand: the turns it made count as asked too, so that no
+    /// frame turns them back.
+    fn turns_asked_as_made(&mut self, before: &[f64]) {
+        for (h, b) in self.handles.iter_mut().zip(before) {
+            h.turn += h.turned - b;
+        }
+    }
+
+    /// One plain step that takes every handle the whole way to its target
+    /// ([`Self::step`] with the velocities `target - current`), with `turns` where given: a
+    /// replay driving another method to recorded targets.
+    pub fn step_to_targets(&mut self, turns: Option<&[f64]>) -> Result<(), DeformError> {
+        self.current.copy_from_slice(&self.deformer.borrow().handle_positions());
+        toward(&self.handles, &self.current, 1.0, &mut self.velocities);
+        let velocities = std::mem::take(&mut self.velocities);
+        let result = self.step(&velocities, turns);
+        self.velocities = velocities;
+        result
+    }
+
+    // ------------------------------------------------------------------ the rig
+
+    /// Poses with `operator`, a trained rig, instead of stepping: each frame the pose is
+    /// the rig's for the handles' targets (there is nothing to step through). Refused
+    /// ([`DeformError::RigMismatch`]) for a rig of other handle or vertex counts; the
+    /// caller is to check it was trained for this mesh and these handle points. `None`
+    /// poses with the deformer again.
+    pub fn set_rig(&mut self, operator: Option<Operator>) -> Result<(), DeformError> {
+        let Some(operator) = operator else {
+            self.rig = None;
+            return Ok(());
+        };
+        let (rig, deformer) = (
+            [operator.handles().len(), operator.vertex_count()],
+            [self.handles.len(), self.deformer.borrow().mesh().vertex_count()],
+        );
+        if rig != deformer {
+            return Err(DeformError::RigMismatch { rig, deformer });
+        }
+        let n = self.handles.len();
+        self.rig = Some(Rig { operator, evaluated: Vec::new(), targets: vec![0.0; 2 * n] });
+        Ok(())
+    }
+
+    /// Whether a rig poses the shape ([`Self::set_rig`]).
+    pub fn has_rig(&self) -> bool {
+        self.rig.is_some()
+    }
+
+    /// The rig's handle points, to check a rig fits (`None` without one).
+    pub fn rig_points(&self) -> Option<&[MeshPoint]> {
+        self.rig.as_ref().map(|rig| rig.operator.handles())
+    }
+
+    fn drop_unfitting_rig(&mut self) {
+        if self.rig.as_ref().is_some_and(|rig| rig.operator.handles().len() != self.handles.len()) {
+            self.rig = None;
+        }
+    }
+
+    /// The rig's pose for the handles' targets, straight into the deformer's positions,
+    /// recorded as a pose; nothing when the targets are those of the last evaluation.
+    fn evaluate_rig(&mut self) -> Result<Advance, DeformError> {
+        let rig = self.rig.as_mut().expect("a rig poses");
+        for (t, h) in rig.targets.chunks_exact_mut(2).zip(&self.handles) {
+            t.copy_from_slice(&h.target);
+        }
+        if rig.evaluated == rig.targets {
+            return Ok(Advance::default());
+        }
+        let clock = self.deformer.borrow().clock();
+        let started = clock();
+        let Rig { operator, targets, .. } = rig;
+        self.deformer
+            .borrow_mut()
+            .set_positions_with(|out| operator.evaluate_into(targets, out).map_err(|_| DeformError::NonFiniteResult))?;
+        let evaluation = clock() - started;
+        rig.evaluated.clone_from(&rig.targets);
+        self.at_rest = false;
+        record(&mut self.recording, self.paused, || {
+            Event::Positions(self.deformer.borrow().positions().as_flattened().to_vec())
+        });
+        Ok(Advance { steps: 1, evaluation, ..Advance::default() })
+    }
+
+    // ------------------------------------------------------------------ state set through the poser
+
+    /// Puts the mesh into a given pose (undo, a saved pose); handles stay, their targets
+    /// too. Recorded.
+    pub fn set_positions(&mut self, positions: &[Point]) -> Result<(), DeformError> {
+        self.deformer.borrow_mut().set_positions(positions)?;
+        self.at_rest = false;
+        if let Some(rig) = &mut self.rig {
+            rig.evaluated.clear();
+        }
+        self.record(|| Event::Positions(positions.as_flattened().to_vec()));
+        Ok(())
+    }
+
+    /// Back to the rest pose; handles stay, each with its target at its rest place.
+    /// Recorded.
+    pub fn reset(&mut self) {
+        self.deformer.borrow_mut().reset();
+        self.at_rest = true;
+        if let Some(rig) = &mut self.rig {
+            rig.evaluated.clear();
+        }
+        self.record(|| Event::Reset(true));
+        self.pin_handles();
+    }
+
+    /// Puts options into effect ([`Deformer::set_options`]: another method's switch the
+    /// method, keeping pose and handles). Recorded.
+    pub fn set_options(&mut self, options: impl Into<MethodOptions>) -> Result<(), DeformError> {
+        let options = options.into();
+        self.deformer.borrow_mut().set_options(options)?;
+        self.record(|| Event::Options(RecordedOptions::of(options)));
+        Ok(())
+    }
+
+    /// Sets each triangle's stiffness ([`Deformer::set_stiffness`]). Recorded (methods
+    /// without stiffness take only `None`).
+    pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        self.deformer.borrow_mut().set_stiffness(stiffness)?;
+        if self.deformer.borrow().has_stiffness() {
+            self.record(|| Event::Stiffness(stiffness.map(<[f64]>::to_vec)));
+        }
+        Ok(())
+    }
+
+    /// Sets the bones ([`Deformer::set_bones`]). Recorded.
+    pub fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.deformer.borrow_mut().set_bones(triangles, barycentric)?;
+        if self.deformer.borrow().has_bones() {
+            let barycentric = barycentric.as_flattened().to_vec();
+            self.record(|| Event::Bones { triangles: triangles.to_vec(), barycentric });
+        }
+        Ok(())
+    }
+
+    /// Sets the clock of the deformer's timings and the rig's evaluation time.
+    pub fn set_clock(&mut self, clock: crate::deform::Clock) {
+        self.deformer.borrow_mut().set_clock(clock);
+    }
+
+    // ------------------------------------------------------------------ recording
+
+    /// Starts recording a session of everything the poser does from now on, replacing any
+    /// recording: a header with the mesh (named by `shape` when the mesh is that built-in
+    /// shape triangulated, else carried inline) and the current options, then the events
+    /// that put a deformer in the current state (the pose or a reset, the handles, the
+    /// stiffness and bones).
+    pub fn start_recording(&mut self, shape: Option<ShapeSpec>) {
+        let deformer = self.deformer.borrow();
+        let mesh = deformer.mesh();
+        let mut session = Session::with_mesh(mesh, deformer.options());
+        if let Some(shape) = shape {
+            session.shape = Some(shape);
+            session.mesh = SessionMesh::counts_of(MeshCounts::of(mesh));
+        }
+        session.events.push(match self.at_rest {
+            true => Event::Reset(true),
+            false => Event::Positions(deformer.positions().as_flattened().to_vec()),
+        });
+        if !self.handles.is_empty() {
+            session.events.push(handles_event(deformer));
+        }
+        if let Some(stiffness) =
+            deformer.stiffness().filter(|s| deformer.has_stiffness() && s.iter().any(|&x| x != 1.0))
+        {
+            session.events.push(Event::Stiffness(Some(stiffness.to_vec())));
+        }
+        let (triangles, barycentric) = deformer.bone_points();
+        if !triangles.is_empty() {
+            session.events.push(Event::Bones { triangles, barycentric: barycentric.as_flattened().to_vec() });
+        }
+        self.recording = Some(session);
+    }
+
+    /// Whether a recording runs.
+    pub fn recording(&self) -> bool {
+        self.recording.is_some()
+    }
+
+    /// The session recorded so far, if a recording runs.
+    pub fn recorded(&self) -> Option<&Session> {
+        self.recording.as_ref()
+    }
+
+    /// Ends the recording and returns it (`None` if none ran).
+    pub fn stop_recording(&mut self) -> Option<Session> {
+        self.recording.take()
+    }
+
+    /// Pauses the recording (a session replays) or resumes it: while paused nothing is
+    /// recorded.
+    pub fn pause_recording(&mut self, paused: bool) {
+        self.paused = paused;
+    }
+
+    fn record(&mut self, event: impl FnOnce() -> Event) {
+        record(&mut self.recording, self.paused, event);
+    }
+
+    fn record_handles(&mut self) {
+        record(&mut self.recording, self.paused, || handles_event(self.deformer.borrow()));
+    }
+}
+
+/// Adds an event to the recording, if one runs and is not paused.
+fn record(recording: &mut Option<Session>, paused: bool, event: impl FnOnce() -> Event) {
+    if let (Some(session), false) = (recording, paused) {
+        session.events.push(event());
+    }
+}
+
+/// The deformer's handles as a session event.
+fn handles_event(deformer: &Deformer) -> Event {
+    let (triangles, barycentric) = deformer.handle_points();
+    Event::Handles { triangles, barycentric: barycentric.as_flattened().to_vec() }
+}
+
+/// Into `out`, each handle's velocity for the rest of the way to its target from `current`
+/// over `remaining` steps: `(target - current) / remaining`.
+fn toward(handles: &[HandleState], current: &[Point], remaining: f64, out: &mut [[f64; 2]]) {
+    for ((v, p), h) in out.iter_mut().zip(current).zip(handles) {
+        *v = [(h.target[0] - p[0]) / remaining, (h.target[1] - p[1]) / remaining];
+    }
+}
+
+/// How many substeps cover `distance` with steps of at most `longest` (at least 1).
+fn substeps(distance: f64, longest: f64) -> f64 {
+    (distance / longest - 1e-9).ceil().max(1.0)
+}
+
+/// `out` becomes `values` times `scale` (`values` itself for 1).
+fn scale_into<T: Copy + Scale>(out: &mut [T], values: &[T], scale: f64) {
+    for (o, v) in out.iter_mut().zip(values) {
+        *o = if scale == 1.0 { *v } else { v.scale(scale) };
+    }
+}
+
+/// Values a step can be scaled by.
+trait Scale {
+    fn scale(&self, by: f64) -> Self;
+}
+
+impl Scale for f64 {
+    fn scale(&self, by: f64) -> Self {
+        self * by
+    }
+}
+
+impl Scale for [f64; 2] {
+    fn scale(&self, by: f64) -> Self {
+        [self[0] * by, self[1] * by]
+    }
+}
+
+/// A target within the coordinate limits.
+fn check_target(handle: usize, target: &Point) -> Result<(), DeformError> {
+    match target.iter().find(|x| !(x.is_finite() && x.abs() <= MAX_COORDINATE)) {
+        Some(&value) => Err(DeformError::InvalidTarget { handle, value }),
+        None => Ok(()),
+    }
+}
