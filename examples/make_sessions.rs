@@ -1,6 +1,7 @@
-//! Writes the scripted sessions of the comparison (`tests/sessions/*.json`), recorded with
-//! the AKAP deformer the way the app records a drag: each frame's velocity is the scripted
-//! target minus the handle's current position. Run once; the files are committed.
+//! Writes the scripted sessions of the comparison (`tests/sessions/*.json`), recorded by a
+//! poser of the AKAP deformer (`akap::pose::Poser`, the app's interaction loop): each frame
+//! one step to the scripted targets, its velocity the target minus the handle's current
+//! position. Run once; the files are committed.
 //!
 //! `cargo run --release --example make_sessions [-- OUTPUT_DIR]` (default `tests/sessions`).
 //!
@@ -18,7 +19,8 @@ use std::f64::consts::PI;
 
 use akap::deform::{AkapOptions, Deformer};
 use akap::geometry::{distance, Point};
-use akap::session::{Event, MeshCounts, Session, SessionMesh, ShapeSpec};
+use akap::pose::Poser;
+use akap::session::{MeshCounts, Session, SessionMesh, ShapeSpec};
 use akap::{shapes, Mesh};
 
 /// A handle: a triangle and barycentric weights.
@@ -53,11 +55,10 @@ fn rotate(p: Point, centre: Point, angle: f64) -> Point {
     [centre[0] + c * r[0] - s * r[1], centre[1] + s * r[0] + c * r[1]]
 }
 
-/// Records a session: the AKAP deformer follows the script, and every step stores the
-/// velocities it was given.
+/// Records a session: a poser of the AKAP deformer follows the script, one step a frame to
+/// the scripted targets, and records each step.
 struct Recorder {
-    session: Session,
-    deformer: Deformer,
+    poser: Poser,
 }
 
 impl Recorder {
@@ -74,32 +75,29 @@ impl Recorder {
         let mesh = akap::triangulate(&shapes::by_name(name).expect("a built-in shape"), &triangulation)
             .expect("the built-in shapes triangulate");
         session.mesh = SessionMesh::counts_of(MeshCounts::of(&mesh));
-        let deformer = Deformer::new(mesh, AkapOptions::default()).expect("a connected mesh");
-        Self { session, deformer }
+        let mut poser = Poser::new(Deformer::new(mesh, AkapOptions::default()).expect("a connected mesh"));
+        poser.resume_recording(session);
+        Self { poser }
     }
 
     fn mesh(&self) -> &Mesh {
-        self.deformer.mesh()
+        self.poser.deformer().mesh()
     }
 
     fn handles(&mut self, handles: &[Handle]) {
         let triangles: Vec<u32> = handles.iter().map(|h| h.0).collect();
         let weights: Vec<[f64; 3]> = handles.iter().map(|h| h.1).collect();
-        self.deformer.set_handle_points(&triangles, &weights).expect("valid handles");
-        self.session.events.push(Event::Handles { triangles, barycentric: weights.concat() });
+        self.poser.set_handle_points(&triangles, &weights).expect("valid handles");
     }
 
-    /// One frame towards these targets.
+    /// One frame to these targets, in one step.
     fn step(&mut self, targets: &[Point]) {
-        let current = self.deformer.handle_positions();
-        let velocities: Vec<[f64; 2]> = current.iter().zip(targets).map(|(p, t)| [t[0] - p[0], t[1] - p[1]]).collect();
-        self.deformer.step(&velocities).expect("a step of the script");
-        self.session.events.push(Event::Step(velocities.concat()));
+        self.poser.set_targets(targets).expect("finite targets");
+        self.poser.step_toward(1.0, None).expect("a step of the script");
     }
 
     fn reset(&mut self) {
-        self.deformer.reset();
-        self.session.events.push(Event::Reset(true));
+        self.poser.reset();
     }
 
     fn rest_of(&self, handles: &[Handle]) -> Vec<Point> {
@@ -117,18 +115,19 @@ impl Recorder {
             .collect()
     }
 
-    fn finish(self) -> Session {
-        let m = self.deformer.metrics();
+    fn finish(mut self) -> Session {
+        let m = self.poser.deformer().metrics();
+        let session = self.poser.stop_recording().expect("a recording runs");
         eprintln!(
             "{}: {} vertices, {} steps, E_area {:.4}, E_angle {:.4}, {} flipped",
-            self.session.shape.as_ref().map_or("", |s| &s.name),
-            self.session.mesh.vertex_count,
-            self.session.step_count(),
+            session.shape.as_ref().map_or("", |s| &s.name),
+            session.mesh.vertex_count,
+            session.step_count(),
             m.area_distortion,
             m.angle_distortion,
             m.flipped
         );
-        self.session
+        session
     }
 }
 
@@ -239,10 +238,10 @@ fn cat() -> Session {
         r.step(&targets);
     }
     // New handles: the same ones plus the tail tip; the tail swings up by 45 degrees.
-    let mut held = r.deformer.handle_positions();
+    let mut held = r.poser.deformer().handle_positions();
     handles.push(in_triangle(&mesh, [-0.82, 1.04]));
     r.handles(&handles);
-    let tip = r.deformer.handle_positions()[5];
+    let tip = r.poser.deformer().handle_positions()[5];
     let base = [-0.55, 0.68];
     for k in 1..=frames {
         held.truncate(5);

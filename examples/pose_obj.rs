@@ -17,9 +17,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use akap::deform::{Deformer, Method, MethodOptions, Metrics, SettingValue};
-use akap::geometry::{bounding_box, Point};
+use akap::geometry::Point;
 use akap::import::mesh_file::{read_obj, write_obj_pose};
 use akap::import::Limits;
+use akap::pose::Poser;
 use akap::triangulate::triangulate_to_about;
 use akap::{shapes, Mesh, TriangulationOptions};
 
@@ -44,8 +45,6 @@ usage: pose_obj [IN.obj|-] OUT.obj [--pin I]... [--move I:DX,DY]... [options]
 With the built-in figure and no handles, its feet are pinned and its raised hand moved.
 ";
 
-/// Longest handle move per step, as a fraction of the mesh's size (the app's default).
-const MAX_STEP: f64 = 0.02;
 /// Most steps a pose may take (moves far larger than the mesh need more).
 const MAX_STEPS: usize = 100_000;
 
@@ -56,7 +55,8 @@ pub(crate) struct Pose {
     pub(crate) pins: Vec<u32>,
     /// Vertices moved, each with its displacement.
     pub(crate) moves: Vec<(u32, Point)>,
-    /// Steps to take; `None` for steps of at most [`MAX_STEP`] of the mesh's size.
+    /// Steps to take; `None` for as many as the tracking takes (steps of at most 2% of the
+    /// mesh's size, `Tracking::max_step`).
     pub(crate) steps: Option<usize>,
     /// The method and its settings.
     pub(crate) method: MethodOptions,
@@ -108,36 +108,37 @@ pub(crate) fn pose_obj(obj: Option<&str>, pose: &Pose) -> Result<Posed, String> 
         }
     }
     let rest = mesh.positions();
-    let (lo, hi) = bounding_box(rest.iter().copied()).ok_or("the mesh has no vertices")?;
-    let size = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    let longest = pose.moves.iter().fold(0.0f64, |m, (_, d)| m.max(d[0].hypot(d[1])));
-    let steps = (pose.steps)
-        .unwrap_or_else(|| (longest / (MAX_STEP * size) - 1e-9).ceil().clamp(1.0, MAX_STEPS as f64 + 1.0) as usize);
-    if !(1..=MAX_STEPS).contains(&steps) {
-        return Err(format!(
-            "{steps} steps: 1 to {MAX_STEPS} can be taken (moves over 2,000 times the mesh's size need more)"
-        ));
-    }
     let targets: Vec<Point> = (pose.pins.iter().map(|&v| (v, [0.0, 0.0])).chain(pose.moves.iter().copied()))
         .map(|(v, d)| [rest[v as usize][0] + d[0], rest[v as usize][1] + d[1]])
         .collect();
     let (vertices, triangles) = (n, mesh.triangle_count());
 
     let start = Instant::now();
-    let mut deformer = Deformer::new(mesh, pose.method).map_err(|e| e.to_string())?;
-    deformer.set_handle_vertices(&handles).map_err(|e| e.to_string())?;
+    let mut poser = Poser::new(Deformer::new(mesh, pose.method).map_err(|e| e.to_string())?);
+    poser.set_handle_vertices(&handles).map_err(|e| e.to_string())?;
+    poser.set_targets(&targets).map_err(|e| e.to_string())?;
     let setup_ms = start.elapsed().as_secs_f64() * 1e3;
+    // As many steps as the app's tracking would take (steps of at most 2% of the mesh's
+    // size), all of them, not a frame's worth.
+    let steps = match pose.steps {
+        Some(steps) => steps as f64,
+        None => poser.substeps_needed(),
+    };
+    if !(1.0..=MAX_STEPS as f64).contains(&steps) {
+        return Err(format!(
+            "{steps} steps: 1 to {MAX_STEPS} can be taken (moves over 2,000 times the mesh's size need more)"
+        ));
+    }
+    let steps = steps as usize;
     let start = Instant::now();
     for step in 0..steps {
         // What is left of each handle's way, over the steps left (the app's tracking).
         let left = (steps - step) as f64;
-        let velocities: Vec<[f64; 2]> = (deformer.handle_positions().iter().zip(&targets))
-            .map(|(p, t)| [(t[0] - p[0]) / left, (t[1] - p[1]) / left])
-            .collect();
-        deformer.step(&velocities).map_err(|e| format!("step {} of {steps} failed: {e}", step + 1))?;
+        poser.step_toward(left, None).map_err(|e| format!("step {} of {steps} failed: {e}", step + 1))?;
     }
     let steps_ms = start.elapsed().as_secs_f64() * 1e3;
 
+    let deformer = poser.deformer();
     let metrics = deformer.metrics();
     let miss = (deformer.handle_positions().iter().zip(&targets))
         .fold(0.0f64, |m, (p, t)| m.max((p[0] - t[0]).hypot(p[1] - t[1])));

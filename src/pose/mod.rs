@@ -653,12 +653,26 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         }
     }
 
-    /// One plain step that takes every handle the whole way to its target
-    /// ([`Self::step`] with the velocities `target - current`), with `turns` where given: a
-    /// replay driving another method to recorded targets.
-    pub fn step_to_targets(&mut self, turns: Option<&[f64]>) -> Result<(), DeformError> {
+    /// How many substeps the tracking takes to bring every handle to its target from where
+    /// it is: the largest distance over the longest step, rounded up, at least 1 (a frame
+    /// takes at most [`Tracking::max_substeps`] of them).
+    pub fn substeps_needed(&self) -> f64 {
+        let current = self.deformer.borrow().handle_positions();
+        let gap = current
+            .iter()
+            .zip(&self.handles)
+            .fold(0.0f64, |m, (p, h)| m.max(libm::hypot(h.target[0] - p[0], h.target[1] - p[1])));
+        substeps(gap, self.tracking.max_step * self.size)
+    }
+
+    /// One plain step ([`Self::step`]) that takes every handle a `1 / remaining` share of
+    /// the rest of its way to its target, `(target - current) / remaining` (the tracking's
+    /// velocities, `remaining` the steps left including this one), with `turns` where
+    /// given: `remaining` 1 takes the whole way, as a replay driving another method to
+    /// recorded targets does.
+    pub fn step_toward(&mut self, remaining: f64, turns: Option<&[f64]>) -> Result<(), DeformError> {
         self.current.copy_from_slice(&self.deformer.borrow().handle_positions());
-        toward(&self.handles, &self.current, 1.0, &mut self.velocities);
+        toward(&self.handles, &self.current, remaining, &mut self.velocities);
         let velocities = std::mem::take(&mut self.velocities);
         let result = self.step(&velocities, turns);
         self.velocities = velocities;
@@ -821,6 +835,12 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         if !triangles.is_empty() {
             session.events.push(Event::Bones { triangles, barycentric: barycentric.as_flattened().to_vec() });
         }
+        self.recording = Some(session);
+    }
+
+    /// Records from now on into `session`, its header and events so far the caller's (a
+    /// script that writes its own header), replacing any recording.
+    pub fn resume_recording(&mut self, session: Session) {
         self.recording = Some(session);
     }
 

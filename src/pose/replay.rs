@@ -29,7 +29,8 @@ pub fn replay(session: &Session, deformer: &mut Deformer) -> Result<Replay, Sess
 }
 
 /// Replays the events driving every handle to the recorded targets (see [`Replay::targets`]
-/// of a [`replay`] with the recorded deformer): each step is [`Poser::step_to_targets`],
+/// of a [`replay`] with the recorded deformer): each step is [`Poser::step_toward`] the
+/// targets in one step,
 /// its velocity the target minus the handle's current position. `options` events are
 /// passed over: the method compared keeps its settings. `positions` events put it into the
 /// recorded pose. `stiffness` and `bones` events paint it or set them, or are passed over
@@ -89,7 +90,7 @@ fn run(
                         if goal.len() != before.len() {
                             return Err(SessionError::MissingTargets { index });
                         }
-                        poser.set_targets(&goal).and_then(|()| poser.step_to_targets(turns.map(Vec::as_slice)))
+                        poser.set_targets(&goal).and_then(|()| poser.step_toward(1.0, turns.map(Vec::as_slice)))
                     }
                 }
                 .map_err(refused)?;
