@@ -25,7 +25,16 @@ check() { # name, command...
   fi
 }
 
+# No import circles: each command runs even if one before it failed (more can be added).
+imports() {
+  local status=0
+  node scripts/check-cycles.mjs --self-test || status=1
+  node scripts/check-cycles.mjs || status=1
+  return $status
+}
+
 check fmt cargo fmt --all --check
+check imports imports
 check clippy cargo clippy --all-targets --quiet -- -D warnings
 check clippy-wasm with_wasm_toolchain cargo clippy --target wasm32-unknown-unknown --all-targets --quiet -- -D warnings
 check cargo-test cargo test --quiet
