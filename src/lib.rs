@@ -33,6 +33,7 @@ pub mod error;
 pub mod geometry;
 pub mod import;
 pub mod mesh;
+mod message;
 pub mod outline;
 pub mod random;
 pub mod session;

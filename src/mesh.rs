@@ -14,11 +14,11 @@
 
 use std::fmt;
 
-use crate::error::Number;
 use crate::geometry::{
     bounding_box, certain_orient, normalising_exponent, scale_by_power_of_two, triangle_area, Point, MAX_COORDINATE,
     MIN_EXTENT,
 };
+use crate::message::Number;
 
 /// The default vertex limit of everything interactive: triangulation
 /// ([`crate::TriangulationOptions::max_vertices`]) and mesh files

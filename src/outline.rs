@@ -13,10 +13,10 @@
 
 use std::fmt;
 
-use crate::error::Number;
 use crate::geometry::{
     bounding_box, normalising_exponent, polygon_area, scale_by_power_of_two, Point, MAX_COORDINATE, MIN_EXTENT,
 };
+use crate::message::Number;
 use crate::sweep::{sweep, Find, Sweep};
 
 /// A polygon with optional holes. Rings are closed implicitly (the last point connects to

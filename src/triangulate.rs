@@ -23,9 +23,9 @@ use spade::{
     mitigate_underflow, AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
-use crate::error::Number;
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::{Mesh, MeshError, DEFAULT_MAX_VERTICES, MAX_MESH_ELEMENTS};
+use crate::message::Number;
 use crate::outline::{Outline, OutlineError, Ring};
 
 /// The largest minimum angle accepted, in degrees. Delaunay refinement is only guaranteed

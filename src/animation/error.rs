@@ -2,8 +2,8 @@
 
 use std::fmt;
 
-use crate::error::Number;
 use crate::import::ImportError;
+use crate::message::Number;
 
 /// Why an animation (GIF, APNG, ZIP of frames, `akap-animation` JSON or sprite table)
 /// could not be made or read.

@@ -4,8 +4,8 @@
 use std::fmt;
 
 use crate::deform::DeformError;
-use crate::error::Number;
 use crate::geometry::MAX_COORDINATE;
+use crate::message::Number;
 use crate::sparse::FactorError;
 
 /// Why a DefOp ground-truth solver refused an input or could not solve.

@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use crate::error::Number;
+use crate::message::Number;
 use crate::sparse::FactorError;
 
 /// Why a deformation operator could not be fitted, or an operator refused an input.

@@ -6,8 +6,8 @@
 use std::fmt;
 
 use super::options::Method;
-use crate::error::{one_of, Number};
 use crate::geometry::MAX_COORDINATE;
+use crate::message::{one_of, Number};
 use crate::sparse::FactorError;
 
 /// Why the deformer refused an input or a step. The deformer is unchanged after any error.

@@ -2,8 +2,8 @@
 
 use std::fmt;
 
-use crate::error::Number;
 use crate::mesh::MeshError;
+use crate::message::Number;
 
 /// An element of an SVG document, for error messages: its name, its `id` if it has one, and
 /// where its start tag begins (1-based line and column).
