@@ -1,6 +1,8 @@
-//! The crate's top-level error, one variant per area, each with its own typed error; and
-//! [`ErrorCode`], the stable kind of every error (JavaScript sees it as `error.code`),
-//! defined here once for all the areas' error types.
+//! The crate's top-level error, one variant per area, each with its own typed error, and
+//! its `From` impls: the roof over the areas, which imports them and which none of them
+//! imports. [`ErrorCode`], the stable kind of every error (JavaScript sees it as
+//! `error.code`), is defined in a leaf and re-exported here; each area's error type has its
+//! `code()` beside it.
 
 use std::fmt;
 
@@ -14,9 +16,7 @@ use crate::session::SessionError;
 use crate::sparse::FactorError;
 use crate::triangulate::TriangulationError;
 
-mod code;
-
-pub use code::ErrorCode;
+pub use crate::error_code::ErrorCode;
 
 /// Any error this crate reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -66,6 +66,22 @@ impl std::error::Error for Error {
             Self::Factor(e) => Some(e),
             Self::DefOp(e) => Some(e),
             Self::Animation(e) => Some(e),
+        }
+    }
+}
+
+impl Error {
+    /// The kind of error (that of the area's error it holds).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Mesh(e) => e.code(),
+            Self::Triangulation(e) => e.code(),
+            Self::Session(e) => e.code(),
+            Self::Import(e) => e.code(),
+            Self::Deform(e) => e.code(),
+            Self::Factor(e) => e.code(),
+            Self::DefOp(e) => e.code(),
+            Self::Animation(e) => e.code(),
         }
     }
 }

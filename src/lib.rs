@@ -30,6 +30,7 @@ pub mod animation;
 pub mod defop;
 pub mod deform;
 pub mod error;
+mod error_code;
 pub mod geometry;
 pub mod import;
 pub mod mesh;

@@ -14,6 +14,7 @@
 
 use std::fmt;
 
+use crate::error_code::ErrorCode;
 use crate::geometry::{
     bounding_box, certain_orient, normalising_exponent, scale_by_power_of_two, triangle_area, Point, MAX_COORDINATE,
     MIN_EXTENT,
@@ -181,6 +182,17 @@ impl fmt::Display for MeshError {
 }
 
 impl std::error::Error for MeshError {}
+
+impl MeshError {
+    /// The kind of error: [`ErrorCode::Limit`] for too many elements, otherwise
+    /// [`ErrorCode::InvalidMesh`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::TooLarge { .. } => ErrorCode::Limit,
+            _ => ErrorCode::InvalidMesh,
+        }
+    }
+}
 
 /// A point of a mesh, where a handle is: a vertex, or a point of a triangle by its
 /// barycentric coordinates (the deformers' and DefOp's handles, checked by

@@ -13,6 +13,7 @@
 
 use std::fmt;
 
+use crate::error_code::ErrorCode;
 use crate::geometry::{
     bounding_box, normalising_exponent, polygon_area, scale_by_power_of_two, Point, MAX_COORDINATE, MIN_EXTENT,
 };
@@ -157,6 +158,17 @@ impl fmt::Display for OutlineError {
 }
 
 impl std::error::Error for OutlineError {}
+
+impl OutlineError {
+    /// The kind of error: [`ErrorCode::Limit`] for too many points, otherwise
+    /// [`ErrorCode::InvalidOutline`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::TooManyPoints { .. } => ErrorCode::Limit,
+            _ => ErrorCode::InvalidOutline,
+        }
+    }
+}
 
 impl Outline {
     /// An outline without holes.

@@ -23,6 +23,7 @@ use spade::{
     mitigate_underflow, AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
+use crate::error_code::ErrorCode;
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::{Mesh, MeshError, DEFAULT_MAX_VERTICES, MAX_MESH_ELEMENTS};
 use crate::message::Number;
@@ -205,6 +206,19 @@ impl std::error::Error for TriangulationError {
             Self::Outline(e) => Some(e),
             Self::Mesh(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl TriangulationError {
+    /// The kind of error.
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Outline(e) => e.code(),
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
+            Self::ConstraintConflict { .. } => ErrorCode::InvalidOutline,
+            Self::TooManyVertices { .. } => ErrorCode::Limit,
+            Self::Mesh(_) | Self::Internal { .. } => ErrorCode::Internal,
         }
     }
 }

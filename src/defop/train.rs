@@ -23,6 +23,7 @@ use super::operator::Operator;
 use super::reduced::reduced_basis;
 use super::sampling::{Sampler, Sampling, SamplingError, DEFAULT_RADIUS_FRACTION};
 use super::spatial::{MeshPoint, SpatialBasis};
+use crate::error_code::ErrorCode;
 use crate::geometry::{bounding_box, Point};
 use crate::mesh::Mesh;
 
@@ -174,6 +175,22 @@ impl std::error::Error for TrainError {
             Self::Sampling(e) => Some(e),
             Self::File(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl TrainError {
+    /// The kind of error: that of the ground truth's or the fit's error it holds,
+    /// [`ErrorCode::InvalidOption`] for options, [`ErrorCode::Import`] for an operator file
+    /// that cannot be read, otherwise [`ErrorCode::InvalidArgument`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
+            Self::TooLarge { .. } => ErrorCode::Limit,
+            Self::File(_) => ErrorCode::Import,
+            Self::GroundTruth(e) => e.code(),
+            Self::Fit(e) => e.code(),
+            _ => ErrorCode::InvalidArgument,
         }
     }
 }

@@ -64,6 +64,7 @@ pub use replay::{replay, replay_to_targets, Replay};
 use crate::deform::handles::check_stiffness;
 use crate::deform::settings::is_whole;
 use crate::deform::{Deform, DeformError, DeformerOptions, Method, MethodOptions, SettingValue};
+use crate::error_code::ErrorCode;
 use crate::mesh::{Mesh, MeshError};
 use crate::shapes;
 use crate::triangulate::{triangulate, TriangulationError, TriangulationOptions};
@@ -430,6 +431,27 @@ impl std::error::Error for SessionError {
             Self::Mesh(e) => Some(e),
             Self::Options(e) | Self::Setup(e) | Self::Event { error: e, .. } => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl SessionError {
+    /// The kind of error: the wrapped error's for a shape that does not triangulate,
+    /// invalid options and refused events; [`ErrorCode::Import`] for a session file that
+    /// cannot be read or does not match its shape.
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Triangulation(e) => e.code(),
+            Self::Mesh(e) => e.code(),
+            Self::Options(e) | Self::Setup(e) | Self::Event { error: e, .. } => e.code(),
+            Self::MissingTargets { .. } => ErrorCode::InvalidArgument,
+            Self::Json(_)
+            | Self::Format { .. }
+            | Self::Version { .. }
+            | Self::NotInVersion1 { .. }
+            | Self::MeshSource
+            | Self::UnknownShape { .. }
+            | Self::MeshMismatch { .. } => ErrorCode::Import,
         }
     }
 }

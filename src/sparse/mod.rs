@@ -44,6 +44,8 @@ pub use ordering::{
 };
 pub use symbolic::Symbolic;
 
+use crate::error_code::ErrorCode;
+
 /// A matrix view in compressed sparse column form with `usize` indices.
 pub type CsMatView<'a> = sprs::CsMatView<'a, f64>;
 
@@ -131,3 +133,17 @@ impl fmt::Display for FactorError {
 }
 
 impl std::error::Error for FactorError {}
+
+impl FactorError {
+    /// The kind of error: [`ErrorCode::NotPositiveDefinite`] for a failed pivot,
+    /// [`ErrorCode::OutOfMemory`], and otherwise [`ErrorCode::InvalidArgument`] (a matrix,
+    /// ordering or right-hand side that does not fit, or a solve without a factor: only
+    /// direct callers of [`crate::sparse`] can cause these).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::NotPositiveDefinite { .. } => ErrorCode::NotPositiveDefinite,
+            Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,
+            _ => ErrorCode::InvalidArgument,
+        }
+    }
+}

@@ -39,7 +39,7 @@ use js_sys::{Array, Float64Array, Object, Reflect};
 use wasm_bindgen::prelude::*;
 
 use crate::deform::STIFFNESS_RANGE;
-use crate::error::ErrorCode;
+use crate::error_code::ErrorCode;
 use crate::import::Limits;
 use crate::outline::Outline;
 

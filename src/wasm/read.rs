@@ -22,7 +22,7 @@ use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
 use super::error::BindingError;
-use crate::error::ErrorCode;
+use crate::error_code::ErrorCode;
 
 /// An error saying what the caller passed was wrong, naming the argument.
 pub(super) fn type_error(what: &str, expected: &str, value: &JsValue) -> BindingError {
