@@ -39,10 +39,10 @@ pub use amd::{amd_order, amf_order};
 pub use nested_dissection::nested_dissection_order;
 pub use numeric::Numeric;
 pub use ordering::{
-    cheaper_order, dissection_if_large, expand_blocks, fill_or_dissection, fill_reducing_order, order_flops, Ordering,
+    cheaper_order, dissection_if_large, expand_blocks, fill_or_dissection, fill_reducing_order, order_flops,
     DISSECTION_MIN_NODES,
 };
-pub use symbolic::Symbolic;
+pub use symbolic::{Ordering, Symbolic};
 
 use crate::error_code::ErrorCode;
 
