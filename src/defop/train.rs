@@ -21,6 +21,7 @@ use super::fit_error::FitError;
 use super::ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, Start};
 use super::operator::Operator;
 use super::reduced::reduced_basis;
+pub use super::sampling::MAX_SAMPLES;
 use super::sampling::{Sampler, Sampling, SamplingError, DEFAULT_RADIUS_FRACTION};
 use super::spatial::{MeshPoint, SpatialBasis};
 use crate::error_code::ErrorCode;
@@ -72,9 +73,6 @@ impl Default for TrainOptions {
         }
     }
 }
-
-/// The most samples a training may ask for (a TPS operator holds one function per sample).
-pub const MAX_SAMPLES: usize = 100_000;
 
 /// The most memory a training may need for its samples' ground truths and its operator's
 /// coefficients (1 GB; WebAssembly has 4 GB at most).
