@@ -588,28 +588,6 @@ mod tests {
     }
 
     #[test]
-    fn boundary_loops_follow_the_outline_and_each_hole() {
-        // A 3 x 3 grid without its middle square: the outer loop of 12 vertices and the
-        // hole's 4, each a cycle of boundary edges.
-        let grid = crate::shapes::grid_mesh(3, 3);
-        let triangles: Vec<[u32; 3]> =
-            grid.triangles().iter().enumerate().filter(|(t, _)| *t / 2 != 4).map(|(_, t)| *t).collect();
-        let mesh = Mesh::new(grid.positions().to_vec(), triangles).unwrap();
-        let mut loops = mesh.boundary_loops();
-        loops.sort_by_key(Vec::len);
-        assert_eq!(loops.iter().map(Vec::len).collect::<Vec<_>>(), vec![4, 12]);
-        let mut hole = loops[0].clone();
-        hole.sort();
-        assert_eq!(hole, vec![5, 6, 9, 10]);
-        for ring in &loops {
-            for (k, &v) in ring.iter().enumerate() {
-                let w = ring[(k + 1) % ring.len()];
-                assert!(mesh.boundary_edges().contains(&[v, w]), "{v} -> {w}");
-            }
-        }
-    }
-
-    #[test]
     fn vertex_graphs_list_the_neighbours_in_compressed_form() {
         let (p, t) = square();
         let mesh = Mesh::new(p, t).unwrap();
