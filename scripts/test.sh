@@ -35,7 +35,8 @@ imports() {
 
 check fmt cargo fmt --all --check
 check imports imports
-check clippy cargo clippy --all-targets --quiet -- -D warnings
+# --features bench: the Cholesky bench and example need it (faer, sprs-ldl).
+check clippy cargo clippy --all-targets --features bench --quiet -- -D warnings
 check clippy-wasm with_wasm_toolchain cargo clippy --target wasm32-unknown-unknown --all-targets --quiet -- -D warnings
 check cargo-test cargo test --quiet
 check wasm-test with_wasm_toolchain wasm-pack test --node --release --mode no-install
