@@ -1,7 +1,7 @@
 //! JavaScript bindings (wasm32 only): the one module that touches wasm-bindgen and js-sys.
 //!
 //! Arrays cross as typed arrays: positions as `Float64Array` with x and y interleaved,
-//! triangles as `Uint32Array` index triples. Every argument is read by [`read`], which
+//! triangles as `Uint32Array` index triples. Every argument is read by `read`, which
 //! checks its type and size (an `Error` naming the argument otherwise) and never lets a
 //! JavaScript exception unwind through Rust frames; every error becomes a JavaScript
 //! `Error` with the message of the Rust error and a stable `code` ([`BindingError`], the
