@@ -492,16 +492,26 @@ pub fn f() -> u32 {
     if false { crate::a::f() } else { 1 }
 }
 `,
-  // A mod.rs re-exporting its children, which use each other through it: no circle.
-  "c/mod.rs": `mod x;
+  // A mod.rs re-exporting its children: no circle. y.rs takes X through the re-export
+  // (from x.rs, not from the mod.rs, which calls into y.rs); w.rs uses the mod.rs's own
+  // function, and the mod.rs only passes w.rs's on.
+  "c/mod.rs": `mod w;
+mod x;
 mod y;
+pub use w::twice;
 pub use x::X;
 pub use y::Y;
+pub fn helper() -> u32 { 2 }
+pub fn make() -> Y { y::new() }
+`,
+  "c/w.rs": `use super::helper;
+pub fn twice() -> u32 { 2 * helper() }
 `,
   "c/x.rs": `pub struct X;
 `,
   "c/y.rs": `use super::X;
 pub struct Y(pub X);
+pub fn new() -> Y { Y(X) }
 `,
   // A string and a child file through #[path]; the child uses its parent: no circle.
   "d.rs": `pub const S: &str = "crate::e::h";
