@@ -3,9 +3,9 @@
 //! `common/mod.rs`).
 //!
 //! ```text
-//! cargo bench --bench cholesky                      # up to 10k vertices
-//! AKAP_BENCH_MAX_VERTICES=100000 cargo bench --bench cholesky
-//! cargo bench --bench cholesky -- 'gingerbread/5k'  # criterion's filter
+//! cargo bench --features bench --bench cholesky                      # up to 10k vertices
+//! AKAP_BENCH_MAX_VERTICES=100000 cargo bench --features bench --bench cholesky
+//! cargo bench --features bench --bench cholesky -- 'gingerbread/5k'  # criterion's filter
 //! ```
 //!
 //! Each matrix is a group `cholesky/<shape>/<size>/<variant>` with the functions
@@ -13,7 +13,7 @@
 //! `ours/solve`, `faer-supernodal/{symbolic,numeric,solve}`,
 //! `faer-simplicial/{symbolic,numeric}` and `sprs-ldl/numeric`. The markdown table in
 //! `benches/README.md` comes from `examples/cholesky_table.rs`, which also checks the
-//! solutions against each other.
+//! solutions against each other. The `bench` feature brings faer and sprs-ldl.
 
 #[cfg(not(target_arch = "wasm32"))]
 #[allow(dead_code)] // each includer uses part of the shared module

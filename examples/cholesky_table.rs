@@ -4,7 +4,7 @@
 //! factorisation to faer's supernodal one.
 //!
 //! ```text
-//! cargo run --release --example cholesky_table -- [--max-vertices N] [--min-vertices N]
+//! cargo run --release --features bench --example cholesky_table -- [--max-vertices N] [--min-vertices N]
 //!     [--shape bar|gingerbread] [--variant penalty|dirichlet] [--repeats N]
 //!     [--ordering amd|best]
 //! ```

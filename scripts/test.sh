@@ -25,9 +25,29 @@ check() { # name, command...
   fi
 }
 
+# No import circles: each command runs even if one before it failed (more can be added).
+imports() {
+  local status=0
+  node scripts/check-cycles.mjs --self-test || status=1
+  node scripts/check-cycles.mjs || status=1
+  return $status
+}
+
+# rustdoc with warnings as errors (broken and private links, bad HTML, ...), natively and for
+# wasm32, where src/wasm/ is compiled.
+docs() {
+  local status=0
+  RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet || status=1
+  RUSTDOCFLAGS="-D warnings" with_wasm_toolchain cargo doc --no-deps --quiet --target wasm32-unknown-unknown || status=1
+  return $status
+}
+
 check fmt cargo fmt --all --check
-check clippy cargo clippy --all-targets --quiet -- -D warnings
+check imports imports
+# --features bench: the Cholesky bench and example need it (faer, sprs-ldl).
+check clippy cargo clippy --all-targets --features bench --quiet -- -D warnings
 check clippy-wasm with_wasm_toolchain cargo clippy --target wasm32-unknown-unknown --all-targets --quiet -- -D warnings
+check doc docs
 check cargo-test cargo test --quiet
 check wasm-test with_wasm_toolchain wasm-pack test --node --release --mode no-install
 check typecheck tsc --noEmit -p tsconfig.json

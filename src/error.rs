@@ -1,6 +1,8 @@
-//! The crate's top-level error, one variant per area, each with its own typed error; and
-//! [`ErrorCode`], the stable kind of every error (JavaScript sees it as `error.code`),
-//! defined here once for all the areas' error types.
+//! The crate's top-level error, one variant per area, each with its own typed error, and
+//! its `From` impls: the roof over the areas, which imports them and which none of them
+//! imports. [`ErrorCode`], the stable kind of every error (JavaScript sees it as
+//! `error.code`), is defined in a leaf and re-exported here; each area's error type has its
+//! `code()` beside it.
 
 use std::fmt;
 
@@ -14,9 +16,7 @@ use crate::session::SessionError;
 use crate::sparse::FactorError;
 use crate::triangulate::TriangulationError;
 
-mod code;
-
-pub use code::ErrorCode;
+pub use crate::error_code::ErrorCode;
 
 /// Any error this crate reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -70,30 +70,19 @@ impl std::error::Error for Error {
     }
 }
 
-/// A number in messages and files as a person (and JavaScript) writes it: plain decimals
-/// from 1e-6 to 1e21 (`100`, `0.25`), exponents outside (`1e308`, `1e-7`), never a run of
-/// 300 zeros; always the shortest digits that read back to the same double.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Number(pub(crate) f64);
-
-impl fmt::Display for Number {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let x = self.0;
-        if x == 0.0 || !x.is_finite() || (1e-6..1e21).contains(&x.abs()) {
-            write!(f, "{x}")
-        } else {
-            write!(f, "{x:e}")
+impl Error {
+    /// The kind of error (that of the area's error it holds).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Mesh(e) => e.code(),
+            Self::Triangulation(e) => e.code(),
+            Self::Session(e) => e.code(),
+            Self::Import(e) => e.code(),
+            Self::Deform(e) => e.code(),
+            Self::Factor(e) => e.code(),
+            Self::DefOp(e) => e.code(),
+            Self::Animation(e) => e.code(),
         }
-    }
-}
-
-/// `"a", "b" or "c"`.
-pub(crate) fn one_of(words: &[&str]) -> String {
-    let quoted: Vec<String> = words.iter().map(|w| format!("\"{w}\"")).collect();
-    match quoted.split_last() {
-        Some((last, [])) => last.clone(),
-        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
-        None => "nothing".into(),
     }
 }
 
@@ -148,26 +137,5 @@ impl From<DeformError> for Error {
 impl From<FactorError> for Error {
     fn from(e: FactorError) -> Self {
         Self::Factor(e)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::Number;
-
-    #[test]
-    fn numbers_read_as_written() {
-        let shown = |x: f64| Number(x).to_string();
-        assert_eq!(shown(100.0), "100");
-        assert_eq!(shown(0.25), "0.25");
-        assert_eq!(shown(-1.5), "-1.5");
-        assert_eq!(shown(1e308), "1e308");
-        assert_eq!(shown(1e-300), "1e-300");
-        assert_eq!(shown(1.5e-8), "1.5e-8");
-        assert_eq!(shown(1e-7), "1e-7");
-        assert_eq!(shown(1e-6), "0.000001");
-        assert_eq!(shown(f64::NAN), "NaN");
-        assert_eq!(shown(f64::NEG_INFINITY), "-inf");
-        assert_eq!(shown(4294967295.0), "4294967295");
     }
 }

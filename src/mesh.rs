@@ -14,11 +14,12 @@
 
 use std::fmt;
 
-use crate::error::Number;
+use crate::error_code::ErrorCode;
 use crate::geometry::{
     bounding_box, certain_orient, normalising_exponent, scale_by_power_of_two, triangle_area, Point, MAX_COORDINATE,
     MIN_EXTENT,
 };
+use crate::message::Number;
 
 /// The default vertex limit of everything interactive: triangulation
 /// ([`crate::TriangulationOptions::max_vertices`]) and mesh files
@@ -181,6 +182,17 @@ impl fmt::Display for MeshError {
 }
 
 impl std::error::Error for MeshError {}
+
+impl MeshError {
+    /// The kind of error: [`ErrorCode::Limit`] for too many elements, otherwise
+    /// [`ErrorCode::InvalidMesh`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::TooLarge { .. } => ErrorCode::Limit,
+            _ => ErrorCode::InvalidMesh,
+        }
+    }
+}
 
 /// A point of a mesh, where a handle is: a vertex, or a point of a triangle by its
 /// barycentric coordinates (the deformers' and DefOp's handles, checked by
@@ -573,28 +585,6 @@ mod tests {
         assert_eq!(mesh.edges().count(), 5);
         assert_eq!(mesh.connected_components(), 1);
         assert_eq!(mesh.boundary_vertices().count(), 4);
-    }
-
-    #[test]
-    fn boundary_loops_follow_the_outline_and_each_hole() {
-        // A 3 x 3 grid without its middle square: the outer loop of 12 vertices and the
-        // hole's 4, each a cycle of boundary edges.
-        let grid = crate::shapes::grid_mesh(3, 3);
-        let triangles: Vec<[u32; 3]> =
-            grid.triangles().iter().enumerate().filter(|(t, _)| *t / 2 != 4).map(|(_, t)| *t).collect();
-        let mesh = Mesh::new(grid.positions().to_vec(), triangles).unwrap();
-        let mut loops = mesh.boundary_loops();
-        loops.sort_by_key(Vec::len);
-        assert_eq!(loops.iter().map(Vec::len).collect::<Vec<_>>(), vec![4, 12]);
-        let mut hole = loops[0].clone();
-        hole.sort();
-        assert_eq!(hole, vec![5, 6, 9, 10]);
-        for ring in &loops {
-            for (k, &v) in ring.iter().enumerate() {
-                let w = ring[(k + 1) % ring.len()];
-                assert!(mesh.boundary_edges().contains(&[v, w]), "{v} -> {w}");
-            }
-        }
     }
 
     #[test]

@@ -13,10 +13,11 @@
 
 use std::fmt;
 
-use crate::error::Number;
+use crate::error_code::ErrorCode;
 use crate::geometry::{
     bounding_box, normalising_exponent, polygon_area, scale_by_power_of_two, Point, MAX_COORDINATE, MIN_EXTENT,
 };
+use crate::message::Number;
 use crate::sweep::{sweep, Find, Sweep};
 
 /// A polygon with optional holes. Rings are closed implicitly (the last point connects to
@@ -157,6 +158,17 @@ impl fmt::Display for OutlineError {
 }
 
 impl std::error::Error for OutlineError {}
+
+impl OutlineError {
+    /// The kind of error: [`ErrorCode::Limit`] for too many points, otherwise
+    /// [`ErrorCode::InvalidOutline`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::TooManyPoints { .. } => ErrorCode::Limit,
+            _ => ErrorCode::InvalidOutline,
+        }
+    }
+}
 
 impl Outline {
     /// An outline without holes.

@@ -23,9 +23,10 @@ use spade::{
     mitigate_underflow, AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
-use crate::error::Number;
+use crate::error_code::ErrorCode;
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::{Mesh, MeshError, DEFAULT_MAX_VERTICES, MAX_MESH_ELEMENTS};
+use crate::message::Number;
 use crate::outline::{Outline, OutlineError, Ring};
 
 /// The largest minimum angle accepted, in degrees. Delaunay refinement is only guaranteed
@@ -205,6 +206,19 @@ impl std::error::Error for TriangulationError {
             Self::Outline(e) => Some(e),
             Self::Mesh(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl TriangulationError {
+    /// The kind of error.
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Outline(e) => e.code(),
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
+            Self::ConstraintConflict { .. } => ErrorCode::InvalidOutline,
+            Self::TooManyVertices { .. } => ErrorCode::Limit,
+            Self::Mesh(_) | Self::Internal { .. } => ErrorCode::Internal,
         }
     }
 }

@@ -23,6 +23,7 @@ mod import_svg;
 mod import_svg_art;
 mod killing;
 mod limits;
+mod mesh;
 mod mls;
 mod pose;
 #[cfg(not(target_arch = "wasm32"))]

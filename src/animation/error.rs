@@ -2,8 +2,9 @@
 
 use std::fmt;
 
-use crate::error::Number;
+use crate::error_code::ErrorCode;
 use crate::import::ImportError;
+use crate::message::Number;
 
 /// Why an animation (GIF, APNG, ZIP of frames, `akap-animation` JSON or sprite table)
 /// could not be made or read.
@@ -133,6 +134,29 @@ impl std::error::Error for AnimationError {
         match self {
             Self::Mesh(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl AnimationError {
+    /// The kind of error: [`ErrorCode::Limit`] beyond a size limit, [`ErrorCode::Import`]
+    /// for an animation file that cannot be read, the mesh file's own for its mesh,
+    /// [`ErrorCode::Internal`] should an image encoder fail, otherwise
+    /// [`ErrorCode::InvalidArgument`] (sizes, pixel buffers, delays, file names, an
+    /// animation to write that is not valid, an encoder without frames or finished).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::TooLarge { .. } => ErrorCode::Limit,
+            Self::Syntax { .. } | Self::File { .. } => ErrorCode::Import,
+            Self::Mesh(e) => e.code(),
+            Self::Encoder { .. } => ErrorCode::Internal,
+            Self::Size { .. }
+            | Self::FrameLength { .. }
+            | Self::Delay { .. }
+            | Self::NoFrames
+            | Self::Finished
+            | Self::FileName { .. }
+            | Self::Invalid { .. } => ErrorCode::InvalidArgument,
         }
     }
 }

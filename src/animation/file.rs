@@ -31,10 +31,10 @@
 use serde::{Deserialize, Serialize};
 
 use super::{AnimationError, FPS_RANGE, MAX_FRAMES, MAX_KEYS};
-use crate::error::Number;
 use crate::geometry::{Point, MAX_COORDINATE};
 use crate::import::mesh_file::{self, JsonMesh, MeshFile};
 use crate::import::Limits;
+use crate::message::Number;
 
 /// The format's name, the `format` field.
 pub const FORMAT: &str = "akap-animation";

@@ -22,8 +22,8 @@
 use serde::Serialize;
 
 use super::{AnimationError, FPS_RANGE, MAX_FRAMES};
-use crate::error::Number;
 use crate::import::Limits;
+use crate::message::Number;
 
 /// The format's name, the `format` field.
 pub const FORMAT: &str = "akap-sprites";

@@ -4,8 +4,9 @@
 use std::fmt;
 
 use crate::deform::DeformError;
-use crate::error::Number;
+use crate::error_code::ErrorCode;
 use crate::geometry::MAX_COORDINATE;
+use crate::message::Number;
 use crate::sparse::FactorError;
 
 /// Why a DefOp ground-truth solver refused an input or could not solve.
@@ -152,6 +153,26 @@ impl std::error::Error for DefOpError {
             Self::InvalidHandle(e) => Some(e),
             Self::Factor(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl DefOpError {
+    /// The kind of error: [`ErrorCode::NoConvergence`] when Newton's method ran out of
+    /// iterations, [`ErrorCode::InvalidMesh`] for a mesh in pieces, the handle check's or
+    /// the factorisation's own, [`ErrorCode::Overflow`] for a result beyond the
+    /// coordinates' range, [`ErrorCode::InvalidOption`] for options, otherwise
+    /// [`ErrorCode::InvalidArgument`] (handles, targets, and targets no flip-free pose
+    /// reaches).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
+            Self::Disconnected { .. } => ErrorCode::InvalidMesh,
+            Self::InvalidHandle(e) => e.code(),
+            Self::NoConvergence { .. } => ErrorCode::NoConvergence,
+            Self::Factor(e) => e.code(),
+            Self::NonFiniteResult => ErrorCode::Overflow,
+            _ => ErrorCode::InvalidArgument,
         }
     }
 }

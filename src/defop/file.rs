@@ -49,6 +49,7 @@ use super::basis::{BasisKind, HandleBasis};
 use super::coordinates::HandleCoordinates;
 use super::fit_error::FitError;
 use super::operator::{Operator, Solver};
+use super::sampling::MAX_SAMPLES;
 use super::spatial::MeshPoint;
 use crate::mesh::{Mesh, DEFAULT_MAX_VERTICES};
 
@@ -192,7 +193,7 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
         ("vertex count", nv, 3, max_vertices),
         ("triangle count", nt, 1, 2 * max_vertices),
         ("handle count", n, 1, max_vertices),
-        ("TPS centre count", m, 0, super::train::MAX_SAMPLES as u64 + 1),
+        ("TPS centre count", m, 0, MAX_SAMPLES as u64 + 1),
         ("spatial basis size", phi, 3, max_vertices),
     ];
     for (what, value, low, high) in limits {

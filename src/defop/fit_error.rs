@@ -3,7 +3,9 @@
 
 use std::fmt;
 
-use crate::error::Number;
+use crate::error_code::ErrorCode;
+use crate::message::Number;
+use crate::sparse::eigen::EigenError;
 use crate::sparse::FactorError;
 
 /// Why a deformation operator could not be fitted, or an operator refused an input.
@@ -134,6 +136,26 @@ impl std::error::Error for FitError {
             Self::Eigen(e) => Some(e),
             Self::InvalidHandle(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl FitError {
+    /// The kind of error: [`ErrorCode::InvalidOption`] for options (fixed handles and the
+    /// canonical option included) and too few samples for the basis, the factorisation's
+    /// own, [`ErrorCode::NoConvergence`] for a reduced basis's eigenproblem that did not
+    /// converge, otherwise [`ErrorCode::InvalidArgument`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::InvalidOption { .. }
+            | Self::TooFewSamples { .. }
+            | Self::CanonicalWithFixed
+            | Self::InvalidFixedHandle { .. } => ErrorCode::InvalidOption,
+            Self::Factor(e) => e.code(),
+            Self::InvalidHandle(e) => e.code(),
+            Self::Eigen(EigenError::NotConverged { .. }) => ErrorCode::NoConvergence,
+            Self::Eigen(EigenError::Factor(e)) => e.code(),
+            _ => ErrorCode::InvalidArgument,
         }
     }
 }

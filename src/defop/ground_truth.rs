@@ -85,17 +85,16 @@ use std::sync::Arc;
 
 use super::energy::{Energy, Local, RestTriangle, SignedSvd, KINK_CAP};
 pub use super::error::DefOpError;
-use super::linear::first_root;
+use super::linear::{cholesky, first_root};
 pub use super::problem::{GroundTruthOptions, Handles, SolveReport, Start, MAX_POINT_HANDLES};
 use crate::deform::handles::{at_vertices, check_connected, diagonal, in_triangles, HandlePoint};
-use step::gram_factor;
-
-mod step;
 use crate::deform::pattern::BlockPattern;
 use crate::deform::DeformError;
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point, MAX_COORDINATE};
 use crate::mesh::Mesh;
 use crate::sparse::{expand_blocks, fill_reducing_order, Numeric, Ordering, Symbolic};
+
+mod step;
 
 const NONE: usize = usize::MAX;
 /// A barycentric weight this close to 1 puts a handle on a vertex (as the deformers do).
@@ -786,6 +785,29 @@ fn check_points(what: &'static str, points: &[Point], expected: usize) -> Result
         Some(index) => Err(DefOpError::InvalidPoint { what, index }),
         None => Ok(()),
     }
+}
+
+/// The Cholesky factor of `B B^T` for the handles inside triangles (`B` their weights on
+/// free vertices); a dependent handle is refused.
+fn gram_factor(handles: &[HandlePoint], points: &[usize], fixed: &[bool]) -> Result<Vec<f64>, DefOpError> {
+    let np = points.len();
+    let mut gram = vec![0.0; np * np];
+    for (r, &a) in points.iter().enumerate() {
+        for (c, &b) in points.iter().enumerate() {
+            let (ha, hb) = (&handles[a], &handles[b]);
+            let mut sum = 0.0;
+            for (va, wa) in ha.vertices.iter().zip(ha.weights) {
+                for (vb, wb) in hb.vertices.iter().zip(hb.weights) {
+                    if va == vb && !fixed[*va as usize] {
+                        sum += wa * wb;
+                    }
+                }
+            }
+            gram[r * np + c] = sum;
+        }
+    }
+    cholesky(&mut gram, np).map_err(|r| DefOpError::DependentHandles { handle: points[r] })?;
+    Ok(gram)
 }
 
 /// Two points within `tolerance` of each other, if any (the lower index first): a sweep

@@ -29,6 +29,10 @@ pub enum Sampling {
 /// The default disc radius as a fraction of the shape's bounding-box diagonal.
 pub const DEFAULT_RADIUS_FRACTION: f64 = 0.15;
 
+/// The most samples a training may ask for (a TPS operator holds one function per sample,
+/// so operator files hold at most this many centres).
+pub const MAX_SAMPLES: usize = 100_000;
+
 /// Why a sampler cannot be made.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]

@@ -21,8 +21,10 @@ use super::fit_error::FitError;
 use super::ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, Start};
 use super::operator::Operator;
 use super::reduced::reduced_basis;
+pub use super::sampling::MAX_SAMPLES;
 use super::sampling::{Sampler, Sampling, SamplingError, DEFAULT_RADIUS_FRACTION};
 use super::spatial::{MeshPoint, SpatialBasis};
+use crate::error_code::ErrorCode;
 use crate::geometry::{bounding_box, Point};
 use crate::mesh::Mesh;
 
@@ -71,9 +73,6 @@ impl Default for TrainOptions {
         }
     }
 }
-
-/// The most samples a training may ask for (a TPS operator holds one function per sample).
-pub const MAX_SAMPLES: usize = 100_000;
 
 /// The most memory a training may need for its samples' ground truths and its operator's
 /// coefficients (1 GB; WebAssembly has 4 GB at most).
@@ -174,6 +173,22 @@ impl std::error::Error for TrainError {
             Self::Sampling(e) => Some(e),
             Self::File(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl TrainError {
+    /// The kind of error: that of the ground truth's or the fit's error it holds,
+    /// [`ErrorCode::InvalidOption`] for options, [`ErrorCode::Import`] for an operator file
+    /// that cannot be read, otherwise [`ErrorCode::InvalidArgument`].
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
+            Self::TooLarge { .. } => ErrorCode::Limit,
+            Self::File(_) => ErrorCode::Import,
+            Self::GroundTruth(e) => e.code(),
+            Self::Fit(e) => e.code(),
+            _ => ErrorCode::InvalidArgument,
         }
     }
 }

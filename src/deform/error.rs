@@ -6,8 +6,9 @@
 use std::fmt;
 
 use super::options::Method;
-use crate::error::{one_of, Number};
+use crate::error_code::ErrorCode;
 use crate::geometry::MAX_COORDINATE;
+use crate::message::{one_of, Number};
 use crate::sparse::FactorError;
 
 /// Why the deformer refused an input or a step. The deformer is unchanged after any error.
@@ -330,6 +331,42 @@ impl std::error::Error for DeformError {
         match self {
             Self::Factor(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl DeformError {
+    /// The kind of error: a failed factorisation's own, otherwise by what went wrong.
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Disconnected { .. } => ErrorCode::InvalidMesh,
+            Self::InvalidOption { .. }
+            | Self::WrongMethod { .. }
+            | Self::UnknownMethod { .. }
+            | Self::UnknownOption { .. }
+            | Self::ForeignOption { .. }
+            | Self::OptionValue { .. } => ErrorCode::InvalidOption,
+            Self::VertexOutOfRange { .. }
+            | Self::TriangleOutOfRange { .. }
+            | Self::InvalidBarycentric { .. }
+            | Self::Length { .. }
+            | Self::NonFiniteVelocity { .. }
+            | Self::NonFiniteTurn { .. }
+            | Self::NonFinitePosition { .. }
+            | Self::PositionOutOfRange { .. }
+            | Self::OrdersMismatch { .. }
+            | Self::TooFewHandles { .. }
+            | Self::InvalidCage { .. }
+            | Self::InvalidBone { .. }
+            | Self::InvalidStiffness { .. }
+            | Self::Unsupported { .. }
+            | Self::ForeignCheckpoint { .. }
+            | Self::HandleOutOfRange { .. }
+            | Self::InvalidTarget { .. }
+            | Self::RigMismatch { .. } => ErrorCode::InvalidArgument,
+            Self::Factor(e) => e.code(),
+            Self::NonFiniteResult => ErrorCode::Overflow,
+            Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,
         }
     }
 }

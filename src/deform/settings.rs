@@ -10,7 +10,7 @@ use std::fmt;
 
 use super::error::DeformError;
 use super::options::{methods, Access, Method, MethodOptions, Settings};
-use crate::error::{one_of, Number};
+use crate::message::{one_of, Number};
 
 /// A setting's value as a caller gives it (a JavaScript value, a JSON value, a word on a
 /// command line).

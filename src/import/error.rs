@@ -2,8 +2,9 @@
 
 use std::fmt;
 
-use crate::error::Number;
+use crate::error_code::ErrorCode;
 use crate::mesh::MeshError;
+use crate::message::Number;
 
 /// An element of an SVG document, for error messages: its name, its `id` if it has one, and
 /// where its start tag begins (1-based line and column).
@@ -292,6 +293,34 @@ impl std::error::Error for ImportError {
         match self {
             Self::Mesh(e) => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl ImportError {
+    /// The kind of error: the mesh's own for an invalid mesh in a file, otherwise by what
+    /// went wrong ([`ErrorCode::Import`] for what is wrong with the file itself).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Mesh(e) => e.code(),
+            Self::TooLarge { .. }
+            | Self::TooDeep { .. }
+            | Self::CoordinateTooLarge { .. }
+            | Self::TooManyAttributes { .. }
+            | Self::TooComplex { .. }
+            | Self::TooManyPoints { .. }
+            | Self::TooManyContourPoints { .. } => ErrorCode::Limit,
+            Self::Xml { .. }
+            | Self::Svg { .. }
+            | Self::NotSvg { .. }
+            | Self::NoShapes { .. }
+            | Self::EmptyImage
+            | Self::Syntax { .. }
+            | Self::TextureCoordinates { .. }
+            | Self::Stiffness { .. } => ErrorCode::Import,
+            Self::ImageSize { .. } | Self::Length { .. } | Self::NonFinite { .. } => ErrorCode::InvalidArgument,
+            Self::NonFiniteResult { .. } => ErrorCode::Overflow,
+            Self::InvalidOption { .. } => ErrorCode::InvalidOption,
         }
     }
 }

@@ -21,10 +21,10 @@ use std::fmt::Write;
 use serde::{Deserialize, Serialize};
 
 use crate::deform::STIFFNESS_RANGE;
-use crate::error::Number;
 use crate::geometry::Point;
 use crate::import::{ImportError, Limits};
 use crate::mesh::Mesh;
+use crate::message::Number;
 
 /// A mesh read from a file, with its per-vertex texture coordinates if the file has them.
 #[derive(Debug, Clone, PartialEq)]

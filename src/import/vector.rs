@@ -5,8 +5,8 @@
 
 use std::fmt::Write;
 
-use crate::error::Number;
 use crate::geometry::Point;
+use crate::message::Number;
 
 /// A path command; each takes a fixed number of points from [`VectorPath::points`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -60,6 +60,7 @@ use serde::{Deserialize, Serialize};
 use crate::deform::handles::check_stiffness;
 use crate::deform::settings::is_whole;
 use crate::deform::{AkapOptions, DeformError, Deformer, Method, MethodOptions, SettingValue};
+use crate::error_code::ErrorCode;
 use crate::mesh::{Mesh, MeshError};
 use crate::shapes;
 use crate::triangulate::{triangulate, TriangulationError, TriangulationOptions};
@@ -426,6 +427,27 @@ impl std::error::Error for SessionError {
             Self::Mesh(e) => Some(e),
             Self::Options(e) | Self::Setup(e) | Self::Event { error: e, .. } => Some(e),
             _ => None,
+        }
+    }
+}
+
+impl SessionError {
+    /// The kind of error: the wrapped error's for a shape that does not triangulate,
+    /// invalid options and refused events; [`ErrorCode::Import`] for a session file that
+    /// cannot be read or does not match its shape.
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::Triangulation(e) => e.code(),
+            Self::Mesh(e) => e.code(),
+            Self::Options(e) | Self::Setup(e) | Self::Event { error: e, .. } => e.code(),
+            Self::MissingTargets { .. } => ErrorCode::InvalidArgument,
+            Self::Json(_)
+            | Self::Format { .. }
+            | Self::Version { .. }
+            | Self::NotInVersion1 { .. }
+            | Self::MeshSource
+            | Self::UnknownShape { .. }
+            | Self::MeshMismatch { .. } => ErrorCode::Import,
         }
     }
 }

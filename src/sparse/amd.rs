@@ -28,7 +28,7 @@
 use super::priority::{Queue, Score};
 
 /// "No node": the end of a linked list or an empty bucket.
-pub(super) const NONE: usize = usize::MAX;
+const NONE: usize = usize::MAX;
 
 /// Computes a fill-reducing elimination order for the symmetric pattern of an n x n matrix.
 /// The pattern is given in compressed form: the neighbours of vertex `i` are

@@ -39,10 +39,12 @@ pub use amd::{amd_order, amf_order};
 pub use nested_dissection::nested_dissection_order;
 pub use numeric::Numeric;
 pub use ordering::{
-    cheaper_order, dissection_if_large, expand_blocks, fill_or_dissection, fill_reducing_order, order_flops, Ordering,
+    cheaper_order, dissection_if_large, expand_blocks, fill_or_dissection, fill_reducing_order, order_flops,
     DISSECTION_MIN_NODES,
 };
-pub use symbolic::Symbolic;
+pub use symbolic::{Ordering, Symbolic};
+
+use crate::error_code::ErrorCode;
 
 /// A matrix view in compressed sparse column form with `usize` indices.
 pub type CsMatView<'a> = sprs::CsMatView<'a, f64>;
@@ -131,3 +133,17 @@ impl fmt::Display for FactorError {
 }
 
 impl std::error::Error for FactorError {}
+
+impl FactorError {
+    /// The kind of error: [`ErrorCode::NotPositiveDefinite`] for a failed pivot,
+    /// [`ErrorCode::OutOfMemory`], and otherwise [`ErrorCode::InvalidArgument`] (a matrix,
+    /// ordering or right-hand side that does not fit, or a solve without a factor: only
+    /// direct callers of [`crate::sparse`] can cause these).
+    pub fn code(&self) -> ErrorCode {
+        match self {
+            Self::NotPositiveDefinite { .. } => ErrorCode::NotPositiveDefinite,
+            Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,
+            _ => ErrorCode::InvalidArgument,
+        }
+    }
+}

@@ -1,7 +1,8 @@
 //! The ordering policy: how the unknowns of a system are ordered before its analysis, in
-//! one place. [`Ordering`] is what [`super::Symbolic::analyse`] is told (natural, minimum
-//! degree, minimum fill, or an order computed apart); the rest chooses among the orders of
-//! a graph's nodes (such as a mesh's vertices) for systems with `block` unknowns per node:
+//! one place. [`super::Symbolic::analyse`] is told an [`Ordering`](super::Ordering)
+//! (natural, minimum degree, minimum fill, or an order computed apart, such as one from
+//! here); this module chooses among the orders of a graph's nodes (such as a mesh's
+//! vertices) for systems with `block` unknowns per node:
 //!
 //! - [`order_flops`]: the flops an order of the nodes will need, from the elimination tree
 //!   and column counts of the node graph alone, so that orders are compared before any is
@@ -20,25 +21,6 @@
 use super::amd::amf_order;
 use super::nested_dissection::nested_dissection_order;
 use super::symbolic::order_column_counts;
-
-/// How [`super::Symbolic::analyse`] orders the unknowns. Minimum degree and minimum fill run
-/// on the graph of the matrix's blocks of indistinguishable unknowns (such as the 2 x 2
-/// blocks of a vertex), when it has them, and keep each block together.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub enum Ordering {
-    /// Keep the given order (for tests and for matrices that are already well ordered).
-    Natural,
-    /// Approximate minimum degree on the pattern of `A` (Amestoy, Davis and Duff 1996;
-    /// [`super::amd_order`]).
-    #[default]
-    Amd,
-    /// Approximate minimum mean local fill on the pattern of `A` (Rothberg and Eisenstat
-    /// 1998; [`super::amf_order`]): about twice minimum degree's time, and on the vertex
-    /// graphs of triangle meshes 0.81-0.96x its flops.
-    Amf,
-    /// Eliminate the unknowns in this order: `order[k]` is the original index of the k-th.
-    Given(Vec<usize>),
-}
 
 /// The flops ([`super::Symbolic::flops`]) of factoring a matrix with `block` unknowns per
 /// node of a graph, every pair of adjacent nodes coupled by a full `block x block` block (as

@@ -26,7 +26,8 @@
 use std::cmp::Ordering as Cmp;
 use std::collections::BinaryHeap;
 
-use super::amd::NONE;
+/// An empty link of the buckets' lists, and a variable not in the heap.
+const NONE: usize = usize::MAX;
 
 /// What the pivot of each step minimises.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]

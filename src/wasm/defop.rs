@@ -98,7 +98,7 @@ fn progress_object(p: Progress) -> Result<JsValue, BindingError> {
 
 /// The milliseconds of `performance.now()` (0 where there is none).
 fn now() -> f64 {
-    super::deformer::performance_now()
+    super::performance_now()
 }
 
 /// A deformation operator being trained.

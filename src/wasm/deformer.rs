@@ -3,20 +3,18 @@
 //! steps and the poses, handles, options, stiffness and bones set through it are recorded
 //! while a recording runs, and `advance` is the frame of the interaction loop.
 
-use std::sync::OnceLock;
-
-use js_sys::{Array, Function, Object, Reflect, Uint32Array};
+use js_sys::{Array, Object, Uint32Array};
 use wasm_bindgen::prelude::*;
-use wasm_bindgen::JsCast;
 
 use super::defop::JsDefOp;
 use super::error::BindingError;
 use super::mesh::read_mesh;
+use super::options::deformer_options;
 use super::read::{self, Options};
 use super::session::shape_spec;
-use super::{limits, max_coordinates, object, pairs};
+use super::{limits, max_coordinates, object, pairs, performance_now};
 use crate::deform::foldover::{MAX_CLAMP_TRIALS, MAX_SPLITS};
-use crate::deform::{Deformer, FoldoverGuard, Method, MethodOptions, Orders, SettingValue, Timings};
+use crate::deform::{Deformer, FoldoverGuard, MethodOptions, Orders, Timings};
 use crate::pose::{Poser, MAX_SUBSTEPS};
 
 /// A deformer for one mesh (`crate::deform::Deformer`), of the method the `method` option
@@ -522,50 +520,4 @@ fn foldover_guard(value: &JsValue) -> Result<FoldoverGuard, BindingError> {
         guard.clamp_trials = n as u32;
     }
     Ok(guard)
-}
-
-/// The deformer options' names: `method`, then every method's settings.
-fn names() -> &'static [&'static str] {
-    static NAMES: OnceLock<Vec<&'static str>> = OnceLock::new();
-    NAMES.get_or_init(|| std::iter::once("method").chain(MethodOptions::all_setting_names()).collect())
-}
-
-/// Reads `{ method?, ...settings }` over `base` as [`MethodOptions::over`] makes them: a
-/// different `method` starts from that method's defaults; an unknown key, a setting of
-/// another method and a value of the wrong type are refused.
-pub(super) fn deformer_options(value: &JsValue, base: MethodOptions) -> Result<MethodOptions, BindingError> {
-    let given = Options::read(value, "deformer", names())?;
-    let methods: Vec<(&str, Method)> = Method::all().iter().map(|&m| (m.name(), m)).collect();
-    let method = given.choice("method", &methods)?;
-    let mut values = Vec::new();
-    for name in given.names().filter(|&name| name != "method") {
-        let value = given.get(name).expect("a name given has a value");
-        let value = if let Some(x) = value.as_f64() {
-            SettingValue::Number(x)
-        } else if let Some(b) = value.as_bool() {
-            SettingValue::Bool(b)
-        } else if let Some(w) = value.as_string() {
-            SettingValue::Word(w)
-        } else {
-            return Err(given.wrong_type(name, "a number, true, false or a string", value));
-        };
-        values.push((name, value));
-    }
-    Ok(MethodOptions::over(base, method, values.iter().map(|(name, value)| (*name, value)))?)
-}
-
-thread_local! {
-    static PERFORMANCE: Option<(JsValue, Function)> = {
-        let performance = Reflect::get(&js_sys::global(), &JsValue::from_str("performance")).ok();
-        performance.and_then(|p| {
-            let now = Reflect::get(&p, &JsValue::from_str("now")).ok()?.dyn_into::<Function>().ok()?;
-            Some((p, now))
-        })
-    };
-}
-
-/// `performance.now()` in milliseconds, or 0 where there is no `performance`.
-pub(super) fn performance_now() -> f64 {
-    PERFORMANCE
-        .with(|p| p.as_ref().and_then(|(this, now)| now.call0(this).ok()).and_then(|v| v.as_f64()).unwrap_or(0.0))
 }

@@ -5,7 +5,7 @@ use js_sys::{Object, Reflect};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
-use crate::error::ErrorCode;
+use crate::error_code::ErrorCode;
 
 /// Why a binding refused a call: a stable [`ErrorCode`] and a message. It reaches
 /// JavaScript as an `Error` whose `message` is the message and whose own `code` property

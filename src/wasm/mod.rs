@@ -1,7 +1,7 @@
 //! JavaScript bindings (wasm32 only): the one module that touches wasm-bindgen and js-sys.
 //!
 //! Arrays cross as typed arrays: positions as `Float64Array` with x and y interleaved,
-//! triangles as `Uint32Array` index triples. Every argument is read by [`read`], which
+//! triangles as `Uint32Array` index triples. Every argument is read by `read`, which
 //! checks its type and size (an `Error` naming the argument otherwise) and never lets a
 //! JavaScript exception unwind through Rust frames; every error becomes a JavaScript
 //! `Error` with the message of the Rust error and a stable `code` ([`BindingError`], the
@@ -21,6 +21,7 @@ mod deformer;
 mod error;
 mod import;
 mod mesh;
+mod options;
 mod read;
 mod session;
 
@@ -35,11 +36,11 @@ pub use import::{
 pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, triangulate_to_vertices, JsMesh};
 pub use session::{session_json, session_mesh, JsSessionRecorder};
 
-use js_sys::{Array, Float64Array, Object, Reflect};
+use js_sys::{Array, Float64Array, Function, Object, Reflect};
 use wasm_bindgen::prelude::*;
 
 use crate::deform::STIFFNESS_RANGE;
-use crate::error::ErrorCode;
+use crate::error_code::ErrorCode;
 use crate::import::Limits;
 use crate::outline::Outline;
 
@@ -124,4 +125,20 @@ pub fn js_limits() -> Result<Object, BindingError> {
 #[wasm_bindgen(js_name = errorCodes)]
 pub fn error_codes() -> Array {
     ErrorCode::ALL.iter().map(|code| JsValue::from_str(code.as_str())).collect()
+}
+
+thread_local! {
+    static PERFORMANCE: Option<(JsValue, Function)> = {
+        let performance = Reflect::get(&js_sys::global(), &JsValue::from_str("performance")).ok();
+        performance.and_then(|p| {
+            let now = Reflect::get(&p, &JsValue::from_str("now")).ok()?.dyn_into::<Function>().ok()?;
+            Some((p, now))
+        })
+    };
+}
+
+/// `performance.now()` in milliseconds, or 0 where there is no `performance`.
+fn performance_now() -> f64 {
+    PERFORMANCE
+        .with(|p| p.as_ref().and_then(|(this, now)| now.call0(this).ok()).and_then(|v| v.as_f64()).unwrap_or(0.0))
 }

@@ -22,7 +22,7 @@ use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
 use super::error::BindingError;
-use crate::error::ErrorCode;
+use crate::error_code::ErrorCode;
 
 /// An error saying what the caller passed was wrong, naming the argument.
 pub(super) fn type_error(what: &str, expected: &str, value: &JsValue) -> BindingError {
@@ -230,7 +230,7 @@ impl Options {
         if !(n.fract() == 0.0 && n >= 0.0 && n <= limit as f64) {
             return Err(BindingError::option(format!(
                 "option {name} is {}, expected a whole number from 0 to {limit}",
-                crate::error::Number(n)
+                crate::message::Number(n)
             )));
         }
         Ok(Some(n as usize))
@@ -244,7 +244,7 @@ impl Options {
             return Ok(Some(chosen));
         }
         let words: Vec<&str> = choices.iter().map(|(word, _)| *word).collect();
-        let expected = crate::error::one_of(&words);
+        let expected = crate::message::one_of(&words);
         Err(match text {
             Some(text) if text.len() <= 40 => {
                 BindingError::option(format!("option {name} is {text:?}, expected {expected}"))

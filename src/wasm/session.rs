@@ -5,9 +5,9 @@
 
 use wasm_bindgen::prelude::*;
 
-use super::deformer::deformer_options;
 use super::error::BindingError;
 use super::mesh::{read_mesh, JsMesh};
+use super::options::deformer_options;
 use super::read::{self, Options};
 use super::{limits, max_coordinates};
 use crate::deform::handles::check_stiffness;

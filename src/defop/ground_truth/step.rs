@@ -6,7 +6,6 @@
 use super::{GroundTruth, REGULARISATION};
 use crate::defop::error::DefOpError;
 use crate::defop::linear::{cholesky, cholesky_solve};
-use crate::deform::handles::HandlePoint;
 
 impl GroundTruth {
     /// Factors the assembled matrix, with more regularisation if a pivot fails.
@@ -101,27 +100,4 @@ impl GroundTruth {
         }
         self.work.iter().enumerate().filter(|(d, _)| !self.fixed[d / 2]).fold(0.0, |m, (_, g)| m.max(g.abs()))
     }
-}
-
-/// The Cholesky factor of `B B^T` for the handles inside triangles (`B` their weights on
-/// free vertices); a dependent handle is refused.
-pub(super) fn gram_factor(handles: &[HandlePoint], points: &[usize], fixed: &[bool]) -> Result<Vec<f64>, DefOpError> {
-    let np = points.len();
-    let mut gram = vec![0.0; np * np];
-    for (r, &a) in points.iter().enumerate() {
-        for (c, &b) in points.iter().enumerate() {
-            let (ha, hb) = (&handles[a], &handles[b]);
-            let mut sum = 0.0;
-            for (va, wa) in ha.vertices.iter().zip(ha.weights) {
-                for (vb, wb) in hb.vertices.iter().zip(hb.weights) {
-                    if va == vb && !fixed[*va as usize] {
-                        sum += wa * wb;
-                    }
-                }
-            }
-            gram[r * np + c] = sum;
-        }
-    }
-    cholesky(&mut gram, np).map_err(|r| DefOpError::DependentHandles { handle: points[r] })?;
-    Ok(gram)
 }

@@ -55,15 +55,13 @@ use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two,
 use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
 
+mod laplacian;
 mod turning;
 mod weights;
 
-use weights::laplacian_of;
+use laplacian::laplacian_of;
 
 const NONE: usize = usize::MAX;
-
-/// Penalty weight of handles inside triangles, relative to the mean diagonal of `L`.
-const PENALTY: f64 = 1e6;
 
 /// A weight this close to 1 puts a handle on a vertex (a hard constraint).
 const AT_VERTEX: f64 = 1e-12;

@@ -29,7 +29,7 @@ use std::collections::HashMap;
 
 use roxmltree::{Document, Node, ParsingOptions};
 
-pub use tree::Part;
+pub use tree::{FillColour, Part, SvgPath};
 
 use crate::geometry::bounding_box;
 use crate::import::error::{ElementRef, ImportError};
@@ -96,39 +96,6 @@ impl SvgOptions {
         }
         self.limits.validate()
     }
-}
-
-/// A colour with its alpha: every opacity on the way from the root folded in.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FillColour {
-    /// Red, 0-255.
-    pub red: u8,
-    /// Green, 0-255.
-    pub green: u8,
-    /// Blue, 0-255.
-    pub blue: u8,
-    /// Alpha, 0-1.
-    pub alpha: f64,
-}
-
-/// One filled area's geometry (an element's fill, or its stroke's outline), in output
-/// coordinates, for exporting the art deformed.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SvgPath {
-    /// The element it comes from (its position is known when it has an `id`).
-    pub element: ElementRef,
-    /// Its path: cubics, quadratics and lines as usvg resolved them; where a clip path or a
-    /// mask applies, the clipped area's flattened outline.
-    pub path: VectorPath,
-    /// Its fill rule (non-zero for stroke outlines).
-    pub fill_rule: FillRule,
-    /// Its colour (the fill's or the stroke's), with the paint's opacity and every group
-    /// `opacity` on the way from the root folded into the alpha (exact where the group's
-    /// shapes do not overlap); `None` when the paint is a gradient or a pattern (the area
-    /// still counts).
-    pub fill: Option<FillColour>,
-    /// Whether it is the element's fill or its stroke.
-    pub part: Part,
 }
 
 /// What an SVG document gave.

@@ -1,6 +1,7 @@
 //! The drawing as usvg resolves it (CSS, `<use>`, units, transforms, `switch`, markers,
-//! paint references), turned into the paths our downstream steps take, in output
-//! coordinates (the root's user units, y up).
+//! paint references), turned into the paths our downstream steps take ([`SvgPath`]: the
+//! geometry, fill rule, [`FillColour`] and [`Part`] of each), in output coordinates (the
+//! root's user units, y up).
 //!
 //! - Visible fills become filled paths with their rule and colour.
 //! - Visible strokes become their outlines (dashes first, then tiny-skia's stroker: width,
@@ -14,9 +15,41 @@
 
 use tiny_skia_path::{PathSegment, Transform};
 
-use super::{FillColour, SvgPath};
 use crate::import::error::ElementRef;
 use crate::import::vector::{FillRule, VectorPath, Verb};
+
+/// A colour with its alpha: every opacity on the way from the root folded in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FillColour {
+    /// Red, 0-255.
+    pub red: u8,
+    /// Green, 0-255.
+    pub green: u8,
+    /// Blue, 0-255.
+    pub blue: u8,
+    /// Alpha, 0-1.
+    pub alpha: f64,
+}
+
+/// One filled area's geometry (an element's fill, or its stroke's outline), in output
+/// coordinates, for exporting the art deformed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SvgPath {
+    /// The element it comes from (its position is known when it has an `id`).
+    pub element: ElementRef,
+    /// Its path: cubics, quadratics and lines as usvg resolved them; where a clip path or a
+    /// mask applies, the clipped area's flattened outline.
+    pub path: VectorPath,
+    /// Its fill rule (non-zero for stroke outlines).
+    pub fill_rule: FillRule,
+    /// Its colour (the fill's or the stroke's), with the paint's opacity and every group
+    /// `opacity` on the way from the root folded into the alpha (exact where the group's
+    /// shapes do not overlap); `None` when the paint is a gradient or a pattern (the area
+    /// still counts).
+    pub fill: Option<FillColour>,
+    /// Whether it is the element's fill or its stroke.
+    pub part: Part,
+}
 
 /// What a path contributes: its fill, or its stroke's outline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
