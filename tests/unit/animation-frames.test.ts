@@ -8,11 +8,11 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { Deformer, init } from "../../www/src/index.js";
-import { AnimationFrames } from "../../www/src/widget/animation.js";
-import { Animator } from "../../www/src/widget/animator.js";
+import { AnimationFrames } from "../../www/src/widget/animation/frames.js";
+import { Animator } from "../../www/src/widget/animation/playback.js";
 import { posed, dragTo } from "./posing-fixtures.js";
-import type { Posing } from "../../www/src/widget/posing.js";
-import { Rig } from "../../www/src/widget/rig.js";
+import type { Posing } from "../../www/src/widget/model/posing.js";
+import { Rig } from "../../www/src/widget/model/rig.js";
 import { trainDefOp } from "../../www/src/index.js";
 
 beforeAll(async () => {

@@ -4,9 +4,9 @@
  */
 import { limits, type DeformerOptions, type Metrics, type Outline, type Timings, type WasmSource } from "../core.js";
 import { coded } from "../internal/arrays.js";
-import type { RigTrainOptions } from "./rig.js";
-import { DEFAULT_FPS, checkFps } from "./timeline.js";
-import { BRUSH_SIZE_RANGE, DEFAULT_BRUSH, type BrushSettings } from "./stiffness.js";
+import type { RigTrainOptions } from "./model/rig.js";
+import { DEFAULT_FPS, checkFps } from "./animation/timeline.js";
+import { BRUSH_SIZE_RANGE, DEFAULT_BRUSH, type BrushSettings } from "./model/stiffness.js";
 
 /**
  * The deformation methods the widget offers: AKAP and the paper's ablations (Figure 8),

@@ -3,10 +3,10 @@
  * order, painted stiffness and bones (README "Embedding"). {@link Widget} extends it and
  * gives it the parts it acts on.
  */
-import type { Brush } from "./brush.js";
+import type { Brush } from "./input/tool-state.js";
 import type { WidgetSettings, WidgetTool } from "./options.js";
-import type { Posing } from "./posing.js";
-import { unpainted, type BrushSettings } from "./stiffness.js";
+import type { Posing } from "./model/posing.js";
+import { unpainted, type BrushSettings } from "./model/stiffness.js";
 
 /** What the tools act on: the widget's posing, brush and settings, its undo and its status line. */
 export interface ToolParts {

@@ -20,9 +20,9 @@ import {
   type Metrics,
   type Outline,
 } from "../core.js";
-import { posedMesh, posedSvg } from "./export.js";
-import { FrameLoop, type FrameHost } from "./frames.js";
-import { ShapeLoader, replaySession, type LoaderHost } from "./loading.js";
+import { posedMesh, posedSvg } from "./store/pose-export.js";
+import { FrameLoop, type FrameHost } from "./view/frame-loop.js";
+import { ShapeLoader, replaySession, type LoaderHost } from "./shapes/shape-loader.js";
 
 import {
   METHODS,
@@ -32,27 +32,27 @@ import {
   type WidgetOptions,
   type WidgetSettings,
 } from "./options.js";
-import { WorkKeeper, WorkStore, type SavedWork } from "./persist.js";
-import { locate } from "./picking.js";
-import { WidgetInput, inputHost } from "./input.js";
-import { Posing } from "./posing.js";
-import { Rigging, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
+import { WorkKeeper, WorkStore, type SavedWork } from "./store/work-store.js";
+import { locate } from "./model/picking.js";
+import { WidgetInput, inputHost } from "./input/widget-input.js";
+import { Posing } from "./model/posing.js";
+import { Rigging, type RigInfo, type WidgetTrainOptions } from "./rigs/rig-manager.js";
 import type { TrainProgress } from "../defop-pool.js";
-import { parseSession, type Session } from "./session.js";
-import { widgetToolbar } from "./actions.js";
-import { meshOutline, type Shape } from "./shape.js";
-import { fetchFile, fileKind, fileLimits, loadImage } from "./sources.js";
-import { messageOf } from "./status.js";
-import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
-import { defaultTexture } from "./texture.js";
-import { Brush, type BrushHost } from "./brush.js";
+import { parseSession, type Session } from "../session.js";
+import { widgetToolbar } from "./actions/toolbar-actions.js";
+import { meshOutline, type Shape } from "./model/shape.js";
+import { fetchFile, fileKind, fileLimits, loadImage } from "./shapes/shape-files.js";
+import { messageOf } from "./view/status-line.js";
+import { COMPACT_WIDTH, Stage, widgetShell } from "./view/stage.js";
+import { defaultTexture } from "./view/default-texture.js";
+import { Brush, type BrushHost } from "./input/tool-state.js";
 import { WidgetTools, type ToolParts } from "./tools-api.js";
-import { Animating, type AnimatingHost, type AnimationExport } from "./animating.js";
-import type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
-import type { KeyInfo } from "./animator.js";
-import type { Easing } from "./timeline.js";
-import type { Toolbar } from "./toolbar.js";
-import type { View } from "./view.js";
+import { Animating, type AnimatingHost, type AnimationExport } from "./animation/controller.js";
+import type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation/formats.js";
+import type { KeyInfo } from "./animation/playback.js";
+import type { Easing } from "./animation/timeline.js";
+import type { Toolbar } from "./chrome/toolbar.js";
+import type { View } from "./view/projection.js";
 
 export {
   METHODS,
@@ -62,12 +62,12 @@ export {
   type WidgetOptions,
   type WidgetTool,
 } from "./options.js";
-export type { BrushSettings } from "./stiffness.js";
-export type { RigInfo, WidgetTrainOptions } from "./rigging.js";
-export type { AnimationExport } from "./animating.js";
-export type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
-export type { KeyInfo } from "./animator.js";
-export type { Easing } from "./timeline.js";
+export type { BrushSettings } from "./model/stiffness.js";
+export type { RigInfo, WidgetTrainOptions } from "./rigs/rig-manager.js";
+export type { AnimationExport } from "./animation/controller.js";
+export type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation/formats.js";
+export type { KeyInfo } from "./animation/playback.js";
+export type { Easing } from "./animation/timeline.js";
 
 /** What the widget's helpers see of it. */
 type WidgetParts = FrameHost & LoaderHost & BrushHost & AnimatingHost;

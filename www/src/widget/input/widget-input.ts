@@ -1,0 +1,367 @@
+/**
+ * The widget's input: pointer gestures on the shape (handles or the stiffness brush, and
+ * the view's pan and zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan
+ * (tapped: play or pause the animation),
+ * and files dropped on the stage. What each gesture changes is the posing's and the
+ * widget's; this file only routes.
+ */
+import { boneAt, boneEnds } from "../model/bones.js";
+import type { Brush } from "./tool-state.js";
+import type { Camera } from "../view/camera.js";
+import { keyCommand, keyFocus } from "../actions/keys.js";
+import { HANDLE_RADIUS, RING_RADIUS } from "../view/overlay.js";
+import { locate, nearestPoint } from "../model/picking.js";
+import { PointerInput } from "./pointer-events.js";
+import type { WidgetSettings } from "../options.js";
+import type { Posing } from "../model/posing.js";
+import type { Stage } from "../view/stage.js";
+import type { Toolbar } from "../chrome/toolbar.js";
+import type { Widget } from "../widget.js";
+import { fromPixel } from "../view/projection.js";
+
+/** What the input needs of the widget. */
+export interface InputHost {
+  readonly posing: Posing;
+  readonly camera: Camera;
+  /** The focusable root (keys) and the overlay canvas (pointers, drops). */
+  readonly root: HTMLElement;
+  readonly overlay: HTMLCanvasElement;
+  /** Device pixels per CSS pixel. */
+  ratio(): number;
+  /** Client (CSS) pixels to device pixels of the canvas. */
+  devicePixel(clientX: number, clientY: number): [number, number];
+  draw(): void;
+  /** A handle moved: frames are wanted, and the loop must not settle yet. */
+  moved(): void;
+  /** An action succeeded (messages are out of date). */
+  succeeded(): void;
+  /** An action failed: its message is shown. */
+  failed(error: unknown): void;
+  gesture(change: () => void): void;
+  removeHandle(index: number): void;
+  undo(): void;
+  redo(): void;
+  zoom(factor: number | "fit"): void;
+  toggleDisplay(what: "wireframe" | "field"): void;
+  /** The selected handles' parts to the front (1) or the back (-1). */
+  reorder(step: 1 | -1): void;
+  /** The stiffness brush: on and off (B), its size ([ and ]), its outline at the pointer. */
+  readonly brush: Brush;
+  /** Opens or closes the help (toggles without an argument); whether it is open. */
+  help(open?: boolean): void;
+  helpOpen(): boolean;
+  dropped(file: File): void;
+  /** The animation: capture a key (K), play or pause (a tap of Space). */
+  animate(what: "capture" | "play"): void;
+}
+
+/** What {@link inputHost} reads of the widget's parts (see `widget.ts`). */
+export interface InputParts {
+  readonly posing: Posing;
+  readonly stage: Stage;
+  readonly settings: WidgetSettings;
+  readonly root: HTMLElement;
+  readonly toolbar: Toolbar | undefined;
+  draw(): void;
+  gesture(change: () => void): void;
+  showError(error: unknown): void;
+}
+
+/** The input's host for a widget: its public API, its parts, and what only it has. */
+export function inputHost(
+  widget: Pick<
+    Widget,
+    "removeHandle" | "undo" | "redo" | "zoom" | "setDisplay" | "bringForward" | "sendBack" | "loadFile"
+  >,
+  parts: InputParts,
+  own: Pick<InputHost, "moved" | "brush" | "help" | "animate">,
+): InputHost {
+  const { stage, settings } = parts;
+  return {
+    ...own,
+    posing: parts.posing,
+    camera: stage.camera,
+    root: parts.root,
+    overlay: stage.overlay,
+    ratio: () => stage.ratio,
+    devicePixel: (x, y) => stage.devicePixel(x, y),
+    draw: () => parts.draw(),
+    succeeded: () => stage.status.succeeded(),
+    failed: (error) => parts.showError(error),
+    gesture: (change) => parts.gesture(change),
+    removeHandle: (index) => widget.removeHandle(index),
+    undo: () => widget.undo(),
+    redo: () => widget.redo(),
+    zoom: (factor) => widget.zoom(factor),
+    toggleDisplay: (what) => {
+      widget.setDisplay({ [what]: !settings[what] });
+      parts.toolbar?.sync(settings);
+    },
+    reorder: (step) => (step > 0 ? widget.bringForward() : widget.sendBack()),
+    helpOpen: () => stage.help.open,
+    dropped: (file) => widget.loadFile(file).catch((error: unknown) => parts.showError(error)),
+  };
+}
+
+export class WidgetInput {
+  readonly #host: InputHost;
+  readonly #pointer: PointerInput;
+  #spaceHeld = false;
+  /** The view was panned while Space was held (then its release does not play). */
+  #spacePanned = false;
+
+  constructor(host: InputHost) {
+    this.#host = host;
+    const posing = host.posing;
+    const radius = () => (1.6 * HANDLE_RADIUS * host.ratio()) / host.camera.view.scale;
+    this.#pointer = new PointerInput(host.overlay, {
+      accepting: () => !posing.replaying,
+      focus: () => host.root.focus({ preventScroll: true }),
+      toShape: (clientX, clientY) => fromPixel(host.camera.view, ...host.devicePixel(clientX, clientY)),
+      handleAt: (x, y) => nearestPoint(posing.deformer.handlePositions(), x, y, radius()),
+      beginGesture: () => posing.beginGesture(),
+      addHandleAt: (x, y) => {
+        const tolerance = (4 * host.ratio()) / host.camera.view.scale;
+        const point = locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, tolerance);
+        if (!point) return -1;
+        posing.addHandle(point);
+        posing.markChanged();
+        host.succeeded();
+        return posing.handles.length - 1;
+      },
+      ringAt: (x, y) => {
+        const p = posing.deformer.handlePositions();
+        const px = host.ratio() / host.camera.view.scale;
+        return posing.handles.findIndex((h, i) => {
+          const d = Math.hypot(p[2 * i]! - x, p[2 * i + 1]! - y) / px;
+          return h.selected && Math.abs(d - RING_RADIUS * HANDLE_RADIUS) <= 0.6 * HANDLE_RADIUS;
+        });
+      },
+      grabTurn: (index, pointerId, x, y) => {
+        const grabbed = posing.grabTurn(index, pointerId, x, y);
+        if (grabbed) host.draw();
+        return grabbed;
+      },
+      turn: (pointerId, x, y) => {
+        posing.dragTurn(pointerId, x, y);
+        posing.markChanged();
+        host.moved();
+      },
+      grab: (index, pointerId, x, y, additive) => {
+        const grabbed = posing.grab(index, pointerId, x, y, additive);
+        if (grabbed) host.draw();
+        return grabbed;
+      },
+      drag: (pointerId, x, y) => {
+        posing.drag(pointerId, x, y);
+        host.moved();
+      },
+      release: (pointerId) => {
+        posing.release(pointerId);
+        host.draw();
+      },
+      removeHeld: (pointerId) => {
+        posing.removeHeld(pointerId);
+        host.draw();
+      },
+      removeAt: (x, y) => {
+        const index = nearestPoint(posing.deformer.handlePositions(), x, y, radius());
+        if (index >= 0) host.removeHandle(index);
+      },
+      pressedOff: (additive) => {
+        if (!additive) posing.handles.forEach((h) => (h.selected = false));
+        posing.endDragGesture();
+        host.draw();
+      },
+      painting: () => posing.settings.tool !== "pose",
+      paint: (_pointerId, x, y, erase) => {
+        if (posing.settings.tool === "bone") {
+          this.#drawBone(x, y, erase);
+          return;
+        }
+        const { size, value } = posing.settings.brush;
+        if (posing.paint(x, y, (size * host.ratio()) / host.camera.view.scale, erase ? 1 : value)) {
+          posing.markChanged();
+        }
+        host.brush.hover([x, y]);
+      },
+      paintEnd: () => {
+        try {
+          if (posing.settings.tool === "bone") this.#endBone();
+          posing.flushStiffness();
+        } catch (error) {
+          host.failed(error);
+        } finally {
+          posing.endDragGesture();
+          host.draw();
+        }
+      },
+      hover: (at) => host.brush.hover(at),
+      pressedWith: (touch) => {
+        host.brush.touch = touch;
+      },
+      panMode: () => this.#spaceHeld,
+      pan: (dx, dy) => {
+        if (this.#spaceHeld) this.#spacePanned = true;
+        host.camera.pan(dx * host.ratio(), dy * host.ratio());
+        host.draw();
+      },
+      zoom: (clientX, clientY, factor) => {
+        host.camera.zoom(...host.devicePixel(clientX, clientY), factor);
+        host.draw();
+      },
+    });
+    host.root.addEventListener("keydown", (e) => this.#key(e));
+    host.root.addEventListener("keyup", (e) => {
+      if (e.key !== " " || !this.#spaceHeld) return;
+      // A tap of Space (no pan while it was held) plays or pauses the animation.
+      if (!this.#spacePanned && keyFocus(e.composedPath()[0] ?? null) === "other") host.animate("play");
+      this.#setSpace(false);
+    });
+    host.root.addEventListener("blur", () => this.#setSpace(false), true);
+    // Files dropped on the stage load like the Open button's.
+    host.overlay.addEventListener("dragover", (e) => {
+      if (e.dataTransfer?.types.includes("Files")) e.preventDefault();
+    });
+    host.overlay.addEventListener("drop", (e) => {
+      const file = e.dataTransfer?.files[0];
+      if (!file) return;
+      e.preventDefault();
+      host.dropped(file);
+    });
+  }
+
+  destroy(): void {
+    this.#pointer.destroy();
+  }
+
+  /**
+   * The bone tool's press (or drag) at a shape point: a press starts a bone there and a
+   * drag stretches it to the pointer; with Alt, a press removes the bone under it.
+   */
+  #drawBone(x: number, y: number, erase: boolean): void {
+    const { posing, brush } = this.#host;
+    if (brush.boneDraft) {
+      brush.boneDraft = [brush.boneDraft[0], brush.boneDraft[1], x, y];
+    } else if (erase) {
+      const index = boneAt(this.#boneEnds(), x, y, this.#pixels(6));
+      if (index >= 0) {
+        posing.bones.set(posing.bones.list.filter((_, k) => k !== index));
+        posing.markChanged();
+      }
+      return;
+    } else {
+      brush.boneDraft = [x, y, x, y];
+    }
+    this.#host.draw();
+  }
+
+  /** The bone tool's release: the bone drawn is added (if it is longer than a few pixels). */
+  #endBone(): void {
+    const { posing, brush } = this.#host;
+    const draft = brush.boneDraft;
+    brush.boneDraft = undefined;
+    this.#host.draw();
+    if (!draft || Math.hypot(draft[2] - draft[0], draft[3] - draft[1]) < this.#pixels(8)) return;
+    const at = (x: number, y: number) =>
+      locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, this.#pixels(4));
+    const [from, to] = [at(draft[0], draft[1]), at(draft[2], draft[3])];
+    if (!from || !to) throw new Error("a bone's ends must lie on the shape");
+    posing.bones.set([...posing.bones.list, { ends: [from, to] }]);
+    posing.markChanged();
+    this.#host.succeeded();
+  }
+
+  #boneEnds(): Float64Array {
+    const { posing } = this.#host;
+    return boneEnds(posing.bones.list, posing.deformer.positionsView(), posing.shape.mesh.triangles);
+  }
+
+  /** Shape units in `n` CSS pixels at the current zoom. */
+  #pixels(n: number): number {
+    return (n * this.#host.ratio()) / this.#host.camera.view.scale;
+  }
+
+  #setSpace(held: boolean): void {
+    this.#spaceHeld = held;
+    this.#host.overlay.classList.toggle("panning", held);
+  }
+
+  #key(e: KeyboardEvent): void {
+    const host = this.#host;
+    const focus = keyFocus(e.composedPath()[0] ?? null);
+    if (e.key === " " && focus === "other") {
+      e.preventDefault();
+      if (!e.repeat && !this.#spaceHeld) this.#spacePanned = false;
+      this.#setSpace(true);
+      return;
+    }
+    const command = keyCommand(e, focus);
+    if (!command) return;
+    e.preventDefault();
+    const posing = host.posing;
+    switch (command.kind) {
+      case "undo":
+        host.undo();
+        break;
+      case "redo":
+        host.redo();
+        break;
+      case "delete": {
+        const keep = posing.handles.filter((h) => !h.selected);
+        if (keep.length < posing.handles.length) {
+          host.gesture(() => {
+            posing.handles = keep;
+            posing.applyHandles();
+          });
+        }
+        break;
+      }
+      case "nudge": {
+        const selected = posing.handles.filter((h) => h.selected);
+        const unit = host.ratio() / host.camera.view.scale;
+        const [dx, dy] = [command.dx * unit, command.dy * unit];
+        if (selected.length === 0) break;
+        host.gesture(() => {
+          for (const h of selected) {
+            h.target = [h.target[0] + dx, h.target[1] + dy];
+            h.pending = [h.pending[0] + dx, h.pending[1] + dy];
+          }
+        });
+        break;
+      }
+      case "deselect":
+        if (host.helpOpen()) host.help(false);
+        posing.handles.forEach((h) => (h.selected = false));
+        host.draw();
+        break;
+      case "toggle":
+        host.toggleDisplay(command.what);
+        break;
+      case "fit":
+        host.zoom("fit");
+        break;
+      case "zoom":
+        host.zoom(command.factor);
+        break;
+      case "help":
+        host.help();
+        break;
+      case "layer":
+        host.reorder(command.step);
+        break;
+      case "brush":
+        host.brush.toggle();
+        break;
+      case "bones":
+        host.brush.toggle("bone");
+        break;
+      case "brush-size":
+        host.brush.resize(command.factor);
+        break;
+      case "capture-key":
+        host.animate("capture");
+        break;
+    }
+  }
+}
