@@ -2,13 +2,11 @@
  * A trained rig: a deformation operator ({@link DefOp}) with the shape and the handles it
  * was trained for, which poses that shape in closed form. It poses only while the shape
  * and the handles are those (same rest mesh, same handle points in the same order); any
- * other handle set makes it stale. Rigs are cached in the browser by their content (rest
- * mesh, handle points, training options), so a reload or a return to the same handles does
- * not train again.
+ * other handle set makes it stale. {@link rigKey} names a training by its content (rest
+ * mesh, handle points, training options), which `rigs/rig-cache.ts` keeps rigs under.
  */
 import { DefOp, type DefOpTrainerOptions } from "../../defop.js";
 import type { MeshData } from "../../core.js";
-import { KeyedStore } from "../store/work-store.js";
 import { pointPosition, type MeshPoint } from "./picking.js";
 import type { Shape } from "./shape.js";
 
@@ -156,55 +154,4 @@ export async function rigKey(
   }
   const digest = new Uint8Array(await subtle.digest("SHA-256", bytes));
   return Array.from(digest, (b) => b.toString(16).padStart(2, "0")).join("");
-}
-
-/** What the cache keeps of a rig. */
-interface CachedRig {
-  format: "akap-rig";
-  version: 1;
-  bytes: Uint8Array;
-  radius: number;
-  options: RigTrainOptions;
-  savedAt: number;
-}
-
-/** Rigs kept at most; the oldest go first. */
-const CACHED_RIGS = 16;
-
-/** Trained rigs in the browser's IndexedDB, by {@link rigKey}. */
-export class RigCache {
-  readonly #store = new KeyedStore("rigs");
-
-  /** The rig cached under `key` for `mesh` and `points`, or undefined. */
-  async load(key: string, mesh: MeshData, points: readonly MeshPoint[]): Promise<Rig | undefined> {
-    const cached = (await this.#store.get(key)) as Partial<CachedRig> | undefined;
-    if (cached?.format !== "akap-rig" || cached.version !== 1 || !(cached.bytes instanceof Uint8Array))
-      return undefined;
-    const operator = DefOp.fromBytes(cached.bytes);
-    try {
-      return new Rig(operator, mesh, points, { radius: cached.radius, options: cached.options, source: "cache" });
-    } catch (error) {
-      operator.free();
-      throw error;
-    }
-  }
-
-  async save(key: string, rig: Rig): Promise<void> {
-    const entry: CachedRig = {
-      format: "akap-rig",
-      version: 1,
-      bytes: rig.toBytes(),
-      radius: rig.radius ?? 0,
-      options: rig.options ?? {},
-      savedAt: Date.now(),
-    };
-    await this.#store.put(key, entry);
-    const keys = await this.#store.keys();
-    if (keys.length <= CACHED_RIGS) return;
-    const dated = await Promise.all(
-      keys.map(async (k) => ({ k, at: ((await this.#store.get(k)) as Partial<CachedRig> | undefined)?.savedAt ?? 0 })),
-    );
-    dated.sort((a, b) => a.at - b.at);
-    for (const { k } of dated.slice(0, keys.length - CACHED_RIGS)) await this.#store.delete(k);
-  }
 }

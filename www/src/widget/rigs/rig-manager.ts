@@ -9,7 +9,8 @@ import { solveGroundTruth, trainDefOp, type TrainProgress } from "../../defop-po
 import { coded } from "../../internal/arrays.js";
 import { newHandle, type Posing } from "../model/posing.js";
 import { shapeFromMesh } from "../model/shape.js";
-import { Rig, RigCache, rigKey, type RigTrainOptions } from "../model/rig.js";
+import { Rig, rigKey, type RigTrainOptions } from "../model/rig.js";
+import { RigCache } from "./rig-cache.js";
 import { fetchFile } from "../shapes/shape-files.js";
 import type { BusyIndicator } from "../view/status-line.js";
 

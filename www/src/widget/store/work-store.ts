@@ -9,12 +9,28 @@ import { builtinShape, meshFromArrays, triangulate } from "../../core.js";
 import type { VectorPath } from "../../import.js";
 import type { ShapeSpec } from "../../session.js";
 import { shapeFromMesh, type Shape } from "../model/shape.js";
-import type { ToolbarSettings } from "../chrome/toolbar.js";
 import { METHODS, type MethodPreset, type WidgetSettings } from "../options.js";
 import type { HandleState, Posing } from "../model/posing.js";
+import { KeyedStore } from "./database.js";
 
-/** Settings that come back with the work: those the toolbar shows. */
-export type SavedSettings = ToolbarSettings;
+/** Settings that come back with the work: those the toolbar shows (the method as read: checked on restoring). */
+export type SavedSettings = Pick<
+  WidgetSettings,
+  | "vertices"
+  | "minAngle"
+  | "lambda"
+  | "wireframe"
+  | "field"
+  | "flipped"
+  | "paperMode"
+  | "noFoldovers"
+  | "hud"
+  | "region"
+  | "compare"
+  | "training"
+  | "tool"
+  | "brush"
+> & { method: string };
 
 export type SavedShape =
   | { kind: "builtin"; spec: ShapeSpec }
@@ -50,67 +66,6 @@ export interface SavedAnimation {
   fps: number;
   handles: { triangles: number[]; barycentric: number[] };
   keys: { time: number; easing: "linear" | "ease"; targets: Float64Array; pose: Float64Array }[];
-}
-
-const DATABASE = "akap";
-/** The object stores: the work (by the page's key) and trained rigs (by their content, `rig.ts`). */
-const STORES = ["work", "rigs"] as const;
-
-let database: Promise<IDBDatabase> | undefined;
-
-/** The page's database of the widget, opened once (version 2 added the rigs). */
-function openDatabase(): Promise<IDBDatabase> {
-  database ??= new Promise((resolve, reject) => {
-    if (typeof indexedDB === "undefined") {
-      reject(new Error("this browser has no IndexedDB"));
-      return;
-    }
-    const request = indexedDB.open(DATABASE, 2);
-    request.onupgradeneeded = () => {
-      for (const name of STORES) {
-        if (!request.result.objectStoreNames.contains(name)) request.result.createObjectStore(name);
-      }
-    };
-    request.onsuccess = () => resolve(request.result);
-    request.onerror = () => reject(new Error(`the browser's storage refused: ${request.error?.message}`));
-  });
-  database.catch(() => (database = undefined));
-  return database;
-}
-
-/** Values by key in one object store of the widget's database; every failure is an `Error` saying why. */
-export class KeyedStore {
-  readonly #store: (typeof STORES)[number];
-
-  constructor(store: (typeof STORES)[number]) {
-    this.#store = store;
-  }
-
-  get(key: string): Promise<unknown> {
-    return this.#request("readonly", (store) => store.get(key));
-  }
-
-  async put(key: string, value: unknown): Promise<void> {
-    await this.#request("readwrite", (store) => store.put(value, key));
-  }
-
-  async delete(key: string): Promise<void> {
-    await this.#request("readwrite", (store) => store.delete(key));
-  }
-
-  /** Every key in the store. */
-  async keys(): Promise<string[]> {
-    return (await this.#request("readonly", (store) => store.getAllKeys())) as string[];
-  }
-
-  async #request(mode: IDBTransactionMode, make: (store: IDBObjectStore) => IDBRequest): Promise<unknown> {
-    const db = await openDatabase();
-    return new Promise((resolve, reject) => {
-      const request = make(db.transaction(this.#store, mode).objectStore(this.#store));
-      request.onsuccess = () => resolve(request.result);
-      request.onerror = () => reject(new Error(`the browser's storage refused: ${request.error?.message}`));
-    });
-  }
 }
 
 /** Reads and writes one saved work under `key`. Every failure is an `Error` saying why. */
@@ -248,10 +203,6 @@ export interface WorkSource {
 export type SavedPose = Pick<SavedWork, "positions" | "atRest" | "handles" | "stiffness" | "bones">;
 
 /**
- * Saves the work a moment after the last change (a change only asks; the save comes
- * `delay` ms after the last ask), encoding an imported image's texture once per shape.
- */
-/**
  * Puts `saved` back over the shape installed in `posing`: its settings, its shape (made by
  * `shape`), pose and handles; throws, with the posing and settings as they were, if it
  * cannot.
@@ -286,6 +237,10 @@ export async function restoreWork(
   }
 }
 
+/**
+ * Saves the work a moment after the last change (a change only asks; the save comes
+ * `delay` ms after the last ask), encoding an imported image's texture once per shape.
+ */
 export class WorkKeeper {
   readonly store: WorkStore;
   readonly #source: () => WorkSource | undefined;
