@@ -2,7 +2,7 @@
 import { beforeAll, describe, expect, it } from "vitest";
 import { importSvgPaths, init, triangulate, type VectorPath } from "../../www/src/index.js";
 import { outlineSvg, vectorSvg } from "../../www/src/widget/store/pose-export.js";
-import { bounds } from "../../www/src/widget/view/projection.js";
+import { bounds } from "../../www/src/widget/model/geometry.js";
 
 beforeAll(async () => {
   await init();

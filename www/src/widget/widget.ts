@@ -24,14 +24,8 @@ import { posedMesh, posedSvg } from "./store/pose-export.js";
 import { FrameLoop, type FrameHost } from "./view/frame-loop.js";
 import { ShapeLoader, replaySession, type LoaderHost } from "./shapes/shape-loader.js";
 
-import {
-  METHODS,
-  widgetSettings,
-  type GalleryItem,
-  type MethodPreset,
-  type WidgetOptions,
-  type WidgetSettings,
-} from "./options.js";
+import { METHODS, type MethodPreset } from "./model/methods.js";
+import { widgetSettings, type GalleryItem, type WidgetOptions, type WidgetSettings } from "./options.js";
 import { WorkKeeper, WorkStore, type SavedWork } from "./store/work-store.js";
 import { locate } from "./model/picking.js";
 import { WidgetInput, inputHost } from "./input/widget-input.js";
@@ -54,14 +48,8 @@ import type { Easing } from "./animation/timeline.js";
 import type { Toolbar } from "./chrome/toolbar.js";
 import type { View } from "./view/projection.js";
 
-export {
-  METHODS,
-  type GalleryItem,
-  type MethodPreset,
-  type PoseDetail,
-  type WidgetOptions,
-  type WidgetTool,
-} from "./options.js";
+export { METHODS, type MethodPreset } from "./model/methods.js";
+export type { GalleryItem, PoseDetail, WidgetOptions, WidgetTool } from "./options.js";
 export type { BrushSettings } from "./model/stiffness.js";
 export type { RigInfo, WidgetTrainOptions } from "./rigs/rig-manager.js";
 export type { AnimationExport } from "./animation/controller.js";

@@ -4,7 +4,8 @@
  * settings in force.
  */
 import { builtinShapes } from "../../core.js";
-import { METHODS, type GalleryItem, type MethodPreset, type WidgetTool } from "../options.js";
+import { METHODS, type MethodPreset } from "../model/methods.js";
+import type { GalleryItem, WidgetTool } from "../options.js";
 import { Cancelled } from "../shapes/shape-maker.js";
 import { download } from "../store/pose-export.js";
 import type { RigTrainOptions } from "../model/rig.js";
@@ -16,7 +17,7 @@ import {
   type ToolbarActions,
   type ToolbarSettings,
 } from "../chrome/toolbar.js";
-import { bounds } from "../view/projection.js";
+import { bounds } from "../model/geometry.js";
 import type { Widget } from "../widget.js";
 
 /** What the actions need beyond the widget's public API. */

@@ -4,7 +4,8 @@
  * a selected handle's turning ring), and the dabs the API makes. What a
  * dab paints is {@link Posing.paint}'s; this file is the page side of it.
  */
-import { METHODS, brushSettings, checkTool, type WidgetSettings, type WidgetTool } from "../options.js";
+import { METHODS } from "../model/methods.js";
+import { brushSettings, checkTool, type WidgetSettings, type WidgetTool } from "../options.js";
 import { coded } from "../../internal/arrays.js";
 import { boneEnds } from "../model/bones.js";
 import { locate } from "../model/picking.js";

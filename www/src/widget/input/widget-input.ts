@@ -22,6 +22,8 @@ import { fromPixel } from "../view/projection.js";
 /** What the input needs of the widget. */
 export interface InputHost {
   readonly posing: Posing;
+  /** The tool in use and the brush. */
+  readonly settings: Pick<WidgetSettings, "tool" | "brush">;
   readonly camera: Camera;
   /** The focusable root (keys) and the overlay canvas (pointers, drops). */
   readonly root: HTMLElement;
@@ -80,6 +82,7 @@ export function inputHost(
   return {
     ...own,
     posing: parts.posing,
+    settings,
     camera: stage.camera,
     root: parts.root,
     overlay: stage.overlay,
@@ -173,13 +176,13 @@ export class WidgetInput {
         posing.endDragGesture();
         host.draw();
       },
-      painting: () => posing.settings.tool !== "pose",
+      painting: () => host.settings.tool !== "pose",
       paint: (_pointerId, x, y, erase) => {
-        if (posing.settings.tool === "bone") {
+        if (host.settings.tool === "bone") {
           this.#drawBone(x, y, erase);
           return;
         }
-        const { size, value } = posing.settings.brush;
+        const { size, value } = host.settings.brush;
         if (posing.paint(x, y, (size * host.ratio()) / host.camera.view.scale, erase ? 1 : value)) {
           posing.markChanged();
         }
@@ -187,7 +190,7 @@ export class WidgetInput {
       },
       paintEnd: () => {
         try {
-          if (posing.settings.tool === "bone") this.#endBone();
+          if (host.settings.tool === "bone") this.#endBone();
           posing.flushStiffness();
         } catch (error) {
           host.failed(error);

@@ -1,6 +1,5 @@
 /** Mesh helpers for drawing and export: unique edges, boundary loops, texture coordinates. */
 import { textureCoordinates } from "../../import.js";
-import { bounds } from "../view/projection.js";
 
 /** Every edge of the triangles once, as index pairs. */
 export function uniqueEdges(triangles: ArrayLike<number>, vertexCount: number): Uint32Array {
@@ -133,4 +132,22 @@ export function doubledArea(positions: ArrayLike<number>, triangles: ArrayLike<n
   return (
     (positions[2 * b]! - ax) * (positions[2 * c + 1]! - ay) - (positions[2 * b + 1]! - ay) * (positions[2 * c]! - ax)
   );
+}
+
+/** Bounding box of xy-interleaved positions; throws for an empty list. */
+export function bounds(positions: ArrayLike<number>): { minX: number; minY: number; maxX: number; maxY: number } {
+  if (positions.length < 2) throw new Error("bounds of an empty point list");
+  let minX = Infinity;
+  let minY = Infinity;
+  let maxX = -Infinity;
+  let maxY = -Infinity;
+  for (let i = 0; i + 1 < positions.length; i += 2) {
+    const x = positions[i]!;
+    const y = positions[i + 1]!;
+    minX = Math.min(minX, x);
+    maxX = Math.max(maxX, x);
+    minY = Math.min(minY, y);
+    maxY = Math.max(maxY, y);
+  }
+  return { minX, minY, maxX, maxY };
 }

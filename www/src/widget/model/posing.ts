@@ -14,14 +14,13 @@ import { Deformer, checkStiffness, type DeformerOptions, type Timings } from "..
 import { PointMapper } from "../../import.js";
 import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
 import { History } from "./history.js";
-import { METHODS, methodOptions, widgetMethod, type MethodPreset, type WidgetSettings } from "../options.js";
+import { METHODS, methodOptions, widgetMethod, type MethodPreset } from "./methods.js";
 import { locate, pointPosition, type MeshPoint } from "./picking.js";
 import { Recorder, type Session, type SessionEvent } from "../../session.js";
 import { Bones, bonesEvent, bonesFrom, type Bone } from "./bones.js";
 import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
 import type { Rig } from "./rig.js";
-import type { Shape } from "./shape.js";
-import type { Loaded } from "../shapes/shape-files.js";
+import type { Loaded, Shape } from "./shape.js";
 import { newHandle, type Handle, type HandleState } from "./handle.js";
 
 export { newHandle, type Handle, type HandleState } from "./handle.js";
@@ -47,6 +46,24 @@ export interface Snapshot {
   bones?: Bone[] | undefined;
 }
 
+/**
+ * The settings posing reads (the widget's settings object, shared: the method and lambda
+ * shown are written back into it).
+ */
+export interface PosingSettings {
+  method: MethodPreset;
+  /** Weight of the soft handle constraints (AKAP). */
+  lambda: number;
+  /** Longest handle move per substep, as a fraction of the shape's size. */
+  maxStep: number;
+  /** Most substeps per frame. */
+  maxSubsteps: number;
+  /** Velocities from raw pointer displacement (the paper's mode) instead of target tracking. */
+  paperMode: boolean;
+  /** Steps guarded against foldovers. */
+  noFoldovers: boolean;
+}
+
 /** What the posing tells the page. */
 export interface PosingHost {
   /** A new shape or deformer is in place; `refit` when the view should fit it afresh. */
@@ -69,7 +86,7 @@ const RETRY_SCALES = [0.5, 0.25, 0.125];
 const MAX_TURN_STEP = 0.1;
 
 export class Posing {
-  readonly settings: WidgetSettings;
+  readonly settings: PosingSettings;
   readonly history = new History<Snapshot>();
   readonly recorder = new Recorder();
   shape!: Shape;
@@ -117,7 +134,7 @@ export class Posing {
     return parts ? { count: parts.loaded.parts.length, index: parts.index } : { count: 1, index: 0 };
   }
 
-  constructor(settings: WidgetSettings, host: PosingHost) {
+  constructor(settings: PosingSettings, host: PosingHost) {
     this.settings = settings;
     this.#host = host;
   }

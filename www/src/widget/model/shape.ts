@@ -4,10 +4,9 @@
  * it exactly).
  */
 import { limits, triangulateToVertices, type MeshData, type Outline } from "../../core.js";
-import type { VectorPath } from "../../import.js";
+import type { ImportedOutline, VectorPath } from "../../import.js";
 import { sessionMesh, type Session, type ShapeSpec } from "../../session.js";
-import { boxUvs, uniqueEdges } from "./geometry.js";
-import { bounds } from "../view/projection.js";
+import { bounds, boxUvs, uniqueEdges } from "./geometry.js";
 
 export interface Shape {
   /** What to call it (a built-in name, a file name). */
@@ -124,3 +123,23 @@ function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
   for (let i = 0; i < a.length; i++) if (a[i] !== b[i]) return false;
   return true;
 }
+
+/** What a file gives: outlines to mesh (largest first), or a ready mesh. */
+export type Loaded =
+  | {
+      kind: "outlines";
+      name: string;
+      parts: ImportedOutline[];
+      /** The texture, and the size of the frame the outlines are in (its pixels, y up). */
+      image?: { source: TexImageSource; width: number; height: number };
+      /** The SVG's filled paths, for exporting the art deformed as vectors. */
+      vector?: VectorPath[];
+    }
+  | {
+      kind: "mesh";
+      name: string;
+      mesh: MeshData;
+      uvs: Float64Array | undefined;
+      /** Painted stiffness, one per triangle (JSON meshes). */
+      stiffness?: Float64Array;
+    };

@@ -5,10 +5,10 @@
  * a huge file is refused before any work; every failure is an `Error` saying why, and
  * nothing of the widget changes until a shape is fully built.
  */
-import { limits, type MeshData, type Outline } from "../../core.js";
-import type { Shape } from "../model/shape.js";
+import { limits, type Outline } from "../../core.js";
+import type { Loaded, Shape } from "../model/shape.js";
 import { vectorTexture } from "./vector-texture.js";
-import { bounds } from "../view/projection.js";
+import { bounds } from "../model/geometry.js";
 import {
   importSvg,
   importSvgPaths,
@@ -25,26 +25,6 @@ export function fileLimits(): { bytes: number; pixels: number } {
   const { bytes, pixels } = limits();
   return { bytes, pixels };
 }
-
-/** What a file gives: outlines to mesh (largest first), or a ready mesh. */
-export type Loaded =
-  | {
-      kind: "outlines";
-      name: string;
-      parts: ImportedOutline[];
-      /** The texture, and the size of the frame the outlines are in (its pixels, y up). */
-      image?: { source: TexImageSource; width: number; height: number };
-      /** The SVG's filled paths, for exporting the art deformed as vectors. */
-      vector?: VectorPath[];
-    }
-  | {
-      kind: "mesh";
-      name: string;
-      mesh: MeshData;
-      uvs: Float64Array | undefined;
-      /** Painted stiffness, one per triangle (JSON meshes). */
-      stiffness?: Float64Array;
-    };
 
 export type FileKind = "svg" | "image" | "obj" | "json";
 

@@ -11,8 +11,8 @@ import type { Rigging } from "../rigs/rig-manager.js";
 import type { Parts, Posing } from "../model/posing.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./shape-maker.js";
 import type { Session } from "../../session.js";
-import { meshOutline, sessionShape, shapeFromMesh } from "../model/shape.js";
-import { paintVector, partShape, readShapeFile, type Loaded } from "./shape-files.js";
+import { meshOutline, sessionShape, shapeFromMesh, type Loaded } from "../model/shape.js";
+import { paintVector, partShape, readShapeFile } from "./shape-files.js";
 import type { Stage } from "../view/stage.js";
 import type { Toolbar } from "../chrome/toolbar.js";
 

@@ -6,7 +6,7 @@ import { PointMapper, meshToJson, meshToObj, pathData, type VectorPath } from ".
 import { boundaryLoops } from "../model/geometry.js";
 import { drawOrder, type Layering } from "../model/layers.js";
 import { locate } from "../model/picking.js";
-import { bounds } from "../view/projection.js";
+import { bounds } from "../model/geometry.js";
 
 /** The fill of exported shapes and of vector art whose colour the importer does not know. */
 export const DEFAULT_FILL = "#c8773a";

@@ -9,7 +9,8 @@ import { builtinShape, meshFromArrays, triangulate } from "../../core.js";
 import type { VectorPath } from "../../import.js";
 import type { ShapeSpec } from "../../session.js";
 import { shapeFromMesh, type Shape } from "../model/shape.js";
-import { METHODS, type MethodPreset, type WidgetSettings } from "../options.js";
+import { METHODS, type MethodPreset } from "../model/methods.js";
+import type { WidgetSettings } from "../options.js";
 import type { HandleState, Posing } from "../model/posing.js";
 import { KeyedStore } from "./database.js";
 

@@ -2,30 +2,13 @@
  * The mapping between shape coordinates (y up) and canvas pixels (y down): the shape's
  * bounding box fitted into the canvas with a margin, centred, aspect ratio kept.
  */
+import { bounds } from "../model/geometry.js";
 
 /** `pixel = (offsetX + scale * x, offsetY - scale * y)`, in device pixels. */
 export interface View {
   scale: number;
   offsetX: number;
   offsetY: number;
-}
-
-/** Bounding box of xy-interleaved positions; throws for an empty list. */
-export function bounds(positions: ArrayLike<number>): { minX: number; minY: number; maxX: number; maxY: number } {
-  if (positions.length < 2) throw new Error("bounds of an empty point list");
-  let minX = Infinity;
-  let minY = Infinity;
-  let maxX = -Infinity;
-  let maxY = -Infinity;
-  for (let i = 0; i + 1 < positions.length; i += 2) {
-    const x = positions[i]!;
-    const y = positions[i + 1]!;
-    minX = Math.min(minX, x);
-    maxX = Math.max(maxX, x);
-    minY = Math.min(minY, y);
-    maxY = Math.max(maxY, y);
-  }
-  return { minX, minY, maxX, maxY };
 }
 
 /**
