@@ -1,6 +1,6 @@
 /**
- * The animation's frames against the real wasm core in Node (`animation.ts`,
- * `animator.ts`): three keys recorded on the default figure; handles at the keys' targets
+ * The animation's frames against the real wasm core in Node (`animation/frames.ts`,
+ * `animation/playback.ts`): three keys recorded on the default figure; handles at the keys' targets
  * at the keys' times; computed twice, the same bits; the same frames from a `Deformer`
  * driven by hand (targets and substeps worked out here, not through the modules); the
  * cache made again when keys, method or stiffness change; bad input refused with nothing

@@ -10,7 +10,8 @@ import {
 import { affineThrough } from "../../www/src/widget/view/canvas2d-renderer.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/model/geometry.js";
 import { History } from "../../www/src/widget/model/history.js";
-import { keyCommand, type KeyPress } from "../../www/src/widget/actions/keys.js";
+import type { KeyPress } from "../../www/src/widget/actions/action.js";
+import { keyCommand } from "../../www/src/widget/actions/keys.js";
 import { fileKind } from "../../www/src/widget/shapes/shape-files.js";
 import { locate, nearestPoint, pointPosition } from "../../www/src/widget/model/picking.js";
 import { WIDGET_OPTIONS, widgetSettings } from "../../www/src/widget/options.js";

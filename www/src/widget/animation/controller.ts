@@ -28,7 +28,7 @@ import { TimelineStrip } from "../chrome/timeline-strip.js";
 import { unpainted } from "../model/stiffness.js";
 
 /** What the animation needs of the widget. */
-export interface AnimatingHost {
+export interface AnimationControllerHost {
   readonly posing: Posing;
   readonly stage: Stage;
   readonly settings: WidgetSettings;
@@ -53,15 +53,15 @@ const FILE_NAMES: Record<AnimationExportFormat, string> = {
   svg: "animation-svg.zip",
 };
 
-export class Animating {
+export class AnimationController {
   readonly animator: Animator;
   readonly strip: TimelineStrip | undefined;
-  readonly #host: AnimatingHost;
+  readonly #host: AnimationControllerHost;
   #exporting: AbortController | undefined;
   /** The pose before a scrub of the strip's playhead. */
   #scrubbing = false;
 
-  constructor(host: AnimatingHost) {
+  constructor(host: AnimationControllerHost) {
     this.#host = host;
     this.animator = new Animator({
       get posing() {

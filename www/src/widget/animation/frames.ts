@@ -2,7 +2,7 @@
  * The animation's frames, computed from a {@link Timeline} against the posing core. Frame
  * 0 is the first key's pose; each next frame sets every handle's target to the
  * timeline's interpolation at the frame's time and takes the steps a frame of dragging
- * takes (`posing.ts`, `drag.ts`): the largest gap split into substeps of at most
+ * takes (`model/posing.ts`, `model/drag.ts`): the largest gap split into substeps of at most
  * `maxStep` of the shape's size (at most `maxSubsteps` of them), each with the tracking
  * velocities `(target - current) / remaining`, through the core's guarded step when
  * `noFoldovers` is on, a failed step retried with smaller velocities. AKAP is

@@ -1,9 +1,9 @@
 /**
- * The help panel: the gestures and keys (from {@link HELP}, the list the shortcuts are
- * defined beside), opened with the `?` key or the toolbar's `?` button, closed with Esc,
- * its Close button, or `?` again.
+ * The help panel: the gestures and keys, each action's help lines in the registry's order
+ * (no list of its own), opened with the `?` key or the toolbar's `?` button, closed with
+ * Esc, its Close button, or `?` again.
  */
-import { HELP } from "../actions/keys.js";
+import { helpLines } from "../actions/registry.js";
 
 export class HelpPanel {
   readonly element: HTMLElement;
@@ -17,7 +17,7 @@ export class HelpPanel {
     const title = document.createElement("h2");
     title.textContent = "Gestures and keys";
     const table = document.createElement("dl");
-    for (const { keys, does } of HELP) {
+    for (const { keys, does } of helpLines()) {
       const term = document.createElement("dt");
       term.textContent = keys;
       const definition = document.createElement("dd");

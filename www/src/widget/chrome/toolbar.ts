@@ -1,100 +1,83 @@
 /**
- * The widget's toolbar: shape, density, method and lambda; display toggles; undo, redo,
- * reset, clear; the stiffness brush; record, replay, save and load sessions; exports; a trained rig's training
- * (energy, basis, samples, radius), files and display. Every control has a label and is
- * reachable with the keyboard.
+ * The widget's toolbar, made from the registry of actions: this file only says where each
+ * action's controls go (groups, and the tool panel over the stage) and how a control of
+ * each kind looks; what a control does, its text and its tooltip are its action's. Every
+ * control has a label and is reachable with the keyboard. On narrow screens the tools fold
+ * away behind a "☰ Tools" button, the Edit group staying in reach.
  */
-import type { WidgetTool } from "../options.js";
-import type { RigTrainOptions } from "../model/rig.js";
-import { BRUSH_SIZE_RANGE, BRUSH_VALUES, type BrushSettings } from "../model/stiffness.js";
+import type {
+  AnyAction,
+  ButtonControl,
+  Control,
+  ControlKit,
+  ControlPlace,
+  ControlView,
+  ToolbarInit,
+} from "../actions/action.js";
+import type { ButtonState, RigButtonState, ToolbarView } from "../actions/context.js";
+import { ACTIONS } from "../actions/registry.js";
+import type { WidgetSettings } from "../options.js";
+import { Cancelled } from "../shapes/shape-maker.js";
 
-/** The display toggles. */
-export interface DisplayToggles {
-  wireframe: boolean;
-  field: boolean;
-  flipped: boolean;
-  paperMode: boolean;
-  /** Keep triangles from folding over (a posing option beside the display's). */
-  noFoldovers: boolean;
-  region: boolean;
-  compare: boolean;
-}
+/** Where the controls go, by id (a control's `id`), group by group. */
+const LAYOUT: readonly { label: string; in: "bar" | "quick"; controls: readonly string[] }[] = [
+  { label: "Shape", in: "bar", controls: ["shape", "open", "part", "remesh"] },
+  { label: "Method", in: "bar", controls: ["method", "no-foldovers"] },
+  { label: "Display", in: "bar", controls: ["wireframe", "field", "flipped", "paper-mode", "hud"] },
+  { label: "Tools", in: "bar", controls: ["tool"] },
+  { label: "Trained rig", in: "bar", controls: ["train", "save-rig", "open-rig", "region", "compare"] },
+  // Always in reach, also with the tools folded away.
+  { label: "Edit", in: "quick", controls: ["undo", "redo", "reset", "fit", "help"] },
+  { label: "Handles", in: "bar", controls: ["clear-handles", "bring-forward", "send-back", "start-over"] },
+  { label: "Session", in: "bar", controls: ["record", "replay", "save-session", "load-session"] },
+  { label: "Export", in: "bar", controls: ["export-json", "export-obj", "export-svg", "export-png"] },
+];
 
-export interface ToolbarActions {
-  undo(): void;
-  redo(): void;
-  reset(): void;
-  clear(): void;
-  /** A shape from the list (`builtin:name` or `gallery:index`). */
-  shape(value: string): void;
-  remesh(vertices: number, minAngle: number): void;
-  /** A file chosen with the picker. */
-  open(file: File): void;
-  /** Another separate part of the imported file. */
-  part(index: number): void;
-  method(method: string, lambda: number): void;
-  display(options: DisplayToggles): void;
-  /** The stiffness brush on (`"stiffness"`) or the bone tool (`"bone"`) or neither (`"pose"`), and what the brush paints. */
-  brush(tool: WidgetTool, brush: BrushSettings): void;
-  /** Removes every bone. */
-  clearBones(): void;
-  /** Every triangle back to stiffness 1. */
-  clearStiffness(): void;
-  /** The selected handles' parts in front of the others (1) or behind them (-1). */
-  reorder(step: 1 | -1): void;
-  /** Train a rig; `radiusPercent` of the shape's bounding-box diagonal, undefined for the default. */
-  train(options: Omit<RigTrainOptions, "radius">, radiusPercent: number | undefined): void;
-  saveRig(): void;
-  openRig(file: File): void;
-  hud(visible: boolean): void;
-  record(): void;
-  replay(): void;
-  saveSession(): void;
-  loadSession(file: File): void;
-  export(format: "json" | "obj" | "svg" | "png"): void;
-  /** Fit the shape into the view. */
-  fit(): void;
-  /** Open or close the help panel. */
-  help(): void;
-  /** Forget the saved work and start again with the default shape (shown when work is saved). */
-  startOver?(): void;
-}
+/** The tool panel's sections: the brush's controls (after the tool's own fields) and the bones'. */
+const PANEL = {
+  brush: ["clear-stiffness"],
+  bones: { text: "Drag from end to end; Alt-click removes ", controls: ["clear-bones"] },
+} as const;
 
-export interface ToolbarSettings extends DisplayToggles {
-  vertices: number;
-  minAngle: number;
-  method: string;
-  lambda: number;
-  hud: boolean;
-  training: RigTrainOptions;
-  tool: WidgetTool;
-  brush: BrushSettings;
-}
-
-export interface Toolbar {
+/** The toolbar, as the widget holds it. */
+export interface Toolbar extends ToolbarView {
   element: HTMLElement;
-  /** Enables and labels the buttons that depend on state. */
-  refresh(state: { canUndo: boolean; canRedo: boolean; recording: boolean; hasSession: boolean }): void;
-  /** Shows the current shape (its list value, undefined for others), vertex count and parts. */
-  showShape(value: string | undefined, vertices: number, parts: { count: number; index: number }): void;
-  /** Adds a shape to the list (an imported file) and shows it as the current one. */
-  addShape(option: { value: string; label: string }): void;
-  /** Enables the rig's buttons: Save with a rig, Train when no training runs. */
-  showRig(state: { hasRig: boolean; training: boolean }): void;
   /** The tool's controls (the brush's, or the bones'), shown while that tool is on; the widget puts it on the stage. */
   brushPanel: HTMLElement;
-  /** Brings every field in line with the settings (changed by keys, a load, or a refused value). */
-  sync(settings: ToolbarSettings): void;
 }
 
+/** Carries out an action (its result, which may be a promise). */
+export type Perform = (action: AnyAction, args: unknown) => unknown;
+
+/**
+ * A control's action: run, and a failure reported (a custom control may report its own
+ * kind; a cancelled one says so as information), every field then back to the settings in
+ * force. False when it threw at once.
+ */
+function guarded(perform: Perform, kit: ControlKit, action: AnyAction, control: Control<unknown>) {
+  const failed = (error: unknown): void => {
+    if (control.kind === "custom" && control.failed?.(error, kit)) return;
+    if (error instanceof Cancelled) kit.cancelled(error.message);
+    else kit.failed(error);
+  };
+  return (args: unknown): boolean => {
+    try {
+      const result = perform(action, args);
+      if (result instanceof Promise) result.catch(failed);
+      return true;
+    } catch (error) {
+      failed(error);
+      return false;
+    }
+  };
+}
+
+/** Builds the toolbar: each action's controls in the layout's places. */
 export function buildToolbar(
   document: Document,
-  actions: ToolbarActions,
-  init: {
-    shapes: { value: string; label: string }[];
-    methods: { value: string; label: string }[];
-    settings: ToolbarSettings;
-  },
+  perform: Perform,
+  init: ToolbarInit,
+  messages: Pick<ControlKit, "succeeded" | "failed" | "cancelled">,
 ): Toolbar {
   const element = document.createElement("div");
   element.className = "toolbar";
@@ -115,366 +98,178 @@ export function buildToolbar(
   bar.setAttribute("role", "toolbar");
   bar.setAttribute("aria-label", "Posing tools");
   element.append(more, quick, bar);
-  const group = (label: string, parent = bar): HTMLElement => {
+
+  const kit = controlKit(document, messages);
+  // The tool's own controls float over the stage while it is on, so the toolbar stays short
+  // and the stage keeps its size (the widget puts the panel on the stage).
+  const panel = document.createElement("div");
+  panel.className = "brush-panel";
+  const section = (label: string): HTMLElement => {
+    const s = document.createElement("div");
+    s.className = "tool-controls";
+    s.setAttribute("role", "group");
+    s.setAttribute("aria-label", label);
+    return s;
+  };
+  const brush = section("Stiffness brush");
+  const bones = section("Bones");
+  panel.append(brush, bones);
+  const showTool = (tool: WidgetSettings["tool"]): void => {
+    panel.classList.toggle("hidden", tool === "pose");
+    brush.classList.toggle("hidden", tool !== "stiffness");
+    bones.classList.toggle("hidden", tool !== "bone");
+  };
+
+  const controls = new Map<string, { action: AnyAction; control: Control<unknown> }>();
+  for (const action of ACTIONS.values()) {
+    for (const control of (action.controls ?? []) as Control<unknown>[]) controls.set(control.id, { action, control });
+  }
+  const views: ControlView[] = [];
+  const place = (id: string, group: HTMLElement): void => {
+    const found = controls.get(id);
+    if (!found) throw new Error(`the toolbar's layout names ${id}, which no action has`);
+    const run = guarded(perform, kit, found.action, found.control);
+    const view = buildControl(kit, { group, brush, bones, showTool }, found.control, run, init);
+    if (view) views.push(view);
+  };
+  for (const { label, in: where, controls: ids } of LAYOUT) {
     const g = document.createElement("div");
     g.className = "group";
     g.setAttribute("role", "group");
     g.setAttribute("aria-label", label);
-    parent.append(g);
-    return g;
-  };
-  const labelled = (parent: HTMLElement, text: string, control: HTMLElement): void => {
-    control.setAttribute("aria-label", text.trim());
-    const label = document.createElement("label");
-    label.append(text, control);
-    parent.append(label);
-  };
-  const button = (
-    parent: HTMLElement,
-    text: string,
-    title: string,
-    onClick: () => void,
-    name = text,
-  ): HTMLButtonElement => {
-    const b = document.createElement("button");
-    b.type = "button";
-    b.textContent = text;
-    b.title = title;
-    b.dataset.action = name.toLowerCase().replace(/\s+/g, "-");
-    b.addEventListener("click", onClick);
-    parent.append(b);
-    return b;
-  };
-  const select = (options: { value: string; label: string }[], value: string): HTMLSelectElement => {
-    const s = document.createElement("select");
-    for (const o of options) s.append(new Option(o.label, o.value, false, o.value === value));
-    return s;
-  };
-  const checkbox = (parent: HTMLElement, text: string, checked: boolean, onChange: () => void): HTMLInputElement => {
-    const c = document.createElement("input");
-    c.type = "checkbox";
-    c.checked = checked;
-    c.addEventListener("change", onChange);
-    const label = document.createElement("label");
-    label.append(c, text);
-    parent.append(label);
-    return c;
-  };
-  const number = (value: number, min: number, max: number, step: number | "any"): HTMLInputElement => {
-    const n = document.createElement("input");
-    n.type = "number";
-    n.min = String(min);
-    n.max = String(max);
-    n.step = String(step);
-    n.value = String(value);
-    return n;
-  };
-
-  const s = init.settings;
-  const shapeGroup = group("Shape");
-  const shape = select(init.shapes, init.shapes[0]?.value ?? "");
-  shape.name = "shape";
-  labelled(shapeGroup, "Shape ", shape);
-  shape.addEventListener("change", () => actions.shape(shape.value));
-  const picker = document.createElement("input");
-  picker.type = "file";
-  picker.accept = ".svg,.png,.jpg,.jpeg,.webp,.gif,.obj,.json,.defop,image/*";
-  picker.className = "hidden";
-  picker.name = "shape-file";
-  picker.addEventListener("change", () => {
-    const chosen = picker.files?.[0];
-    if (chosen) actions.open(chosen);
-    picker.value = "";
-  });
-  shapeGroup.append(picker);
-  button(
-    shapeGroup,
-    "Open…",
-    "Open an SVG, an image, a mesh (OBJ, JSON), a session or a rig (.defop); or drop a file on the shape",
-    () => picker.click(),
-    "open",
-  );
-  const part = select([], "");
-  part.name = "part";
-  labelled(shapeGroup, "Part ", part);
-  part.parentElement!.classList.add("hidden");
-  part.addEventListener("change", () => actions.part(Number(part.value)));
-  const vertices = number(s.vertices, 100, 50_000, 100);
-  vertices.name = "vertices";
-  labelled(shapeGroup, "Vertices ", vertices);
-  const minAngle = number(s.minAngle, 0, 34, 1);
-  minAngle.name = "min-angle";
-  labelled(shapeGroup, "Min angle ", minAngle);
-  const remesh = (): void => actions.remesh(Number(vertices.value), Number(minAngle.value));
-  vertices.addEventListener("change", remesh);
-  minAngle.addEventListener("change", remesh);
-
-  const methodGroup = group("Method");
-  const method = select(init.methods, s.method);
-  method.name = "method";
-  labelled(methodGroup, "Method ", method);
-  const lambda = number(s.lambda, 0.01, 1e6, "any");
-  lambda.name = "lambda";
-  labelled(methodGroup, "λ ", lambda);
-  const changeMethod = (): void => actions.method(method.value, Number(lambda.value));
-  method.addEventListener("change", changeMethod);
-  lambda.addEventListener("change", changeMethod);
-
-  const view = group("Display");
-  const display = (): void =>
-    actions.display({
-      wireframe: wireframe.checked,
-      field: field.checked,
-      flipped: flipped.checked,
-      paperMode: paper.checked,
-      noFoldovers: noFoldovers.checked,
-      region: region.checked,
-      compare: compare.checked,
-    });
-  const wireframe = checkbox(view, "Wireframe (W)", s.wireframe, display);
-  wireframe.name = "wireframe";
-  const field = checkbox(view, "Field (V)", s.field, display);
-  field.name = "field";
-  const flipped = checkbox(view, "Flipped", s.flipped, display);
-  flipped.name = "flipped";
-  const paper = checkbox(view, "Paper mode", s.paperMode, display);
-  const noFoldovers = checkbox(methodGroup, "No foldovers", s.noFoldovers, display);
-  noFoldovers.name = "no-foldovers";
-  noFoldovers.parentElement!.title =
-    "Split a step that would flip a triangle, and stop short where even small pieces would";
-  paper.name = "paper-mode";
-  const hud = checkbox(view, "HUD", s.hud, () => actions.hud(hud.checked));
-  hud.name = "hud";
-
-  const stiffnessGroup = group("Tools");
-  const setBrush = (tool = toolList.value as WidgetTool): void =>
-    actions.brush(tool, {
-      size: Number(brushSize.value),
-      value: Number(brushValue.value),
-    });
-  // The tools exclude each other: one list (short, so the toolbar keeps its rows).
-  const toolList = select(
-    [
-      { value: "pose", label: "Pose" },
-      { value: "stiffness", label: "Brush (B)" },
-      { value: "bone", label: "Bones (O)" },
-    ],
-    s.tool,
-  );
-  toolList.name = "tool";
-  toolList.title =
-    "What a press on the shape does: pose with handles; paint stiffness with the brush (stiff regions bend less, " +
-    "Alt-drag erases); draw bones (drag from end to end; each moves as one rigid piece, AKAP and ARAP; Alt-click removes one)";
-  labelled(stiffnessGroup, "Tool ", toolList);
-  toolList.addEventListener("change", () => setBrush());
-  const brushValue = select(
-    BRUSH_VALUES.map((v) => ({
-      value: String(v),
-      label: v === 1 ? "×1 (erase)" : v < 1 ? `×${v} (softer)` : `×${v}`,
-    })),
-    String(s.brush.value),
-  );
-  brushValue.name = "brush-value";
-  // The tool's own controls float over the stage while it is on, so the toolbar stays short
-  // and the stage keeps its size (the widget puts the panel on the stage): the brush's
-  // value, size and Clear, or the bones' hint and Clear bones.
-  const toolPanel = document.createElement("div");
-  toolPanel.className = "brush-panel";
-  const brushControls = document.createElement("div");
-  brushControls.className = "tool-controls";
-  brushControls.setAttribute("role", "group");
-  brushControls.setAttribute("aria-label", "Stiffness brush");
-  const boneControls = document.createElement("div");
-  boneControls.className = "tool-controls";
-  boneControls.setAttribute("role", "group");
-  boneControls.setAttribute("aria-label", "Bones");
-  toolPanel.append(brushControls, boneControls);
-  labelled(brushControls, "Paint ", brushValue);
-  const brushSize = number(s.brush.size, BRUSH_SIZE_RANGE[0], BRUSH_SIZE_RANGE[1], 1);
-  brushSize.name = "brush-size";
-  labelled(brushControls, "Size px ", brushSize);
-  brushValue.addEventListener("change", () => setBrush());
-  brushSize.addEventListener("change", () => setBrush());
-  button(brushControls, "Clear", "Every triangle back to stiffness 1", actions.clearStiffness, "clear-stiffness");
-  boneControls.append("Drag from end to end; Alt-click removes ");
-  button(boneControls, "Clear bones", "Remove every bone", actions.clearBones, "clear-bones");
-  const showTool = (tool: WidgetTool): void => {
-    toolPanel.classList.toggle("hidden", tool === "pose");
-    brushControls.classList.toggle("hidden", tool !== "stiffness");
-    boneControls.classList.toggle("hidden", tool !== "bone");
-  };
-  showTool(s.tool);
-
-  const rigGroup = group("Trained rig");
-  const energy = select(
-    [
-      { value: "sarap", label: "S-ARAP" },
-      { value: "arap", label: "ARAP" },
-    ],
-    s.training.energy ?? "sarap",
-  );
-  energy.name = "rig-energy";
-  labelled(rigGroup, "Energy ", energy);
-  const basis = select(
-    ["tps", "linear", "quadratic", "cubic"].map((b) => ({ value: b, label: b === "tps" ? "TPS" : b })),
-    s.training.basis ?? "tps",
-  );
-  basis.name = "rig-basis";
-  labelled(rigGroup, "Basis ", basis);
-  const samples = number(s.training.samples ?? 200, 1, 100_000, 1);
-  samples.name = "rig-samples";
-  labelled(rigGroup, "Samples ", samples);
-  const spatial = number(s.training.spatial ?? 0, 0, 100_000, 1);
-  spatial.name = "rig-spatial";
-  spatial.title =
-    "Size of the reduced spatial basis (0: every mesh vertex); smaller poses faster and saves smaller files";
-  labelled(rigGroup, "Reduced ", spatial);
-  const radius = number(15, 0.1, 1000, "any");
-  radius.name = "rig-radius";
-  radius.value = "";
-  radius.placeholder = "15";
-  radius.title = "Radius of the training discs, in % of the shape's diagonal (empty: 15)";
-  labelled(rigGroup, "Radius % ", radius);
-  const train = button(
-    rigGroup,
-    "Train",
-    "Train a rig for these handles (DefOp), in workers; posing goes on meanwhile",
-    () => {
-      const options = {
-        energy: energy.value as "sarap" | "arap",
-        basis: basis.value as NonNullable<RigTrainOptions["basis"]>,
-        samples: Number(samples.value),
-        spatial: Number(spatial.value),
-      };
-      actions.train(options, radius.value === "" ? undefined : Number(radius.value));
-    },
-  );
-  const saveRig = button(rigGroup, "Save rig", "Download the trained rig (.defop)", actions.saveRig);
-  const rigFile = document.createElement("input");
-  rigFile.type = "file";
-  rigFile.accept = ".defop,application/octet-stream";
-  rigFile.className = "hidden";
-  rigFile.name = "rig-file";
-  rigFile.addEventListener("change", () => {
-    const chosen = rigFile.files?.[0];
-    if (chosen) actions.openRig(chosen);
-    rigFile.value = "";
-  });
-  rigGroup.append(rigFile);
-  button(rigGroup, "Open rig…", "Open a trained rig (.defop): it poses at once", () => rigFile.click(), "open-rig");
-  const region = checkbox(rigGroup, "Region", s.region, display);
-  region.name = "region";
-  const compare = checkbox(rigGroup, "Compare", s.compare, display);
-  compare.name = "compare";
-
-  // Always in reach, also with the tools folded away.
-  const edit = group("Edit", quick);
-  const undo = button(edit, "Undo", "Undo the last gesture (Ctrl+Z)", actions.undo);
-  const redo = button(edit, "Redo", "Redo (Ctrl+Shift+Z or Ctrl+Y)", actions.redo);
-  button(edit, "Reset", "Back to the rest pose", actions.reset);
-  button(edit, "Fit", "Fit the shape into the view (F)", actions.fit);
-  button(edit, "?", "Gestures and keys (?)", actions.help, "help");
-  const tidy = group("Handles");
-  button(tidy, "Clear handles", "Remove every handle", actions.clear);
-  button(
-    tidy,
-    "Forward",
-    "Bring the selected handle's part in front of the others (Ctrl+] or Page Up)",
-    () => actions.reorder(1),
-    "bring-forward",
-  );
-  button(
-    tidy,
-    "Back",
-    "Send the selected handle's part behind the others (Ctrl+[ or Page Down)",
-    () => actions.reorder(-1),
-    "send-back",
-  );
-  if (actions.startOver) {
-    button(tidy, "Start over", "Forget the saved work and start again with the default shape", actions.startOver);
+    (where === "quick" ? quick : bar).append(g);
+    for (const id of ids) place(id, g);
   }
-
-  const session = group("Session");
-  const record = button(session, "Record", "Record the interaction", actions.record);
-  const replay = button(session, "Replay", "Replay the last recording", actions.replay);
-  const save = button(session, "Save", "Save the last recording as JSON", actions.saveSession, "save-session");
-  const file = document.createElement("input");
-  file.type = "file";
-  file.accept = ".json,application/json";
-  file.className = "hidden";
-  file.name = "session-file";
-  file.addEventListener("change", () => {
-    const chosen = file.files?.[0];
-    if (chosen) actions.loadSession(chosen);
-    file.value = "";
-  });
-  session.append(file);
-  button(session, "Load", "Load a recorded session and replay it", () => file.click(), "load-session");
-
-  const out = group("Export");
-  for (const format of ["json", "obj", "svg", "png"] as const) {
-    button(
-      out,
-      format.toUpperCase(),
-      `Export the pose as ${format.toUpperCase()}`,
-      () => actions.export(format),
-      `export-${format}`,
-    );
-  }
+  for (const id of PANEL.brush) place(id, brush);
+  bones.append(PANEL.bones.text);
+  for (const id of PANEL.bones.controls) place(id, bones);
+  showTool(init.settings.tool);
 
   return {
     element,
-    brushPanel: toolPanel,
-    refresh(state) {
-      undo.disabled = !state.canUndo;
-      redo.disabled = !state.canRedo;
-      record.textContent = state.recording ? "Stop" : "Record";
-      record.classList.toggle("active", state.recording);
-      replay.disabled = !state.hasSession || state.recording;
-      save.disabled = !state.hasSession;
-    },
-    showShape(value, count, parts) {
-      if (value !== undefined) shape.value = value;
-      vertices.value = String(count);
-      part.replaceChildren(
-        ...Array.from({ length: parts.count }, (_, i) => new Option(`${i + 1} of ${parts.count}`, String(i))),
+    brushPanel: panel,
+    refresh: (state) => views.forEach((v) => v.refresh?.(state)),
+    showShape: (value, vertices, parts) => views.forEach((v) => v.showShape?.(value, vertices, parts)),
+    showRig: (state) => views.forEach((v) => v.showRig?.(state)),
+    addShape: (option) => views.forEach((v) => v.addShape?.(option)),
+    sync: (settings) => views.forEach((v) => v.sync?.(settings)),
+  };
+}
+
+/** One control of `action` in `place`; how it follows the widget's state. */
+function buildControl(
+  kit: ControlKit,
+  place: ControlPlace,
+  control: Control<unknown>,
+  perform: (args: unknown) => boolean,
+  init: ToolbarInit,
+): ControlView | undefined {
+  switch (control.kind) {
+    case "button":
+      return buttonControl(kit, place.group, control, perform, init);
+    case "file": {
+      const picker = kit.filePicker(place.group, control.accept, control.input, (file) => perform(control.args(file)));
+      kit.button(place.group, control.text, control.title, () => picker.click(), control.id);
+      return undefined;
+    }
+    case "checkbox": {
+      const box = kit.checkbox(place.group, control.text, control.checked(init.settings), () =>
+        perform(control.args(box.checked)),
       );
-      part.value = String(parts.index);
-      part.parentElement!.classList.toggle("hidden", parts.count < 2);
+      box.name = control.id;
+      if (control.title) box.parentElement!.title = control.title;
+      return { sync: (settings) => (box.checked = control.checked(settings)) };
+    }
+    case "custom":
+      return control.build(kit, place, perform, init);
+  }
+}
+
+function buttonControl(
+  kit: ControlKit,
+  parent: HTMLElement,
+  control: ButtonControl<unknown>,
+  perform: (args: unknown) => boolean,
+  init: ToolbarInit,
+): ControlView | undefined {
+  if (control.offered && !control.offered(init)) return undefined;
+  const b = kit.button(parent, control.text, control.title, () => perform(control.args), control.id);
+  const { refresh, showRig } = control;
+  return {
+    ...(refresh && {
+      refresh(state: ButtonState) {
+        const shown = refresh(state);
+        if (shown.disabled !== undefined) b.disabled = shown.disabled;
+        if (shown.text !== undefined) b.textContent = shown.text;
+        if (shown.active !== undefined) b.classList.toggle("active", shown.active);
+      },
+    }),
+    ...(showRig && {
+      showRig(state: RigButtonState) {
+        b.disabled = showRig(state).disabled;
+      },
+    }),
+  };
+}
+
+/** The DOM of each kind of control, labelled alike, and the messages of an action. */
+function controlKit(document: Document, messages: Pick<ControlKit, "succeeded" | "failed" | "cancelled">): ControlKit {
+  return {
+    document,
+    ...messages,
+    labelled(parent, text, control) {
+      control.setAttribute("aria-label", text.trim());
+      const label = document.createElement("label");
+      label.append(text, control);
+      parent.append(label);
     },
-    showRig(state) {
-      saveRig.disabled = !state.hasRig;
-      train.disabled = state.training;
+    button(parent, text, title, onClick, name = text) {
+      const b = document.createElement("button");
+      b.type = "button";
+      b.textContent = text;
+      b.title = title;
+      b.dataset.action = name.toLowerCase().replace(/\s+/g, "-");
+      b.addEventListener("click", onClick);
+      parent.append(b);
+      return b;
     },
-    addShape(option) {
-      shape.append(new Option(option.label, option.value));
-      shape.value = option.value;
+    select(options, value) {
+      const s = document.createElement("select");
+      for (const o of options) s.append(new Option(o.label, o.value, false, o.value === value));
+      return s;
     },
-    sync(settings) {
-      minAngle.value = String(settings.minAngle);
-      wireframe.checked = settings.wireframe;
-      field.checked = settings.field;
-      flipped.checked = settings.flipped;
-      paper.checked = settings.paperMode;
-      noFoldovers.checked = settings.noFoldovers;
-      region.checked = settings.region;
-      compare.checked = settings.compare;
-      energy.value = settings.training.energy ?? "sarap";
-      basis.value = settings.training.basis ?? "tps";
-      samples.value = String(settings.training.samples ?? 200);
-      spatial.value = String(settings.training.spatial ?? 0);
-      method.value = settings.method;
-      lambda.value = String(settings.lambda);
-      toolList.value = settings.tool;
-      showTool(settings.tool);
-      brushSize.value = String(settings.brush.size);
-      if (!BRUSH_VALUES.some((v) => String(v) === brushValue.value && v === settings.brush.value)) {
-        // A value set through the API that the list lacks is shown as one more choice.
-        const value = String(settings.brush.value);
-        if (!Array.from(brushValue.options).some((o) => o.value === value))
-          brushValue.append(new Option(`×${value}`, value));
-        brushValue.value = value;
-      }
+    checkbox(parent, text, checked, onChange) {
+      const c = document.createElement("input");
+      c.type = "checkbox";
+      c.checked = checked;
+      c.addEventListener("change", onChange);
+      const label = document.createElement("label");
+      label.append(c, text);
+      parent.append(label);
+      return c;
+    },
+    number(value, min, max, step) {
+      const n = document.createElement("input");
+      n.type = "number";
+      n.min = String(min);
+      n.max = String(max);
+      n.step = String(step);
+      n.value = String(value);
+      return n;
+    },
+    filePicker(parent, accept, name, chosen) {
+      const picker = document.createElement("input");
+      picker.type = "file";
+      picker.accept = accept;
+      picker.className = "hidden";
+      picker.name = name;
+      picker.addEventListener("change", () => {
+        const file = picker.files?.[0];
+        if (file) chosen(file);
+        picker.value = "";
+      });
+      parent.append(picker);
+      return picker;
     },
   };
 }

@@ -1,22 +1,24 @@
 /**
  * The widget's input: pointer gestures on the shape (handles or the stiffness brush, and
- * the view's pan and zoom) through {@link PointerInput}, keys through {@link keyCommand}, Space held to pan
+ * the view's pan and zoom) through {@link PointerInput}, keys through the registry's
+ * {@link keyAction}, Space held to pan
  * (tapped: play or pause the animation),
  * and files dropped on the stage. What each gesture changes is the posing's and the
  * widget's; this file only routes.
  */
 import { boneAt, boneEnds } from "../model/bones.js";
-import type { Brush } from "./tool-state.js";
+import type { Action } from "../actions/action.js";
+import { playPause } from "../actions/animation.js";
+import { removeHandle } from "../actions/handles.js";
+import { keyAction, keyFocus } from "../actions/keys.js";
+import { open } from "../actions/shape.js";
+import type { PointerState } from "./pointer-state.js";
 import type { Camera } from "../view/camera.js";
-import { keyCommand, keyFocus } from "../actions/keys.js";
 import { HANDLE_RADIUS, RING_RADIUS } from "../view/overlay.js";
 import { locate, nearestPoint } from "../model/picking.js";
 import { PointerInput } from "./pointer-events.js";
 import type { WidgetSettings } from "../options.js";
 import type { Posing } from "../model/posing.js";
-import type { Stage } from "../view/stage.js";
-import type { Toolbar } from "../chrome/toolbar.js";
-import type { Widget } from "../widget.js";
 import { fromPixel } from "../view/projection.js";
 
 /** What the input needs of the widget. */
@@ -28,6 +30,8 @@ export interface InputHost {
   /** The focusable root (keys) and the overlay canvas (pointers, drops). */
   readonly root: HTMLElement;
   readonly overlay: HTMLCanvasElement;
+  /** What the overlay shows of the pointer. */
+  readonly pointer: PointerState;
   /** Device pixels per CSS pixel. */
   ratio(): number;
   /** Client (CSS) pixels to device pixels of the canvas. */
@@ -39,71 +43,8 @@ export interface InputHost {
   succeeded(): void;
   /** An action failed: its message is shown. */
   failed(error: unknown): void;
-  gesture(change: () => void): void;
-  removeHandle(index: number): void;
-  undo(): void;
-  redo(): void;
-  zoom(factor: number | "fit"): void;
-  toggleDisplay(what: "wireframe" | "field"): void;
-  /** The selected handles' parts to the front (1) or the back (-1). */
-  reorder(step: 1 | -1): void;
-  /** The stiffness brush: on and off (B), its size ([ and ]), its outline at the pointer. */
-  readonly brush: Brush;
-  /** Opens or closes the help (toggles without an argument); whether it is open. */
-  help(open?: boolean): void;
-  helpOpen(): boolean;
-  dropped(file: File): void;
-  /** The animation: capture a key (K), play or pause (a tap of Space). */
-  animate(what: "capture" | "play"): void;
-}
-
-/** What {@link inputHost} reads of the widget's parts (see `widget.ts`). */
-export interface InputParts {
-  readonly posing: Posing;
-  readonly stage: Stage;
-  readonly settings: WidgetSettings;
-  readonly root: HTMLElement;
-  readonly toolbar: Toolbar | undefined;
-  draw(): void;
-  gesture(change: () => void): void;
-  showError(error: unknown): void;
-}
-
-/** The input's host for a widget: its public API, its parts, and what only it has. */
-export function inputHost(
-  widget: Pick<
-    Widget,
-    "removeHandle" | "undo" | "redo" | "zoom" | "setDisplay" | "bringForward" | "sendBack" | "loadFile"
-  >,
-  parts: InputParts,
-  own: Pick<InputHost, "moved" | "brush" | "help" | "animate">,
-): InputHost {
-  const { stage, settings } = parts;
-  return {
-    ...own,
-    posing: parts.posing,
-    settings,
-    camera: stage.camera,
-    root: parts.root,
-    overlay: stage.overlay,
-    ratio: () => stage.ratio,
-    devicePixel: (x, y) => stage.devicePixel(x, y),
-    draw: () => parts.draw(),
-    succeeded: () => stage.status.succeeded(),
-    failed: (error) => parts.showError(error),
-    gesture: (change) => parts.gesture(change),
-    removeHandle: (index) => widget.removeHandle(index),
-    undo: () => widget.undo(),
-    redo: () => widget.redo(),
-    zoom: (factor) => widget.zoom(factor),
-    toggleDisplay: (what) => {
-      widget.setDisplay({ [what]: !settings[what] });
-      parts.toolbar?.sync(settings);
-    },
-    reorder: (step) => (step > 0 ? widget.bringForward() : widget.sendBack()),
-    helpOpen: () => stage.help.open,
-    dropped: (file) => widget.loadFile(file).catch((error: unknown) => parts.showError(error)),
-  };
+  /** Runs an action of the registry; a failure (now or when its promise rejects) shows its message. */
+  perform<A>(action: Action<A, unknown>, args: A): void;
 }
 
 export class WidgetInput {
@@ -169,7 +110,7 @@ export class WidgetInput {
       },
       removeAt: (x, y) => {
         const index = nearestPoint(posing.deformer.handlePositions(), x, y, radius());
-        if (index >= 0) host.removeHandle(index);
+        if (index >= 0) host.perform(removeHandle, { index });
       },
       pressedOff: (additive) => {
         if (!additive) posing.handles.forEach((h) => (h.selected = false));
@@ -186,7 +127,7 @@ export class WidgetInput {
         if (posing.paint(x, y, (size * host.ratio()) / host.camera.view.scale, erase ? 1 : value)) {
           posing.markChanged();
         }
-        host.brush.hover([x, y]);
+        host.pointer.hover([x, y]);
       },
       paintEnd: () => {
         try {
@@ -199,9 +140,9 @@ export class WidgetInput {
           host.draw();
         }
       },
-      hover: (at) => host.brush.hover(at),
+      hover: (at) => host.pointer.hover(at),
       pressedWith: (touch) => {
-        host.brush.touch = touch;
+        host.pointer.touch = touch;
       },
       panMode: () => this.#spaceHeld,
       pan: (dx, dy) => {
@@ -218,7 +159,7 @@ export class WidgetInput {
     host.root.addEventListener("keyup", (e) => {
       if (e.key !== " " || !this.#spaceHeld) return;
       // A tap of Space (no pan while it was held) plays or pauses the animation.
-      if (!this.#spacePanned && keyFocus(e.composedPath()[0] ?? null) === "other") host.animate("play");
+      if (!this.#spacePanned && keyFocus(e.composedPath()[0] ?? null) === "other") host.perform(playPause, undefined);
       this.#setSpace(false);
     });
     host.root.addEventListener("blur", () => this.#setSpace(false), true);
@@ -230,7 +171,7 @@ export class WidgetInput {
       const file = e.dataTransfer?.files[0];
       if (!file) return;
       e.preventDefault();
-      host.dropped(file);
+      host.perform(open, { file });
     });
   }
 
@@ -243,7 +184,7 @@ export class WidgetInput {
    * drag stretches it to the pointer; with Alt, a press removes the bone under it.
    */
   #drawBone(x: number, y: number, erase: boolean): void {
-    const { posing, brush } = this.#host;
+    const { posing, pointer: brush } = this.#host;
     if (brush.boneDraft) {
       brush.boneDraft = [brush.boneDraft[0], brush.boneDraft[1], x, y];
     } else if (erase) {
@@ -261,7 +202,7 @@ export class WidgetInput {
 
   /** The bone tool's release: the bone drawn is added (if it is longer than a few pixels). */
   #endBone(): void {
-    const { posing, brush } = this.#host;
+    const { posing, pointer: brush } = this.#host;
     const draft = brush.boneDraft;
     brush.boneDraft = undefined;
     this.#host.draw();
@@ -299,72 +240,9 @@ export class WidgetInput {
       this.#setSpace(true);
       return;
     }
-    const command = keyCommand(e, focus);
-    if (!command) return;
+    const found = keyAction(e, focus);
+    if (!found) return;
     e.preventDefault();
-    const posing = host.posing;
-    switch (command.kind) {
-      case "undo":
-        host.undo();
-        break;
-      case "redo":
-        host.redo();
-        break;
-      case "delete": {
-        const keep = posing.handles.filter((h) => !h.selected);
-        if (keep.length < posing.handles.length) {
-          host.gesture(() => {
-            posing.handles = keep;
-            posing.applyHandles();
-          });
-        }
-        break;
-      }
-      case "nudge": {
-        const selected = posing.handles.filter((h) => h.selected);
-        const unit = host.ratio() / host.camera.view.scale;
-        const [dx, dy] = [command.dx * unit, command.dy * unit];
-        if (selected.length === 0) break;
-        host.gesture(() => {
-          for (const h of selected) {
-            h.target = [h.target[0] + dx, h.target[1] + dy];
-            h.pending = [h.pending[0] + dx, h.pending[1] + dy];
-          }
-        });
-        break;
-      }
-      case "deselect":
-        if (host.helpOpen()) host.help(false);
-        posing.handles.forEach((h) => (h.selected = false));
-        host.draw();
-        break;
-      case "toggle":
-        host.toggleDisplay(command.what);
-        break;
-      case "fit":
-        host.zoom("fit");
-        break;
-      case "zoom":
-        host.zoom(command.factor);
-        break;
-      case "help":
-        host.help();
-        break;
-      case "layer":
-        host.reorder(command.step);
-        break;
-      case "brush":
-        host.brush.toggle();
-        break;
-      case "bones":
-        host.brush.toggle("bone");
-        break;
-      case "brush-size":
-        host.brush.resize(command.factor);
-        break;
-      case "capture-key":
-        host.animate("capture");
-        break;
-    }
+    host.perform(found.action, found.args);
   }
 }

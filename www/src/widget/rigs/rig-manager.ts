@@ -12,7 +12,7 @@ import { shapeFromMesh } from "../model/shape.js";
 import { Rig, rigKey, type RigTrainOptions } from "../model/rig.js";
 import { RigCache } from "./rig-cache.js";
 import { fetchFile } from "../shapes/shape-files.js";
-import type { BusyIndicator } from "../view/status-line.js";
+import type { BusyIndicator } from "../view/busy-indicator.js";
 
 /** {@link Widget.train}'s options: the training's, and how it runs. */
 export interface WidgetTrainOptions extends RigTrainOptions {
@@ -41,7 +41,7 @@ export interface RigInfo {
 }
 
 /** What the rigging tells the widget. */
-export interface RiggingHost {
+export interface RigManagerHost {
   readonly posing: Posing;
   readonly indicator: BusyIndicator;
   /** The rig, its state or its comparison changed: HUD, toolbar, a frame. */
@@ -61,8 +61,8 @@ export interface Comparison {
 /** Milliseconds the pose must rest before its ground truth is solved. */
 const COMPARE_DELAY_MS = 150;
 
-export class Rigging {
-  readonly #host: RiggingHost;
+export class RigManager {
+  readonly #host: RigManagerHost;
   readonly #cache = new RigCache();
   #training: AbortController | undefined;
   #comparing: AbortController | undefined;
@@ -71,7 +71,7 @@ export class Rigging {
   /** The last training's progress while it runs. */
   progress: TrainProgress | undefined;
 
-  constructor(host: RiggingHost) {
+  constructor(host: RigManagerHost) {
     this.#host = host;
   }
 

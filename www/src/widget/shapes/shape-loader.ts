@@ -2,27 +2,24 @@
  * Shapes into the widget: built-in shapes and outlines meshed in the set-up worker (with
  * the busy indicator and Cancel), files made shapes (an imported file's parts, one at a
  * time), re-meshing that carries the pose over; each an undoable step. The page side of
- * `setup.ts`, `sources.ts` and `shape.ts`.
+ * `shape-maker.ts`, `shape-files.ts` and `model/shape.ts`.
  */
 import { builtinShape, builtinShapes, type Outline } from "../../core.js";
 import { DEFAULTS, type WidgetSettings } from "../options.js";
 import { restoreWork, savedShape, type SavedWork } from "../store/work-store.js";
-import type { Rigging } from "../rigs/rig-manager.js";
 import type { Parts, Posing } from "../model/posing.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./shape-maker.js";
-import type { Session } from "../../session.js";
-import { meshOutline, sessionShape, shapeFromMesh, type Loaded } from "../model/shape.js";
+import { meshOutline, shapeFromMesh, type Loaded } from "../model/shape.js";
 import { paintVector, partShape, readShapeFile } from "./shape-files.js";
 import type { Stage } from "../view/stage.js";
-import type { Toolbar } from "../chrome/toolbar.js";
 
 /** What the loader needs of the widget. */
 export interface LoaderHost {
-  readonly rigging: Rigging;
   readonly settings: WidgetSettings;
   readonly posing: Posing;
   readonly stage: Stage;
-  readonly toolbar: Toolbar | undefined;
+  /** A file was opened: the toolbar's shape list offers it from now on. */
+  fileAdded(option: { value: string; label: string }): void;
   readonly document: Document;
   destroyed(): boolean;
   /** Runs one undoable change. */
@@ -70,13 +67,12 @@ export class ShapeLoader {
     });
   }
 
-  /** Saved work put back over the shape installed (a rig from the cache with it); throws, changing nothing, if it cannot. */
+  /** Saved work put back over the shape installed; throws, changing nothing, if it cannot. */
   async resume(saved: SavedWork): Promise<void> {
     const { document, posing, settings } = this.#host;
     await restoreWork(saved, posing, settings, (shape) =>
       savedShape(document, shape, (s, v) => paintVector(document, s, v)),
     );
-    if (settings.method === "defop") await this.#host.rigging.fromCache(settings.training).catch(() => false);
   }
 
   /** See `Widget.setOutline`. */
@@ -94,7 +90,7 @@ export class ShapeLoader {
     if (loaded.kind === "outlines" && loaded.parts.length === 0) throw new Error(`${name}: no shape found`);
     await this.show(loaded, 0);
     this.files.push(loaded);
-    this.#host.toolbar?.addShape({ value: `file:${this.files.length - 1}`, label: loaded.name });
+    this.#host.fileAdded({ value: `file:${this.files.length - 1}`, label: loaded.name });
   }
 
   /** See `Widget.choosePart`. */
@@ -166,31 +162,5 @@ export class ShapeLoader {
     return partShape(this.#host.document, loaded, index, (outline, label) =>
       this.make({ name: undefined, outline, label, vertices }),
     );
-  }
-}
-
-/**
- * See `Widget.replay`: the session's shape rebuilt if needed, then `Posing.replay`, drawn
- * every `stepsPerFrame` steps (`data-replaying` on the widget's element meanwhile).
- */
-export async function replaySession(
-  host: { readonly posing: Posing; readonly root: HTMLElement; render(): void; destroyed(): boolean },
-  session: Session,
-  stepsPerFrame: number,
-): Promise<void> {
-  const posing = host.posing;
-  if (posing.replaying) throw new Error("a replay is already running");
-  const shape = sessionShape(session, posing.shape);
-  host.root.dataset.replaying = "true";
-  try {
-    await posing.replay(session, shape, async (steps) => {
-      if (steps % stepsPerFrame === 0) {
-        host.render();
-        await new Promise((resolve) => requestAnimationFrame(resolve));
-      }
-      return !host.destroyed();
-    });
-  } finally {
-    delete host.root.dataset.replaying;
   }
 }

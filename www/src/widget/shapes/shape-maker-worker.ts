@@ -1,5 +1,5 @@
 /**
- * The set-up worker (see `setup.ts`): with a wasm instance of its own (of the module the
+ * The set-up worker (see `shape-maker.ts`): with a wasm instance of its own (of the module the
  * page compiled, sent with each request), meshes an outline and computes the deformer's
  * orders, reporting each stage, and sends the shape back with its arrays transferred, not
  * copied.

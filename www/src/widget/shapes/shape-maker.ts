@@ -1,6 +1,6 @@
 /**
  * Making a shape ready to pose, off the main thread: a Web Worker (its own wasm instance,
- * `setup-worker.ts`) triangulates the outline to the vertex count asked and computes the
+ * `shape-maker-worker.ts`) triangulates the outline to the vertex count asked and computes the
  * deformer's fill-reducing orders, the bulk of the set-up (about two thirds), while the
  * page stays responsive; the widget then builds the deformer with those orders. Progress
  * comes as stages; a new request or {@link ShapeMaker.cancel} stops the one under way.
@@ -10,7 +10,7 @@
 import { builtinShape, compiledModule, type DeformerOptions, type Outline } from "../../core.js";
 import { unbundledFile } from "../../internal/wasm.js";
 import { meshOutline, type Shape } from "../model/shape.js";
-import { BUSY_DELAY_MS, type BusyIndicator } from "../view/status-line.js";
+import { BUSY_DELAY_MS, type BusyIndicator } from "../view/busy-indicator.js";
 
 /** What to make: an outline (or a built-in shape by name) meshed to about `vertices`. */
 export interface SetupRequest {

@@ -8,7 +8,6 @@
 import type { Metrics, Timings } from "../../core.js";
 import type { PoseDetail, WidgetSettings } from "../options.js";
 import type { Posing } from "../model/posing.js";
-import type { Rigging } from "../rigs/rig-manager.js";
 import type { Stage } from "./stage.js";
 import { messageOf } from "./status-line.js";
 
@@ -20,13 +19,14 @@ export interface FrameHost {
   readonly posing: Posing;
   readonly stage: Stage;
   readonly settings: WidgetSettings;
-  readonly rigging: Rigging;
   /** The widget's element in the shadow root: `data-idle` says when the loop has settled. */
   readonly root: HTMLElement;
   destroyed(): boolean;
   /** Draws the picture now. */
   render(): void;
   showError(error: unknown): void;
+  /** A rig posed the frame (its comparison with the ground truth is out of date). */
+  rigPosed(): void;
   /** Dispatches an event on the widget's element. */
   emit(type: string, detail: unknown): void;
 }
@@ -106,7 +106,7 @@ export class FrameLoop {
 
   #frame(time: number): void {
     this.#raf = 0;
-    const { posing, stage, settings, rigging } = this.#host;
+    const { posing, stage, settings } = this.#host;
     if (this.#host.destroyed() || posing.replaying) return;
     const started = performance.now();
     const timings = noTimings();
@@ -126,10 +126,7 @@ export class FrameLoop {
       posing.markChanged();
       this.metrics = posing.deformer.metrics();
       if (settings.field) this.lastField = posing.deformer.field();
-      if (settings.compare && posing.posingWithRig) {
-        rigging.comparison = undefined;
-        rigging.compareSoon();
-      }
+      if (settings.compare && posing.posingWithRig) this.#host.rigPosed();
     }
     this.#host.render();
     stage.keepHudClear(posing);

@@ -3,13 +3,13 @@
  * where WebGL2 is missing), the overlay canvas (outline, handles, field arrows, flipped
  * triangles, a rig's training discs and ground-truth ghost), the view ({@link Camera}), the
  * status line, the busy indicator, the training's progress (which never blocks posing), the
- * HUD and the help panel, all in the shadow root's stage element.
+ * HUD, all in the shadow root's stage element (the widget adds the help panel and the
+ * tool panel).
  */
 import { boneEnds } from "../model/bones.js";
 import { Camera } from "./camera.js";
 import { Canvas2dRenderer } from "./canvas2d-renderer.js";
 import { GlRenderer, type MeshRenderer } from "./gl-renderer.js";
-import { HelpPanel } from "../chrome/help-panel.js";
 import { Hud } from "./hud.js";
 import type { WidgetSettings } from "../options.js";
 import { HANDLE_RADIUS, RING_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
@@ -17,7 +17,8 @@ import { regionOutlines } from "../model/geometry.js";
 import { drawOrder, layering, type Layering } from "../model/layers.js";
 import type { Posing } from "../model/posing.js";
 import type { Shape } from "../model/shape.js";
-import { BusyIndicator, StatusLine } from "./status-line.js";
+import { BusyIndicator } from "./busy-indicator.js";
+import { StatusLine } from "./status-line.js";
 import { WIDGET_CSS } from "./style.js";
 import { toPixel } from "./projection.js";
 
@@ -67,7 +68,6 @@ export class Stage {
   /** A rig's training: progress, times and Cancel, in a corner, while posing goes on. */
   readonly training: BusyIndicator;
   readonly hud: Hud;
-  readonly help: HelpPanel;
   readonly #overlayContext: CanvasRenderingContext2D;
   /** The depth order last given to the renderer, and what it was computed for. */
   #layers: { shape: Shape; key: string; layers: Layering | undefined } | undefined;
@@ -78,7 +78,7 @@ export class Stage {
   /** Where {@link picture} draws the outline (kept: animation exports draw many frames). */
   #outline: HTMLCanvasElement | undefined;
 
-  constructor(document: Document, closeHelp: () => void) {
+  constructor(document: Document) {
     this.element = document.createElement("div");
     this.element.className = "stage";
     this.glCanvas = document.createElement("canvas");
@@ -89,11 +89,9 @@ export class Stage {
     this.status = new StatusLine(document);
     this.busy = new BusyIndicator(document);
     this.training = new BusyIndicator(document, "training");
-    this.help = new HelpPanel(document, closeHelp);
     this.hud = new Hud(document);
     this.element.append(this.glCanvas, this.overlay, this.status.element, this.hud.element, this.busy.element);
     this.element.append(this.training.element);
-    this.element.append(this.help.element);
     const overlayContext = this.overlay.getContext("2d");
     if (!overlayContext) throw new Error("this browser cannot draw on a 2D canvas");
     this.#overlayContext = overlayContext;
