@@ -24,7 +24,7 @@ import type { Posing } from "../model/posing.js";
 import type { Stage } from "../view/stage.js";
 import { messageOf } from "../view/status-line.js";
 import { checkFps, frameAt } from "./timeline.js";
-import { TimelineStrip } from "../chrome/timeline-strip.js";
+import { TimelineStrip } from "./timeline-strip.js";
 import { unpainted } from "../model/stiffness.js";
 
 /** What the animation needs of the widget. */

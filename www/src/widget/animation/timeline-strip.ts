@@ -6,8 +6,8 @@
  * Delete or Backspace in the strip deletes the selected key; on the track, the arrows move
  * the playhead a frame back or on, Home and End to the ends.
  */
-import { ANIMATION_FORMATS, type AnimationExportFormat } from "../animation/formats.js";
-import { EASINGS, FPS_RANGE, type Easing } from "../animation/timeline.js";
+import { ANIMATION_FORMATS, type AnimationExportFormat } from "./formats.js";
+import { EASINGS, FPS_RANGE, type Easing } from "./timeline.js";
 
 export interface StripActions {
   capture(): void;
