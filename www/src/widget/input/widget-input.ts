@@ -1,16 +1,14 @@
 /**
- * The widget's input: pointer gestures on the shape (handles or the stiffness brush, and
- * the view's pan and zoom) through {@link PointerInput}, keys through the registry's
- * {@link keyAction}, Space held to pan
- * (tapped: play or pause the animation),
- * and files dropped on the stage. What each gesture changes is the posing's and the
- * widget's; this file only routes.
+ * The widget's input, wired: pointer gestures on the shape (handles, the stiffness brush,
+ * bones, and the view's pan and zoom) through {@link PointerInput} and its state machine,
+ * whose host this file implements on the posing and the view; keys through
+ * {@link Keyboard}; and files dropped on the stage, opened as the Open button's are. What
+ * each gesture changes is the posing's and the widget's; this file only routes.
  */
 import { boneAt, boneEnds } from "../model/bones.js";
 import type { Action } from "../actions/action.js";
-import { playPause } from "../actions/animation.js";
 import { removeHandle } from "../actions/handles.js";
-import { keyAction, keyFocus } from "../actions/keys.js";
+import { Keyboard } from "./keyboard.js";
 import { open } from "../actions/shape.js";
 import type { PointerState } from "./pointer-state.js";
 import type { Camera } from "../view/camera.js";
@@ -50,13 +48,12 @@ export interface InputHost {
 export class WidgetInput {
   readonly #host: InputHost;
   readonly #pointer: PointerInput;
-  #spaceHeld = false;
-  /** The view was panned while Space was held (then its release does not play). */
-  #spacePanned = false;
+  readonly #keyboard: Keyboard;
 
   constructor(host: InputHost) {
     this.#host = host;
     const posing = host.posing;
+    this.#keyboard = new Keyboard(host);
     const radius = () => (1.6 * HANDLE_RADIUS * host.ratio()) / host.camera.view.scale;
     this.#pointer = new PointerInput(host.overlay, {
       accepting: () => !posing.replaying,
@@ -117,36 +114,28 @@ export class WidgetInput {
         posing.endDragGesture();
         host.draw();
       },
-      painting: () => host.settings.tool !== "pose",
+      tool: () => host.settings.tool,
       paint: (_pointerId, x, y, erase) => {
-        if (host.settings.tool === "bone") {
-          this.#drawBone(x, y, erase);
-          return;
-        }
         const { size, value } = host.settings.brush;
         if (posing.paint(x, y, (size * host.ratio()) / host.camera.view.scale, erase ? 1 : value)) {
           posing.markChanged();
         }
         host.pointer.hover([x, y]);
       },
-      paintEnd: () => {
-        try {
-          if (host.settings.tool === "bone") this.#endBone();
+      paintEnd: () => this.#strokeEnd(() => posing.flushStiffness()),
+      bone: (x, y, erase) => this.#drawBone(x, y, erase),
+      boneEnd: () =>
+        this.#strokeEnd(() => {
+          this.#endBone();
           posing.flushStiffness();
-        } catch (error) {
-          host.failed(error);
-        } finally {
-          posing.endDragGesture();
-          host.draw();
-        }
-      },
+        }),
       hover: (at) => host.pointer.hover(at),
       pressedWith: (touch) => {
         host.pointer.touch = touch;
       },
-      panMode: () => this.#spaceHeld,
+      panMode: () => this.#keyboard.spaceHeld,
       pan: (dx, dy) => {
-        if (this.#spaceHeld) this.#spacePanned = true;
+        this.#keyboard.panned();
         host.camera.pan(dx * host.ratio(), dy * host.ratio());
         host.draw();
       },
@@ -155,14 +144,6 @@ export class WidgetInput {
         host.draw();
       },
     });
-    host.root.addEventListener("keydown", (e) => this.#key(e));
-    host.root.addEventListener("keyup", (e) => {
-      if (e.key !== " " || !this.#spaceHeld) return;
-      // A tap of Space (no pan while it was held) plays or pauses the animation.
-      if (!this.#spacePanned && keyFocus(e.composedPath()[0] ?? null) === "other") host.perform(playPause, undefined);
-      this.#setSpace(false);
-    });
-    host.root.addEventListener("blur", () => this.#setSpace(false), true);
     // Files dropped on the stage load like the Open button's.
     host.overlay.addEventListener("dragover", (e) => {
       if (e.dataTransfer?.types.includes("Files")) e.preventDefault();
@@ -177,6 +158,19 @@ export class WidgetInput {
 
   destroy(): void {
     this.#pointer.destroy();
+  }
+
+  /** A brush stroke or a bone ends: `end` (a failure shows), then the gesture ends. */
+  #strokeEnd(end: () => void): void {
+    const { posing } = this.#host;
+    try {
+      end();
+    } catch (error) {
+      this.#host.failed(error);
+    } finally {
+      posing.endDragGesture();
+      this.#host.draw();
+    }
   }
 
   /**
@@ -224,25 +218,5 @@ export class WidgetInput {
   /** Shape units in `n` CSS pixels at the current zoom. */
   #pixels(n: number): number {
     return (n * this.#host.ratio()) / this.#host.camera.view.scale;
-  }
-
-  #setSpace(held: boolean): void {
-    this.#spaceHeld = held;
-    this.#host.overlay.classList.toggle("panning", held);
-  }
-
-  #key(e: KeyboardEvent): void {
-    const host = this.#host;
-    const focus = keyFocus(e.composedPath()[0] ?? null);
-    if (e.key === " " && focus === "other") {
-      e.preventDefault();
-      if (!e.repeat && !this.#spaceHeld) this.#spacePanned = false;
-      this.#setSpace(true);
-      return;
-    }
-    const found = keyAction(e, focus);
-    if (!found) return;
-    e.preventDefault();
-    host.perform(found.action, found.args);
   }
 }
