@@ -32,6 +32,7 @@ check cargo-test cargo test --quiet
 check wasm-test with_wasm_toolchain wasm-pack test --node --release --mode no-install
 check typecheck tsc --noEmit -p tsconfig.json
 check lint bash -c 'eslint . && prettier --check . --log-level warn'
+check imports-ts depcruise --config .dependency-cruiser.mjs --output-type err www/src
 check unit vitest run
 check browser env CHROMIUM_PATH="${CHROMIUM_PATH:-/usr/bin/chromium}" playwright test
 check package env CHROMIUM_PATH="${CHROMIUM_PATH:-/usr/bin/chromium}" node scripts/test-package.mjs
