@@ -1,6 +1,7 @@
 /**
  * The widget's animation, page side: the {@link Animator} with the timeline strip (when the
- * `timeline` option shows it), the K and Space keys' commands, and the exports, which draw
+ * `timeline` option shows it), capture and play or pause (which the K key and a tap of
+ * Space run through the registry's actions), and the exports, which draw
  * each frame with the stage's renderer ({@link Stage.picture}) and put the pose back after.
  * An export from the strip shows the busy indicator's progress bar with Cancel and
  * downloads the file; while an export runs the shape takes no input and nothing is recorded.
@@ -135,16 +136,7 @@ export class AnimationController {
     return index;
   }
 
-  /** K (capture) or a tap of Space (play or pause); a refusal shows as an error. */
-  key(what: "capture" | "play"): void {
-    try {
-      if (what === "capture") this.capture();
-      else this.playPause();
-    } catch (error) {
-      this.#failed(error);
-    }
-  }
-
+  /** Plays, or pauses playback under way; a refusal shows as an error. */
   playPause(): void {
     const a = this.animator;
     if (a.playing) a.pause();

@@ -40,7 +40,7 @@ export interface RigInfo {
   comparison: number | undefined;
 }
 
-/** What the rigging tells the widget. */
+/** What the rig manager tells the widget. */
 export interface RigManagerHost {
   readonly posing: Posing;
   readonly indicator: BusyIndicator;
