@@ -327,10 +327,12 @@ export class Widget {
 
   // ---------------------------------------------------------------- the model, read
 
+  /** Vertices of the rest mesh. */
   get vertexCount(): number {
     return this.#posing.shape.mesh.vertexCount;
   }
 
+  /** Triangles of the rest mesh. */
   get triangleCount(): number {
     return this.#posing.shape.mesh.triangleCount;
   }
@@ -365,6 +367,7 @@ export class Widget {
     return this.#posing.deformer.handlePositions();
   }
 
+  /** How many handles there are. */
   get handleCount(): number {
     return this.#posing.handles.length;
   }
@@ -379,6 +382,7 @@ export class Widget {
     return this.#posing.history.canUndo;
   }
 
+  /** Whether there is an undone gesture to redo. */
   get canRedo(): boolean {
     return this.#posing.history.canRedo;
   }
@@ -405,10 +409,12 @@ export class Widget {
     this.#perform(handles.reset, undefined);
   }
 
+  /** Undoes the last gesture; false when there is none. */
   undo(): boolean {
     return this.#perform(handles.undo, undefined);
   }
 
+  /** Redoes the gesture undone last; false when there is none. */
   redo(): boolean {
     return this.#perform(handles.redo, undefined);
   }
@@ -532,6 +538,7 @@ export class Widget {
 
   // ---------------------------------------------------------------- sessions
 
+  /** Whether a recording runs. */
   get recording(): boolean {
     return this.#posing.recorder.recording;
   }
@@ -700,6 +707,7 @@ export class Widget {
     return this.#perform(animation.moveKey, { index, time });
   }
 
+  /** Deletes key `index`. */
   deleteKey(index: number): void {
     this.#perform(animation.deleteKey, { index });
   }
