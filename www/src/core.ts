@@ -12,13 +12,13 @@
  *
  */
 import { toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
-import { readMesh, type MeshData } from "./internal/mesh.js";
-import { assertLoaded, load, raw, wasmMemory, wasmModule, type rawTypes, type WasmSource } from "./internal/wasm.js";
+import type { MeshData, WasmSource } from "./core-types.js";
+import { readMesh } from "./internal/mesh.js";
+import { assertLoaded, load, raw, wasmMemory, wasmModule, type rawTypes } from "./internal/wasm.js";
 
 export type { Coordinates, Indices } from "./internal/arrays.js";
-export { ERROR_CODES, isAkapError, type AkapError, type ErrorCode } from "./internal/errors.js";
-export type { MeshData } from "./internal/mesh.js";
-export type { WasmSource } from "./internal/wasm.js";
+export { ERROR_CODES, isAkapError, type AkapError, type ErrorCode } from "./errors.js";
+export type { MeshData, WasmSource } from "./core-types.js";
 
 /** A shape: an outer boundary and optional holes, each a closed ring in either direction. */
 export interface Outline {

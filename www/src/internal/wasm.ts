@@ -10,14 +10,9 @@
  * `../index.ts` re-exports what users need.
  */
 import initWasm, * as glue from "../../pkg/akap.js";
-export type * as rawTypes from "../../pkg/akap.js";
+import type { WasmSource } from "../core-types.js";
 
-/**
- * Where the WebAssembly module comes from: its bytes, its URL, a fetch `Response` or an
- * already compiled module. (Public through `core.ts`. The public types never reach wasm-bindgen's generated ones,
- * so a consumer's `lib` setting need not know them.)
- */
-export type WasmSource = BufferSource | WebAssembly.Module | URL | string | Response;
+export type * as rawTypes from "../../pkg/akap.js";
 
 /** What to do after a trap when no fresh instance can be made. */
 const RELOAD = "reload the page, or restart the process";

@@ -1,5 +1,6 @@
 /**
- * The codes of the `Error`s akap throws. Internal module; public through `core.ts`.
+ * The codes of the `Error`s akap throws, and how to tell one. A leaf (it imports nothing):
+ * the core, its internal helpers and the widget all use it; public through `core.ts`.
  */
 
 /**
