@@ -21,6 +21,14 @@ export default {
       to: { path: "^www/src/widget/" },
     },
     {
+      name: "public-leaves",
+      comment:
+        "errors.ts and core-types.ts import nothing: internal/ uses them, and the public declarations that re-export them never reach wasm-bindgen's.",
+      severity: "error",
+      from: { path: "^www/src/(errors|core-types)\\.ts$" },
+      to: {},
+    },
+    {
       name: "model-at-the-bottom",
       comment: "widget/model/ (what is posed) imports only the core and itself.",
       severity: "error",
