@@ -1,6 +1,6 @@
 /**
  * Making a shape ready to pose, off the main thread: a Web Worker (its own wasm instance,
- * `shape-maker-worker.ts`) triangulates the outline to the vertex count asked and computes the
+ * `setup-worker.ts`) triangulates the outline to the vertex count asked and computes the
  * deformer's fill-reducing orders, the bulk of the set-up (about two thirds), while the
  * page stays responsive; the widget then builds the deformer with those orders. Progress
  * comes as stages; a new request or {@link ShapeMaker.cancel} stops the one under way.
@@ -95,10 +95,10 @@ export class ShapeMaker {
     if (this.#worker !== undefined) return this.#worker;
     try {
       // The literal form is what bundlers recognise (and bundle the worker with its imports).
-      const unbundled = unbundledFile("www/lib/widget/shapes/shape-maker-worker.js");
+      const unbundled = unbundledFile("www/lib/widget/shapes/setup-worker.js");
       const worker = unbundled
         ? new Worker(unbundled, { type: "module" })
-        : new Worker(new URL("./shape-maker-worker.js", import.meta.url), { type: "module" });
+        : new Worker(new URL("./setup-worker.js", import.meta.url), { type: "module" });
       worker.onmessage = (event: MessageEvent<SetupReply>) => this.#reply(event.data);
       worker.onerror = (event) => {
         // A worker that cannot load (blocked, or its script missing): work here from now on.
