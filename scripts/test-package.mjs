@@ -40,7 +40,7 @@ const REQUIRED = [
   "www/pkg/akap.d.ts",
   "www/lib/index.js",
   "www/lib/index.d.ts",
-  "www/lib/widget/setup-worker.js",
+  "www/lib/widget/shapes/setup-worker.js",
   "www/lib/defop-worker.js",
 ];
 const FORBIDDEN = [

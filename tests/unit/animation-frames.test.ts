@@ -1,6 +1,6 @@
 /**
- * The animation's frames against the real wasm core in Node (`animation.ts`,
- * `animator.ts`): three keys recorded on the default figure; handles at the keys' targets
+ * The animation's frames against the real wasm core in Node (`animation/frames.ts`,
+ * `animation/playback.ts`): three keys recorded on the default figure; handles at the keys' targets
  * at the keys' times; computed twice, the same bits; the same frames from a `Deformer`
  * driven by hand (targets and substeps worked out here, not through the modules); the
  * cache made again when keys, method or stiffness change; bad input refused with nothing
@@ -8,11 +8,11 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { Deformer, init } from "../../www/src/index.js";
-import { AnimationFrames } from "../../www/src/widget/animation.js";
-import { Animator } from "../../www/src/widget/animator.js";
+import { AnimationFrames } from "../../www/src/widget/animation/frames.js";
+import { Animator } from "../../www/src/widget/animation/playback.js";
 import { posed, dragTo } from "./posing-fixtures.js";
-import type { Posing } from "../../www/src/widget/posing.js";
-import { Rig } from "../../www/src/widget/rig.js";
+import type { Posing } from "../../www/src/widget/model/posing.js";
+import { Rig } from "../../www/src/widget/model/rig.js";
 import { trainDefOp } from "../../www/src/index.js";
 
 beforeAll(async () => {

@@ -8,10 +8,10 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { init } from "../../www/src/index.js";
-import type { Bone } from "../../www/src/widget/bones.js";
-import { locate, pointPosition, type MeshPoint } from "../../www/src/widget/picking.js";
-import type { Posing } from "../../www/src/widget/posing.js";
-import { Animator } from "../../www/src/widget/animator.js";
+import type { Bone } from "../../www/src/widget/model/bones.js";
+import { locate, pointPosition, type MeshPoint } from "../../www/src/widget/model/picking.js";
+import type { Posing } from "../../www/src/widget/model/posing.js";
+import { Animator } from "../../www/src/widget/animation/playback.js";
 import { dragTo, posed } from "./posing-fixtures.js";
 
 beforeAll(async () => {

@@ -1,8 +1,8 @@
 /** SVG exports of a pose: the outline's fill where parts overlap, vector art's colours. */
 import { beforeAll, describe, expect, it } from "vitest";
 import { importSvgPaths, init, triangulate, type VectorPath } from "../../www/src/index.js";
-import { outlineSvg, vectorSvg } from "../../www/src/widget/export.js";
-import { bounds } from "../../www/src/widget/view.js";
+import { outlineSvg, vectorSvg } from "../../www/src/widget/store/pose-export.js";
+import { bounds } from "../../www/src/widget/model/geometry.js";
 
 beforeAll(async () => {
   await init();

@@ -6,8 +6,8 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { init, triangulate } from "../../www/src/index.js";
-import { drawOrder, layering } from "../../www/src/widget/layers.js";
-import { locate } from "../../www/src/widget/picking.js";
+import { drawOrder, layering } from "../../www/src/widget/model/layers.js";
+import { locate } from "../../www/src/widget/model/picking.js";
 import { posed } from "./posing-fixtures.js";
 
 beforeAll(async () => {

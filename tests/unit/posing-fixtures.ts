@@ -2,9 +2,9 @@
 import { expect } from "vitest";
 import { builtinShape } from "../../www/src/index.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
-import { locate } from "../../www/src/widget/picking.js";
-import { Posing } from "../../www/src/widget/posing.js";
-import { meshOutline } from "../../www/src/widget/shape.js";
+import { locate } from "../../www/src/widget/model/picking.js";
+import { Posing } from "../../www/src/widget/model/posing.js";
+import { meshOutline } from "../../www/src/widget/model/shape.js";
 import { noTimings } from "./fixtures.js";
 
 /** A posing of the default figure with a pin at its lowest vertex and a handle at its rightmost. */

@@ -7,9 +7,9 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { builtinShape, init, trainDefOp } from "../../www/src/index.js";
-import { Rig } from "../../www/src/widget/rig.js";
-import { meshOutline } from "../../www/src/widget/shape.js";
-import { locate, pointPosition } from "../../www/src/widget/picking.js";
+import { Rig } from "../../www/src/widget/model/rig.js";
+import { meshOutline } from "../../www/src/widget/model/shape.js";
+import { locate, pointPosition } from "../../www/src/widget/model/picking.js";
 import { noTimings } from "./fixtures.js";
 import { dragTo, posed } from "./posing-fixtures.js";
 

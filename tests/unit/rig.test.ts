@@ -6,9 +6,9 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { defaultShape, init, trainDefOp, triangulate } from "../../www/src/index.js";
-import { Rig, rigKey } from "../../www/src/widget/rig.js";
-import { shapeFromMesh } from "../../www/src/widget/shape.js";
-import type { MeshPoint } from "../../www/src/widget/picking.js";
+import { Rig, rigKey } from "../../www/src/widget/model/rig.js";
+import { shapeFromMesh } from "../../www/src/widget/model/shape.js";
+import type { MeshPoint } from "../../www/src/widget/model/picking.js";
 
 beforeAll(async () => {
   await init();

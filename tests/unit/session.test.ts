@@ -8,9 +8,9 @@ import { readFileSync } from "node:fs";
 import { beforeAll, describe, expect, it } from "vitest";
 import { builtinShape, init } from "../../www/src/index.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
-import { Posing } from "../../www/src/widget/posing.js";
-import { Recorder, parseSession, sessionMesh, type SessionEvent } from "../../www/src/widget/session.js";
-import { meshOutline } from "../../www/src/widget/shape.js";
+import { Posing } from "../../www/src/widget/model/posing.js";
+import { Recorder, parseSession, sessionMesh, type SessionEvent } from "../../www/src/session.js";
+import { meshOutline } from "../../www/src/widget/model/shape.js";
 import { noTimings } from "./fixtures.js";
 
 beforeAll(async () => {

@@ -7,10 +7,10 @@
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { Deformer, builtinShape, init, meshFromJson, meshToJson } from "../../www/src/index.js";
-import { meshOutline } from "../../www/src/widget/shape.js";
-import { carryStiffness, paintStiffness, stiffnessTint, unpainted } from "../../www/src/widget/stiffness.js";
+import { meshOutline } from "../../www/src/widget/model/shape.js";
+import { carryStiffness, paintStiffness, stiffnessTint, unpainted } from "../../www/src/widget/model/stiffness.js";
 import { brushSettings } from "../../www/src/widget/options.js";
-import { keyCommand } from "../../www/src/widget/keys.js";
+import { keyCommand } from "../../www/src/widget/actions/keys.js";
 import { grid } from "./fixtures.js";
 import { dragTo, posed } from "./posing-fixtures.js";
 

@@ -13,8 +13,8 @@ import {
   frameTime,
   targetsAt,
   type HandleSet,
-} from "../../www/src/widget/timeline.js";
-import { abortError, recordWebm, sheetLayout } from "../../www/src/widget/animation-export.js";
+} from "../../www/src/widget/animation/timeline.js";
+import { abortError, recordWebm, sheetLayout } from "../../www/src/widget/animation/formats.js";
 
 const TWO: HandleSet = { triangles: [3, 7], barycentric: [1, 0, 0, 0.25, 0.25, 0.5] };
 const POSE = Float64Array.from([0, 0, 1, 0, 0, 1]);

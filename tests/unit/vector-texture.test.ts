@@ -1,8 +1,8 @@
 /** The texture of vector art: where its pixels lie, and what is drawn (on a recording canvas). */
 import { afterEach, beforeAll, describe, expect, it, vi } from "vitest";
 import { init, type VectorPath } from "../../www/src/index.js";
-import { boxUvs } from "../../www/src/widget/geometry.js";
-import { textureMapping, vectorTexture } from "../../www/src/widget/vector-texture.js";
+import { boxUvs } from "../../www/src/widget/model/geometry.js";
+import { textureMapping, vectorTexture } from "../../www/src/widget/shapes/vector-texture.js";
 
 beforeAll(async () => {
   await init(); // boxUvs goes through the core's textureCoordinates

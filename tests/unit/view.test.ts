@@ -1,5 +1,6 @@
 import { describe, expect, it } from "vitest";
-import { bounds, fitView, fromPixel, panBy, toPixel, zoomAt } from "../../www/src/widget/view.js";
+import { bounds } from "../../www/src/widget/model/geometry.js";
+import { fitView, fromPixel, panBy, toPixel, zoomAt } from "../../www/src/widget/view/projection.js";
 
 describe("fitView", () => {
   it("centres the box and fits its limiting side inside the margin", () => {

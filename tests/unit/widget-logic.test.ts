@@ -1,13 +1,19 @@
 /** The widget's logic apart from the page: drag velocities, picking, history, geometry, texture maps, keys, options. */
 import { beforeAll, describe, expect, it } from "vitest";
 import { init } from "../../www/src/index.js";
-import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "../../www/src/widget/drag.js";
-import { affineThrough } from "../../www/src/widget/canvas2d.js";
-import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/geometry.js";
-import { History } from "../../www/src/widget/history.js";
-import { keyCommand, type KeyPress } from "../../www/src/widget/keys.js";
-import { fileKind } from "../../www/src/widget/sources.js";
-import { locate, nearestPoint, pointPosition } from "../../www/src/widget/picking.js";
+import {
+  displacementVelocities,
+  largestGap,
+  substepCount,
+  trackingVelocities,
+} from "../../www/src/widget/model/drag.js";
+import { affineThrough } from "../../www/src/widget/view/canvas2d-renderer.js";
+import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/model/geometry.js";
+import { History } from "../../www/src/widget/model/history.js";
+import type { KeyPress } from "../../www/src/widget/actions/action.js";
+import { keyCommand } from "../../www/src/widget/actions/keys.js";
+import { fileKind } from "../../www/src/widget/shapes/shape-files.js";
+import { locate, nearestPoint, pointPosition } from "../../www/src/widget/model/picking.js";
 import { WIDGET_OPTIONS, widgetSettings } from "../../www/src/widget/options.js";
 
 beforeAll(async () => {

@@ -15,7 +15,7 @@ import {
   type Widget,
   type WidgetOptions,
 } from "../src/index.js";
-import { maxVertices } from "../src/widget/shape.js";
+import { maxVertices } from "../src/widget/model/shape.js";
 import galleryIndex from "../gallery/index.json";
 
 /** The gallery files, as URLs the bundler serves. */

@@ -12,55 +12,13 @@
  *
  */
 import { toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
+import type { MeshData, WasmSource } from "./core-types.js";
 import { readMesh } from "./internal/mesh.js";
 import { assertLoaded, load, raw, wasmMemory, wasmModule, type rawTypes } from "./internal/wasm.js";
 
-/**
- * Where the WebAssembly module comes from: its bytes, its URL, a fetch `Response` or an
- * already compiled module. (The public types never reach wasm-bindgen's generated ones,
- * so a consumer's `lib` setting need not know them.)
- */
-export type WasmSource = BufferSource | WebAssembly.Module | URL | string | Response;
-
-/**
- * The `code` of the `Error`s akap throws for bad input or a failed step: a small, closed
- * set that stays the same from version to version (messages may be reworded), in the
- * order of the README's table. Defined in Rust (`akap::ErrorCode`); `errorCodes()` of the
- * WebAssembly module lists the same, which the tests compare.
- */
-export const ERROR_CODES = [
-  "invalid-argument",
-  "invalid-option",
-  "invalid-outline",
-  "invalid-mesh",
-  "limit",
-  "import",
-  "not-positive-definite",
-  "overflow",
-  "no-convergence",
-  "out-of-memory",
-  "internal",
-] as const;
-
-/** One of {@link ERROR_CODES}. */
-export type ErrorCode = (typeof ERROR_CODES)[number];
-
-/** An `Error` thrown by akap, with its {@link ErrorCode} to switch on. */
-export interface AkapError extends Error {
-  code: ErrorCode;
-}
-
-/**
- * Whether `error` is an `Error` thrown by akap with a code: a refused argument, option,
- * outline, mesh or file, a limit, a failed step. (Using a freed object, calling before
- * {@link init} finished and a stopped instance throw `Error`s without a code.)
- */
-export function isAkapError(error: unknown): error is AkapError {
-  const code = (error as { code?: unknown } | null)?.code;
-  return error instanceof Error && (ERROR_CODES as readonly unknown[]).includes(code);
-}
-
 export type { Coordinates, Indices } from "./internal/arrays.js";
+export { ERROR_CODES, isAkapError, type AkapError, type ErrorCode } from "./errors.js";
+export type { MeshData, WasmSource } from "./core-types.js";
 
 /** A shape: an outer boundary and optional holes, each a closed ring in either direction. */
 export interface Outline {
@@ -78,22 +36,6 @@ export interface TriangulationOptions {
   minAngle?: number;
   /** Largest vertex count of the result, outline points included (default 100000). */
   maxVertices?: number;
-}
-
-/** A validated triangle mesh as plain typed arrays. */
-export interface MeshData {
-  /** Vertex positions, x and y interleaved (length 2 * vertexCount). */
-  positions: Float64Array;
-  /** Counter-clockwise triangles, three vertex indices each (length 3 * triangleCount). */
-  triangles: Uint32Array;
-  /** Edges of exactly one triangle as index pairs, the shape on their left. */
-  boundaryEdges: Uint32Array;
-  /** Vertices on the boundary (outer outline and holes), ascending. */
-  boundaryVertices: Uint32Array;
-  vertexCount: number;
-  triangleCount: number;
-  /** Total area of the triangles. */
-  area: number;
 }
 
 /**

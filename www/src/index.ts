@@ -42,7 +42,7 @@ export {
   type SpriteSheet,
 } from "./widget/widget.js";
 export { defineElement, type AkapDeformerElement } from "./widget/element.js";
-export type { SessionData, SessionEvent, SessionMesh, SessionShape, ShapeSpec } from "./widget/session.js";
-export { Session, parseSession, sessionMesh } from "./widget/session.js";
+export type { SessionData, SessionEvent, SessionMesh, SessionShape, ShapeSpec } from "./session.js";
+export { Session, parseSession, sessionMesh } from "./session.js";
 export * from "./import.js";
-export * from "./animation.js";
+export * from "./animation-files.js";

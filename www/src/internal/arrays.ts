@@ -1,5 +1,5 @@
 /** Conversions of user arrays to the typed arrays the wasm bindings take. Internal. */
-import type { AkapError, ErrorCode } from "../core.js";
+import type { AkapError, ErrorCode } from "../errors.js";
 
 /** `error` with a `code`, as the bindings' own errors have (see `ErrorCode`). */
 export function coded<E extends Error>(error: E, code: ErrorCode): E & AkapError {

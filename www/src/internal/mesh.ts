@@ -1,5 +1,5 @@
 /** Copying meshes out of wasm. Internal. */
-import type { MeshData } from "../core.js";
+import type { MeshData } from "../core-types.js";
 import type { rawTypes } from "./wasm.js";
 
 /** Copies a wasm mesh out as plain typed arrays (the caller frees it). Internal. */

@@ -10,7 +10,7 @@
  * `../index.ts` re-exports what users need.
  */
 import initWasm, * as glue from "../../pkg/akap.js";
-import type { WasmSource } from "../core.js";
+import type { WasmSource } from "../core-types.js";
 
 export type * as rawTypes from "../../pkg/akap.js";
 

@@ -7,100 +7,92 @@
  * {@link mount} puts one into any element; several on one page are independent (all state
  * lives in the instance, the DOM in a shadow root).
  *
- * This file is the page side: the DOM, drawing, input, files, messages. What is posed
- * (shape, deformer, handles, history, recording, the steps of a frame) is {@link Posing}'s.
+ * The {@link Widget} class is a facade: it makes the parts (the model, the stage, the
+ * managers, the toolbar and input), its commands perform the registry's actions
+ * (`actions/`), which the toolbar, the keys and the help panel read too, and its getters
+ * read the model. What is posed (shape, deformer, handles, history, recording, the steps
+ * of a frame) is {@link Posing}'s.
  */
 import {
   builtinShape,
   builtinShapes,
   init,
-  limits,
   type Deformer,
   type MeshData,
   type Metrics,
   type Outline,
 } from "../core.js";
-import { posedMesh, posedSvg } from "./export.js";
-import { FrameLoop, type FrameHost } from "./frames.js";
-import { ShapeLoader, replaySession, type LoaderHost } from "./loading.js";
-
-import {
-  METHODS,
-  widgetSettings,
-  type GalleryItem,
-  type MethodPreset,
-  type WidgetOptions,
-  type WidgetSettings,
-} from "./options.js";
-import { WorkKeeper, WorkStore, type SavedWork } from "./persist.js";
-import { locate } from "./picking.js";
-import { WidgetInput, inputHost } from "./input.js";
-import { Posing } from "./posing.js";
-import { Rigging, type RigInfo, type WidgetTrainOptions } from "./rigging.js";
 import type { TrainProgress } from "../defop-pool.js";
-import { parseSession, type Session } from "./session.js";
-import { widgetToolbar } from "./actions.js";
-import { meshOutline, type Shape } from "./shape.js";
-import { fetchFile, fileKind, fileLimits, loadImage } from "./sources.js";
-import { messageOf } from "./status.js";
-import { COMPACT_WIDTH, Stage, widgetShell } from "./stage.js";
-import { defaultTexture } from "./texture.js";
-import { Brush, type BrushHost } from "./brush.js";
-import { WidgetTools, type ToolParts } from "./tools-api.js";
-import { Animating, type AnimatingHost, type AnimationExport } from "./animating.js";
-import type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
-import type { KeyInfo } from "./animator.js";
-import type { Easing } from "./timeline.js";
-import type { Toolbar } from "./toolbar.js";
-import type { View } from "./view.js";
+import type { Session } from "../session.js";
+import type { Action } from "./actions/action.js";
+import * as animation from "./actions/animation.js";
+import type { WidgetParts } from "./actions/context.js";
+import * as display from "./actions/display.js";
+import * as exporting from "./actions/export.js";
+import * as handles from "./actions/handles.js";
+import { setMethod } from "./actions/method.js";
+import * as rig from "./actions/rig.js";
+import * as sessions from "./actions/session.js";
+import * as shape from "./actions/shape.js";
+import * as tools from "./actions/tools.js";
+import { AnimationController, type AnimationExport } from "./animation/controller.js";
+import type { AnimationExportFormat, AnimationExportOptions, SpriteSheet } from "./animation/formats.js";
+import type { KeyInfo } from "./animation/playback.js";
+import type { Easing } from "./animation/timeline.js";
+import { HelpPanel } from "./chrome/help-panel.js";
+import { buildToolbar, type Toolbar } from "./chrome/toolbar.js";
+import { PointerState } from "./input/pointer-state.js";
+import { WidgetInput } from "./input/widget-input.js";
+import { METHODS, type MethodPreset } from "./model/methods.js";
+import { Posing } from "./model/posing.js";
+import { meshOutline, type Shape } from "./model/shape.js";
+import type { BrushSettings } from "./model/stiffness.js";
+import { widgetSettings, type WidgetOptions, type WidgetSettings, type WidgetTool } from "./options.js";
+import { RigManager, type RigInfo, type WidgetTrainOptions } from "./rigs/rig-manager.js";
+import { loadImage } from "./shapes/shape-files.js";
+import { ShapeLoader } from "./shapes/shape-loader.js";
+import { WorkKeeper, WorkStore, type SavedWork } from "./store/work-store.js";
+import { defaultTexture } from "./view/default-texture.js";
+import { FrameLoop } from "./view/frame-loop.js";
+import type { View } from "./view/projection.js";
+import { COMPACT_WIDTH, Stage, widgetShell } from "./view/stage.js";
+import { messageOf } from "./view/status-line.js";
 
-export {
-  METHODS,
-  type GalleryItem,
-  type MethodPreset,
-  type PoseDetail,
-  type WidgetOptions,
-  type WidgetTool,
-} from "./options.js";
-export type { BrushSettings } from "./stiffness.js";
-export type { RigInfo, WidgetTrainOptions } from "./rigging.js";
-export type { AnimationExport } from "./animating.js";
-export type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation-export.js";
-export type { KeyInfo } from "./animator.js";
-export type { Easing } from "./timeline.js";
+export { METHODS, type MethodPreset } from "./model/methods.js";
+export type { GalleryItem, PoseDetail, WidgetOptions, WidgetTool } from "./options.js";
+export type { BrushSettings } from "./model/stiffness.js";
+export type { RigInfo, WidgetTrainOptions } from "./rigs/rig-manager.js";
+export type { AnimationExport } from "./animation/controller.js";
+export type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation/formats.js";
+export type { KeyInfo } from "./animation/playback.js";
+export type { Easing } from "./animation/timeline.js";
 
-/** What the widget's helpers see of it. */
-type WidgetParts = FrameHost & LoaderHost & BrushHost & AnimatingHost;
-
-export class Widget extends WidgetTools {
+export class Widget {
   /** The element the widget was mounted into; events are dispatched on it. */
   readonly target: HTMLElement;
   readonly #host: HTMLElement;
   readonly #root: HTMLElement;
   readonly #stage: Stage;
+  readonly #help: HelpPanel;
   readonly #toolbar: Toolbar | undefined;
   readonly #resizeObserver: ResizeObserver;
   readonly #settings: WidgetSettings;
   readonly #posing: Posing;
-  readonly #rigging: Rigging;
+  readonly #rigs: RigManager;
   readonly #keeper: WorkKeeper | undefined;
-  readonly #gallery: readonly GalleryItem[];
   #baseTexture: TexImageSource | undefined;
-  #lastSession: Session | undefined;
   #input: WidgetInput | undefined;
   #destroyed = false;
-  readonly #brush: Brush;
+  readonly #pointer: PointerState;
   readonly #frames: FrameLoop;
   readonly #loader: ShapeLoader;
-  readonly #animating: Animating;
-  /** The widget's parts as its helpers see them. */
+  readonly #animation: AnimationController;
+  /** The widget's parts as its actions and managers see them. */
   readonly #parts: WidgetParts;
-  readonly #tools: ToolParts;
 
   private constructor(target: HTMLElement, options: WidgetOptions) {
-    super();
     this.target = target;
-    this.#gallery = options.gallery ?? [];
+    const gallery = options.gallery ?? [];
     this.#settings = widgetSettings(options);
     this.#keeper = options.storageKey
       ? new WorkKeeper(
@@ -112,7 +104,7 @@ export class Widget extends WidgetTools {
                   settings: this.#settings,
                   shape: this.#posing.shape,
                   pose: () => this.#posing.snapshot(),
-                  animation: () => this.#animating.saved(),
+                  animation: () => this.#animation.saved(),
                 },
           (error) => this.#stage.status.info(`Your work cannot be kept in this browser: ${messageOf(error)}`),
         )
@@ -135,43 +127,98 @@ export class Widget extends WidgetTools {
     const document = target.ownerDocument;
     ({ host: this.#host, root: this.#root } = widgetShell(document));
 
-    this.#stage = new Stage(document, () => this.#toggleHelp(false));
-    // The widget's parts as its helpers see them: read when used (some are set below).
+    this.#stage = new Stage(document);
+    this.#help = new HelpPanel(document, () => this.#toggleHelp(false));
+    this.#stage.element.append(this.#help.element);
+    // The widget's parts as its actions and managers see them: read when used (some are set below).
     // eslint-disable-next-line @typescript-eslint/no-this-alias
     const widget = this;
+    let lastSession: Session | undefined;
     const parts: WidgetParts = {
+      target,
+      document,
+      gallery,
+      get root() {
+        return widget.#root;
+      },
+      get settings() {
+        return widget.#settings;
+      },
       get posing() {
         return widget.#posing;
       },
       get stage() {
         return widget.#stage;
       },
-      get settings() {
-        return widget.#settings;
+      get frames() {
+        return widget.#frames;
       },
-      get rigging() {
-        return widget.#rigging;
+      get loader() {
+        return widget.#loader;
       },
-      get root() {
-        return widget.#root;
+      get rigs() {
+        return widget.#rigs;
+      },
+      get animation() {
+        return widget.#animation;
       },
       get toolbar() {
         return widget.#toolbar;
       },
-      document,
-      destroyed: () => this.#destroyed,
-      render: () => this.#render(),
+      get keeper() {
+        return widget.#keeper;
+      },
+      get lastSession() {
+        return lastSession;
+      },
+      set lastSession(session) {
+        lastSession = session;
+      },
+      gesture: (change) => this.#gesture(change),
       draw: () => this.#draw(),
+      render: () => this.#render(),
+      destroyed: () => this.#destroyed,
       showError: (error) => this.#showError(error),
       emit: (type, detail) => this.#emit(type, detail),
-      gesture: (change) => this.#gesture(change),
-      poseChanged: () => this.#frames.poseChanged(),
-      keep: () => this.#keeper?.changed(),
+      refreshButtons: () => this.#refreshButtons(),
+      syncToolbar: () => this.#syncToolbar(),
+      rigChanged: () => this.#rigChanged(),
+      toggleHelp: (open) => this.#toggleHelp(open),
+      helpOpen: () => this.#help.open,
+      showHud: (visible) => {
+        this.#settings.hud = visible;
+        this.#stage.hud.element.classList.toggle("hidden", !visible);
+      },
     };
     this.#parts = parts;
-    this.#frames = new FrameLoop(parts);
-    this.#loader = new ShapeLoader(parts);
-    this.#rigging = new Rigging({
+    this.#frames = new FrameLoop({
+      get posing() {
+        return widget.#posing;
+      },
+      stage: this.#stage,
+      settings: this.#settings,
+      root: this.#root,
+      destroyed: () => this.#destroyed,
+      render: () => this.#render(),
+      showError: (error) => this.#showError(error),
+      emit: (type, detail) => this.#emit(type, detail),
+      rigPosed: () => {
+        this.#rigs.comparison = undefined;
+        this.#rigs.compareSoon();
+      },
+    });
+    this.#loader = new ShapeLoader({
+      get posing() {
+        return widget.#posing;
+      },
+      stage: this.#stage,
+      settings: this.#settings,
+      document,
+      fileAdded: (option) => this.#toolbar?.addShape(option),
+      destroyed: () => this.#destroyed,
+      gesture: (change) => this.#gesture(change),
+    });
+    this.#rigs = new RigManager({
       posing: this.#posing,
       indicator: this.#stage.training,
       changed: () => this.#rigChanged(),
@@ -180,49 +227,65 @@ export class Widget extends WidgetTools {
     this.#stage.hud.element.classList.toggle("hidden", !this.#settings.hud);
 
     if (this.#settings.controls) {
-      this.#toolbar = widgetToolbar(document, this, this.#settings, {
-        gallery: this.#gallery,
-        showFile: (index) => this.#loader.show(this.#loader.files[index]!, 0),
-        keepsWork: this.#keeper !== undefined,
-        failed: (error) => {
-          this.#showError(error);
-          this.#syncToolbar();
+      const syncAfter = (): void => this.#syncToolbar();
+      this.#toolbar = buildToolbar(
+        document,
+        (action, args) => action.perform(parts, args),
+        { settings: this.#settings, gallery, keepsWork: this.#keeper !== undefined },
+        {
+          failed: (error) => {
+            this.#showError(error);
+            syncAfter();
+          },
+          cancelled: (message) => {
+            this.#stage.status.info(message);
+            syncAfter();
+          },
+          succeeded: () => this.#stage.status.succeeded(),
         },
-        cancelled: (message) => {
-          this.#stage.status.info(message);
-          this.#syncToolbar();
-        },
-        succeeded: () => this.#stage.status.succeeded(),
-        showHud: (visible) => {
-          this.#settings.hud = visible;
-          this.#stage.hud.element.classList.toggle("hidden", !visible);
-        },
-        help: () => this.#toggleHelp(),
-      });
+      );
       this.#root.append(this.#toolbar.element);
-      this.#stage.element.insertBefore(this.#toolbar.brushPanel, this.#stage.help.element);
+      this.#stage.element.insertBefore(this.#toolbar.brushPanel, this.#help.element);
     }
     this.#root.append(this.#stage.element);
-    this.#animating = new Animating(parts);
-    if (this.#animating.strip) this.#root.append(this.#animating.strip.element);
+    this.#animation = new AnimationController({
+      get posing() {
+        return widget.#posing;
+      },
+      stage: this.#stage,
+      settings: this.#settings,
+      document,
+      poseChanged: () => this.#frames.poseChanged(),
+      emit: (type, detail) => this.#emit(type, detail),
+      showError: (error) => this.#showError(error),
+      keep: () => this.#keeper?.changed(),
+    });
+    if (this.#animation.strip) this.#root.append(this.#animation.strip.element);
     this.#root.dataset.renderer = this.#stage.renderer.kind;
 
-    this.#brush = new Brush(parts);
-    this.#tools = {
+    this.#pointer = new PointerState({ settings: this.#settings, posing: this.#posing, draw: () => this.#draw() });
+    this.#input = new WidgetInput({
       posing: this.#posing,
-      brush: this.#brush,
       settings: this.#settings,
-      gesture: (change) => this.#gesture(change),
-      info: (message) => this.#stage.status.info(message),
-    };
-    this.#input = new WidgetInput(
-      inputHost(this, parts, {
-        moved: () => this.#frames.moved(),
-        brush: this.#brush,
-        help: (open) => this.#toggleHelp(open),
-        animate: (what) => this.#animating.key(what),
-      }),
-    );
+      camera: this.#stage.camera,
+      root: this.#root,
+      overlay: this.#stage.overlay,
+      pointer: this.#pointer,
+      ratio: () => this.#stage.ratio,
+      devicePixel: (x, y) => this.#stage.devicePixel(x, y),
+      draw: () => this.#draw(),
+      moved: () => this.#frames.moved(),
+      succeeded: () => this.#stage.status.succeeded(),
+      failed: (error) => this.#showError(error),
+      perform: (action, args) => {
+        try {
+          const result = action.perform(parts, args);
+          if (result instanceof Promise) result.catch((error: unknown) => this.#showError(error));
+        } catch (error) {
+          this.#showError(error);
+        }
+      },
+    });
     this.#resizeObserver = new ResizeObserver(() => this.#resize());
     target.append(this.#host);
   }
@@ -257,16 +320,19 @@ export class Widget extends WidgetTools {
     return widget;
   }
 
-  // ---------------------------------------------------------------- public API (and tools-api.ts)
-
-  protected get tools(): ToolParts {
-    return this.#tools;
+  /** Carries out one of the registry's actions on the widget's parts. */
+  #perform<A, R>(action: Action<A, R>, args: A): R {
+    return action.perform(this.#parts, args);
   }
 
+  // ---------------------------------------------------------------- the model, read
+
+  /** Vertices of the rest mesh. */
   get vertexCount(): number {
     return this.#posing.shape.mesh.vertexCount;
   }
 
+  /** Triangles of the rest mesh. */
   get triangleCount(): number {
     return this.#posing.shape.mesh.triangleCount;
   }
@@ -301,6 +367,7 @@ export class Widget extends WidgetTools {
     return this.#posing.deformer.handlePositions();
   }
 
+  /** How many handles there are. */
   get handleCount(): number {
     return this.#posing.handles.length;
   }
@@ -315,69 +382,58 @@ export class Widget extends WidgetTools {
     return this.#posing.history.canUndo;
   }
 
+  /** Whether there is an undone gesture to redo. */
   get canRedo(): boolean {
     return this.#posing.history.canRedo;
   }
 
+  // ---------------------------------------------------------------- handles and the pose
+
   /** Adds a handle at the shape point (x, y) (shape units). Returns its index, or -1 off the shape. */
   addHandleAt(x: number, y: number): number {
-    const posing = this.#posing;
-    const point = locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y);
-    if (!point) return -1;
-    this.#gesture(() => posing.addHandle(point));
-    return posing.handles.length - 1;
+    return this.#perform(handles.addHandle, { x, y });
   }
 
   /** Removes a handle by index. */
   removeHandle(index: number): void {
-    const posing = this.#posing;
-    if (!(index >= 0 && index < posing.handles.length)) throw new RangeError(`there is no handle ${index}`);
-    this.#gesture(() => {
-      posing.handles.splice(index, 1);
-      posing.applyHandles();
-    });
+    this.#perform(handles.removeHandle, { index });
   }
 
   /** Removes every handle (the pose stays). */
   clearHandles(): void {
-    if (this.#posing.handles.length === 0) return;
-    this.#gesture(() => {
-      this.#posing.handles = [];
-      this.#posing.applyHandles();
-    });
+    this.#perform(handles.clearHandles, undefined);
   }
 
   /** Back to the rest pose; handles stay, at their rest places. */
   reset(): void {
-    this.#gesture(() => this.#posing.reset());
+    this.#perform(handles.reset, undefined);
   }
 
+  /** Undoes the last gesture; false when there is none. */
   undo(): boolean {
-    return this.#travel(false);
+    return this.#perform(handles.undo, undefined);
   }
 
+  /** Redoes the gesture undone last; false when there is none. */
   redo(): boolean {
-    return this.#travel(true);
+    return this.#perform(handles.redo, undefined);
   }
 
   /** Changes the method and/or lambda. */
   setMethod(method: MethodPreset, lambda = this.#settings.lambda): void {
-    this.#posing.setMethod(method, lambda);
+    this.#perform(setMethod, { method, lambda });
   }
 
   // ---------------------------------------------------------------- view, messages, shapes
 
   /** Zooms the view by `factor` about its centre, or fits the pose on screen into it (`"fit"`). */
   zoom(factor: number | "fit"): void {
-    if (factor === "fit") this.#stage.camera.fit(this.#posing.deformer.positionsView());
-    else this.#stage.camera.zoom(this.#stage.glCanvas.width / 2, this.#stage.glCanvas.height / 2, factor);
-    this.#draw();
+    this.#perform(display.zoom, { factor });
   }
 
   /** Shows a message in the status line until the next action that succeeds. */
   showMessage(message: string, kind: "info" | "error" = "info"): void {
-    if (kind === "error") this.#showError(new Error(message));
-    else this.#stage.status.info(message);
+    this.#perform(display.showMessage, { message, kind });
   }
 
   /**
@@ -386,12 +442,12 @@ export class Widget extends WidgetTools {
    * shape are dropped.
    */
   async setShape(name: string | undefined, vertices = this.#settings.vertices): Promise<void> {
-    await this.#loader.setShape(name, vertices);
+    await this.#perform(shape.setShape, { name, vertices });
   }
 
   /** Shows a custom outline instead (triangulated to about `vertices` vertices). Undoable. */
   async setOutline(outline: Outline, vertices = this.#settings.vertices): Promise<void> {
-    await this.#loader.setOutline(outline, vertices);
+    await this.#perform(shape.setOutline, { outline, vertices });
   }
 
   /**
@@ -403,24 +459,17 @@ export class Widget extends WidgetTools {
    * step.
    */
   async loadFile(file: Blob, name = (file as File).name ?? "file"): Promise<void> {
-    if (/\.defop$/i.test(name)) return this.loadRig(file);
-    if (fileKind(name, file.type) === "json" && file.size <= fileLimits().bytes) {
-      const text = await file.text();
-      if (/"format"\s*:\s*"akap-session"/.test(text)) return this.loadSession(file);
-    }
-    await this.#loader.open(file, name);
+    await this.#perform(shape.open, { file, name });
   }
 
   /** Loads a shape file by URL (see {@link loadFile}). */
   async loadUrl(url: string): Promise<void> {
-    const response = await fetchFile(url);
-    const name = decodeURIComponent(new URL(url, this.target.ownerDocument.baseURI).pathname.split("/").pop() ?? url);
-    await this.loadFile(await response.blob(), name);
+    await this.#perform(shape.loadUrl, { url });
   }
 
   /** Shows another separate part of the last imported file (0 is the largest). Undoable. */
   async choosePart(index: number): Promise<void> {
-    await this.#loader.choosePart(index);
+    await this.#perform(shape.choosePart, { index });
   }
 
   /**
@@ -432,7 +481,7 @@ export class Widget extends WidgetTools {
    * outlines can be re-meshed; a mesh loaded from a file cannot.
    */
   async remesh(vertices = this.#settings.vertices, minAngle = this.#settings.minAngle): Promise<void> {
-    await this.#loader.remesh(vertices, minAngle);
+    await this.#perform(shape.remesh, { vertices, minAngle });
   }
 
   /**
@@ -444,10 +493,7 @@ export class Widget extends WidgetTools {
       Pick<WidgetSettings, "wireframe" | "field" | "flipped" | "paperMode" | "noFoldovers" | "region" | "compare">
     >,
   ): void {
-    Object.assign(this.#settings, options);
-    if (options.field) this.#frames.lastField = this.#posing.deformer.field();
-    if (options.compare) this.#rigging.compareSoon();
-    this.#rigChanged();
+    this.#perform(display.display, options);
   }
 
   // ---------------------------------------------------------------- trained rigs
@@ -463,27 +509,22 @@ export class Widget extends WidgetTools {
    * worker fails.
    */
   async train(options: WidgetTrainOptions = {}, onProgress?: (progress: TrainProgress) => void): Promise<void> {
-    const rig = await this.#rigging.train({ ...this.#settings.training, ...options }, onProgress);
-    // The options of the rig in use: saved with the work, so a reload finds it in the cache.
-    this.#settings.training = { ...rig.options };
-    this.#toolbar?.sync(this.#settings);
+    await this.#perform(rig.train, { options, onProgress });
   }
 
   /** Stops the training under way (its promise rejects with an `AbortError`). */
   cancelTraining(): void {
-    this.#rigging.cancel();
+    this.#perform(rig.cancelTraining, undefined);
   }
 
   /** The trained rig's state. */
   get rig(): RigInfo {
-    return this.#rigging.info();
+    return this.#rigs.info();
   }
 
   /** The rig's operator file (operator and mesh), as "Save rig" downloads it. */
   rigFile(): Uint8Array {
-    const rig = this.#posing.rig;
-    if (!rig) throw new Error("there is no trained rig to save; Train one first");
-    return rig.toBytes();
+    return this.#perform(rig.rigFile, undefined);
   }
 
   /**
@@ -492,32 +533,24 @@ export class Widget extends WidgetTools {
    * a file that is not a valid rig throws (code `import`), changing nothing.
    */
   async loadRig(source: string | Blob | Uint8Array | ArrayBuffer): Promise<void> {
-    await this.#rigging.open(source, (change) => this.#gesture(change));
+    await this.#perform(shape.loadRig, { source });
   }
 
-  /** The rig's state changed (or the handles, shape or method): HUD, toolbar, picture. */
-  #rigChanged(): void {
-    if (!(this.#rigging as Rigging | undefined)) return;
-    this.#stage.hud.showRig(this.#rigging.statusLine());
-    this.#toolbar?.showRig({ hasRig: this.#posing.rig !== undefined, training: this.#rigging.training });
-    this.#draw();
-  }
+  // ---------------------------------------------------------------- sessions
 
+  /** Whether a recording runs. */
   get recording(): boolean {
     return this.#posing.recorder.recording;
   }
 
   /** Starts recording every change of the deformer. */
   startRecording(): void {
-    this.#posing.startRecording();
+    this.#perform(sessions.record, { on: true });
   }
 
   /** Stops recording and returns the session (which Replay and Save then offer). */
   stopRecording(): Session | undefined {
-    const session = this.#posing.stopRecording();
-    if (session) this.#lastSession = session;
-    this.#refreshButtons();
-    return session;
+    return this.#perform(sessions.record, { on: false });
   }
 
   /**
@@ -525,17 +558,12 @@ export class Widget extends WidgetTools {
    * checked by the core, and replays it (see {@link replay}).
    */
   async loadSession(file: Blob): Promise<void> {
-    const most = limits().sessionBytes;
-    if (file.size > most) throw new Error(`the session is ${file.size} bytes; sessions are limited to ${most}`);
-    const session = parseSession(await file.text());
-    await this.replay(session);
-    this.#lastSession = session;
-    this.#refreshButtons();
+    await this.#perform(sessions.loadSession, { file });
   }
 
   /** The last recorded or loaded session. */
   get lastSession(): Session | undefined {
-    return this.#lastSession;
+    return this.#parts.lastSession;
   }
 
   /**
@@ -548,85 +576,170 @@ export class Widget extends WidgetTools {
    * everything as it was before.
    */
   async replay(session: Session | string, stepsPerFrame = 4): Promise<Float64Array> {
-    const s = typeof session === "string" ? parseSession(session) : session;
-    await replaySession(this.#parts, s, stepsPerFrame);
-    this.#refreshButtons();
-    this.#frames.poseChanged();
-    return this.#posing.deformer.positions();
+    return (await this.#perform(sessions.replay, { session, stepsPerFrame }))!;
   }
+
+  // ---------------------------------------------------------------- exports
 
   /**
    * The current pose as JSON (`positions`, `triangles`, `uvs`, `stiffness` if painted) or
    * OBJ text; triangles back to front when parts are in depth order.
    */
   exportMesh(format: "json" | "obj"): string {
-    const layers = this.#stage.layering(this.#posing);
-    return posedMesh(this.#posing.shape, this.#posing.deformer.positions(), format, {
-      stiffness: this.stiffness(),
-      layers,
-    });
+    return this.#perform(exporting.exportMesh, { format });
   }
 
   /** The pose as an SVG document: an imported SVG's own paths moved with the mesh, else the outline. */
   exportSvg(): string {
-    const { deformer, shape } = this.#posing;
-    return posedSvg(shape.mesh, shape.vector, deformer.positions(), this.#stage.layering(this.#posing));
+    return this.#perform(exporting.exportSvg, undefined);
   }
 
   /** The rendered image (the shape and its outline, no handles) as a PNG. */
   exportPng(): Promise<Blob> {
-    return this.#stage.png(this.#posing, this.#settings);
+    return this.#perform(exporting.exportPng, undefined);
+  }
+
+  // ---------------------------------------------------------------- depth order
+
+  /**
+   * Brings the selected handles' parts in front of every other part (each part of the
+   * shape belongs to its nearest handle); they stay there when dragged. Undoable; false
+   * when no handle is selected.
+   */
+  bringForward(): boolean {
+    return this.#perform(handles.layer, { step: 1 });
+  }
+
+  /** Sends the selected handles' parts behind every other part (see {@link bringForward}). */
+  sendBack(): boolean {
+    return this.#perform(handles.layer, { step: -1 });
+  }
+
+  /** Each handle's layer, in handle order (higher is in front). */
+  handleLayers(): number[] {
+    return this.#posing.handles.map((h) => h.layer);
+  }
+
+  // ---------------------------------------------------------------- tools: stiffness and bones
+
+  /** What a press on the shape does: pose, paint stiffness with the brush, or draw bones. */
+  get tool(): WidgetTool {
+    return this.#settings.tool;
+  }
+
+  /** The brush's size (CSS pixels) and the value it paints. */
+  get brush(): BrushSettings {
+    return { ...this.#settings.brush };
+  }
+
+  /**
+   * Chooses the tool (`"pose"`, `"stiffness"`: the brush, `"bone"`: drawing bones) and/or
+   * changes the brush; throws (code `invalid-option`), changing nothing, for an unknown tool
+   * or a brush out of range.
+   */
+  setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
+    this.#perform(tools.setTool, { tool, brush });
+  }
+
+  /** Each triangle's painted stiffness (a copy), or undefined when none is painted. */
+  stiffness(): Float64Array | undefined {
+    return exporting.paintedStiffness(this.#parts);
+  }
+
+  /**
+   * Paints every triangle (one value per triangle, 0.001 to 1000; undefined for none), as
+   * one undoable step; throws, changing nothing, for bad values. Used by AKAP and ARAP; kept
+   * (and shown) under the other methods.
+   */
+  setStiffness(values: ArrayLike<number> | undefined): void {
+    this.#perform(tools.setStiffness, { values });
+  }
+
+  /**
+   * One dab of the brush at the shape point (x, y) in the pose on screen, as a stroke of
+   * one point: `value` (default the brush's) on the triangles whose centroids lie within
+   * `radius` shape units (default the brush's size on screen). Undoable.
+   */
+  paintAt(x: number, y: number, value = this.#settings.brush.value, radius?: number): void {
+    this.#perform(tools.paintAt, { x, y, value, radius });
+  }
+
+  /**
+   * Adds a bone from (x0, y0) to (x1, y1), points of the shape in the pose on screen: the
+   * triangles its segment meets move as one rigid body from now on (AKAP and ARAP). Returns
+   * its index; undoable. Throws (code `invalid-argument`), changing nothing, for an end off
+   * the shape, a segment that leaves it, a bone touching another (leave a joint of free
+   * triangles between them), or a method without bones.
+   */
+  addBone(x0: number, y0: number, x1: number, y1: number): number {
+    return this.#perform(tools.addBone, { x0, y0, x1, y1 });
+  }
+
+  /** The bones' ends in the current pose: x0 y0 x1 y1 per bone. */
+  bones(): Float64Array {
+    return tools.currentBoneEnds(this.#parts);
+  }
+
+  /** Removes bone `index` (undoable); throws (code `invalid-argument`) for no such bone. */
+  removeBone(index: number): void {
+    this.#perform(tools.removeBone, { index });
+  }
+
+  /** Removes every bone (undoable). */
+  clearBones(): void {
+    this.#perform(tools.removeBone, { index: "all" });
   }
 
   // ---------------------------------------------------------------- animation (README "Animation")
 
   /** Captures the pose as a key at `time` s (default: the playhead); returns its index. */
   captureKey(time?: number, easing?: Easing): number {
-    return this.#animating.capture(time, easing);
+    return this.#perform(animation.captureKey, { time, easing });
   }
 
   /** The keys in time order: time, easing of the segment into it, the handles' targets. */
   keys(): KeyInfo[] {
-    return this.#animating.animator.keys();
+    return this.#animation.animator.keys();
   }
 
   /** Moves key `index` to `time` s (not onto another key); returns its new index. */
   moveKey(index: number, time: number): number {
-    return this.#animating.animator.moveKey(index, time);
+    return this.#perform(animation.moveKey, { index, time });
   }
 
+  /** Deletes key `index`. */
   deleteKey(index: number): void {
-    this.#animating.animator.deleteKey(index);
+    this.#perform(animation.deleteKey, { index });
   }
 
   /** The easing of the segment that ends at key `index`: "linear" or "ease" (smoothstep). */
   setKeyEasing(index: number, easing: Easing): void {
-    this.#animating.animator.setEasing(index, easing);
+    this.#perform(animation.setKeyEasing, { index, easing });
   }
 
   /** Plays from the playhead (`loop`: again and again); resolves when playback stops. */
   play(options: { loop?: boolean } = {}): Promise<void> {
-    return this.#animating.animator.play(options);
+    return this.#perform(animation.play, options);
   }
 
   /** Stops playback; the pose stays at the frame on screen (undoable). */
   pause(): void {
-    this.#animating.animator.pause();
+    this.#perform(animation.pause, undefined);
   }
 
   /** Shows the frame at `time` s (one undoable step); {@link playhead} is then `time`. */
   seek(time: number): void {
-    this.#animating.animator.seek(time);
+    this.#perform(animation.seek, { time });
   }
 
   /** The playhead's time, seconds (on the frame grid). */
   get playhead(): number {
-    return this.#animating.animator.time;
+    return this.#animation.animator.time;
   }
 
   /** Every frame's vertex positions (copies), one per 1/fps from 0 to the last key. */
   animationFrames(): Float64Array[] {
-    return this.#animating.animator.positions();
+    return this.#animation.animator.positions();
   }
 
   /**
@@ -638,8 +751,10 @@ export class Widget extends WidgetTools {
   exportAnimation(format: Exclude<AnimationExportFormat, "sprites">, options?: AnimationExportOptions): Promise<Blob>;
   exportAnimation(format: AnimationExportFormat, options?: AnimationExportOptions): Promise<AnimationExport>;
   exportAnimation(format: AnimationExportFormat, options: AnimationExportOptions = {}): Promise<AnimationExport> {
-    return this.#animating.export(format, options);
+    return this.#perform(animation.exportAnimation, { format, options });
   }
+
+  // ---------------------------------------------------------------- the widget
 
   /**
    * Forgets the saved work and starts again: the default shape at its default density, at
@@ -647,10 +762,7 @@ export class Widget extends WidgetTools {
    * (the keys excepted).
    */
   async startOver(): Promise<void> {
-    await this.#keeper?.store.clear();
-    this.#animating.animator.clear();
-    this.#loader.startOver();
-    this.#syncToolbar();
+    await this.#perform(shape.startOver, undefined);
   }
 
   /** Resolves when no frame is pending (the pose has settled and nothing is dragged). */
@@ -663,19 +775,19 @@ export class Widget extends WidgetTools {
     if (this.#destroyed) return;
     this.#destroyed = true;
     this.#frames.stop();
-    this.#animating.destroy();
+    this.#animation.destroy();
     this.#input?.destroy();
     this.#resizeObserver.disconnect();
     this.#stage.destroy();
     this.#loader.destroy();
     this.#keeper?.stop();
-    this.#rigging.destroy();
-    this.#rigging.adopt(undefined);
+    this.#rigs.destroy();
+    this.#rigs.adopt(undefined);
     (this.#posing.deformer as Deformer | undefined)?.free();
     this.#host.remove();
   }
 
-  // ---------------------------------------------------------------- shapes
+  // ---------------------------------------------------------------- what the parts are told
 
   /** A new shape or deformer is in place: renderer, lists, HUD (and the view, if asked). */
   #adopted(shape: Shape, deformer: Deformer, refit: boolean): void {
@@ -696,13 +808,13 @@ export class Widget extends WidgetTools {
     this.#refreshButtons();
   }
 
-  // ---------------------------------------------------------------- keeping the work
-
   /** Puts back saved work (over the shape just installed); throws, changing nothing, if it cannot. */
   async #resume(saved: SavedWork): Promise<void> {
     await this.#loader.resume(saved);
+    // A rig from the cache with it.
+    if (this.#settings.method === "defop") await this.#rigs.fromCache(this.#settings.training).catch(() => false);
     try {
-      if (saved.animation) this.#animating.restore(saved.animation);
+      if (saved.animation) this.#animation.restore(saved.animation);
     } catch (error) {
       this.#stage.status.info(`The animation's keys could not be restored (${messageOf(error)}).`);
     }
@@ -710,13 +822,12 @@ export class Widget extends WidgetTools {
     this.#syncToolbar();
   }
 
-  // ---------------------------------------------------------------- gestures
-
-  /** Undo or redo; a success clears the messages. */
-  #travel(forward: boolean): boolean {
-    const moved = this.#posing.travel(forward);
-    if (moved) this.#stage.status.succeeded();
-    return moved;
+  /** The rig's state changed (or the handles, shape or method): HUD, toolbar, picture. */
+  #rigChanged(): void {
+    if (!(this.#rigs as RigManager | undefined)) return;
+    this.#stage.hud.showRig(this.#rigs.statusLine());
+    this.#toolbar?.showRig({ hasRig: this.#posing.rig !== undefined, training: this.#rigs.training });
+    this.#draw();
   }
 
   /** Runs one complete gesture (an undoable unit) that is not a drag. */
@@ -724,8 +835,6 @@ export class Widget extends WidgetTools {
     this.#posing.gesture(change);
     this.#stage.status.succeeded();
   }
-
-  // ---------------------------------------------------------------- drawing and the view
 
   #resize(): void {
     if (this.#destroyed) return;
@@ -744,30 +853,26 @@ export class Widget extends WidgetTools {
     if (this.#destroyed) return;
     this.#stage.render(this.#posing, this.#settings, {
       field: this.#frames.lastField,
-      ghost: this.#rigging.comparison?.positions,
-      brushAt: this.#brush.at,
-      boneDraft: this.#brush.boneDraft,
-      touch: this.#brush.touch,
+      ghost: this.#rigs.comparison?.positions,
+      brushAt: this.#pointer.at,
+      boneDraft: this.#pointer.boneDraft,
+      touch: this.#pointer.touch,
     });
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);
     this.#keeper?.changed();
   }
 
-  // ---------------------------------------------------------------- input
-
-  #toggleHelp(open = !this.#stage.help.open): void {
-    this.#stage.help.open = open;
+  #toggleHelp(open = !this.#help.open): void {
+    this.#help.open = open;
     if (!open) this.#root.focus({ preventScroll: true });
   }
-
-  // ---------------------------------------------------------------- toolbar, events, errors
 
   #refreshButtons(): void {
     this.#toolbar?.refresh({
       canUndo: this.#posing.history.canUndo,
       canRedo: this.#posing.history.canRedo,
       recording: this.#posing.recorder.recording,
-      hasSession: this.#lastSession !== undefined,
+      hasSession: this.#parts.lastSession !== undefined,
     });
   }
 

@@ -1,0 +1,182 @@
+/**
+ * Recorded interaction sessions: every call that changes the deformer, in order, as JSON.
+ * Replaying the calls on the same mesh gives the same positions bit for bit (the wasm
+ * code is deterministic, and JSON numbers round-trip doubles exactly).
+ *
+ * The format has one definition, in Rust (`src/session/`, version 2; version 1 files are
+ * read too): the widget records through the core's `SessionRecorder`, which writes the
+ * JSON, and reads sessions through `sessionJson`, which checks them and writes them back
+ * as version 2. The types here describe that JSON once parsed; nothing in TypeScript
+ * validates it.
+ *
+ * ```json
+ * { "format": "akap-session", "version": 2,
+ *   "shape": { "name": "gingerbread", "targetEdgeLength": 0.035, "minAngle": 28 },
+ *   "mesh": { "vertexCount": 812, "triangleCount": 1400 },
+ *   "options": { "method": "akap", "lambda": 100, "dirichlet": true, "integrator": "spiral" },
+ *   "events": [ { "handles": { "triangles": [..], "barycentric": [.. 3 per handle ..] } },
+ *               { "step": [vx0, vy0, vx1, vy1, ...] },
+ *               { "positions": [.. 2 per vertex ..] },
+ *               { "options": { "method": "arap", "iterations": 10 } },
+ *               { "stiffness": [.. 1 per triangle ..] },
+ *               { "turn": { "velocities": [..], "turns": [.. 1 per handle ..] } },
+ *               { "bones": { "triangles": [.. 2 per bone ..], "barycentric": [.. 3 per end ..] } },
+ *               { "reset": true } ] }
+ * ```
+ * `shape` names a built-in shape and how it was triangulated; a session of another shape
+ * carries the mesh itself in `mesh.positions` and `mesh.triangles`.
+ */
+import type { DeformerOptions, MeshData } from "./core.js";
+import { toFloat64, toUint32, type Indices, type Coordinates } from "./internal/arrays.js";
+import { readMesh } from "./internal/mesh.js";
+import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
+
+/** A built-in shape and the triangulation that made the mesh (as the widget makes them). */
+export interface ShapeSpec {
+  name: string;
+  targetEdgeLength: number;
+  minAngle: number;
+}
+
+/** A session's `shape`: a built-in shape and its triangulation options, each optional. */
+export interface SessionShape {
+  name: string;
+  targetEdgeLength?: number;
+  minAngle?: number;
+  maxArea?: number;
+}
+
+export interface SessionMesh {
+  vertexCount: number;
+  triangleCount: number;
+  /** The mesh itself, when it is not a built-in shape. */
+  positions?: number[];
+  triangles?: number[];
+}
+
+/** One recorded call; arrays as typed arrays while recording, plain arrays once read. */
+export type SessionEvent =
+  | { handles: { triangles: Indices; barycentric: Coordinates } }
+  | { step: Coordinates }
+  | { positions: Coordinates }
+  | { options: DeformerOptions }
+  | { stiffness: Coordinates | undefined | null }
+  | { turn: { velocities: Coordinates; turns: Coordinates } }
+  | { bones: { triangles: Indices; barycentric: Coordinates } }
+  | { reset: true };
+
+/** A session's JSON, parsed. */
+export interface SessionData {
+  format: "akap-session";
+  version: 2;
+  shape?: SessionShape;
+  mesh: SessionMesh;
+  options: DeformerOptions;
+  events: SessionEvent[];
+}
+
+/** A session read and checked by the core: its JSON (version 2, as the core writes it) and that JSON parsed. */
+export class Session {
+  /** The JSON text, what Save writes. */
+  readonly json: string;
+  readonly data: SessionData;
+
+  /** `json` must come from the core (`sessionJson` or `SessionRecorder.toJson`). */
+  private constructor(json: string) {
+    this.json = json;
+    this.data = JSON.parse(json) as SessionData;
+  }
+
+  /** @internal A session from JSON the core wrote. */
+  static fromCoreJson(json: string): Session {
+    return new Session(json);
+  }
+}
+
+/**
+ * Reads and checks a session file (version 1 or 2) in the core. Throws an `Error` saying
+ * what is wrong and where (`not a valid session: ... at line 3 column 12`, `event 12: ...`);
+ * the mesh is checked when the session is replayed.
+ */
+export function parseSession(text: string): Session {
+  assertLoaded();
+  return Session.fromCoreJson(raw.sessionJson(text));
+}
+
+/**
+ * The mesh a session needs, rebuilt by the core: its built-in shape triangulated, or its
+ * inline mesh validated; either way with the recorded counts (an `Error` otherwise).
+ */
+export function sessionMesh(session: Session): MeshData {
+  assertLoaded();
+  const mesh = raw.sessionMesh(session.json);
+  try {
+    return readMesh(mesh);
+  } finally {
+    mesh.free();
+  }
+}
+
+/** Records events into the core's `SessionRecorder` while a recording runs. */
+export class Recorder {
+  #inner: rawTypes.SessionRecorder | undefined;
+
+  /**
+   * Starts a new recording of `mesh` (carried in the session unless `shape` names the
+   * built-in shape it came from); `start` events put the deformer in its current state.
+   */
+  start(
+    header: { shape: ShapeSpec | undefined; mesh: MeshData; options: DeformerOptions },
+    start: SessionEvent[],
+  ): void {
+    assertLoaded();
+    const { shape, mesh, options } = header;
+    const inner = new raw.SessionRecorder(options, shape, mesh.positions, mesh.triangles);
+    try {
+      for (const event of start) add(inner, event);
+    } catch (error) {
+      inner.free();
+      throw error;
+    }
+    this.#inner?.free();
+    this.#inner = inner;
+  }
+
+  get recording(): boolean {
+    return this.#inner !== undefined;
+  }
+
+  /** Adds an event if recording. */
+  record(event: SessionEvent): void {
+    if (this.#inner) add(this.#inner, event);
+  }
+
+  /** Ends the recording and returns it (undefined if none was running). */
+  stop(): Session | undefined {
+    const inner = this.#inner;
+    if (!inner) return undefined;
+    this.#inner = undefined;
+    try {
+      return Session.fromCoreJson(inner.toJson());
+    } finally {
+      inner.free();
+    }
+  }
+}
+
+function add(recorder: rawTypes.SessionRecorder, event: SessionEvent): void {
+  if ("handles" in event) {
+    const { triangles, barycentric } = event.handles;
+    recorder.handles(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
+  } else if ("step" in event) recorder.step(toFloat64(event.step, "velocities"));
+  else if ("positions" in event) recorder.positions(toFloat64(event.positions, "positions"));
+  else if ("options" in event) recorder.options(event.options);
+  else if ("turn" in event) {
+    recorder.turn(toFloat64(event.turn.velocities, "velocities"), toFloat64(event.turn.turns, "turns"));
+  } else if ("bones" in event) {
+    const { triangles, barycentric } = event.bones;
+    recorder.bones(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
+  } else if ("stiffness" in event) {
+    recorder.stiffness(event.stiffness == null ? undefined : toFloat64(event.stiffness, "stiffness"));
+  } else recorder.reset();
+}
