@@ -584,12 +584,13 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
     assert_ne!(deformer.positions(), s.mesh().unwrap().positions());
 }
 
-/// The session bindings called inside wasm: what they write is the Rust format, and bad
-/// input (wrong types, throwing getters, events that do not fit) is a JavaScript `Error`.
+/// The session bindings called inside wasm, and the deformer's recording: what they write is
+/// the Rust format, and bad input (wrong types, throwing getters, calls that do not fit) is
+/// a JavaScript `Error` that records nothing.
 #[cfg(target_arch = "wasm32")]
 mod bindings {
     use akap::session::Session;
-    use akap::wasm::{session_json, session_mesh, JsSessionRecorder};
+    use akap::wasm::{session_json, session_mesh, JsDeformer};
     use js_sys::{Float64Array, Uint32Array};
     use wasm_bindgen::{JsCast, JsValue};
     use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -617,28 +618,28 @@ mod bindings {
     }
 
     #[test]
-    fn the_recorder_writes_what_the_reader_reads_and_refuses_what_does_not_fit() {
+    fn the_deformers_recording_writes_what_the_reader_reads_and_refuses_what_does_not_fit() {
         let (mesh, _) = super::bar_and_shear();
         let positions: JsValue = Float64Array::from(&mesh.positions().concat()[..]).into();
         let triangles: JsValue = Uint32Array::from(&mesh.triangles().concat()[..]).into();
         let arap = js("return { method: 'arap', iterations: 3 }");
-        let mut r =
-            JsSessionRecorder::new(arap.clone(), JsValue::UNDEFINED, positions.clone(), triangles.clone()).unwrap();
-        r.handles(
+        let mut d = JsDeformer::new(positions.clone(), triangles.clone(), arap.clone()).unwrap();
+        d.start_recording(JsValue::UNDEFINED).unwrap();
+        d.set_handle_points(
             Uint32Array::from(&[0u32, 5][..]).into(),
             Float64Array::from(&[1.0, 0.0, 0.0, 0.2, 0.3, 0.5][..]).into(),
         )
         .unwrap();
-        r.step(Float64Array::from(&[0.0, -0.0, 0.01, 0.02][..]).into()).unwrap();
-        let bad_step = r.step(Float64Array::from(&[0.0, 0.0][..]).into());
-        assert_eq!(message(bad_step), "velocities has 2 numbers; 2 handles need 2 each");
-        let foreign = r.options(js("return { lambda: 5 }"));
+        d.step(Float64Array::from(&[0.0, -0.0, 0.01, 0.02][..]).into()).unwrap();
+        // Refused calls record nothing.
+        assert!(d.step(Float64Array::from(&[0.0, 0.0][..]).into()).is_err());
+        let foreign = d.set_options(js("return { lambda: 5 }"));
         assert_eq!(message(foreign), "option lambda applies to method \"akap\" only, not to \"arap\"");
-        r.options(js("return { method: 'akap', lambda: 5 }")).unwrap();
+        d.set_options(js("return { method: 'akap', lambda: 5 }")).unwrap();
         let triangle_count = mesh.triangle_count();
         let stiff = vec![7.0; triangle_count];
-        r.stiffness(Float64Array::from(&stiff[..]).into()).unwrap();
-        let short = r.stiffness(Float64Array::from(&stiff[1..]).into());
+        d.set_stiffness(Float64Array::from(&stiff[..]).into()).unwrap();
+        let short = d.set_stiffness(Float64Array::from(&stiff[1..]).into());
         assert_eq!(
             message(short),
             format!(
@@ -646,22 +647,26 @@ mod bindings {
                 triangle_count - 1
             )
         );
-        assert!(message(r.stiffness(Float64Array::from(&[0.0; 1][..]).into())).starts_with("stiffness has 1 numbers"));
-        r.stiffness(JsValue::UNDEFINED).unwrap();
-        r.reset();
-        assert_eq!(r.event_count(), 6);
-        let session = Session::from_json(&r.to_json().unwrap()).unwrap();
+        assert!(
+            message(d.set_stiffness(Float64Array::from(&[0.0; 1][..]).into())).starts_with("stiffness has 1 numbers")
+        );
+        d.set_stiffness(JsValue::UNDEFINED).unwrap();
+        d.reset();
+        let session = Session::from_json(&d.stop_recording().unwrap().unwrap()).unwrap();
+        // The start (at rest), then each call as made.
+        assert_eq!(session.events.len(), 7);
         assert!(session.shape.is_none());
         assert_eq!(session.mesh().unwrap().positions(), mesh.positions());
-        assert_eq!(session.events[1], akap::session::Event::Step(vec![0.0, -0.0, 0.01, 0.02]));
-        assert!(matches!(session.events[1], akap::session::Event::Step(ref v) if v[1].is_sign_negative()));
-        assert_eq!(session.events[3], akap::session::Event::Stiffness(Some(stiff)));
-        assert_eq!(session.events[4], akap::session::Event::Stiffness(None));
+        assert_eq!(session.events[0], akap::session::Event::Reset(true));
+        assert_eq!(session.events[2], akap::session::Event::Step(vec![0.0, -0.0, 0.01, 0.02]));
+        assert!(matches!(session.events[2], akap::session::Event::Step(ref v) if v[1].is_sign_negative()));
+        assert_eq!(session.events[4], akap::session::Event::Stiffness(Some(stiff)));
+        assert_eq!(session.events[5], akap::session::Event::Stiffness(None));
 
-        let dragon =
-            JsSessionRecorder::new(arap.clone(), js("return { name: 'dragon' }"), positions.clone(), triangles.clone());
+        let dragon = d.start_recording(js("return { name: 'dragon' }"));
         assert!(message(dragon).starts_with("option name is \"dragon\", expected \"gingerbread\""));
         let throwing = js("return { get name() { throw new Error('boom'); } }");
-        assert!(message(JsSessionRecorder::new(arap, throwing, positions, triangles)).contains("boom"));
+        assert!(message(d.start_recording(throwing)).contains("boom"));
+        assert!(!d.recording(), "a refused start records nothing");
     }
 }

@@ -198,7 +198,7 @@ pub enum DeformError {
         /// How many handles there are.
         handle_count: usize,
     },
-    /// A handle's target or turn is NaN, infinite or beyond ±[`MAX_COORDINATE`].
+    /// A handle's target is NaN or infinite.
     InvalidTarget {
         /// Which handle.
         handle: usize,
@@ -220,12 +220,9 @@ impl fmt::Display for DeformError {
             Self::HandleOutOfRange { handle, handle_count } => {
                 write!(f, "there is no handle {handle}: there are {handle_count}")
             }
-            Self::InvalidTarget { handle, value } => write!(
-                f,
-                "the target of handle {handle} has {}, expected a finite number within ±{}",
-                Number(*value),
-                Number(MAX_COORDINATE)
-            ),
+            Self::InvalidTarget { handle, value } => {
+                write!(f, "the target of handle {handle} has {value}, not a finite number")
+            }
             Self::RigMismatch { rig, deformer } => write!(
                 f,
                 "the rig was trained for {} handles on {} vertices; the deformer has {} handles on {} vertices: \

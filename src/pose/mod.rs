@@ -29,7 +29,7 @@ use std::borrow::BorrowMut;
 
 use crate::defop::Operator;
 use crate::deform::{DeformError, Deformer, FoldoverGuard, FoldoverStepper, GuardedStep, MethodOptions, Timings};
-use crate::geometry::{Point, MAX_COORDINATE};
+use crate::geometry::Point;
 use crate::mesh::MeshPoint;
 use crate::session::{Event, MeshCounts, RecordedOptions, Session, SessionMesh, ShapeSpec};
 
@@ -253,11 +253,12 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Handles at these points of the mesh (triangle, barycentric coordinates each),
     /// replacing any: each starts with its target where it is, not turning, not held.
-    /// Recorded. A rig no longer fitting is dropped.
+    /// Recorded. A rig posing the shape is dropped (the caller checks whether it fits the
+    /// new handles and gives it again).
     pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
         self.deformer.borrow_mut().set_handle_points(triangles, barycentric)?;
         self.reset_handle_states();
-        self.drop_unfitting_rig();
+        self.rig = None;
         self.record_handles();
         Ok(())
     }
@@ -266,7 +267,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
         self.deformer.borrow_mut().set_handle_vertices(vertices)?;
         self.reset_handle_states();
-        self.drop_unfitting_rig();
+        self.rig = None;
         self.record_handles();
         Ok(())
     }
@@ -281,7 +282,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         let target = *self.deformer.borrow().handle_positions().last().expect("the handle just added");
         self.handles.push(HandleState { target, ..HandleState::default() });
         self.size_scratch();
-        self.drop_unfitting_rig();
+        self.rig = None;
         self.record_handles();
         Ok(self.handles.len() - 1)
     }
@@ -295,7 +296,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.deformer.borrow_mut().set_handle_points(&triangles, &weights)?;
         self.handles.remove(index);
         self.size_scratch();
-        self.drop_unfitting_rig();
+        self.rig = None;
         self.record_handles();
         Ok(())
     }
@@ -330,7 +331,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Sets handle `index`'s target (in the paper's mode, the motion since the last frame is
     /// what the next frame moves it by). Refused for an index out of range or a coordinate
-    /// not finite or beyond ±[`MAX_COORDINATE`].
+    /// that is not finite.
     pub fn set_target(&mut self, index: usize, target: Point) -> Result<(), DeformError> {
         self.check_handle(index)?;
         check_target(index, &target)?;
@@ -341,8 +342,8 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     }
 
     /// Places every handle's target, one per handle in order (undo, a re-meshing, a frame
-    /// of an animation shown): no motion pending from it in the paper's mode. All checked
-    /// before any is set.
+    /// of an animation shown): no motion pending from it in the paper's mode, no turn left
+    /// to make. All checked before any is set.
     pub fn set_targets(&mut self, targets: &[Point]) -> Result<(), DeformError> {
         if targets.len() != self.handles.len() {
             return Err(DeformError::Length {
@@ -359,6 +360,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         for (h, &target) in self.handles.iter_mut().zip(targets) {
             h.target = target;
             h.pending = [0.0; 2];
+            h.turn = h.turned;
         }
         Ok(())
     }
@@ -398,8 +400,13 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// The pointer lets handle `index` go: it stays a pin at its target.
     pub fn release(&mut self, index: usize) -> Result<(), DeformError> {
+        self.set_held(index, false)
+    }
+
+    /// Whether a pointer holds handle `index` (see [`Self::grab`]), its target unchanged.
+    pub fn set_held(&mut self, index: usize, held: bool) -> Result<(), DeformError> {
         self.check_handle(index)?;
-        self.handles[index].held = false;
+        self.handles[index].held = held;
         Ok(())
     }
 
@@ -419,7 +426,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Moves the handles toward their targets (see the module's description), or poses with
     /// the rig; returns what it did. On error (a step that failed even with smaller
     /// velocities) the pose is where the steps before it left it, the turns asked for are
-    /// dropped, and the error is returned.
+    /// dropped, the handles not held stay where they are, and the error is returned.
     pub fn advance(&mut self) -> Result<Advance, DeformError> {
         let mut report = Advance::default();
         if self.handles.is_empty() {
@@ -438,9 +445,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
                 return Ok(report);
             }
             let count = (self.tracking.max_substeps as f64).min(substeps(distance, longest)) as usize;
-            for v in &mut self.velocities {
-                *v = [v[0] / count as f64, v[1] / count as f64];
-            }
+            split_evenly(&mut self.velocities, count);
             for _ in 0..count {
                 self.substep(false, &mut report)?;
                 if report.clamped {
@@ -508,10 +513,13 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
                 return self.took(pieces, report);
             }
         }
-        // A method without turning handles, say: the turns asked for are dropped.
+        // A method without turning handles, say: the turns asked for are dropped, and the
+        // handles not held stay where they are (held ones keep their targets and are tried
+        // again next frame, in smaller steps).
         for h in &mut self.handles {
             h.turn = h.turned;
         }
+        self.pin_unheld();
         Err(first)
     }
 
@@ -685,7 +693,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// the rig's for the handles' targets (there is nothing to step through). Refused
     /// ([`DeformError::RigMismatch`]) for a rig of other handle or vertex counts; the
     /// caller is to check it was trained for this mesh and these handle points. `None`
-    /// poses with the deformer again.
+    /// poses with the deformer again; so does any new handle set.
     pub fn set_rig(&mut self, operator: Option<Operator>) -> Result<(), DeformError> {
         let Some(operator) = operator else {
             self.rig = None;
@@ -711,12 +719,6 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// The rig's handle points, to check a rig fits (`None` without one).
     pub fn rig_points(&self) -> Option<&[MeshPoint]> {
         self.rig.as_ref().map(|rig| rig.operator.handles())
-    }
-
-    fn drop_unfitting_rig(&mut self) {
-        if self.rig.as_ref().is_some_and(|rig| rig.operator.handles().len() != self.handles.len()) {
-            self.rig = None;
-        }
     }
 
     /// The rig's pose for the handles' targets, straight into the deformer's positions,
@@ -895,6 +897,13 @@ fn toward(handles: &[HandleState], current: &[Point], remaining: f64, out: &mut 
     }
 }
 
+/// The paper's mode: each handle's motion split evenly over `count` substeps.
+fn split_evenly(motion: &mut [[f64; 2]], count: usize) {
+    for v in motion {
+        *v = [v[0] / count as f64, v[1] / count as f64];
+    }
+}
+
 /// How many substeps cover `distance` with steps of at most `longest` (at least 1).
 fn substeps(distance: f64, longest: f64) -> f64 {
     (distance / longest - 1e-9).ceil().max(1.0)
@@ -924,10 +933,65 @@ impl Scale for [f64; 2] {
     }
 }
 
-/// A target within the coordinate limits.
+/// A finite target (one beyond the coordinate limits is asked for, and the step toward it
+/// refused, as a velocity that large is).
 fn check_target(handle: usize, target: &Point) -> Result<(), DeformError> {
-    match target.iter().find(|x| !(x.is_finite() && x.abs() <= MAX_COORDINATE)) {
+    match target.iter().find(|x| !x.is_finite()) {
         Some(&value) => Err(DeformError::InvalidTarget { handle, value }),
         None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn handles(targets: &[Point]) -> Vec<HandleState> {
+        targets.iter().map(|&target| HandleState { target, ..HandleState::default() }).collect()
+    }
+
+    #[test]
+    fn substeps_bring_every_handle_exactly_to_its_target_with_bounded_steps() {
+        let mut p = [[0.0, 0.0], [1.0, 1.0]];
+        let targets = [[0.25, -0.1], [1.0, 1.05]];
+        let gap = p.iter().zip(&targets).fold(0.0f64, |m, (p, t)| m.max(libm::hypot(t[0] - p[0], t[1] - p[1])));
+        assert!((gap - 0.25f64.hypot(0.1)).abs() < 1e-15);
+        let n = substeps(gap, 0.05);
+        assert_eq!(n, (gap / 0.05).ceil());
+        // Perfect tracking: each substep moves by the velocity.
+        let h = handles(&targets);
+        let mut v = [[0.0; 2]; 2];
+        for s in 0..n as usize {
+            toward(&h, &p, n - s as f64, &mut v);
+            assert!(v[0][0].hypot(v[0][1]) <= 0.05 + 1e-12);
+            for (p, v) in p.iter_mut().zip(&v) {
+                *p = [p[0] + v[0], p[1] + v[1]];
+            }
+        }
+        for (p, t) in p.iter().zip(&targets) {
+            assert!((p[0] - t[0]).abs() < 1e-14 && (p[1] - t[1]).abs() < 1e-14, "{p:?} {t:?}");
+        }
+    }
+
+    #[test]
+    fn a_handle_that_fell_short_is_aimed_at_its_target_again() {
+        // The handle reached only 80% of the way: the next velocity is the whole gap left.
+        let mut v = [[0.0; 2]];
+        toward(&handles(&[[1.0, 0.0]]), &[[0.8, 0.0]], 1.0, &mut v);
+        assert_eq!(v, [[0.19999999999999996, 0.0]]);
+    }
+
+    #[test]
+    fn exact_multiples_need_no_extra_substep_and_nothing_to_do_is_one() {
+        assert_eq!(substeps(0.3, 0.1), 3.0);
+        assert_eq!(substeps(0.0, 0.1), 1.0);
+        assert!(Tracking { max_step: 0.0, ..Tracking::default() }.check().is_err());
+    }
+
+    #[test]
+    fn the_papers_mode_splits_the_motion_evenly() {
+        let mut motion = [[0.75, -1.5], [0.0, 0.0]];
+        split_evenly(&mut motion, 3);
+        assert_eq!(motion, [[0.25, -0.5], [0.0, 0.0]]);
     }
 }

@@ -41,7 +41,7 @@
 //! [`Deformer::set_bones`]), laid in the pose at that point. Stiffness and bones are for
 //! the methods that have them (AKAP, ARAP: such an event
 //! under another method is refused on replay as the deformer refuses it, and passed over by
-//! [`replay_to_targets`], whose method is a comparison's).
+//! `pose::replay_to_targets`, whose method is a comparison's).
 //!
 //! Version 1, the first sessions (`tests/sessions/*.json`), had only a built-in shape, AKAP
 //! options and `handles`, `step` and `reset` events; it is still read (a version-1 file using
@@ -49,9 +49,9 @@
 //!
 //! Numbers are written in the shortest form that reads back to the same double, and read
 //! exactly (serde_json's `float_roundtrip`), so replaying a session repeats the recording
-//! bit for bit ([`replay`]). Other methods see other handle positions, so they follow the
+//! bit for bit (`pose::replay`). Other methods see other handle positions, so they follow the
 //! recording's *targets* instead, each handle's position before a step plus its velocity in
-//! the recording: [`replay_to_targets`].
+//! the recording: `pose::replay_to_targets`.
 
 use std::fmt;
 

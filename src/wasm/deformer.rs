@@ -412,6 +412,14 @@ impl JsDeformer {
         Ok(self.inner.release(index)?)
     }
 
+    /// Whether a pointer holds handle `index` (a step that stops short leaves the handles
+    /// not held where they stopped); its target stays.
+    #[wasm_bindgen(js_name = setHeld)]
+    pub fn set_held(&mut self, index: JsValue, held: bool) -> Result<(), BindingError> {
+        let index = read::count(&index, "index", max_handles())?;
+        Ok(self.inner.set_held(index, held)?)
+    }
+
     /// Every handle's target where it is now: the handles stay where they are.
     #[wasm_bindgen(js_name = pinHandles)]
     pub fn pin_handles(&mut self) {

@@ -34,7 +34,7 @@ pub use import::{
     texture_coordinates, trace_image, JsMeshFile, JsPointMapper,
 };
 pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, triangulate_to_vertices, JsMesh};
-pub use session::{session_json, session_mesh, JsSessionRecorder};
+pub use session::{session_json, session_mesh};
 
 use js_sys::{Array, Float64Array, Function, Object, Reflect};
 use wasm_bindgen::prelude::*;

@@ -23,3 +23,43 @@ export const noTimings = (): Timings => ({
   solve: 0,
   integration: 0,
 });
+
+/**
+ * Runs `run` counting the calls it makes into WebAssembly objects: every method and getter
+ * of every class of the wasm-bindgen glue (the deformer, operators, meshes, ...) is wrapped
+ * for the run, and each call listed as `Class.member`.
+ */
+export async function wasmCalls<T>(run: () => T): Promise<{ result: T; calls: string[] }> {
+  const glue = (await import("../../www/pkg/akap.js")) as Record<string, unknown>;
+  const calls: string[] = [];
+  const restore: (() => void)[] = [];
+  for (const [name, value] of Object.entries(glue)) {
+    if (typeof value !== "function" || typeof value.prototype !== "object") continue;
+    const proto = value.prototype as Record<string, unknown>;
+    for (const key of Object.getOwnPropertyNames(proto)) {
+      const descriptor = Object.getOwnPropertyDescriptor(proto, key)!;
+      if (key === "constructor" || !descriptor.configurable) continue;
+      const counted = { ...descriptor };
+      if (typeof descriptor.value === "function") {
+        const method = descriptor.value as (...args: unknown[]) => unknown;
+        counted.value = function (this: unknown, ...args: unknown[]) {
+          calls.push(`${name}.${key}`);
+          return method.apply(this, args);
+        };
+      } else if (descriptor.get) {
+        const get = descriptor.get;
+        counted.get = function (this: unknown) {
+          calls.push(`${name}.${key}`);
+          return get.call(this) as unknown;
+        };
+      } else continue;
+      Object.defineProperty(proto, key, counted);
+      restore.push(() => Object.defineProperty(proto, key, descriptor));
+    }
+  }
+  try {
+    return { result: run(), calls };
+  } finally {
+    for (const undo of restore) undo();
+  }
+}

@@ -10,7 +10,7 @@ import { builtinShape, init, trainDefOp } from "../../www/src/index.js";
 import { Rig } from "../../www/src/widget/model/rig.js";
 import { meshOutline } from "../../www/src/widget/model/shape.js";
 import { locate, pointPosition } from "../../www/src/widget/model/picking.js";
-import { noTimings } from "./fixtures.js";
+import { noTimings, wasmCalls } from "./fixtures.js";
 import { dragTo, posed } from "./posing-fixtures.js";
 
 beforeAll(async () => {
@@ -33,6 +33,48 @@ describe("Posing", () => {
     expect(posing.deformer.positions()).toEqual(rest);
     expect(posing.travel(true)).toBe(true);
     expect(posing.deformer.positions()).toEqual(pose);
+  });
+
+  it("a frame of a drag with a recording running makes one call into WebAssembly, and records every step", async () => {
+    const { posing } = posed();
+    posing.startRecording();
+    const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
+    posing.grab(1, 3, x, y, false);
+    // Far enough for several substeps and, with No foldovers (the default), guarded ones.
+    posing.drag(3, x - 0.3, y + 0.2);
+    const { result: steps, calls } = await wasmCalls(() => posing.advance(noTimings()));
+    expect(steps).toBeGreaterThan(1);
+    expect(calls).toEqual(["Deformer.advance"]);
+    posing.release(3);
+    const session = posing.stopRecording()!;
+    expect(session.data.events.filter((e) => "step" in e).length).toBeGreaterThanOrEqual(steps);
+  });
+
+  it("a rig's frame makes one call into WebAssembly, and no pose crosses the boundary", async () => {
+    const { posing } = posed(400);
+    const { mesh } = posing.shape;
+    const points = posing.handles.map((h) => h.point);
+    const trained = await trainDefOp(
+      mesh.positions,
+      mesh.triangles,
+      { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
+      { samples: 6, energy: "arap" },
+    );
+    posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
+    posing.setMethod("defop", 100);
+    posing.startRecording();
+    const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
+    posing.grab(1, 3, x, y, false);
+    posing.drag(3, x - 0.2, y + 0.3);
+    expect(posing.advance(noTimings())).toBe(1); // the rig is given to the deformer here, once
+    posing.drag(3, x - 0.25, y + 0.35);
+    // The operator poses the deformer in place; the one call returns a small report.
+    const { result: steps, calls } = await wasmCalls(() => posing.advance(noTimings()));
+    expect(steps).toBe(1);
+    expect(calls).toEqual(["Deformer.advance"]);
+    const expected = trained.operator.evaluate(Array.from(posing.targets()));
+    expect(Array.from(posing.deformer.positions())).toEqual(Array.from(expected));
+    posing.release(3);
   });
 
   it("a step that fails changes nothing and is passed on; once the cause is gone, steps work", () => {
@@ -140,7 +182,7 @@ describe("Posing", () => {
     const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
     dragTo(posing, [x - 0.2, y + 0.3]);
     expect(posing.evaluationMs).toBeGreaterThanOrEqual(0);
-    const targets = posing.handles.flatMap((h) => h.target);
+    const targets = Array.from(posing.targets());
     const expected = trained.operator.evaluate(targets);
     expect(Array.from(posing.deformer.positions())).toEqual(Array.from(expected));
     // Unchanged targets: no evaluation, nothing recorded.

@@ -9,7 +9,7 @@ import { beforeAll, describe, expect, it } from "vitest";
 import { builtinShape, init } from "../../www/src/index.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
 import { Posing } from "../../www/src/widget/model/posing.js";
-import { Recorder, parseSession, sessionMesh, type SessionEvent } from "../../www/src/session.js";
+import { Session, parseSession, sessionMesh, type SessionEvent } from "../../www/src/session.js";
 import { meshOutline } from "../../www/src/widget/model/shape.js";
 import { noTimings } from "./fixtures.js";
 
@@ -97,11 +97,11 @@ describe("sessions through the core", () => {
 
   it("keeps negative zeros and subnormals of the recorded numbers", () => {
     const p = posing();
-    const r = new Recorder();
-    r.start({ shape: p.shape.spec, mesh: p.shape.mesh, options: { method: "akap" } }, [{ reset: true }]);
-    r.record({ handles: { triangles: [0], barycentric: [1, 0, 0] } });
-    r.record({ step: [-0, 5e-324] });
-    const session = r.stop()!;
+    const r = p.deformer;
+    r.startRecording(p.shape.spec);
+    r.setHandlePoints([0], [1, 0, 0]);
+    r.step([-0, 5e-324]);
+    const session = Session.fromCoreJson(r.stopRecording()!);
     expect(r.recording).toBe(false);
     const step = (session.data.events[2] as { step: number[] }).step;
     expect(Object.is(step[0], -0)).toBe(true);
@@ -109,10 +109,11 @@ describe("sessions through the core", () => {
     expect(parseSession(session.json).json).toBe(session.json);
   });
 
-  it("refuses an event the session cannot hold, keeping the events before it", () => {
+  it("refuses a call the session cannot hold, keeping the events before it", () => {
+    // The deformer records what it does: a call it refuses records nothing.
     const p = posing();
-    const r = new Recorder();
-    r.start({ shape: undefined, mesh: p.shape.mesh, options: {} }, [{ reset: true }]);
+    const r = p.deformer;
+    r.startRecording(undefined);
     const bad: SessionEvent[] = [
       { step: [0.1, 0.2] }, // no handles yet
       { handles: { triangles: [0, 1], barycentric: [1, 0, 0] } },
@@ -120,13 +121,13 @@ describe("sessions through the core", () => {
       { options: { iterations: 5 } },
       { step: [] as number[] },
     ];
-    expect(() => r.record(bad[0]!)).toThrow("velocities has 2 numbers; 0 handles need 2 each");
-    expect(() => r.record(bad[1]!)).toThrow("barycentric has 3 numbers; 2 handles need 3 each");
-    expect(() => r.record(bad[2]!)).toThrow(/positions has 2 numbers; \d+ vertices need 2 each/);
-    expect(() => r.record(bad[3]!)).toThrow('option iterations applies to method "arap" only');
-    expect(() => r.record({ step: [NaN] })).toThrow("velocities[0] is NaN, not a finite number");
-    r.record(bad[4]!); // a step of no handles is fine
-    const session = r.stop()!;
+    expect(() => r.step((bad[0] as { step: number[] }).step)).toThrow(/velocities has 2 numbers/);
+    expect(() => r.setHandlePoints([0, 1], [1, 0, 0])).toThrow("barycentric has 3 numbers; 2 triangles need 3 each");
+    expect(() => r.setPositions([0, 0])).toThrow(/positions has 2 numbers/);
+    expect(() => r.setOptions({ iterations: 5 })).toThrow('option iterations applies to method "arap" only');
+    expect(() => r.step([NaN])).toThrow(/velocities has 1 numbers/);
+    r.step((bad[4] as { step: number[] }).step); // a step of no handles is fine
+    const session = Session.fromCoreJson(r.stopRecording()!);
     expect(session.data.events).toEqual([{ reset: true }, { step: [] }]);
     // Without a shape the session carries the mesh.
     expect(session.data.shape).toBeUndefined();

@@ -89,13 +89,14 @@ describe("painted stiffness while posing", () => {
     const stiff = paintArm(posing);
     expect(Array.from(stiff).some((s) => s === 100) && Array.from(stiff).some((s) => s === 1)).toBe(true);
     const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
-    const recorder = { steps: [] as Float64Array[] };
-    const step = posing.step.bind(posing);
-    posing.step = (v, t) => {
-      recorder.steps.push(Float64Array.from(v));
-      step(v, t);
-    };
+    // The steps the drag takes, as the core's interaction loop records them.
+    posing.startRecording();
     dragTo(posing, [x - 0.4, y + 0.5]);
+    const recorder = {
+      steps: posing
+        .stopRecording()!
+        .data.events.flatMap((e) => ("step" in e ? [Float64Array.from(e.step as ArrayLike<number>)] : [])),
+    };
     // The same steps on a core deformer with the painting: the same bits.
     const core = new Deformer(posing.shape.mesh.positions, posing.shape.mesh.triangles);
     core.setHandlePoints(handles.triangles, handles.barycentric);

@@ -1,12 +1,6 @@
-/** The widget's logic apart from the page: drag velocities, picking, history, geometry, texture maps, keys, options. */
+/** The widget's logic apart from the page (the drag's velocities are the core's: `src/pose`, tested there): picking, history, geometry, texture maps, keys, options. */
 import { beforeAll, describe, expect, it } from "vitest";
 import { init } from "../../www/src/index.js";
-import {
-  displacementVelocities,
-  largestGap,
-  substepCount,
-  trackingVelocities,
-} from "../../www/src/widget/model/drag.js";
 import { affineThrough } from "../../www/src/widget/view/canvas2d-renderer.js";
 import { boundaryLoops, boxUvs, uniqueEdges } from "../../www/src/widget/model/geometry.js";
 import { History } from "../../www/src/widget/model/history.js";
@@ -23,44 +17,6 @@ beforeAll(async () => {
 // A unit square split into two counter-clockwise triangles, with a square hole-free boundary.
 const square = Float64Array.from([0, 0, 1, 0, 1, 1, 0, 1]);
 const squareTriangles = Uint32Array.from([0, 1, 2, 0, 2, 3]);
-
-describe("drag velocities", () => {
-  it("substeps bring every handle exactly to its target with bounded steps", () => {
-    const current = [0, 0, 1, 1];
-    const targets = [0.25, -0.1, 1, 1.05];
-    const gap = largestGap(current, targets);
-    expect(gap).toBeCloseTo(Math.hypot(0.25, 0.1), 15);
-    const n = substepCount(gap, 0.05);
-    expect(n).toBe(Math.ceil(gap / 0.05));
-    // Simulate perfect tracking: each substep moves by the velocity.
-    const p = current.slice();
-    for (let s = 0; s < n; s++) {
-      const v = trackingVelocities(p, targets, n - s);
-      for (let i = 0; i < 4; i++) {
-        expect(Math.hypot(v[0]!, v[1]!)).toBeLessThanOrEqual(0.05 + 1e-12);
-        p[i]! += v[i]!;
-      }
-    }
-    p.forEach((x, i) => expect(x).toBeCloseTo(targets[i]!, 14));
-  });
-
-  it("a handle that fell short is aimed at the target again (no drift)", () => {
-    // Handle reached only 80% of the way: the next velocity is the whole remaining gap.
-    const v = trackingVelocities([0.8, 0], [1, 0], 1);
-    expect(Array.from(v)).toEqual([0.19999999999999996, 0]);
-  });
-
-  it("exact multiples need no extra substep, and nothing to do is one substep", () => {
-    expect(substepCount(0.3, 0.1)).toBe(3);
-    expect(substepCount(0, 0.1)).toBe(1);
-    expect(() => substepCount(1, 0)).toThrow(RangeError);
-    expect(() => largestGap([0, 0], [0])).toThrow(RangeError);
-  });
-
-  it("paper mode splits the raw displacement evenly", () => {
-    expect(Array.from(displacementVelocities([0.75, -1.5, 0, 0], 3))).toEqual([0.25, -0.5, 0, 0]);
-  });
-});
 
 describe("picking", () => {
   it("finds the triangle and barycentric coordinates that reproduce the point", () => {

@@ -11,10 +11,10 @@
  * ```
  *
  */
-import { toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
+import { coded, toFloat64, toUint32, type Coordinates, type Indices } from "./internal/arrays.js";
 import type { MeshData, WasmSource } from "./core-types.js";
 import { readMesh } from "./internal/mesh.js";
-import { assertLoaded, load, raw, wasmMemory, wasmModule, type rawTypes } from "./internal/wasm.js";
+import { assertLoaded, bindingOf, load, raw, wasmMemory, wasmModule, type rawTypes } from "./internal/wasm.js";
 
 export type { Coordinates, Indices } from "./internal/arrays.js";
 export { ERROR_CODES, isAkapError, type AkapError, type ErrorCode } from "./errors.js";
@@ -221,6 +221,48 @@ export interface GuardedStep {
 }
 
 /**
+ * How {@link Deformer.advance} moves the handles toward their targets; each setting left
+ * out keeps its value.
+ */
+export interface TrackingOptions {
+  /** The longest handle move of one substep, as a share of {@link Deformer.size} (default 0.02). */
+  maxStep?: number;
+  /** Most substeps a frame takes, 1 to 10000 (default 8); the rest of the way is left to the next frame. */
+  maxSubsteps?: number;
+  /** Whether each substep is {@link Deformer.stepWithoutFoldovers} (default true). */
+  noFoldovers?: boolean;
+  /** The guard's halvings (see {@link FoldoverOptions}). */
+  maxSplits?: number;
+  /** The guard's bisection trials (see {@link FoldoverOptions}). */
+  clampTrials?: number;
+  /**
+   * The paper's mode: a handle's velocity is its target's motion since the last frame,
+   * split evenly, and errors accumulate, as in the paper's interface (default false).
+   */
+  paper?: boolean;
+}
+
+/** What one {@link Deformer.advance} did. */
+export interface Advance {
+  /** Substeps taken (a rig's evaluation counts as one); 0 when nothing moved. */
+  steps: number;
+  /** Whether a step stopped short to keep triangles from folding over. */
+  clamped: boolean;
+  /** Milliseconds of the rig's evaluation (0 when the frame stepped). */
+  evaluation: number;
+  /** The stage timings summed over the substeps. */
+  timings: Timings;
+}
+
+/**
+ * A trained rig a {@link Deformer} can pose with: a `DefOp` (see {@link Deformer.setRig}).
+ */
+export interface RigOperator {
+  readonly handleCount: number;
+  readonly vertexCount: number;
+}
+
+/**
  * The fill-reducing orders a {@link Deformer} with these options needs for this mesh: the
  * bulk of its set-up (ordering the mesh's vertex graph, about two thirds of the time). Run
  * it in a worker and pass the result to the constructor to keep a page responsive.
@@ -240,11 +282,15 @@ export function deformerOrders(
 
 /**
  * Deformation of one mesh by a method of {@link Method} (As-Killing-As-Possible by default;
- * `"arap"`, `"mls"`, `"cauchy-green"`). Give it handles (vertices, or points inside
- * triangles), then call {@link Deformer.step} (or {@link Deformer.stepWithoutFoldovers})
- * with a velocity per handle each frame. Bad input throws an `Error` and leaves the
- * deformer as it was. Call {@link Deformer.free} when done: the solver lives in WebAssembly
- * memory.
+ * `"arap"`, `"mls"`, `"cauchy-green"`), with its interaction loop. Give it handles
+ * (vertices, or points inside triangles), then either set where they are to go
+ * ({@link Deformer.setTarget}, {@link Deformer.setTurn}) and call {@link Deformer.advance}
+ * once a frame, which takes them there as the posing app does (substeps, no foldovers,
+ * retries), or step it yourself with a velocity per handle ({@link Deformer.step},
+ * {@link Deformer.stepWithoutFoldovers}). A recording ({@link Deformer.startRecording})
+ * keeps every step as it is taken, and replays to the same bits. Bad input throws an
+ * `Error` and leaves the deformer as it was. Call {@link Deformer.free} when done: the
+ * solver lives in WebAssembly memory.
  */
 export class Deformer {
   #inner: rawTypes.Deformer | undefined;
@@ -441,9 +487,157 @@ export class Deformer {
     return this.#raw.timings() as Timings;
   }
 
-  /** Back to the rest pose; handles stay. */
+  /** Back to the rest pose; handles stay, each with its target at its rest place. */
   reset(): void {
     this.#raw.reset();
+  }
+
+  /** Whether the pose is the rest pose: new or just reset, no step or pose since. */
+  get atRest(): boolean {
+    return this.#raw.atRest;
+  }
+
+  /** The rest shape's size, its bounding box's larger side (the unit of {@link TrackingOptions.maxStep}). */
+  get size(): number {
+    return this.#raw.size;
+  }
+
+  // ---------------------------------------------------------------- the interaction loop
+
+  /** How {@link advance} moves the handles toward their targets. Bad values throw and change nothing. */
+  setTracking(options: TrackingOptions): void {
+    this.#raw.setTracking(options);
+  }
+
+  /**
+   * One more handle at a point inside a triangle (its index and 3 barycentric
+   * coordinates), last, its target where it is; the other handles keep their targets and
+   * turns. Returns its index.
+   */
+  addHandle(triangle: number, barycentric: Coordinates): number {
+    return this.#raw.addHandle(triangle, toFloat64(barycentric, "barycentric"));
+  }
+
+  /** Removes handle `index`; the others keep their targets and turns. */
+  removeHandle(index: number): void {
+    this.#raw.removeHandle(index);
+  }
+
+  /** Sets where handle `index` is to go; the next {@link advance} takes it there (as far as a frame allows). */
+  setTarget(index: number, x: number, y: number): void {
+    this.#raw.setTarget(index, x, y);
+  }
+
+  /**
+   * Places every handle's target (x and y per handle, in order): undo, a frame of an
+   * animation shown. No turn is left to make.
+   */
+  setTargets(targets: Coordinates): void {
+    this.#raw.setTargets(toFloat64(targets, "targets"));
+  }
+
+  /**
+   * Sets how far handle `index` is to turn in all, radians counter-clockwise (turns add up
+   * over frames, in steps of at most 0.1 radian; AKAP and ARAP).
+   */
+  setTurn(index: number, turn: number): void {
+    this.#raw.setTurn(index, turn);
+  }
+
+  /**
+   * A pointer takes handle `index`: it is held (a step that stops short leaves the handles
+   * not held where they stopped), its target where it is. Returns where it is.
+   */
+  grab(index: number): [number, number] {
+    const at = this.#raw.grab(index);
+    return [at[0]!, at[1]!];
+  }
+
+  /** The pointer lets handle `index` go: it stays at its target. */
+  release(index: number): void {
+    this.#raw.release(index);
+  }
+
+  /** Whether a pointer holds handle `index` ({@link grab} without moving its target). */
+  setHeld(index: number, held: boolean): void {
+    this.#raw.setHeld(index, held);
+  }
+
+  /** Every handle's target where it is now: the handles stay where they are. */
+  pinHandles(): void {
+    this.#raw.pinHandles();
+  }
+
+  /** Where each handle is going, xy-interleaved. */
+  targets(): Float64Array {
+    return this.#raw.targets();
+  }
+
+  /** How far each handle is to turn in all (`turns`) and has turned (`turned`), radians. */
+  turns(): { turns: Float64Array; turned: Float64Array } {
+    const both = this.#raw.turns();
+    const n = both.length / 2;
+    return { turns: both.subarray(0, n), turned: both.subarray(n) };
+  }
+
+  /**
+   * One frame of the interaction loop: every handle moved toward its target and turned
+   * toward its turn, in substeps no longer than {@link TrackingOptions.maxStep} of the
+   * shape's size, each without foldovers (a step that would fold is split, then stopped
+   * short, and the handles not held stay where they stopped), a failed step tried again
+   * smaller; or, with a rig ({@link setRig}), the rig's pose for the targets. One call into
+   * WebAssembly; read the pose with {@link positionsView}. A step that fails even smaller
+   * throws, the pose where the steps before it left it.
+   */
+  advance(): Advance {
+    return this.#raw.advance() as Advance;
+  }
+
+  /**
+   * Poses with a trained rig (a `DefOp`, copied into the deformer) instead of stepping:
+   * each {@link advance} gives the rig's pose for the handles' targets, computed in
+   * WebAssembly straight into the positions. `undefined` steps again; so does a new handle
+   * set. Throws (code `invalid-argument`) for a rig of other handle or vertex counts; the
+   * caller checks that it was trained for this mesh and these handle points.
+   */
+  setRig(rig: RigOperator | undefined): void {
+    if (rig === undefined) {
+      this.#raw.clearRig();
+      return;
+    }
+    const inner = bindingOf(rig) as rawTypes.DefOp | undefined;
+    if (!inner) throw coded(new TypeError("the rig must be a DefOp that is not freed"), "invalid-argument");
+    this.#raw.setRig(inner);
+  }
+
+  /** Whether a rig poses the shape ({@link setRig}). */
+  get hasRig(): boolean {
+    return this.#raw.hasRig;
+  }
+
+  /**
+   * Starts recording a session of everything done through this deformer from now on (the
+   * steps as taken, handles, poses, options, stiffness, bones), replacing any recording.
+   * `shape` names the built-in shape the mesh was triangulated from (`{ name,
+   * targetEdgeLength?, minAngle?, maxArea? }`); without it the session carries the mesh.
+   */
+  startRecording(shape?: { name: string; targetEdgeLength?: number; minAngle?: number; maxArea?: number }): void {
+    this.#raw.startRecording(shape);
+  }
+
+  /** Whether a recording runs. */
+  get recording(): boolean {
+    return this.#raw.recording;
+  }
+
+  /** Ends the recording and returns its JSON (an `akap-session`), or undefined if none ran. */
+  stopRecording(): string | undefined {
+    return this.#raw.stopRecording();
+  }
+
+  /** Pauses the recording (while a session replays) or resumes it. */
+  pauseRecording(paused: boolean): void {
+    this.#raw.pauseRecording(paused);
   }
 
   /** Releases the WebAssembly memory; the deformer cannot be used afterwards (calls throw). */

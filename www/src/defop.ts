@@ -26,7 +26,7 @@ import {
 } from "./internal/arrays.js";
 import type { MeshData } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
-import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
+import { assertLoaded, raw, registerBinding, type rawTypes } from "./internal/wasm.js";
 
 /** Options of a {@link DefOpTrainer}. */
 export interface DefOpTrainerOptions {
@@ -213,6 +213,7 @@ export class DefOp {
     if (!adopting) throw new Error("a DefOp is made by DefOpTrainer.finish()");
     this.#inner = adopting;
     adopting = undefined;
+    registerBinding(this, this.#inner);
   }
 
   get #raw(): rawTypes.DefOp {
@@ -288,6 +289,7 @@ export class DefOp {
   free(): void {
     this.#inner?.free();
     this.#inner = undefined;
+    registerBinding(this, undefined);
   }
 }
 

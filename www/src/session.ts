@@ -4,7 +4,7 @@
  * code is deterministic, and JSON numbers round-trip doubles exactly).
  *
  * The format has one definition, in Rust (`src/session/`, version 2; version 1 files are
- * read too): the widget records through the core's `SessionRecorder`, which writes the
+ * read too): the widget records through the core's deformer (`Deformer.startRecording`), which writes the
  * JSON, and reads sessions through `sessionJson`, which checks them and writes them back
  * as version 2. The types here describe that JSON once parsed; nothing in TypeScript
  * validates it.
@@ -27,9 +27,9 @@
  * carries the mesh itself in `mesh.positions` and `mesh.triangles`.
  */
 import type { DeformerOptions, MeshData } from "./core.js";
-import { toFloat64, toUint32, type Indices, type Coordinates } from "./internal/arrays.js";
+import type { Indices, Coordinates } from "./internal/arrays.js";
 import { readMesh } from "./internal/mesh.js";
-import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
+import { assertLoaded, raw } from "./internal/wasm.js";
 
 /** A built-in shape and the triangulation that made the mesh (as the widget makes them). */
 export interface ShapeSpec {
@@ -81,7 +81,7 @@ export class Session {
   readonly json: string;
   readonly data: SessionData;
 
-  /** `json` must come from the core (`sessionJson` or `SessionRecorder.toJson`). */
+  /** `json` must come from the core (`sessionJson` or `Deformer.stopRecording`). */
   private constructor(json: string) {
     this.json = json;
     this.data = JSON.parse(json) as SessionData;
@@ -115,68 +115,4 @@ export function sessionMesh(session: Session): MeshData {
   } finally {
     mesh.free();
   }
-}
-
-/** Records events into the core's `SessionRecorder` while a recording runs. */
-export class Recorder {
-  #inner: rawTypes.SessionRecorder | undefined;
-
-  /**
-   * Starts a new recording of `mesh` (carried in the session unless `shape` names the
-   * built-in shape it came from); `start` events put the deformer in its current state.
-   */
-  start(
-    header: { shape: ShapeSpec | undefined; mesh: MeshData; options: DeformerOptions },
-    start: SessionEvent[],
-  ): void {
-    assertLoaded();
-    const { shape, mesh, options } = header;
-    const inner = new raw.SessionRecorder(options, shape, mesh.positions, mesh.triangles);
-    try {
-      for (const event of start) add(inner, event);
-    } catch (error) {
-      inner.free();
-      throw error;
-    }
-    this.#inner?.free();
-    this.#inner = inner;
-  }
-
-  get recording(): boolean {
-    return this.#inner !== undefined;
-  }
-
-  /** Adds an event if recording. */
-  record(event: SessionEvent): void {
-    if (this.#inner) add(this.#inner, event);
-  }
-
-  /** Ends the recording and returns it (undefined if none was running). */
-  stop(): Session | undefined {
-    const inner = this.#inner;
-    if (!inner) return undefined;
-    this.#inner = undefined;
-    try {
-      return Session.fromCoreJson(inner.toJson());
-    } finally {
-      inner.free();
-    }
-  }
-}
-
-function add(recorder: rawTypes.SessionRecorder, event: SessionEvent): void {
-  if ("handles" in event) {
-    const { triangles, barycentric } = event.handles;
-    recorder.handles(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
-  } else if ("step" in event) recorder.step(toFloat64(event.step, "velocities"));
-  else if ("positions" in event) recorder.positions(toFloat64(event.positions, "positions"));
-  else if ("options" in event) recorder.options(event.options);
-  else if ("turn" in event) {
-    recorder.turn(toFloat64(event.turn.velocities, "velocities"), toFloat64(event.turn.turns, "turns"));
-  } else if ("bones" in event) {
-    const { triangles, barycentric } = event.bones;
-    recorder.bones(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
-  } else if ("stiffness" in event) {
-    recorder.stiffness(event.stiffness == null ? undefined : toFloat64(event.stiffness, "stiffness"));
-  } else recorder.reset();
 }

@@ -213,3 +213,22 @@ export function assertLoaded(): void {
   if (failure) throw new Error(failure.message, { cause: failure });
   if (!loaded) throw new Error("akap is not initialised: await init() first");
 }
+
+/**
+ * The binding object behind each public wrapper that another wrapper hands to Rust (a
+ * `DefOp` a `Deformer` poses with): wrappers keep their binding object private, and
+ * register it here so that the other wrapper can find it without an import between the
+ * two.
+ */
+const bindingObjects = new WeakMap<object, unknown>();
+
+/** Registers `inner` as the binding object behind `wrapper` (`undefined`: freed). */
+export function registerBinding(wrapper: object, inner: unknown): void {
+  if (inner === undefined) bindingObjects.delete(wrapper);
+  else bindingObjects.set(wrapper, inner);
+}
+
+/** The binding object behind `wrapper`, if it registered one and is not freed. */
+export function bindingOf(wrapper: object): unknown {
+  return bindingObjects.get(wrapper);
+}

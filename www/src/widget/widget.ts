@@ -540,7 +540,7 @@ export class Widget {
 
   /** Whether a recording runs. */
   get recording(): boolean {
-    return this.#posing.recorder.recording;
+    return this.#posing.recording;
   }
 
   /** Starts recording every change of the deformer. */
@@ -871,7 +871,7 @@ export class Widget {
     this.#toolbar?.refresh({
       canUndo: this.#posing.history.canUndo,
       canRedo: this.#posing.history.canRedo,
-      recording: this.#posing.recorder.recording,
+      recording: this.#posing.recording,
       hasSession: this.#parts.lastSession !== undefined,
     });
   }

@@ -75,12 +75,7 @@ export const nudge = action({
     const unit = stage.ratio / stage.camera.view.scale;
     const [x, y] = [dx * unit, dy * unit];
     if (selected.length === 0) return;
-    parts.gesture(() => {
-      for (const h of selected) {
-        h.target = [h.target[0] + x, h.target[1] + y];
-        h.pending = [h.pending[0] + x, h.pending[1] + y];
-      }
-    });
+    parts.gesture(() => posing.nudge(selected, x, y));
   },
 });
 

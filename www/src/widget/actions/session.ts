@@ -26,7 +26,7 @@ export const record = action({
   ],
   perform(parts, { on }: { on?: boolean } = {}): Session | undefined {
     const posing = parts.posing;
-    if (on ?? !posing.recorder.recording) {
+    if (on ?? !posing.recording) {
       posing.startRecording();
       return undefined;
     }

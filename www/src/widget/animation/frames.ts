@@ -2,20 +2,20 @@
  * The animation's frames, computed from a {@link Timeline} against the posing core. Frame
  * 0 is the first key's pose; each next frame sets every handle's target to the
  * timeline's interpolation at the frame's time and takes the steps a frame of dragging
- * takes (`model/posing.ts`, `model/drag.ts`): the largest gap split into substeps of at most
- * `maxStep` of the shape's size (at most `maxSubsteps` of them), each with the tracking
- * velocities `(target - current) / remaining`, through the core's guarded step when
- * `noFoldovers` is on, a failed step retried with smaller velocities. AKAP is
+ * takes: one `Deformer.advance`, the core's interaction loop (the largest gap split into
+ * substeps of at most `maxStep` of the shape's size, at most `maxSubsteps` of them, each
+ * with the tracking velocities `(target - current) / remaining`, through the guarded step
+ * when `noFoldovers` is on, a failed step retried with smaller velocities). AKAP is
  * path-dependent, so frame i is defined by the frames before it: they are computed in
  * order, on a deformer of the animation's own made afresh from the rest mesh (the user's
  * deformer is never stepped), so computing twice gives the same bits. With a trained rig
- * that fits the handles (the "defop" method), a frame is the rig's pose for the targets.
+ * that fits the handles (the "defop" method), the deformer poses with it: a frame is the
+ * rig's pose for the targets.
  *
  * Frames are kept once computed; whoever holds an {@link AnimationFrames} makes a new one
  * when the keys, method, stiffness, bones, handles or step settings change ({@link framesKey}).
  */
-import { Deformer, type DeformerOptions, type MeshData } from "../../core.js";
-import { largestGap, substepCount, trackingVelocities } from "../model/drag.js";
+import { Deformer, type DeformerOptions, type MeshData, type RigOperator } from "../../core.js";
 import { frameCount, frameTime, targetsAt, type HandleSet, type Key } from "./timeline.js";
 
 /** What the frames are computed from (the arrays are not copied: do not change them). */
@@ -29,14 +29,12 @@ export interface FrameSource {
   handles: HandleSet;
   keys: readonly Key[];
   fps: number;
-  /** Longest handle move per substep, in shape units (`maxStep` times the shape's size). */
-  longest: number;
+  /** Longest handle move per substep, as a share of the shape's size. */
+  maxStep: number;
   maxSubsteps: number;
   noFoldovers: boolean;
-  /** The shape's size: a gap below 1e-5 of it is no move (as in a drag). */
-  size: number;
-  /** A trained rig's pose for targets (the "defop" method with a fitting rig), instead of steps. */
-  evaluate?: ((targets: Float64Array, out: Float64Array) => void) | undefined;
+  /** A trained rig (a `DefOp`) that poses instead of steps (the "defop" method with a fitting rig). */
+  rig?: RigOperator | undefined;
 }
 
 /** One frame: the vertex positions and the handles' positions, xy-interleaved. */
@@ -47,55 +45,14 @@ export interface Frame {
   clamped: boolean;
 }
 
-/** A failed step is tried again with its velocities scaled by these, in turn (as a drag's). */
-const RETRY_SCALES = [0.5, 0.25, 0.125];
-
 /**
- * One frame of tracking on `deformer`: the handles stepped toward `targets` as a frame of
- * dragging steps them. Returns the substeps taken and whether a step stopped short.
+ * One frame of tracking on `deformer`: the handles' targets set and one `advance`, as a
+ * frame of dragging takes them. Returns the substeps taken and whether a step stopped short.
  */
-export function trackFrame(
-  deformer: Deformer,
-  targets: Float64Array,
-  settings: Pick<FrameSource, "longest" | "maxSubsteps" | "noFoldovers" | "size">,
-): { steps: number; clamped: boolean } {
-  let current = deformer.handlePositions();
-  const gap = largestGap(current, targets);
-  if (!(gap > 1e-5 * settings.size)) return { steps: 0, clamped: false };
-  const needed = substepCount(gap, settings.longest);
-  const count = Math.min(needed, settings.maxSubsteps);
-  const velocities = new Float64Array(targets.length);
-  let clamped = false;
-  let taken = 0;
-  for (; taken < count && !clamped; taken++) {
-    trackingVelocities(current, targets, needed - taken, velocities);
-    clamped = guardedStep(deformer, velocities, settings.noFoldovers);
-    current = deformer.handlePositions();
-  }
-  return { steps: taken, clamped };
-}
-
-/** One step (guarded when `noFoldovers`), retried smaller when it fails; returns whether it stopped short. */
-function guardedStep(deformer: Deformer, velocities: Float64Array, noFoldovers: boolean): boolean {
-  const attempt = (v: Float64Array): boolean => {
-    if (!noFoldovers) {
-      deformer.step(v);
-      return false;
-    }
-    return deformer.stepWithoutFoldovers(v).clamped;
-  };
-  try {
-    return attempt(velocities);
-  } catch (error) {
-    for (const f of RETRY_SCALES) {
-      try {
-        return attempt(velocities.map((x) => x * f));
-      } catch {
-        // smaller still
-      }
-    }
-    throw error;
-  }
+export function trackFrame(deformer: Deformer, targets: Float64Array): { steps: number; clamped: boolean } {
+  deformer.setTargets(targets);
+  const { steps, clamped } = deformer.advance();
+  return { steps, clamped };
 }
 
 /** What the frames depend on beyond the timeline's version, as one comparable string. */
@@ -153,15 +110,9 @@ export class AnimationFrames {
     const index = this.#frames.length;
     if (index === 0) return this.#read(deformer, false);
     targetsAt(s.keys, frameTime(index, s.fps), this.#targets);
-    if (s.evaluate) {
-      const positions = new Float64Array(s.mesh.positions.length);
-      s.evaluate(this.#targets, positions);
-      deformer.setPositions(positions);
-      return this.#read(deformer, false);
-    }
     let clamped: boolean;
     try {
-      ({ clamped } = trackFrame(deformer, this.#targets, s));
+      ({ clamped } = trackFrame(deformer, this.#targets));
     } catch (error) {
       throw new Error(`frame ${index} of the animation could not be posed: ${(error as Error).message}`, {
         cause: error,
@@ -182,6 +133,8 @@ export class AnimationFrames {
       if (s.bones && s.bones.triangles.length > 0 && deformer.hasBones) {
         deformer.setBones(s.bones.triangles, s.bones.barycentric);
       }
+      deformer.setTracking({ maxStep: s.maxStep, maxSubsteps: s.maxSubsteps, noFoldovers: s.noFoldovers });
+      if (s.rig) deformer.setRig(s.rig);
     } catch (error) {
       deformer.free();
       throw error;

@@ -200,19 +200,10 @@ export class Animator {
         // A copy of the list: the timeline's changes make a new AnimationFrames.
         keys: [...keys],
         fps: this.#host.fps(),
-        longest: settings.maxStep * shape.size,
+        maxStep: settings.maxStep,
         maxSubsteps: settings.maxSubsteps,
         noFoldovers: settings.noFoldovers,
-        size: shape.size,
-        evaluate: withRig
-          ? (targets, out) =>
-              rig.evaluate(
-                Array.from({ length: targets.length / 2 }, (_, i) => ({
-                  target: [targets[2 * i]!, targets[2 * i + 1]!] as [number, number],
-                })),
-                out,
-              )
-          : undefined,
+        rig: withRig ? rig.operator : undefined,
       });
       this.#framesKey = key;
       this.#rig = by;
@@ -265,13 +256,7 @@ export class Animator {
       posing.applyHandles();
     }
     posing.deformer.setPositions(frame.positions);
-    posing.record({ positions: frame.positions });
-    posing.atRest = false;
-    posing.handles.forEach((h, i) => {
-      h.target = [frame.handles[2 * i]!, frame.handles[2 * i + 1]!];
-      h.pending = [0, 0];
-      h.turn = h.turned;
-    });
+    posing.deformer.setTargets(frame.handles);
     this.playhead = index;
     this.#host.shown(index);
     this.#host.changed();

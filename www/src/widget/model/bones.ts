@@ -9,7 +9,6 @@
 import type { Deformer, MeshData as Mesh } from "../../core.js";
 import { coded } from "../../internal/arrays.js";
 import { locate, pointPosition, type MeshPoint } from "./picking.js";
-import type { SessionEvent } from "../../session.js";
 
 /** A bone: its two ends, points of the mesh. */
 export interface Bone {
@@ -20,7 +19,6 @@ export interface Bone {
 export interface BonesHost {
   readonly deformer: Deformer;
   readonly shape: { mesh: Mesh };
-  record(event: SessionEvent): void;
 }
 
 /** A `bones` event (and `Deformer.setBones`'s arguments) for these bones. */
@@ -97,7 +95,6 @@ export class Bones {
     if (deformer.hasBones) deformer.setBones(event.bones.triangles, event.bones.barycentric);
     this.#list = bones.map((b) => ({ ends: [b.ends[0], b.ends[1]] }));
     this.version++;
-    if (deformer.hasBones) this.#host.record(event);
   }
 
   /**
@@ -120,7 +117,6 @@ export class Bones {
     }
     const event = bonesEvent(kept);
     deformer.setBones(event.bones.triangles, event.bones.barycentric);
-    this.#host.record(event);
     const dropped = this.#list.length - kept.length;
     if (dropped > 0) {
       this.#list = kept;

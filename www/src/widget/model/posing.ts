@@ -1,23 +1,24 @@
 /**
  * What the widget poses, apart from the page: the shape and its deformer, the handles
- * (where each is going, which pointer holds it), the undo history, the recording, and the
- * steps that move the handles toward their targets. It knows nothing of the DOM; it tells
- * its host (the widget) what to show through {@link PosingHost}.
+ * (which pointer holds each, selection, depth order), the undo history and the replay of
+ * sessions. It knows nothing of the DOM; it tells its host (the widget) what to show
+ * through {@link PosingHost}.
  *
- * Each frame, {@link Posing.advance} gives every handle the velocity that takes it toward its
- * target (the pointer, or where a pin was left), split into substeps no longer than
- * `maxStep` of the shape's size, and steps the deformer; a step that fails is tried again
- * with smaller velocities. With the "defop" method and a trained {@link Rig} that fits the
- * shape and handles, a frame is instead one evaluation of the rig at the handles' targets.
+ * The interaction loop itself is the core's (`Deformer.advance`, Rust's `pose::Poser`):
+ * the handles' targets, turns and held flags live in the deformer, set here as pointers
+ * move, and each frame {@link Posing.advance} is one call that takes the handles toward
+ * them (substeps no longer than `maxStep` of the shape's size, guarded steps, retries) or,
+ * with the "defop" method and a trained {@link Rig} that fits the shape and handles, poses
+ * with the rig in WebAssembly. The deformer records every change made through it while a
+ * recording runs.
  */
 import { Deformer, checkStiffness, type DeformerOptions, type Timings } from "../../core.js";
 import { PointMapper } from "../../import.js";
-import { displacementVelocities, largestGap, substepCount, trackingVelocities } from "./drag.js";
 import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset } from "./methods.js";
 import { locate, pointPosition, type MeshPoint } from "./picking.js";
-import { Recorder, type Session, type SessionEvent } from "../../session.js";
-import { Bones, bonesEvent, bonesFrom, type Bone } from "./bones.js";
+import { Session, type SessionEvent } from "../../session.js";
+import { Bones, bonesFrom, type Bone } from "./bones.js";
 import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
 import type { Rig } from "./rig.js";
 import type { Loaded, Shape } from "./shape.js";
@@ -80,20 +81,17 @@ export interface PosingHost {
   schedule(): void;
 }
 
-/** A failed step is tried again with its velocities scaled by these, in turn. */
-const RETRY_SCALES = [0.5, 0.25, 0.125];
-/** Largest turn of a handle in one substep, radians. */
-const MAX_TURN_STEP = 0.1;
-
 export class Posing {
   readonly settings: PosingSettings;
   readonly history = new History<Snapshot>();
-  readonly recorder = new Recorder();
   shape!: Shape;
   deformer!: Deformer;
+  /**
+   * The handles, in the deformer's order. After changing the list, call
+   * {@link applyHandles}: handles still in it keep their targets and turns.
+   */
   handles: Handle[] = [];
   parts: Parts | undefined;
-  atRest = true;
   /** While a session replays: nothing is recorded. */
   replaying = false;
   /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
@@ -121,9 +119,11 @@ export class Posing {
   stiffnessVersion = 0;
   /** Painted since the deformer (and the recording) last had the painting. */
   #stiffnessPending = false;
-  /** The rig's last pose and the targets it was for (skipped when they have not moved). */
-  #rigPose: Float64Array | undefined;
-  #rigTargets: Float64Array | undefined;
+  /** The handles as the deformer has them (what {@link applyHandles} compares with). */
+  #sent: Handle[] = [];
+  /** The rig the deformer poses with, and the tracking settings it has (sent when they change). */
+  #rigSent: Rig | undefined;
+  #trackingSent = "";
   readonly #host: PosingHost;
   #gestureBefore: Snapshot | undefined;
   #gestureChanged = false;
@@ -141,11 +141,20 @@ export class Posing {
 
   // ---------------------------------------------------------------- shape and method
 
+  /** Whether the pose is the rest pose (the deformer new or just reset). */
+  get atRest(): boolean {
+    return this.deformer.atRest;
+  }
+
+  /** Whether a recording runs (the deformer's). */
+  get recording(): boolean {
+    return this.deformer?.recording ?? false;
+  }
+
   /** Makes `shape` current with a fresh deformer, without handles, at rest. */
   install(shape: Shape, orders?: Uint32Array[]): void {
     this.adopt(shape, orders, true);
     this.handles = [];
-    this.atRest = true;
     this.applyHandles();
     this.#host.poseChanged();
   }
@@ -158,12 +167,14 @@ export class Posing {
     const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.deformerOptions(), orders);
     this.deformer?.free();
     this.deformer = deformer;
-    this.#rigTargets = undefined;
+    this.#sent = [];
+    this.#rigSent = undefined;
+    this.#trackingSent = "";
+    this.#sendTracking();
     this.shape = shape;
     this.stiffness = undefined;
     this.#stiffnessPending = false;
     this.bones.forget();
-    this.recorder.stop();
     this.#host.adopted(shape, deformer, refit);
   }
 
@@ -178,7 +189,6 @@ export class Posing {
     // Another method is set up with the pose and handles (the core's MethodOptions::apply);
     // throws, changing nothing, for a bad lambda.
     this.deformer.setOptions(options);
-    this.record({ options });
     // A method without stiffness or bones dropped them; one with them gets them back.
     if (this.stiffness) this.#sendStiffness();
     if (this.bones.list.length > 0) this.bones.resend();
@@ -207,9 +217,10 @@ export class Posing {
     const old = { shape: this.shape, positions: this.deformer.positions(), atRest: this.atRest };
     const stiffness = carryStiffness(this.stiffness, old.shape.mesh, shape.mesh, 0.05 * shape.size);
     const bones = this.bones.carried(old.shape.mesh, shape.mesh, 0.05 * shape.size);
-    const handles = this.handles.map((h) => ({
+    const targets = this.deformer.targets();
+    const handles = this.handles.map((h, i) => ({
       rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
-      target: h.target,
+      target: [targets[2 * i]!, targets[2 * i + 1]!],
       layer: h.layer,
       ordered: h.ordered,
     }));
@@ -223,19 +234,23 @@ export class Posing {
         mapper.free();
       }
     }
-    this.atRest = old.atRest;
     const { positions: rest, triangles } = shape.mesh;
+    const kept: number[] = [];
     for (const { rest: at, target, layer, ordered } of handles) {
       const point =
         locate(rest, triangles, at[0], at[1], 1e-6 * shape.size) ??
         locate(rest, triangles, at[0], at[1], 0.05 * shape.size);
-      if (point) this.handles.push({ ...newHandle(point), target: [...target], layer, ordered });
+      if (point) {
+        this.handles.push({ ...newHandle(point), layer, ordered });
+        kept.push(...target);
+      }
     }
     this.stiffness = stiffness;
     if (stiffness) this.#sendStiffness();
     this.bones.assign(bones);
     if (bones.length > 0) this.bones.resend();
     this.applyHandles();
+    this.deformer.setTargets(kept);
     this.#host.poseChanged();
   }
 
@@ -291,25 +306,47 @@ export class Posing {
     // An all-1 painting is none: the deformer is then exactly the unpainted one.
     const values = unpainted(this.stiffness) ? undefined : this.stiffness;
     this.deformer.setStiffness(values);
-    this.record({ stiffness: values?.slice() });
   }
 
   // ---------------------------------------------------------------- handles
 
+  /** A new handle at `point`, last, its target where the point is; the others keep theirs. */
   addHandle(point: MeshPoint): Handle {
-    const [x, y] = pointPosition(this.deformer.positionsView(), this.shape.mesh.triangles, point);
-    const handle: Handle = { ...newHandle(point), target: [x, y] };
+    const handle = newHandle(point);
     this.handles.push(handle);
     this.applyHandles();
     return handle;
   }
 
-  /** Sends the handle set to the deformer (and the recording). */
+  /**
+   * Gives the deformer (and the recording) the handle set, after the caller changed
+   * {@link handles}: handles still in the list keep their targets, turns and pointers; new
+   * ones start where they are.
+   */
   applyHandles(): void {
-    this.#rigTargets = undefined;
+    const deformer = this.deformer;
+    const targets = deformer.targets();
+    const { turns, turned } = deformer.turns();
+    const before = this.#sent.map((h, i) => ({ h, i }));
     const event = this.handlesEvent();
-    this.deformer.setHandlePoints(event.handles.triangles, event.handles.barycentric);
-    this.record(event);
+    deformer.setHandlePoints(event.handles.triangles, event.handles.barycentric);
+    this.#sent = this.handles.slice();
+    this.#rigSent = undefined; // a new handle set drops the deformer's rig
+    if (before.length > 0) {
+      const now = deformer.targets();
+      this.handles.forEach((h, i) => {
+        const was = before.find((b) => b.h === h)?.i;
+        if (was === undefined) return;
+        now[2 * i] = targets[2 * was]!;
+        now[2 * i + 1] = targets[2 * was + 1]!;
+      });
+      deformer.setTargets(now);
+      this.handles.forEach((h, i) => {
+        const was = before.find((b) => b.h === h)?.i;
+        if (was !== undefined && turns[was] !== turned[was]) deformer.setTurn(i, turns[was]! - turned[was]!);
+        if (h.pointerId !== undefined) deformer.setHeld(i, true);
+      });
+    }
     this.#host.handlesChanged(this.handles.length);
     this.#host.schedule();
   }
@@ -323,22 +360,30 @@ export class Posing {
     };
   }
 
+  /** Where each handle is going, xy-interleaved. */
+  targets(): Float64Array {
+    return this.deformer.targets();
+  }
+
+  /** Moves the targets of `handles` by (dx, dy) (the motion pending in the paper's mode too). */
+  nudge(handles: readonly Handle[], dx: number, dy: number): void {
+    const targets = this.deformer.targets();
+    for (const h of handles) {
+      const i = this.handles.indexOf(h);
+      if (i >= 0) this.deformer.setTarget(i, targets[2 * i]! + dx, targets[2 * i + 1]! + dy);
+    }
+  }
+
+  /** Every handle stays where it is now (its target there). */
   pinHandlesWhereTheyAre(): void {
-    const p = this.deformer.handlePositions();
-    this.handles.forEach((h, i) => {
-      h.target = [p[2 * i]!, p[2 * i + 1]!];
-      h.pending = [0, 0];
-    });
+    this.deformer.pinHandles();
     this.#host.schedule();
   }
 
   /** Back to the rest pose; handles stay, at their rest places. */
   reset(): void {
-    this.#rigTargets = undefined;
     this.deformer.reset();
-    this.record({ reset: true });
-    this.atRest = true;
-    this.pinHandlesWhereTheyAre();
+    this.#host.schedule();
     this.#host.poseChanged();
   }
 
@@ -355,20 +400,18 @@ export class Posing {
       const front = Math.max(...this.handles.filter((h) => h !== handle).map((h) => h.layer));
       if (handle.layer <= front) handle.layer = front + 1;
     }
-    const p = this.deformer.handlePositions();
+    const [px, py] = this.deformer.grab(index);
     handle.pointerId = pointerId;
-    handle.grab = [p[2 * index]! - x, p[2 * index + 1]! - y];
-    handle.target = [p[2 * index]!, p[2 * index + 1]!];
+    handle.grab = [px - x, py - y];
     return true;
   }
 
   /** The pointer moved to a shape point: its handle's new target. */
   drag(pointerId: number, x: number, y: number): void {
-    const handle = this.handles.find((h) => h.pointerId === pointerId);
-    if (!handle) return;
-    const next: [number, number] = [x + handle.grab[0], y + handle.grab[1]];
-    handle.pending = [handle.pending[0] + next[0] - handle.target[0], handle.pending[1] + next[1] - handle.target[1]];
-    handle.target = next;
+    const index = this.handles.findIndex((h) => h.pointerId === pointerId);
+    if (index < 0) return;
+    const handle = this.handles[index]!;
+    this.deformer.setTarget(index, x + handle.grab[0], y + handle.grab[1]);
   }
 
   /**
@@ -379,30 +422,34 @@ export class Posing {
     const handle = this.handles[index]!;
     if (handle.pointerId !== undefined) return false;
     this.handles.forEach((h) => (h.selected = h === handle));
-    const p = this.deformer.handlePositions();
+    const centre = this.deformer.grab(index);
+    const turn = this.deformer.turns().turns[index]!;
     handle.pointerId = pointerId;
-    handle.target = [p[2 * index]!, p[2 * index + 1]!];
-    handle.turning = { angle: Math.atan2(y - p[2 * index + 1]!, x - p[2 * index]!), start: handle.turn };
+    handle.turning = { centre, angle: Math.atan2(y - centre[1], x - centre[0]), start: turn, turn };
     return true;
   }
 
   /** The pointer turning a handle moved to (x, y): the handle's turn follows its angle. */
   dragTurn(pointerId: number, x: number, y: number): void {
-    const handle = this.handles.find((h) => h.pointerId === pointerId && h.turning);
-    if (!handle) return;
-    const angle = Math.atan2(y - handle.target[1], x - handle.target[0]);
+    const index = this.handles.findIndex((h) => h.pointerId === pointerId && h.turning);
+    if (index < 0) return;
+    const turning = this.handles[index]!.turning!;
+    const angle = Math.atan2(y - turning.centre[1], x - turning.centre[0]);
     // The change since the last move, wrapped to (-pi, pi]: turns add up past a full circle.
-    let delta = angle - handle.turning!.angle;
+    let delta = angle - turning.angle;
     delta -= 2 * Math.PI * Math.round(delta / (2 * Math.PI));
-    handle.turning = { ...handle.turning!, angle: handle.turning!.angle + delta };
-    handle.turn += delta;
+    turning.angle += delta;
+    turning.turn += delta;
+    this.deformer.setTurn(index, turning.turn);
   }
 
   release(pointerId: number): void {
-    const handle = this.handles.find((h) => h.pointerId === pointerId);
-    if (handle) {
+    const index = this.handles.findIndex((h) => h.pointerId === pointerId);
+    if (index >= 0) {
+      const handle = this.handles[index]!;
       handle.pointerId = undefined;
       handle.turning = undefined;
+      this.deformer.release(index);
     }
     this.endDragGesture();
   }
@@ -443,6 +490,7 @@ export class Posing {
   // ---------------------------------------------------------------- gestures and history
 
   snapshot(): Snapshot {
+    const targets = this.deformer.targets();
     return {
       shape: this.shape,
       parts: this.parts,
@@ -450,7 +498,12 @@ export class Posing {
       lambda: this.settings.lambda,
       positions: this.deformer.positions(),
       atRest: this.atRest,
-      handles: this.handles.map((h) => ({ point: h.point, target: [...h.target], layer: h.layer, ordered: h.ordered })),
+      handles: this.handles.map((h, i) => ({
+        point: h.point,
+        target: [targets[2 * i]!, targets[2 * i + 1]!],
+        layer: h.layer,
+        ordered: h.ordered,
+      })),
       stiffness: this.stiffness?.slice(),
       bones: [...this.bones.list],
     };
@@ -458,7 +511,6 @@ export class Posing {
 
   restore(snapshot: Snapshot): void {
     this.releasePointers();
-    this.#rigTargets = undefined;
     if (snapshot.method !== this.settings.method || snapshot.lambda !== this.settings.lambda) {
       this.settings.method = snapshot.method;
       this.settings.lambda = snapshot.lambda;
@@ -469,21 +521,22 @@ export class Posing {
       this.parts = snapshot.parts;
       this.adopt(snapshot.shape, undefined, true);
     }
-    this.deformer.setPositions(snapshot.positions);
-    this.record({ positions: snapshot.positions });
-    this.atRest = snapshot.atRest;
+    // At rest is the rest pose, put back as such (a reset).
+    if (snapshot.atRest) this.deformer.reset();
+    else this.deformer.setPositions(snapshot.positions);
     this.stiffness = snapshot.stiffness?.slice();
     this.#sendStiffness();
     this.bones.assign(snapshot.bones ?? []);
     this.bones.resend();
     this.handles = snapshot.handles.map((h) => ({
       ...newHandle(h.point),
-      target: [...h.target],
       // Work saved before layers existed has none: one layer.
       layer: h.layer ?? 0,
       ordered: h.ordered ?? false,
     }));
+    this.#sent = [];
     this.applyHandles();
+    this.deformer.setTargets(snapshot.handles.flatMap((h) => h.target));
     this.#host.poseChanged();
   }
 
@@ -517,7 +570,12 @@ export class Posing {
   }
 
   releasePointers(): void {
-    for (const h of this.handles) h.pointerId = undefined;
+    this.handles.forEach((h, i) => {
+      if (h.pointerId === undefined) return;
+      h.pointerId = undefined;
+      h.turning = undefined;
+      this.deformer.release(i);
+    });
     this.endDragGesture();
   }
 
@@ -538,178 +596,63 @@ export class Posing {
   }
 
   /**
-   * Moves the handles toward their targets; returns the number of deformer steps taken
-   * (a rig's evaluation counts as one).
+   * Moves the handles toward their targets, one call into the core (`Deformer.advance`);
+   * adds the frame's stage timings to `timings` and returns the number of steps taken (a
+   * rig's evaluation counts as one).
    */
   advance(timings: Timings): number {
     this.evaluationMs = 0;
     this.clamped = false;
     this.flushStiffness();
-    const n = this.handles.length;
-    if (n === 0) return 0;
-    if (this.posingWithRig) return this.#evaluateRig(this.rig!);
-    const { maxStep, maxSubsteps, paperMode } = this.settings;
-    const longest = maxStep * this.shape.size;
-    let current = this.deformer.handlePositions();
-    if (paperMode) {
-      const displacement = new Float64Array(2 * n);
-      this.handles.forEach((h, i) => {
-        displacement[2 * i] = h.pending[0];
-        displacement[2 * i + 1] = h.pending[1];
-        h.pending = [0, 0];
-      });
-      const distance = largestGap(new Float64Array(2 * n), displacement);
-      if (distance === 0) return 0;
-      const count = Math.min(substepCount(distance, longest), maxSubsteps);
-      const velocities = displacementVelocities(displacement, count);
-      for (let s = 0; s < count && !this.clamped; s++) this.step(velocities, timings);
-      current = this.deformer.handlePositions();
-      // The handles end where the deformation took them; pins stay pins.
-      this.handles.forEach((h, i) => {
-        if (h.pointerId === undefined) h.target = [current[2 * i]!, current[2 * i + 1]!];
-      });
-      return count;
-    }
-    const targets = new Float64Array(2 * n);
-    this.handles.forEach((h, i) => {
-      targets[2 * i] = h.target[0];
-      targets[2 * i + 1] = h.target[1];
-    });
-    const gap = largestGap(current, targets);
-    const turnGap = Math.max(...this.handles.map((h) => Math.abs(h.turn - h.turned)));
-    const moves = gap > 1e-5 * this.shape.size;
-    if (!moves && !(turnGap > 1e-9)) return 0;
-    const needed = Math.max(moves ? substepCount(gap, longest) : 1, Math.ceil(turnGap / MAX_TURN_STEP - 1e-9));
-    const count = Math.min(needed, maxSubsteps);
-    const velocities = new Float64Array(2 * n);
-    let taken = 0;
-    for (; taken < count && !this.clamped; taken++) {
-      trackingVelocities(current, targets, needed - taken, velocities);
-      if (!moves) velocities.fill(0);
-      const turns =
-        turnGap > 1e-9 ? Float64Array.from(this.handles, (h) => (h.turn - h.turned) / (needed - taken)) : undefined;
-      this.step(velocities, timings, turns);
-      current = this.deformer.handlePositions();
-    }
-    // Stopped short to keep the triangles unfolded: handles let go stay where they are
-    // (they would only stop short again), held ones keep their targets.
-    if (this.clamped) this.pinUnheld();
-    return taken;
-  }
-
-  /**
-   * The rig's pose for the handles' targets (every handle goes straight to its target: the
-   * pose is a function of the targets, so there is nothing to step through), recorded as a
-   * pose; nothing when the targets are those of the last evaluation.
-   */
-  #evaluateRig(rig: Rig): number {
-    const last = this.#rigTargets;
-    if (
-      last?.length === 2 * this.handles.length &&
-      this.handles.every((h, i) => h.target[0] === last[2 * i] && h.target[1] === last[2 * i + 1])
-    ) {
-      return 0;
-    }
-    const size = 2 * this.shape.mesh.vertexCount;
-    if (this.#rigPose?.length !== size) this.#rigPose = new Float64Array(size);
-    const started = performance.now();
-    rig.evaluate(this.handles, this.#rigPose);
-    this.evaluationMs = performance.now() - started;
-    this.deformer.setPositions(this.#rigPose);
-    // Kept in place (allocated again only when the handle count changes).
-    const kept = last?.length === 2 * this.handles.length ? last : new Float64Array(2 * this.handles.length);
-    this.handles.forEach((h, i) => kept.set(h.target, 2 * i));
-    this.#rigTargets = kept;
-    this.atRest = false;
-    this.record({ positions: this.#rigPose });
-    return 1;
-  }
-
-  /**
-   * One deformer step; a step that fails (the deformer is then unchanged) is tried again
-   * with smaller velocities before the error is passed on. With `noFoldovers` (the
-   * default) the step is the core's guarded one: split where it would flip a triangle, and
-   * stopped short (`clamped`) where even small pieces would; each plain step it took is
-   * recorded as it was taken, so a replay repeats it bit for bit.
-   */
-  step(velocities: Float64Array, timings: Timings, turns?: Float64Array): void {
-    const scaled = (a: Float64Array, f: number) => (f === 1 ? a : a.map((x) => x * f));
-    /** The plain steps taken: velocities and turns each, as fractions of those given. */
-    const attempt = (v: Float64Array, w: Float64Array | undefined): [Float64Array, Float64Array | undefined][] => {
-      if (!this.settings.noFoldovers) {
-        if (w) this.deformer.stepTurning(v, w);
-        else this.deformer.step(v);
-        return [[v, w]];
-      }
-      const report = this.deformer.stepWithoutFoldovers(v, {}, w);
-      if (report.clamped) this.clamped = true;
-      // The core's own products: `step` with these repeats each piece to the bit.
-      return report.steps.map((f) => [scaled(v, f), w && scaled(w, f)]);
-    };
-    let taken: [Float64Array, Float64Array | undefined][] | undefined;
-    try {
-      taken = attempt(velocities, turns);
-    } catch (error) {
-      for (const f of RETRY_SCALES) {
-        try {
-          taken = attempt(scaled(velocities, f), turns && scaled(turns, f));
-          break;
-        } catch {
-          // try smaller still
-        }
-      }
-      if (!taken) {
-        // A method without turning handles, say: the turns asked for are dropped.
-        this.handles.forEach((h) => (h.turn = h.turned));
-        throw error;
-      }
-    }
-    if (taken.length === 0) return;
-    this.atRest = false;
-    for (const [v, w] of taken) {
-      if (w) {
-        this.handles.forEach((h, i) => (h.turned += w[i]!));
-        this.record({ turn: { velocities: v, turns: w } });
-      } else {
-        this.record({ step: v });
-      }
-    }
-    const t = this.deformer.timings();
+    if (this.handles.length === 0) return 0;
+    this.#sendTracking();
+    this.#sendRig();
+    const frame = this.deformer.advance();
+    this.clamped = frame.clamped;
+    this.evaluationMs = frame.evaluation;
+    const t = frame.timings;
     timings.assembly += t.assembly;
     timings.factorisation += t.factorisation;
     timings.dirichletFactorisation += t.dirichletFactorisation;
     timings.solve += t.solve;
     timings.integration += t.integration;
+    return frame.steps;
   }
 
-  /** After a step failed: pins stay where they are; dragged handles keep their targets. */
-  pinUnheld(): void {
-    const p = this.deformer.handlePositions();
-    this.handles.forEach((h, i) => {
-      if (h.pointerId !== undefined) return;
-      h.target = [p[2 * i]!, p[2 * i + 1]!];
-      h.turn = h.turned;
-    });
+  /** The tracking settings to the deformer when they changed (no call otherwise). */
+  #sendTracking(): void {
+    const { maxStep, maxSubsteps, noFoldovers, paperMode } = this.settings;
+    const key = `${maxStep} ${maxSubsteps} ${noFoldovers} ${paperMode}`;
+    if (key === this.#trackingSent) return;
+    this.deformer.setTracking({ maxStep, maxSubsteps, noFoldovers, paper: paperMode });
+    this.#trackingSent = key;
+  }
+
+  /**
+   * The rig to the deformer when the one that poses changed: it poses while it fits (no
+   * call otherwise; a new handle set drops the deformer's rig, and {@link applyHandles}
+   * forgets it).
+   */
+  #sendRig(): void {
+    const rig = this.posingWithRig ? this.rig : undefined;
+    if (rig === this.#rigSent) return;
+    this.deformer.setRig(rig?.operator);
+    this.#rigSent = rig;
   }
 
   // ---------------------------------------------------------------- recording and replay
 
-  /** Starts recording every change of the deformer. */
+  /** Starts recording every change of the deformer (the deformer records; see `Deformer.startRecording`). */
   startRecording(): void {
-    const start: SessionEvent[] = this.atRest ? [{ reset: true }] : [{ positions: this.deformer.positions() }];
-    if (this.handles.length > 0) start.push(this.handlesEvent());
     this.flushStiffness();
-    if (this.deformer.hasStiffness && !unpainted(this.stiffness)) start.push({ stiffness: this.stiffness!.slice() });
-    if (this.deformer.hasBones && this.bones.list.length > 0) start.push(bonesEvent(this.bones.list));
-    const { mesh, spec } = this.shape;
-    this.recorder.start({ shape: spec, mesh, options: this.deformerOptions() }, start);
+    this.deformer.startRecording(this.shape.spec);
     this.#host.historyChanged();
   }
 
   stopRecording(): Session | undefined {
-    const session = this.recorder.stop();
+    const json = this.deformer.stopRecording();
     this.#host.historyChanged();
-    return session;
+    return json === undefined ? undefined : Session.fromCoreJson(json);
   }
 
   /**
@@ -725,6 +668,7 @@ export class Posing {
     this.releasePointers();
     const before = this.snapshot();
     this.replaying = true;
+    this.deformer.pauseRecording(true);
     try {
       if (shape !== this.shape) {
         this.parts = undefined;
@@ -745,6 +689,7 @@ export class Posing {
       throw error;
     } finally {
       this.replaying = false;
+      this.deformer.pauseRecording(false);
     }
     this.pinHandlesWhereTheyAre();
     this.history.push(before);
@@ -752,7 +697,6 @@ export class Posing {
 
   /** Carries out one recorded event. */
   apply(event: SessionEvent): void {
-    this.#rigTargets = undefined;
     if ("handles" in event) {
       const { triangles, barycentric } = event.handles;
       this.deformer.setHandlePoints(triangles, barycentric);
@@ -762,16 +706,14 @@ export class Posing {
           barycentric: [barycentric[3 * i]!, barycentric[3 * i + 1]!, barycentric[3 * i + 2]!],
         }),
       );
-      this.pinHandlesWhereTheyAre();
+      this.#sent = this.handles.slice();
+      this.#rigSent = undefined;
     } else if ("step" in event) {
       this.deformer.step(event.step);
-      this.atRest = false;
     } else if ("turn" in event) {
       this.deformer.stepTurning(event.turn.velocities, event.turn.turns);
-      this.atRest = false;
     } else if ("positions" in event) {
       this.deformer.setPositions(event.positions);
-      this.atRest = false;
     } else if ("options" in event) {
       this.applyOptions(event.options);
     } else if ("bones" in event) {
@@ -785,11 +727,6 @@ export class Posing {
       this.#stiffnessPending = false;
     } else {
       this.deformer.reset();
-      this.atRest = true;
     }
-  }
-
-  record(event: SessionEvent): void {
-    if (!this.replaying) this.recorder.record(event);
   }
 }

@@ -92,11 +92,11 @@ export class RigManager {
     gesture(() => {
       posing.parts = undefined;
       posing.install(shape);
-      posing.handles = rig.points.map((point, i) => ({
-        ...newHandle({ triangle: point.triangle, barycentric: [...point.barycentric] as [number, number, number] }),
-        target: [rest[2 * i]!, rest[2 * i + 1]!],
-      }));
+      posing.handles = rig.points.map((point) =>
+        newHandle({ triangle: point.triangle, barycentric: [...point.barycentric] as [number, number, number] }),
+      );
       posing.applyHandles();
+      posing.deformer.setTargets(rest);
       posing.showMethod("defop", posing.settings.lambda);
       this.adopt(rig);
     });
@@ -208,7 +208,7 @@ export class RigManager {
     if (!rig || !posing.posingWithRig) return;
     const controller = new AbortController();
     this.#comparing = controller;
-    const targets = posing.handles.flatMap((h) => h.target);
+    const targets = posing.targets();
     const pose = posing.deformer.positions();
     try {
       const truth = await solveGroundTruth(

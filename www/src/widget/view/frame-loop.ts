@@ -116,9 +116,8 @@ export class FrameLoop {
       if (substeps > 0) stage.status.succeeded();
     } catch (error) {
       // The deformer is unchanged; pins stay where they are, dragged handles keep their
-      // targets and are tried again next frame, in smaller steps.
+      // targets and are tried again next frame, in smaller steps (the core's advance).
       this.#host.showError(new Error(`${messageOf(error)}. Try a smaller move, or Undo (Ctrl+Z) or Reset.`));
-      posing.pinUnheld();
     }
     const dragging = posing.dragging;
     this.#idleFrames = substeps > 0 && dragging ? 0 : this.#idleFrames + 1;

@@ -184,6 +184,7 @@ export class Stage {
     const { deformer, shape } = posing;
     const positions = deformer.positionsView();
     const at = withHandles ? deformer.handlePositions() : new Float64Array(0);
+    const targets = withHandles ? posing.targets() : at;
     // Cauchy-Green's cage is structure, like the triangles: shown with the wireframe.
     const cage = withHandles && settings.wireframe ? deformer.cage() : undefined;
     const paper = settings.paperMode;
@@ -204,14 +205,15 @@ export class Stage {
       ? posing.handles.map((h, i) => ({
           x: at[2 * i]!,
           y: at[2 * i + 1]!,
-          targetX: paper ? at[2 * i]! : h.target[0],
-          targetY: paper ? at[2 * i + 1]! : h.target[1],
+          targetX: paper ? at[2 * i]! : targets[2 * i]!,
+          targetY: paper ? at[2 * i + 1]! : targets[2 * i + 1]!,
           selected: h.selected,
           dragged: h.pointerId !== undefined,
           ring: h.selected && (h.turning !== undefined || (h.pointerId === undefined && (extras.touch || near(i)))),
-          turned: h.turning ? h.turn - h.turning.start : undefined,
+          turned: h.turning ? h.turning.turn - h.turning.start : undefined,
           outside:
-            rest !== undefined && Math.hypot(h.target[0] - rest[2 * i]!, h.target[1] - rest[2 * i + 1]!) > radius!,
+            rest !== undefined &&
+            Math.hypot(targets[2 * i]! - rest[2 * i]!, targets[2 * i + 1]! - rest[2 * i + 1]!) > radius!,
         }))
       : [];
     const regions = rest
