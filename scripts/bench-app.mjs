@@ -8,8 +8,9 @@
 // table's octopus (about 2,000 vertices, 9 handles) opened as a rig, trained again in the
 // page (its options, 1,000 samples, no cache) on 1 worker and on one per core, then posed
 // by a tentacle dragged along a quarter circle: training times, whole-frame median and p95
-// and the rig's evaluation time.
-//   node scripts/bench-app.mjs --defop target/defop-table/manifest.json
+// and the rig's evaluation time. With --frames-only, the rig from the table poses without
+// training again (the frames alone: to compare builds).
+//   node scripts/bench-app.mjs --defop target/defop-table/manifest.json [--frames-only]
 import { spawn } from "node:child_process";
 import { readFileSync } from "node:fs";
 import process from "node:process";
@@ -114,9 +115,10 @@ if (process.argv[2] === "--defop") {
       `Chromium ${browser.version()}, ${cores} cores; octopus ${model.vertices} vertices, ${model.handles} handles, ` +
         `table options ${JSON.stringify(options)} (table: ${samples} samples)`,
     );
-    console.log("| workers | training s |");
-    console.log("|---|---|");
-    for (const workers of [...new Set([1, cores])]) {
+    const train = !process.argv.includes("--frames-only");
+    if (train) console.log("| workers | training s |");
+    if (train) console.log("|---|---|");
+    for (const workers of train ? [...new Set([1, cores])] : []) {
       const seconds = await page.evaluate(
         async ({ options, workers }) => {
           const started = performance.now();
