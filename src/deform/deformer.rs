@@ -204,9 +204,21 @@ impl Deformer {
     /// Current positions of the handle points (Cauchy-Green: the handles' targets, which
     /// the shape's points under them meet in the least-squares sense).
     pub fn handle_positions(&self) -> Vec<Point> {
+        let mut positions = vec![[0.0; 2]; self.handles.len()];
+        self.handle_positions_into(&mut positions);
+        positions
+    }
+
+    /// [`Self::handle_positions`] into `out`, which has one place per handle (allocates
+    /// nothing: the interaction loop's frames).
+    pub(crate) fn handle_positions_into(&self, out: &mut [Point]) {
         match self.solver.get().held_at() {
-            Some(targets) => targets.to_vec(),
-            None => self.shape_under_handles(),
+            Some(targets) => out.copy_from_slice(targets),
+            None => {
+                for (p, h) in out.iter_mut().zip(&self.handles) {
+                    *p = h.position(&self.positions);
+                }
+            }
         }
     }
 

@@ -462,7 +462,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             }
             return Ok(report);
         }
-        self.current.copy_from_slice(&self.deformer.borrow().handle_positions());
+        self.deformer.borrow().handle_positions_into(&mut self.current);
         let gap = self
             .current
             .iter()
@@ -491,7 +491,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             }
             self.substep(turning, &mut report)?;
             report.steps += 1;
-            self.current.copy_from_slice(&self.deformer.borrow().handle_positions());
+            self.deformer.borrow().handle_positions_into(&mut self.current);
         }
         // Stopped short to keep the triangles unfolded: handles let go stay where they are
         // (they would only stop short again), held ones keep their targets.
@@ -607,19 +607,20 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     fn stepped(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>, fraction: f64) {
         self.at_rest = false;
         // The stepper's own products: `step` with these repeats the piece to the bit.
-        let velocities: Vec<f64> = match fraction == 1.0 {
-            true => velocities.as_flattened().to_vec(),
-            false => velocities.iter().flat_map(|v| [v[0] * fraction, v[1] * fraction]).collect(),
-        };
-        let Some(turns) = turns else {
-            self.record(|| Event::Step(velocities));
-            return;
-        };
-        let turns: Vec<f64> = turns.iter().map(|w| if fraction == 1.0 { *w } else { w * fraction }).collect();
-        for (h, w) in self.handles.iter_mut().zip(&turns) {
-            h.turned += w;
+        let times = |x: f64| if fraction == 1.0 { x } else { x * fraction };
+        if let Some(turns) = turns {
+            for (h, &w) in self.handles.iter_mut().zip(turns) {
+                h.turned += times(w);
+            }
         }
-        self.record(|| Event::Turn { velocities, turns });
+        // (Nothing is allocated unless a recording runs.)
+        record(&mut self.recording, self.paused, || {
+            let velocities = velocities.as_flattened().iter().map(|&x| times(x)).collect();
+            match turns {
+                Some(turns) => Event::Turn { velocities, turns: turns.iter().map(|&w| times(w)).collect() },
+                None => Event::Step(velocities),
+            }
+        });
     }
 
     /// One plain step with a velocity per handle and, where given, a turn per handle, as
@@ -679,7 +680,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// given: `remaining` 1 takes the whole way, as a replay driving another method to
     /// recorded targets does.
     pub fn step_toward(&mut self, remaining: f64, turns: Option<&[f64]>) -> Result<(), DeformError> {
-        self.current.copy_from_slice(&self.deformer.borrow().handle_positions());
+        self.deformer.borrow().handle_positions_into(&mut self.current);
         toward(&self.handles, &self.current, remaining, &mut self.velocities);
         let velocities = std::mem::take(&mut self.velocities);
         let result = self.step(&velocities, turns);
