@@ -3,13 +3,13 @@
 // drag the raised hand along a quarter circle with the mouse, and collect the widget's
 // per-frame work (solver steps and drawing) from its `akap-pose` events.
 // Prints median, 95th percentile and worst frame, and the solver stages at the median.
-//   npm run build && node scripts/bench-app.mjs [vertices ...]
+//   npm run build && node lab/posing/bench-app.mjs [vertices ...]
 // With --defop MANIFEST (written by `cargo run --release --example defop_table`): the
 // table's octopus (about 2,000 vertices, 9 handles) opened as a rig, trained again in the
 // page (its options, 1,000 samples, no cache) on 1 worker and on one per core, then posed
 // by a tentacle dragged along a quarter circle: training times, whole-frame median and p95
 // and the rig's evaluation time.
-//   node scripts/bench-app.mjs --defop target/defop-table/manifest.json
+//   node lab/posing/bench-app.mjs --defop target/defop-table/manifest.json
 import { spawn } from "node:child_process";
 import { readFileSync } from "node:fs";
 import process from "node:process";

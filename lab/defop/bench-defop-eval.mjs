@@ -2,13 +2,13 @@
 // come from the native example (the paper's octopus size: about 2,000 vertices, 9 handles,
 // TPS on 1000 samples; hat basis and reduced basis of 100):
 //   cargo run --release --example defop_eval -- --write target/defop-bench
-//   node scripts/bench-defop-eval.mjs [--lib www/lib]... [--rounds 7] [--ms 300] [files...]
+//   node lab/defop/bench-defop-eval.mjs [--lib www/lib]... [--rounds 7] [--ms 300] [files...]
 // Each round times `evaluateInto` (Float64Array out) and `evaluateIntoF32` (Float32Array
 // out) of every file for about `--ms` milliseconds each. With several `--lib` directories
 // (copies of www/lib with their www/pkg beside them, e.g. an old and a new build) the rounds
 // alternate between them, so that a noisy machine slows both alike; the table gives the
 // median over rounds and the fastest round. With `--rust target/bench-pkg` (the `bench`
-// build of scripts/bench-wasm.sh) it also times, from Rust inside wasm, the double
+// build of lab/sparse/bench-wasm.sh) it also times, from Rust inside wasm, the double
 // evaluation against the operator's single-precision copy (`Operator::single_precision`),
 // which the JavaScript API does not expose.
 import { readFileSync } from "node:fs";

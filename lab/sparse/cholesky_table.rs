@@ -19,7 +19,7 @@
 
 #[cfg(not(target_arch = "wasm32"))]
 #[allow(dead_code)] // each includer uses part of the shared module
-#[path = "../benches/common/mod.rs"]
+#[path = "common/mod.rs"]
 mod common;
 
 #[cfg(not(target_arch = "wasm32"))]

@@ -10,11 +10,11 @@
 // compare runs with and without it interleaved, the machine's noise being larger.
 // `--bones` lays a bone along the dragged arm (AKAP and ARAP): its cost, the rigid fit of
 // the bone's vertices after each step, is in the "spiral" column.
-//   npm run build && node scripts/bench-deformer.mjs [--method akap|arap|mls|cauchy-green]
+//   npm run build && node lab/posing/bench-deformer.mjs [--method akap|arap|mls|cauchy-green]
 //     [--set name=value ...] [--guard] [--bones] [vertices ...]
 import process from "node:process";
 import { performance } from "node:perf_hooks";
-import { Deformer, defaultShape, init, triangulate } from "../www/lib/index.js";
+import { Deformer, defaultShape, init, triangulate } from "../../www/lib/index.js";
 
 await init();
 const args = process.argv.slice(2);

@@ -3,21 +3,21 @@
 // octopus (the built-in figure at about 2,000 vertices, 9 handles, TPS on the samples,
 // the reduced spatial basis of 100 functions), for both energies. With WORKERS=k (k >= 1)
 // each training runs a second time with its sample solves spread over k worker threads
-// (scripts/defop-worker.mjs, each with its own wasm instance, jobs from
+// (lab/defop/defop-worker.mjs, each with its own wasm instance, jobs from
 // DefOpTrainer.nextJobs), and the speed-up over one thread is printed.
-//   npm run build && [WORKERS=2] node scripts/bench-defop.mjs [samples] [vertices]
-//   [WORKERS=2] node scripts/bench-defop.mjs --model octopus target/defop-table/manifest.json
+//   npm run build && [WORKERS=2] node lab/defop/bench-defop.mjs [samples] [vertices]
+//   [WORKERS=2] node lab/defop/bench-defop.mjs --model octopus target/defop-table/manifest.json
 // With --operators MANIFEST (written by `cargo run --release --example defop_table`): times
 // evaluateInto on each operator file it lists (loaded with DefOp.fromBytes, its targets
 // from the manifest) and prints one JSON object, file name to milliseconds per evaluation.
-//   node scripts/bench-defop.mjs --operators target/defop-table/manifest.json
-// Evaluation alone, without training and old build against new: scripts/bench-defop-eval.mjs.
+//   node lab/defop/bench-defop.mjs --operators target/defop-table/manifest.json
+// Evaluation alone, without training and old build against new: lab/defop/bench-defop-eval.mjs.
 import { readFileSync } from "node:fs";
 import process from "node:process";
 import { URL } from "node:url";
 import { Worker } from "node:worker_threads";
 import { performance } from "node:perf_hooks";
-import { DefOp, DefOpTrainer, defaultShape, init, triangulateToVertices } from "../www/lib/index.js";
+import { DefOp, DefOpTrainer, defaultShape, init, triangulateToVertices } from "../../www/lib/index.js";
 
 await init();
 

@@ -2,14 +2,14 @@
 // cat tiled until the text passes 1 MB), median of several runs each, with strokes (the
 // default) and fills only. `--before DIR` times another build's www/pkg in the same run
 // (e.g. a worktree of an older commit), interleaved, and prints both.
-// Usage: node scripts/bench-svg.mjs [--before ../old/www/pkg] [--repeats N]
+// Usage: node lab/svg/bench-svg.mjs [--before ../old/www/pkg] [--repeats N]
 import { readFileSync } from "node:fs";
 import path from "node:path";
 import process from "node:process";
 import { performance } from "node:perf_hooks";
 import { fileURLToPath } from "node:url";
 
-const root = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), "../..");
 const args = process.argv.slice(2);
 const option = (name, fallback) => {
   const i = args.indexOf(name);

@@ -4,12 +4,12 @@
 # project's wasm flags (.cargo/config.toml: +simd128), and with --no-simd or --both also
 # into target/bench-pkg-nosimd (RUSTFLAGS=-Ctarget-feature=-simd128, in the target directory
 # wasm-nosimd so that the two builds do not invalidate each other); then runs
-# scripts/bench-wasm.mjs on each, which prints a markdown table.
-#   scripts/bench-wasm.sh [--no-simd|--both] [--max-vertices N] [--min-vertices N]
-#                         [--shape bar|gingerbread] [--repeats N] [--ordering amd|best]
+# lab/sparse/bench-wasm.mjs on each, which prints a markdown table.
+#   lab/sparse/bench-wasm.sh [--no-simd|--both] [--max-vertices N] [--min-vertices N]
+#                            [--shape bar|gingerbread] [--repeats N] [--ordering amd|best]
 # Assumes scripts/setup.sh has run (wasm32 target, wasm-bindgen and wasm-pack on PATH).
 set -euo pipefail
-. "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+. "$(dirname "${BASH_SOURCE[0]}")/../../scripts/env.sh"
 
 builds=(default)
 case "${1:-}" in
@@ -33,6 +33,6 @@ for build in "${builds[@]}"; do
   fi
   # The repository's package.json says "type": "module"; the nodejs target is CommonJS.
   printf '{ "type": "commonjs" }\n' >"$out/package.json"
-  say "node scripts/bench-wasm.mjs --pkg $out $*"
-  node scripts/bench-wasm.mjs --pkg "$out" "$@"
+  say "node lab/sparse/bench-wasm.mjs --pkg $out $*"
+  node lab/sparse/bench-wasm.mjs --pkg "$out" "$@"
 done

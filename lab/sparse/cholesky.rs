@@ -11,9 +11,9 @@
 //! Each matrix is a group `cholesky/<shape>/<size>/<variant>` with the functions
 //! `ours/symbolic` (AMD ordering and analysis), `ours/numeric` (refactorisation),
 //! `ours/solve`, `faer-supernodal/{symbolic,numeric,solve}`,
-//! `faer-simplicial/{symbolic,numeric}` and `sprs-ldl/numeric`. The markdown table in
-//! `benches/README.md` comes from `examples/cholesky_table.rs`, which also checks the
-//! solutions against each other. The `bench` feature brings faer and sprs-ldl.
+//! `faer-simplicial/{symbolic,numeric}` and `sprs-ldl/numeric`. The markdown tables of
+//! `lab/sparse/results.md` come from `cholesky_table.rs` (beside this file), which also
+//! checks the solutions against each other. The `bench` feature brings faer and sprs-ldl.
 
 #[cfg(not(target_arch = "wasm32"))]
 #[allow(dead_code)] // each includer uses part of the shared module
@@ -99,6 +99,6 @@ criterion::criterion_group!(benches, native::cholesky);
 #[cfg(not(target_arch = "wasm32"))]
 criterion::criterion_main!(benches);
 
-/// Nothing to benchmark on wasm32 (see `scripts/bench-wasm.sh`).
+/// Nothing to benchmark on wasm32 (see `lab/sparse/bench-wasm.sh`).
 #[cfg(target_arch = "wasm32")]
 fn main() {}

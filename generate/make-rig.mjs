@@ -4,7 +4,7 @@
 // well), written to www/examples/ghost.defop. Deterministic: the same inputs and seed give
 // the same bytes, so the committed file can be made again and compared.
 //
-//   npm run build && node scripts/make-rig.mjs [samples]
+//   npm run build && node generate/make-rig.mjs [samples]
 import { readFileSync, writeFileSync } from "node:fs";
 import { performance } from "node:perf_hooks";
 import process from "node:process";

@@ -1,17 +1,17 @@
 //! The DefOp paper's Table 1 and figures, reproduced on our own models (the paper's
 //! numbers and meshes were lost): a toothed bar, an aleph-like glyph, an octopus-like and a
 //! crab-like cartoon (`akap::shapes`), each trained with the bootstrapped [`Trainer`] and
-//! fitted with the paper's handle bases. Writes `benches/defop.md` (the table, the
+//! fitted with the paper's handle bases. Writes `lab/defop/defop.md` (the table, the
 //! convergence numbers, the distortion of ARAP and S-ARAP) and three figures:
-//! `benches/defop-convergence.svg` (Fig. 8), `benches/defop-trajectories.svg` (Fig. 3) and
-//! `benches/defop-energies.svg` (Fig. 6). Progress goes to stderr.
+//! `lab/defop/defop-convergence.svg` (Fig. 8), `lab/defop/defop-trajectories.svg` (Fig. 3)
+//! and `lab/defop/defop-energies.svg` (Fig. 6). Progress goes to stderr.
 //!
 //! ```text
 //! cargo run --release --example defop_table [-- [--quick] [OUTPUT_DIR]]
 //! ```
 //!
 //! `--quick` trains on few samples and small meshes (under a minute); the default is the
-//! full run. The wasm columns come from `node scripts/bench-defop.mjs --operators
+//! full run. The wasm columns come from `node lab/defop/bench-defop.mjs --operators
 //! target/defop-table/manifest.json`, run by this example on the operator files it
 //! writes to `target/defop-table/` (the manifest lists them with targets to time) when
 //! `www/lib/` is built (`bash scripts/build.sh --package`) and `node` is on the path;
@@ -51,7 +51,7 @@ mod run {
     pub(crate) fn main() {
         let args: Vec<String> = std::env::args().skip(1).collect();
         let mode = if args.iter().any(|a| a == "--quick") { Mode::Quick } else { Mode::Full };
-        let output = args.iter().find(|a| !a.starts_with("--")).cloned().unwrap_or_else(|| "benches".to_owned());
+        let output = args.iter().find(|a| !a.starts_with("--")).cloned().unwrap_or_else(|| "lab/defop".to_owned());
         let started = Instant::now();
         std::fs::create_dir_all(OPERATOR_DIR).expect("can make the operator directory");
         let mut rows = Vec::new();
@@ -263,7 +263,7 @@ mod run {
             "\n## ARAP against S-ARAP (Fig. 6)\n\n![energies](defop-energies.svg)\n\nThe {}'s tentacle tips moved \
              away from its head by {stretch} times their distance (the largest of {stretches:?} both energies solve), \
              solved from the rest pose under each energy; flipped triangles dark. E_area and E_angle as in \
-             `benches/comparison.md` (`akap::deform::metrics`: 2 for a rigid motion).\n\n\
+             `lab/compare/comparison.md` (`akap::deform::metrics`: 2 for a rigid motion).\n\n\
              | energy | E_area | E_angle | flipped | Newton iterations |\n|---|---|---|---|---|\n",
             model.name
         );
@@ -286,9 +286,9 @@ mod run {
         if !Path::new("www/lib/index.js").exists() {
             return Err("www/lib is not built (`bash scripts/build.sh --package`)".to_owned());
         }
-        eprintln!("wasm timings: node scripts/bench-defop.mjs --operators {manifest}");
+        eprintln!("wasm timings: node lab/defop/bench-defop.mjs --operators {manifest}");
         let output = std::process::Command::new("node")
-            .args(["scripts/bench-defop.mjs", "--operators", manifest])
+            .args(["lab/defop/bench-defop.mjs", "--operators", manifest])
             .output()
             .map_err(|e| format!("cannot run node: {e}"))?;
         if !output.status.success() {
@@ -328,13 +328,15 @@ mod run {
             ""
         };
         let wasm_note = match wasm {
-            Ok(_) => "wasm: `node scripts/bench-defop.mjs --operators target/defop-table/manifest.json` (run by this \
+            Ok(_) => {
+                "wasm: `node lab/defop/bench-defop.mjs --operators target/defop-table/manifest.json` (run by this \
                       example), the same operator files through the JS API's `DefOp.fromBytes` and `evaluateInto`, \
                       Node, one thread."
-                .to_owned(),
+                    .to_owned()
+            }
             Err(why) => format!(
                 "wasm columns empty: {why}. Build the package and run again, or time the operator files alone with \
-                 `node scripts/bench-defop.mjs --operators target/defop-table/manifest.json`."
+                 `node lab/defop/bench-defop.mjs --operators target/defop-table/manifest.json`."
             ),
         };
         format!(

@@ -1,10 +1,11 @@
 #!/usr/bin/env node
-// Times encodeAnimation in wasm (Node) on the frames of examples/encode_timing.rs: 512 x 512,
-// a shaded disc moving over a transparent background; GIF and APNG, ms a frame and bytes.
-// Run after `bash scripts/build.sh`: `node scripts/bench-animation.mjs [FRAMES]`.
+// Times encodeAnimation in wasm (Node) on the frames of lab/animation/encode_timing.rs:
+// 512 x 512, a shaded disc moving over a transparent background; GIF and APNG, ms a frame
+// and bytes.
+// Run after `bash scripts/build.sh`: `node lab/animation/bench-animation.mjs [FRAMES]`.
 import process from "node:process";
 import { performance } from "node:perf_hooks";
-import { encodeAnimation, init } from "../www/lib/index.js";
+import { encodeAnimation, init } from "../../www/lib/index.js";
 
 await init();
 const SIZE = 512;

@@ -1,10 +1,10 @@
 // Issue 16's hostile inputs through the JavaScript API, compiled to wasm, in Node: the
 // same cases as `cargo run --release --example adversarial`, each timed once. Building
 // the input and the set-up around it (a deformer's factorisation) is not timed.
-//   npm run build && node scripts/bench-adversarial.mjs [case ...]
+//   npm run build && node lab/hostile/bench-adversarial.mjs [case ...]
 import process from "node:process";
 import { performance } from "node:perf_hooks";
-import { Deformer, PointMapper, importSvg, init, triangulate } from "../www/lib/index.js";
+import { Deformer, PointMapper, importSvg, init, triangulate } from "../../www/lib/index.js";
 
 await init();
 

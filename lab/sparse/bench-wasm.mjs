@@ -1,9 +1,9 @@
 // Runs the wasm Cholesky benchmark (src/wasm_bench.rs) in Node and prints a markdown table.
-// Usage: node scripts/bench-wasm.mjs [--pkg target/bench-pkg] [--max-vertices N]
+// Usage: node lab/sparse/bench-wasm.mjs [--pkg target/bench-pkg] [--max-vertices N]
 //          [--min-vertices N] [--shape bar|gingerbread] [--repeats N] [--ordering amd|best]
 // `--ordering best` orders ours as the deformer does (AMD, or from 12000 vertices nested
 // dissection when it needs fewer flops); the default is AMD.
-// Built by scripts/bench-wasm.sh (wasm-pack --target nodejs, CommonJS output).
+// Built by lab/sparse/bench-wasm.sh (wasm-pack --target nodejs, CommonJS output).
 import { createRequire } from "node:module";
 import path from "node:path";
 import process from "node:process";

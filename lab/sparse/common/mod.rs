@@ -1,7 +1,7 @@
 //! AKAP-like test matrices for the Cholesky benchmarks, built in one place.
 //!
-//! Included by path (`#[path = ...] mod common;`) from `benches/cholesky.rs`,
-//! `examples/cholesky_table.rs` and, for the wasm benchmark, `src/wasm_bench.rs`: the crate
+//! Included by path (`#[path = ...] mod common;`) from `lab/sparse/cholesky.rs`,
+//! `lab/sparse/cholesky_table.rs` and, for the wasm benchmark, `src/wasm_bench.rs`: the crate
 //! root may only gain the one `mod wasm_bench;` line, so the library cannot export these
 //! helpers to the native targets, and a file included by path serves both.
 //!

@@ -2,11 +2,11 @@
 //! `tests/sessions/` replayed with AKAP, its ablations, ARAP, rigid MLS and point-to-point
 //! Cauchy-Green; prints the paper's Table 1 on our models and a Markdown table per session
 //! (E_area, E_angle, handle error, milliseconds per frame, flipped triangles) and writes
-//! it to `benches/comparison.md`, with the final poses side by side in
-//! `benches/comparison.svg`.
+//! it to `lab/compare/comparison.md`, with the final poses side by side in
+//! `lab/compare/comparison.svg`.
 //!
 //! `cargo run --release --example compare [-- SESSION_DIR [OUTPUT_DIR]]`
-//! (defaults `tests/sessions` and `benches`).
+//! (defaults `tests/sessions` and `lab/compare`).
 //!
 //! AKAP with the recorded options replays the velocities as recorded (so it repeats the
 //! recording exactly); every other method is driven to the recording's targets (each
@@ -153,7 +153,7 @@ fn outcome(deformer: &Deformer, replay: &Replay) -> Outcome {
 fn main() {
     let mut args = std::env::args().skip(1);
     let session_dir = args.next().unwrap_or_else(|| "tests/sessions".to_owned());
-    let output_dir = args.next().unwrap_or_else(|| "benches".to_owned());
+    let output_dir = args.next().unwrap_or_else(|| "lab/compare".to_owned());
     let mut paths: Vec<_> = std::fs::read_dir(&session_dir)
         .unwrap_or_else(|e| panic!("cannot read {session_dir}: {e}"))
         .filter_map(|entry| entry.ok().map(|e| e.path()))

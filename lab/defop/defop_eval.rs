@@ -8,7 +8,7 @@
 //! from the double one; the same for the operator's single-precision copy
 //! (`Operator::single_precision`). With `--write DIR` it also writes the operator files
 //! `DIR/hat.defop` and `DIR/reduced.defop` (operator and mesh, `defop::write_operator`), which
-//! `scripts/bench-defop.mjs --eval` times in wasm without training. Prints only; asserts
+//! `lab/defop/bench-defop-eval.mjs` times in wasm without training. Prints only; asserts
 //! nothing.
 //!
 //! ```text
