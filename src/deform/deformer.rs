@@ -99,7 +99,7 @@ impl Deformer {
 
     /// The method and its current settings.
     pub fn options(&self) -> MethodOptions {
-        self.solver.get().options()
+        self.solver.options()
     }
 
     /// The method.
@@ -116,8 +116,7 @@ impl Deformer {
     pub fn set_options(&mut self, options: impl Into<MethodOptions>) -> Result<(), DeformError> {
         let options = options.into();
         if options.method() == self.method() {
-            options.check()?;
-            return self.solver.get_mut().set_options(options, shared!(self));
+            return self.solver.set_options(options, shared!(self));
         }
         options.check()?;
         let orders = options.orders(&self.mesh);

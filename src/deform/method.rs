@@ -28,6 +28,11 @@ pub(crate) trait Build {
     /// The method's solver for a connected mesh, with orders from [`Build::orders`]
     /// (checked here), at rest and without handles.
     fn build(self, mesh: &Mesh, orders: &Orders) -> Result<Self::Solver, DeformError>;
+    /// The settings `solver` has.
+    fn of(solver: &Self::Solver) -> Self;
+    /// Puts these settings (checked by [`Build::check`]) into effect on `solver`, from its
+    /// next step; on error nothing changes.
+    fn configure(self, solver: &mut Self::Solver, shared: Shared<'_>) -> Result<(), DeformError>;
 }
 
 /// Writes, from the list of methods, the enum of solvers and [`MethodOptions`]' dispatch
@@ -52,6 +57,27 @@ macro_rules! method_dispatch {
             pub(crate) fn get_mut(&mut self) -> &mut dyn Solve {
                 match self {
                     $(Self::$variant(solver) => solver,)*
+                }
+            }
+
+            /// The method and the solver's settings.
+            pub(crate) fn options(&self) -> MethodOptions {
+                match self {
+                    $(Self::$variant(solver) => MethodOptions::$variant(Build::of(solver)),)*
+                }
+            }
+
+            /// New settings of the solver's method (checked); options of another method are
+            /// refused ([`DeformError::WrongMethod`]). On error nothing changes.
+            pub(crate) fn set_options(&mut self, options: MethodOptions, shared: Shared<'_>) -> Result<(), DeformError> {
+                match (self, options) {
+                    $((Self::$variant(solver), MethodOptions::$variant(options)) => {
+                        Build::check(&options)?;
+                        options.configure(solver, shared)
+                    })*
+                    (solver, options) => {
+                        Err(DeformError::WrongMethod { current: solver.options().method(), given: options.method() })
+                    }
                 }
             }
         }
@@ -161,11 +187,6 @@ impl Abilities {
 /// the shared state; a solver is told of each change and makes the steps. Each method
 /// implements it beside its type.
 pub(crate) trait Solve: fmt::Debug {
-    /// The method and its settings.
-    fn options(&self) -> MethodOptions;
-    /// New settings of this method (the deformer has checked that they are of this
-    /// method); on error nothing changes.
-    fn set_options(&mut self, options: MethodOptions, shared: Shared<'_>) -> Result<(), DeformError>;
     /// What the method can do beyond plain steps.
     fn abilities(&self) -> Abilities;
     /// A new handle set, `handles` (checked), replacing `shared.handles`, in the pose

@@ -17,7 +17,7 @@
 use super::error::DeformError;
 use super::handles::{in_range, HandlePoint};
 use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
-use super::options::{Method, MethodOptions, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
+use super::options::{Method, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
 use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
@@ -64,21 +64,6 @@ impl MlsSolver {
 }
 
 impl Solve for MlsSolver {
-    fn options(&self) -> MethodOptions {
-        MethodOptions::Mls(self.options)
-    }
-
-    fn set_options(&mut self, options: MethodOptions, _shared: Shared<'_>) -> Result<(), DeformError> {
-        match options {
-            MethodOptions::Mls(options) => {
-                check_options(&options)?;
-                self.options = options;
-                Ok(())
-            }
-            other => Err(DeformError::WrongMethod { current: Method::Mls, given: other.method() }),
-        }
-    }
-
     fn abilities(&self) -> Abilities {
         Abilities::NONE
     }
@@ -274,5 +259,14 @@ impl Build for MlsOptions {
     fn build(self, mesh: &Mesh, orders: &Orders) -> Result<MlsSolver, DeformError> {
         orders.check(&[])?;
         MlsSolver::new(mesh, self)
+    }
+
+    fn of(solver: &MlsSolver) -> Self {
+        solver.options
+    }
+
+    fn configure(self, solver: &mut MlsSolver, _shared: Shared<'_>) -> Result<(), DeformError> {
+        solver.options = self;
+        Ok(())
     }
 }

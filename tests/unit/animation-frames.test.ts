@@ -10,10 +10,8 @@ import { beforeAll, describe, expect, it } from "vitest";
 import { Deformer, init } from "../../www/src/index.js";
 import { AnimationFrames } from "../../www/src/widget/animation/frames.js";
 import { Animator } from "../../www/src/widget/animation/playback.js";
-import { posed, dragTo } from "./posing-fixtures.js";
+import { posed, dragTo, trainedRig } from "./posing-fixtures.js";
 import type { Posing } from "../../www/src/widget/model/posing.js";
-import { Rig } from "../../www/src/widget/model/rig.js";
-import { trainDefOp } from "../../www/src/index.js";
 
 beforeAll(async () => {
   await init();
@@ -193,15 +191,7 @@ describe("animation frames", () => {
 
   it("with a fitting rig (the defop method), each frame is the rig's pose for the interpolated targets", async () => {
     const { posing, animator: a, targets } = threeKeys();
-    const { mesh } = posing.shape;
-    const points = posing.handles.map((h) => h.point);
-    const trained = await trainDefOp(
-      mesh.positions,
-      mesh.triangles,
-      { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
-      { samples: 6, energy: "arap" },
-    );
-    posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
+    const trained = await trainedRig(posing);
     const stepped = a.frames();
     posing.setMethod("defop", 100);
     const frames = a.frames();
@@ -210,7 +200,7 @@ describe("animation frames", () => {
     const half = targets[0]!.map((v, i) => v + (targets[1]![i]! - v) * 0.5);
     expect(bytes(frames.frame(6).positions)).toEqual(bytes(trained.operator.evaluate(half)));
     expect(bytes(frames.frame(24).positions)).toEqual(bytes(trained.operator.evaluate(targets[2]!)));
-    posing.rig.free();
+    posing.rig!.free();
   });
 
   it("refuses to play without keys, and clears the keys when the shape changes", async () => {

@@ -1,9 +1,10 @@
 /** A posing of the default figure with two handles, and a drag as the pointer makes it (posing and stiffness tests). */
 import { expect } from "vitest";
-import { builtinShape } from "../../www/src/index.js";
+import { builtinShape, trainDefOp, type Trained } from "../../www/src/index.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
 import { locate } from "../../www/src/widget/model/picking.js";
 import { Posing } from "../../www/src/widget/model/posing.js";
+import { Rig } from "../../www/src/widget/model/rig.js";
 import { meshOutline } from "../../www/src/widget/model/shape.js";
 import { noTimings } from "./fixtures.js";
 
@@ -44,4 +45,21 @@ export function dragTo(posing: Posing, target: [number, number]): void {
   posing.drag(7, ...target);
   for (let frame = 0; frame < 100 && posing.advance(noTimings()) > 0; frame++) posing.markChanged();
   posing.release(7);
+}
+
+/**
+ * A rig for the posing's shape and handles, trained quickly (6 samples, ARAP), made the
+ * posing's rig; the method stays the posing's (choose "defop" to pose with it).
+ */
+export async function trainedRig(posing: Posing): Promise<Trained> {
+  const { mesh } = posing.shape;
+  const points = posing.handles.map((h) => h.point);
+  const trained = await trainDefOp(
+    mesh.positions,
+    mesh.triangles,
+    { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
+    { samples: 6, energy: "arap" },
+  );
+  posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
+  return trained;
 }

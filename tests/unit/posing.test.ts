@@ -6,12 +6,11 @@
  * AKAP poses instead; a recording of rig posing replays to the same bits.
  */
 import { beforeAll, describe, expect, it } from "vitest";
-import { builtinShape, init, trainDefOp } from "../../www/src/index.js";
-import { Rig } from "../../www/src/widget/model/rig.js";
+import { builtinShape, init } from "../../www/src/index.js";
 import { meshOutline } from "../../www/src/widget/model/shape.js";
 import { locate, pointPosition } from "../../www/src/widget/model/picking.js";
 import { noTimings, wasmCalls } from "./fixtures.js";
-import { dragTo, posed } from "./posing-fixtures.js";
+import { dragTo, posed, trainedRig } from "./posing-fixtures.js";
 
 beforeAll(async () => {
   await init();
@@ -52,15 +51,7 @@ describe("Posing", () => {
 
   it("a rig's frame makes one call into WebAssembly, and no pose crosses the boundary", async () => {
     const { posing } = posed(400);
-    const { mesh } = posing.shape;
-    const points = posing.handles.map((h) => h.point);
-    const trained = await trainDefOp(
-      mesh.positions,
-      mesh.triangles,
-      { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
-      { samples: 6, energy: "arap" },
-    );
-    posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
+    const trained = await trainedRig(posing);
     posing.setMethod("defop", 100);
     posing.startRecording();
     const [x, y] = Array.from(posing.deformer.handlePositions()).slice(2, 4) as [number, number];
@@ -166,15 +157,8 @@ describe("Posing", () => {
 
   it("poses with a fitting rig as its operator does, steps AKAP when the rig is stale, and replays a recording of it", async () => {
     const { posing } = posed(400);
+    const trained = await trainedRig(posing);
     const { mesh } = posing.shape;
-    const points = posing.handles.map((h) => h.point);
-    const trained = await trainDefOp(
-      mesh.positions,
-      mesh.triangles,
-      { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
-      { samples: 6, energy: "arap" },
-    );
-    posing.rig = new Rig(trained.operator, mesh, points, { radius: trained.radius, options: {}, source: "trained" });
     expect(posing.posingWithRig).toBe(false); // the method is still AKAP
     posing.setMethod("defop", 100);
     expect(posing.posingWithRig).toBe(true);
@@ -201,6 +185,6 @@ describe("Posing", () => {
     // The recording replays to the rig's pose, bit for bit.
     await posing.replay(session, posing.shape, async () => true);
     expect(Array.from(posing.deformer.positions())).toEqual(Array.from(expected));
-    posing.rig.free();
+    posing.rig!.free();
   });
 });

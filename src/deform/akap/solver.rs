@@ -31,7 +31,7 @@ use super::turning::{self, rigid_field, Neighbourhood};
 use crate::deform::error::{out_of_memory, DeformError};
 use crate::deform::handles::{self, diagonal, in_range, HandlePoint};
 use crate::deform::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
-use crate::deform::options::{AkapOptions, Integrator, Method, MethodOptions, LAMBDA_RANGE};
+use crate::deform::options::{AkapOptions, Integrator, LAMBDA_RANGE};
 use crate::geometry::{in_comfortable_range, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{dissection_if_large, expand_blocks, fill_or_dissection, Numeric, Ordering, Symbolic};
@@ -319,21 +319,6 @@ impl AkapSolver {
 }
 
 impl Solve for AkapSolver {
-    fn options(&self) -> MethodOptions {
-        MethodOptions::Akap(self.options)
-    }
-
-    fn set_options(&mut self, options: MethodOptions, _shared: Shared<'_>) -> Result<(), DeformError> {
-        match options {
-            MethodOptions::Akap(options) => {
-                check_options(&options)?;
-                self.options = options;
-                Ok(())
-            }
-            other => Err(DeformError::WrongMethod { current: Method::Akap, given: other.method() }),
-        }
-    }
-
     fn abilities(&self) -> Abilities {
         Abilities::ALL
     }
@@ -483,6 +468,15 @@ impl Build for AkapOptions {
 
     fn build(self, mesh: &Mesh, orders: &Orders) -> Result<AkapSolver, DeformError> {
         AkapSolver::new(mesh, self, orders)
+    }
+
+    fn of(solver: &AkapSolver) -> Self {
+        solver.options
+    }
+
+    fn configure(self, solver: &mut AkapSolver, _shared: Shared<'_>) -> Result<(), DeformError> {
+        solver.options = self;
+        Ok(())
     }
 }
 

@@ -49,7 +49,6 @@ use super::handles::{diagonal, in_range, HandlePoint};
 pub use super::method::IterationReport;
 use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 pub use super::options::{ArapOptions, MAX_CONVERGENCE_ITERATIONS, MAX_ITERATIONS};
-use super::options::{Method, MethodOptions};
 use super::pattern::BlockPattern;
 use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
@@ -450,21 +449,6 @@ impl ArapSolver {
 }
 
 impl Solve for ArapSolver {
-    fn options(&self) -> MethodOptions {
-        MethodOptions::Arap(self.options)
-    }
-
-    fn set_options(&mut self, options: MethodOptions, _shared: Shared<'_>) -> Result<(), DeformError> {
-        match options {
-            MethodOptions::Arap(options) => {
-                check_options(&options)?;
-                self.options = options;
-                Ok(())
-            }
-            other => Err(DeformError::WrongMethod { current: Method::Arap, given: other.method() }),
-        }
-    }
-
     fn abilities(&self) -> Abilities {
         Abilities::ALL
     }
@@ -570,6 +554,15 @@ impl Build for ArapOptions {
 
     fn build(self, mesh: &Mesh, orders: &Orders) -> Result<ArapSolver, DeformError> {
         ArapSolver::new(mesh, self, orders)
+    }
+
+    fn of(solver: &ArapSolver) -> Self {
+        solver.options
+    }
+
+    fn configure(self, solver: &mut ArapSolver, _shared: Shared<'_>) -> Result<(), DeformError> {
+        solver.options = self;
+        Ok(())
     }
 }
 

@@ -40,7 +40,7 @@ use self::coordinates::complex;
 use super::error::DeformError;
 use super::handles::{self, diagonal, in_range, HandlePoint};
 use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
-use super::options::{CauchyGreenOptions, Method, MethodOptions, CAGE_VERTICES_RANGE, SMOOTHNESS_RANGE};
+use super::options::{CauchyGreenOptions, CAGE_VERTICES_RANGE, SMOOTHNESS_RANGE};
 use crate::geometry::{bounding_box, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::FactorError;
@@ -297,31 +297,6 @@ impl CauchyGreenSolver {
 }
 
 impl Solve for CauchyGreenSolver {
-    fn options(&self) -> MethodOptions {
-        MethodOptions::CauchyGreen(self.options)
-    }
-
-    /// A new cage vertex count builds a new automatic cage (unless a cage was given), a new
-    /// smoothness refits the handles. The next step uses them.
-    fn set_options(&mut self, options: MethodOptions, shared: Shared<'_>) -> Result<(), DeformError> {
-        let MethodOptions::CauchyGreen(options) = options else {
-            return Err(DeformError::WrongMethod { current: Method::CauchyGreen, given: options.method() });
-        };
-        check_options(&options)?;
-        let cage = match options.cage != self.options.cage && !self.cage.given {
-            true => Some(self.automatic_cage(shared.mesh, options.cage)?),
-            false => None,
-        };
-        let fit = self.fit_for(cage.as_ref().unwrap_or(&self.cage), shared.handles, options.smoothness)?;
-        if let Some(cage) = cage {
-            self.cage_image = cage.actual.clone();
-            self.cage = cage;
-        }
-        self.options = options;
-        self.fit = fit;
-        Ok(())
-    }
-
     fn abilities(&self) -> Abilities {
         Abilities::NONE
     }
@@ -466,5 +441,26 @@ impl Build for CauchyGreenOptions {
     fn build(self, mesh: &Mesh, orders: &Orders) -> Result<CauchyGreenSolver, DeformError> {
         orders.check(&[])?;
         CauchyGreenSolver::new(mesh, self)
+    }
+
+    fn of(solver: &CauchyGreenSolver) -> Self {
+        solver.options
+    }
+
+    /// A new cage vertex count builds a new automatic cage (unless a cage was given), a new
+    /// smoothness refits the handles. The next step uses them.
+    fn configure(self, solver: &mut CauchyGreenSolver, shared: Shared<'_>) -> Result<(), DeformError> {
+        let cage = match self.cage != solver.options.cage && !solver.cage.given {
+            true => Some(solver.automatic_cage(shared.mesh, self.cage)?),
+            false => None,
+        };
+        let fit = solver.fit_for(cage.as_ref().unwrap_or(&solver.cage), shared.handles, self.smoothness)?;
+        if let Some(cage) = cage {
+            solver.cage_image = cage.actual.clone();
+            solver.cage = cage;
+        }
+        solver.options = self;
+        solver.fit = fit;
+        Ok(())
     }
 }
