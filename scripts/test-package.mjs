@@ -50,6 +50,8 @@ const FORBIDDEN = [
   /^benches\//,
   /^examples\//,
   /^scripts\//,
+  /^lab\//,
+  /^generate\//,
   /\.rs$/,
   /\.ts$(?<!\.d\.ts)/,
 ];

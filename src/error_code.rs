@@ -44,7 +44,7 @@ pub enum ErrorCode {
 }
 
 impl ErrorCode {
-    /// Every code, in the order of the README's table.
+    /// Every code, in the order of the table in docs/errors.md.
     pub const ALL: [ErrorCode; 11] = [
         Self::InvalidArgument,
         Self::InvalidOption,

@@ -1,10 +1,10 @@
 //! The wasm benchmark of our sparse Cholesky (and faer's, compiled to wasm too) on
 //! AKAP-like matrices, timed with `performance.now()`. Compiled only for wasm32 with the
-//! `bench` feature; `scripts/bench-wasm.sh` builds it for Node and `scripts/bench-wasm.mjs`
-//! prints the table. The matrices come from `benches/common/mod.rs`, included by path so
-//! that the native benchmarks and this one measure the same matrices. Also the DefOp
-//! evaluation in double and single precision (`bench_defop_eval`, run by
-//! `scripts/bench-defop-eval.mjs --rust`).
+//! `bench` feature; `lab/sparse/bench-wasm.sh` builds it for Node and
+//! `lab/sparse/bench-wasm.mjs` prints the table. The matrices come from
+//! `lab/sparse/common/mod.rs`, included by path so that the native benchmarks and this one
+//! measure the same matrices. Also the DefOp evaluation in double and single precision
+//! (`bench_defop_eval`, run by `lab/defop/bench-defop-eval.mjs --rust`).
 //!
 //! An exception to "only `wasm` touches js-sys and wasm-bindgen", confined to this
 //! feature-gated module.
@@ -18,7 +18,7 @@ use wasm_bindgen::JsCast;
 use crate::sparse::{Numeric, Symbolic};
 
 #[allow(dead_code)] // each includer uses part of the shared module
-#[path = "../benches/common/mod.rs"]
+#[path = "../lab/sparse/common/mod.rs"]
 mod common;
 
 use common::faer_llt::FaerLlt;

@@ -236,7 +236,7 @@ fn sprite_table_matches_its_layout() {
 
 #[test]
 fn the_readmes_example_reads() {
-    let readme = include_str!("../README.md");
+    let readme = include_str!("../docs/formats.md");
     let section = &readme[readme.find("- **`akap-animation` JSON**").unwrap()..];
     let start = section.find("```json").unwrap() + "```json".len();
     let text = &section[start..start + section[start..].find("```").unwrap()];

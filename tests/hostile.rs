@@ -1,6 +1,6 @@
 //! Hostile and careless callers (issue 16): inputs that used to take seconds to minutes
 //! (quadratic work) now give their result or a clear error. Sizes here would have taken
-//! seconds with the old code; `examples/adversarial.rs` times the issue's full sizes.
+//! seconds with the old code; `lab/hostile/adversarial.rs` times the issue's full sizes.
 //! Expected results come from the inputs' geometry, never from the code under test.
 //! Runs natively and as wasm.
 

@@ -31,7 +31,7 @@ use crate::import::Limits;
 
 /// NeuQuant's speed for GIF frames of more than 256 colours (1, best, to 30, fastest):
 /// 10 samples a tenth of the pixels. Measured on 512 x 512 frames of smooth gradients
-/// (`cargo run --release --example encode_timing`): see the README's "Benchmarks".
+/// (`cargo run --release --example encode_timing`): see lab/animation/results.md.
 pub const GIF_SPEED: i32 = 10;
 
 /// An animated image format.

@@ -6,7 +6,7 @@
 //! 1.6 MB beside the double operator's 3.3 MB; the hat basis: 16.8 MB beside 33.5 MB).
 //!
 //! Accuracy: every sum of k terms is within about k ε_32 of the sum of their magnitudes; on
-//! the octopus-sized test operators of `examples/defop_eval.rs` the positions are within
+//! the octopus-sized test operators of `lab/defop/defop_eval.rs` the positions are within
 //! 8e-7 (reduced basis) and 1.5e-6 (hat basis) of the bounding-box diagonal of the double
 //! ones (the test plan asks for 1e-5). Speed in wasm (Node 20, one thread): 0.046 ms against
 //! 0.073 ms for the reduced operator, 0.41 ms against 1.77 ms for the hat one.

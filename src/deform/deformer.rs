@@ -238,7 +238,7 @@ impl Deformer {
 
     /// One step in which handles also turn: `turns[i]` radians counter-clockwise about
     /// handle `i`'s point, its neighbourhood following that rigid motion (AKAP: its Killing
-    /// field; ARAP: held in the turned frame for the step; see the README). All turns zero
+    /// field; ARAP: held in the turned frame for the step; see docs/app.md). All turns zero
     /// is exactly [`Self::step`]; methods without turning handles refuse other turns
     /// ([`DeformError::Unsupported`]).
     pub fn step_turning(&mut self, velocities: &[[f64; 2]], turns: &[f64]) -> Result<(), DeformError> {

@@ -221,7 +221,7 @@ pub struct ArapOptions {
     /// times the rest shape's bounding-box diagonal (0: always run `iterations`), from 0
     /// to 1 (a move as large as the shape is no convergence). With a tolerance,
     /// `iterations` only bounds a step and may exceed [`MAX_ITERATIONS`] (for converged
-    /// poses in tests and `examples/compare`).
+    /// poses in tests and `lab/compare`).
     pub tolerance: f64,
 }
 
@@ -232,7 +232,7 @@ impl Default for ArapOptions {
 }
 
 impl Settings for ArapOptions {
-    /// `tolerance` (convergence runs, for tests and `examples/compare`) is not a setting:
+    /// `tolerance` (convergence runs, for tests and `lab/compare`) is not a setting:
     /// the JavaScript API and sessions run a fixed count, up to [`MAX_ITERATIONS`].
     const SETTINGS: &'static [Setting<Self>] =
         &[Setting { name: "iterations", access: Access::Whole(|o| o.iterations, |o, n| o.iterations = n) }];

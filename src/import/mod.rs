@@ -28,7 +28,7 @@ pub use error::{ElementRef, ImportError};
 
 /// Size limits for untrusted input, one set for the readers and the writers: a mesh file
 /// the writers produce within these limits is one the readers accept. The defaults suit
-/// interactive use in a browser, and the README states them.
+/// interactive use in a browser, and docs/formats.md states them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
     /// Largest text input (SVG, OBJ, JSON), in bytes (default 32 MiB, 33,554,432 bytes).

@@ -4,7 +4,7 @@
 //! foldovers, retries of a failed step, the largest turn per step), records what it does
 //! into a session as it does it, and poses with a trained rig instead where one is given.
 //! The widget's posing (through the bindings), its animation frames, `examples/pose_obj.rs`,
-//! `examples/make_sessions.rs` and session replay ([`replay`]) all pose through it.
+//! `generate/make_sessions.rs` and session replay ([`replay`]) all pose through it.
 //!
 //! A frame in tracking mode (the default): every handle's velocity is the rest of the way to
 //! its target over the substeps left, `(target - current) / remaining`, so handles track

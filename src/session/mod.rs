@@ -1,6 +1,6 @@
 //! Recorded interaction sessions: the one definition of the JSON format the app records
-//! (the widget records through the bindings' `SessionRecorder` and reads through
-//! `sessionJson`, both this module), and its replay on a [`Deformer`] of any method.
+//! (the deformer, a `pose::Poser`, records it; the widget reads it through the bindings'
+//! `sessionJson`), replayed on a [`Deformer`] of any method by `pose::replay`.
 //!
 //! ```json
 //! { "format": "akap-session", "version": 2,

@@ -10,7 +10,7 @@
 //! 1998): constrained approximate minimum fill ([`super::amd::constrained_order`],
 //! [`super::amf_order`]) eliminates first all the leaves (the domains), with the separators
 //! around them counted in the degrees, then the union of all separators (the multisector).
-//! Measured on the built-in shapes (`examples/orderings.rs`), this needs clearly fewer
+//! Measured on the built-in shapes (`lab/sparse/orderings.rs`), this needs clearly fewer
 //! flops than both pure minimum degree and the strict nested-dissection order (each
 //! separator after both of its halves), which the multisector's greedy order is free to
 //! improve on; minimum fill there instead of minimum degree saves another 2-8%.

@@ -121,7 +121,7 @@ pub fn js_limits() -> Result<Object, BindingError> {
     ])
 }
 
-/// Every `code` the bindings' errors can carry (see `ErrorCode`), in the README's order.
+/// Every `code` the bindings' errors can carry (see `ErrorCode`), in docs/errors.md's order.
 #[wasm_bindgen(js_name = errorCodes)]
 pub fn error_codes() -> Array {
     ErrorCode::ALL.iter().map(|code| JsValue::from_str(code.as_str())).collect()

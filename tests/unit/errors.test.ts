@@ -1,6 +1,6 @@
 /**
  * The errors akap throws, through the public API and the real wasm in Node: each code of
- * the README's table produced by a call that should produce it, with its message kept; and
+ * the table in docs/errors.md produced by a call that should produce it, with its message kept; and
  * every options object refusing a misspelt key, naming it and listing the known ones.
  */
 import { beforeAll, describe, expect, it } from "vitest";
@@ -37,7 +37,7 @@ describe("error codes", () => {
     expect(raw.errorCodes()).toEqual([...api.ERROR_CODES]);
   });
 
-  // One call per code (the table in the README): the code, and the message as the Rust
+  // One call per code (the table in docs/errors.md): the code, and the message as the Rust
   // error words it. Three codes no call here can produce on purpose, each reaching
   // JavaScript from a real Rust error in tests/wasm_api.rs instead: `not-positive-definite`
   // (the deformers' systems stay factorable even for collapsed poses, their pivots

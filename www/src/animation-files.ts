@@ -154,8 +154,8 @@ export interface AnimationToWrite {
 }
 
 /**
- * Writes an animation as `akap-animation` JSON (version 1; the layout is in the README's
- * "File formats"), numbers exact. Refuses what {@link animationFromJson} would.
+ * Writes an animation as `akap-animation` JSON (version 1; the layout is in
+ * docs/formats.md), numbers exact. Refuses what {@link animationFromJson} would.
  */
 export function animationToJson(animation: AnimationToWrite): string {
   assertLoaded();

@@ -6,7 +6,7 @@
 /**
  * The `code` of the `Error`s akap throws for bad input or a failed step: a small, closed
  * set that stays the same from version to version (messages may be reworded), in the
- * order of the README's table. Defined in Rust (`akap::ErrorCode`); `errorCodes()` of the
+ * order of the table in docs/errors.md. Defined in Rust (`akap::ErrorCode`); `errorCodes()` of the
  * WebAssembly module lists the same, which the tests compare.
  */
 export const ERROR_CODES = [

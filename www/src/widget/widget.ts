@@ -690,7 +690,7 @@ export class Widget {
     this.#perform(tools.removeBone, { index: "all" });
   }
 
-  // ---------------------------------------------------------------- animation (README "Animation")
+  // ---------------------------------------------------------------- animation (docs/app.md, "Animation")
 
   /** Captures the pose as a key at `time` s (default: the playhead); returns its index. */
   captureKey(time?: number, easing?: Easing): number {
@@ -743,7 +743,7 @@ export class Widget {
   }
 
   /**
-   * The animation as a file (see README "Animation"): "webm", "gif", "apng", "json" and
+   * The animation as a file (see docs/app.md, "Animation"): "webm", "gif", "apng", "json" and
    * "svg" (a zip) give a Blob, "sprites" a PNG and its JSON table; rejects with an
    * `AbortError` on `signal`'s abort.
    */

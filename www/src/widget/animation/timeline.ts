@@ -4,7 +4,7 @@
  * segment that ends at it; the handle set they were captured with; the frame grid; and
  * the handles' targets at any time, interpolated between the keys.
  *
- * Rules (README, "Animation"): the timeline starts at time 0 and ends at its last key;
+ * Rules (docs/app.md, "Animation"): the timeline starts at time 0 and ends at its last key;
  * frame `i` is at `i / fps`; before the first key the handles hold the first key's
  * targets, after the last the last's. Every key keeps the pose it was captured in; the
  * first key's is the animation's first frame. All keys share one handle set: capturing
