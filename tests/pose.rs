@@ -258,3 +258,16 @@ fn adding_and_removing_a_handle_keeps_the_others_targets() {
     assert_eq!(poser.targets().next(), Some([22.0, 3.0]));
     assert_eq!(poser.turns().next(), Some(0.25));
 }
+
+#[test]
+fn a_step_by_hand_leaves_the_targets_where_it_took_the_handles() {
+    for method in [MethodOptions::Akap(AkapOptions::default()), MethodOptions::Arap(ArapOptions::default())] {
+        let mut poser = bar(method);
+        poser.step(&[[0.0, 0.0], [0.5, 0.3]], None).unwrap();
+        let at = poser.deformer().handle_positions();
+        assert_eq!(bits(&poser.targets().collect::<Vec<_>>()), bits(&at), "{method:?}");
+        let pose = bits(poser.deformer().positions());
+        assert_eq!(poser.advance().unwrap().steps, 0, "{method:?}: nothing takes the handles back");
+        assert_eq!(bits(poser.deformer().positions()), pose);
+    }
+}

@@ -248,6 +248,7 @@ fn main() {
                  points under the handles; triangles whose angle distortion exceeds 2.2 are drawn \
                  darker).\n";
     print!("{markdown}");
+    std::fs::create_dir_all(&output_dir).expect("can make the output directory");
     std::fs::write(format!("{output_dir}/comparison.md"), &markdown).expect("can write the table");
     std::fs::write(format!("{output_dir}/comparison.svg"), svg(&figure_rows, &labels)).expect("can write the figure");
     eprintln!("wrote {output_dir}/comparison.md and {output_dir}/comparison.svg");

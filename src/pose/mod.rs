@@ -625,8 +625,16 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// One plain step with a velocity per handle and, where given, a turn per handle, as
     /// given: no substeps, no guard, no retry (a replay's recorded step, a caller stepping by
-    /// hand). The turns count as asked and made. Recorded.
+    /// hand). The handles' targets become where the step took them and the turns count as
+    /// asked and made, so a later [`Self::advance`] does not take them back. Recorded.
     pub fn step(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>) -> Result<(), DeformError> {
+        self.step_by_hand(velocities, turns)?;
+        self.pin_handles();
+        Ok(())
+    }
+
+    /// A plain step asked for by hand: the turns it made count as asked.
+    fn step_by_hand(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>) -> Result<(), DeformError> {
         let before = self.turned_before(turns);
         self.take(velocities, turns, None)?;
         self.turns_asked_as_made(&before);
@@ -635,7 +643,8 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// The guarded step of [`crate::deform::foldover`] with these limits, velocities and,
     /// where given, turns, as given: no substeps, no retry. Each plain step it takes is
-    /// recorded; the turns it made count as asked. On error the deformer is where it was.
+    /// recorded; the handles' targets become where it took them and the turns it made count
+    /// as asked. On error the deformer is where it was.
     pub fn step_without_foldovers(
         &mut self,
         velocities: &[[f64; 2]],
@@ -646,6 +655,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         let before = self.turned_before(turns);
         let (_, clamped) = self.take(velocities, turns, Some(guard))?;
         self.turns_asked_as_made(&before);
+        self.pin_handles();
         Ok(GuardedStep { steps: self.fractions.clone(), clamped, attempts: self.attempts })
     }
 
@@ -674,16 +684,16 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         substeps(gap, self.tracking.max_step * self.size)
     }
 
-    /// One plain step ([`Self::step`]) that takes every handle a `1 / remaining` share of
-    /// the rest of its way to its target, `(target - current) / remaining` (the tracking's
-    /// velocities, `remaining` the steps left including this one), with `turns` where
-    /// given: `remaining` 1 takes the whole way, as a replay driving another method to
-    /// recorded targets does.
+    /// One plain step that takes every handle a `1 / remaining` share of the rest of its way
+    /// to its target, `(target - current) / remaining` (the tracking's velocities,
+    /// `remaining` the steps left including this one), with `turns` where given; the
+    /// targets stay. `remaining` 1 takes the whole way, as a replay driving another method
+    /// to recorded targets does. Recorded.
     pub fn step_toward(&mut self, remaining: f64, turns: Option<&[f64]>) -> Result<(), DeformError> {
         self.deformer.borrow().handle_positions_into(&mut self.current);
         toward(&self.handles, &self.current, remaining, &mut self.velocities);
         let velocities = std::mem::take(&mut self.velocities);
-        let result = self.step(&velocities, turns);
+        let result = self.step_by_hand(&velocities, turns);
         self.velocities = velocities;
         result
     }

@@ -54,6 +54,7 @@ mod run {
         let output = args.iter().find(|a| !a.starts_with("--")).cloned().unwrap_or_else(|| "lab/defop".to_owned());
         let started = Instant::now();
         std::fs::create_dir_all(OPERATOR_DIR).expect("can make the operator directory");
+        std::fs::create_dir_all(&output).expect("can make the output directory");
         let mut rows = Vec::new();
         let mut manifest = Vec::new();
         let mut notes = String::new();
