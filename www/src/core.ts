@@ -346,7 +346,10 @@ export class Deformer {
     this.#raw.setHandlePoints(toUint32(triangles, "triangles"), toFloat64(barycentric, "barycentric"));
   }
 
-  /** One step: two velocity components per handle, in handle order. */
+  /**
+   * One step: two velocity components per handle, in handle order. Each handle's target
+   * becomes where the step took it (so a later {@link advance} keeps the pose).
+   */
   step(velocities: Coordinates): void {
     this.#raw.step(toFloat64(velocities, "velocities"));
   }
