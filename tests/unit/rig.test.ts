@@ -52,10 +52,10 @@ describe("Rig", () => {
     expect(back.options).toBeUndefined();
     expect(back.points).toEqual(points);
     expect(back.fits(copy, handles)).toBe(true);
-    const targets = handles.map((_, i) => ({ target: [0.1 * i, -0.2 + 0.3 * i] as [number, number] }));
+    const targets = handles.flatMap((_, i) => [0.1 * i, -0.2 + 0.3 * i]);
     const [a, b] = [new Float64Array(2 * mesh.vertexCount), new Float64Array(2 * mesh.vertexCount)];
-    rig.evaluate(targets, a);
-    back.evaluate(targets, b);
+    rig.operator.evaluateInto(targets, a);
+    back.operator.evaluateInto(targets, b);
     expect(Array.from(b)).toEqual(Array.from(a));
     expect(Array.from(back.restHandles()).length).toBe(4);
 

@@ -28,7 +28,6 @@ export class Rig {
   readonly source: RigSource;
   /** The last shape found to have this rig's rest mesh (compared by content once per shape). */
   #shape: Shape | undefined;
-  #targets: Float64Array;
 
   constructor(
     operator: DefOp,
@@ -48,7 +47,6 @@ export class Rig {
     this.radius = trained.radius;
     this.options = trained.options;
     this.source = trained.source;
-    this.#targets = new Float64Array(2 * points.length);
   }
 
   /** A rig read from an operator file: its own mesh and handles. */
@@ -97,15 +95,6 @@ export class Rig {
       out[2 * i + 1] = y;
     });
     return out;
-  }
-
-  /** The pose for the handles' targets into `out` (2 numbers per vertex). */
-  evaluate(targets: readonly { target: [number, number] }[], out: Float64Array): void {
-    targets.forEach(({ target }, i) => {
-      this.#targets[2 * i] = target[0];
-      this.#targets[2 * i + 1] = target[1];
-    });
-    this.operator.evaluateInto(this.#targets, out);
   }
 
   /** The operator file (the operator and its mesh). */
