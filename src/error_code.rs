@@ -22,6 +22,9 @@ pub enum ErrorCode {
     /// Positions and triangles that are not a valid mesh (given as arrays or read from a
     /// file), or a mesh the deformer cannot take (in several pieces).
     InvalidMesh,
+    /// A puppet's joint that cannot be used: a part index out of range, a part joined to
+    /// itself, or a point that is not on both parts.
+    InvalidJoint,
     /// Input beyond a size limit: bytes, pixels, points, vertices, XML nesting, attributes
     /// or crossing-check work, SVG coordinates; or a mesh needing more vertices than allowed.
     Limit,
@@ -45,11 +48,12 @@ pub enum ErrorCode {
 
 impl ErrorCode {
     /// Every code, in the order of the table in docs/errors.md.
-    pub const ALL: [ErrorCode; 11] = [
+    pub const ALL: [ErrorCode; 12] = [
         Self::InvalidArgument,
         Self::InvalidOption,
         Self::InvalidOutline,
         Self::InvalidMesh,
+        Self::InvalidJoint,
         Self::Limit,
         Self::Import,
         Self::NotPositiveDefinite,
@@ -66,6 +70,7 @@ impl ErrorCode {
             Self::InvalidOption => "invalid-option",
             Self::InvalidOutline => "invalid-outline",
             Self::InvalidMesh => "invalid-mesh",
+            Self::InvalidJoint => "invalid-joint",
             Self::Limit => "limit",
             Self::Import => "import",
             Self::NotPositiveDefinite => "not-positive-definite",

@@ -205,6 +205,19 @@ pub enum DeformError {
         /// The value given.
         value: f64,
     },
+    /// A puppet's parts that do not hold every triangle of the mesh exactly once.
+    InvalidParts {
+        /// What is wrong.
+        reason: String,
+    },
+    /// A puppet's joint that cannot be used: a part out of range, one part twice, or a point
+    /// that is not finite or not on both parts.
+    InvalidJoint {
+        /// Which joint.
+        joint: usize,
+        /// What is wrong.
+        reason: String,
+    },
     /// A trained rig that was not trained for this mesh and these handles.
     RigMismatch {
         /// The rig's handle and vertex counts.
@@ -300,6 +313,8 @@ impl fmt::Display for DeformError {
                 write!(f, "method {method} has no {what}; choose \"akap\" or \"arap\" for it")
             }
             Self::InvalidCage { reason } => write!(f, "the cage cannot be used: {reason}"),
+            Self::InvalidParts { reason } => write!(f, "the puppet's parts cannot be used: {reason}"),
+            Self::InvalidJoint { joint, reason } => write!(f, "joint {joint} cannot be used: {reason}"),
             Self::InvalidBone { bone, reason } => write!(f, "bone {bone} cannot be used: {reason}"),
             Self::ForeignCheckpoint { method, saved } => match saved {
                 Some(saved) if saved != method => write!(
@@ -360,7 +375,9 @@ impl DeformError {
             | Self::ForeignCheckpoint { .. }
             | Self::HandleOutOfRange { .. }
             | Self::InvalidTarget { .. }
+            | Self::InvalidParts { .. }
             | Self::RigMismatch { .. } => ErrorCode::InvalidArgument,
+            Self::InvalidJoint { .. } => ErrorCode::InvalidJoint,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,
             Self::OutOfMemory { .. } => ErrorCode::OutOfMemory,

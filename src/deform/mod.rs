@@ -12,6 +12,7 @@
 //! - `pattern`: the sparsity pattern of AKAP's and ARAP's matrices, a block per vertex pair;
 //! - `handles`: the checks and helpers every method shares (handle points, velocities,
 //!   poses, connectivity, sizes);
+//! - [`puppet`]: a mesh's parts (sheets) and the joints between them, checked and placed;
 //! - [`bones`]: segments whose triangles move as one rigid body ([`BONE_STIFFNESS`]),
 //!   for the methods that have them (AKAP, ARAP);
 //! - [`method`]: the `Solve` trait each method's solver implements, the `Build` trait its
@@ -47,6 +48,7 @@ pub mod metrics;
 pub mod mls;
 pub mod options;
 pub(crate) mod pattern;
+pub mod puppet;
 pub mod settings;
 
 pub use akap::AkapSolver;
@@ -61,6 +63,7 @@ pub use metrics::Metrics;
 pub use mls::MlsSolver;
 #[allow(deprecated)]
 pub use options::DeformerOptions;
+pub use puppet::{Joint, Part, Puppet};
 pub use options::{
     Access, AkapOptions, ArapOptions, CauchyGreenOptions, Integrator, Method, MethodOptions, MlsOptions, MlsVariant,
     Setting, Settings, CAGE_VERTICES_RANGE, LAMBDA_RANGE, MLS_ALPHA_RANGE, SMOOTHNESS_RANGE, STIFFNESS_RANGE,

@@ -14,6 +14,7 @@ export const ERROR_CODES = [
   "invalid-option",
   "invalid-outline",
   "invalid-mesh",
+  "invalid-joint",
   "limit",
   "import",
   "not-positive-definite",

@@ -1,0 +1,222 @@
+//! Puppets: one mesh made of sheets, one per part of a layered drawing (a torso, a head, an
+//! arm, a hat), that may overlap at rest and are coupled at joints.
+//!
+//! A [`Puppet`] names each part's triangles and its depth (larger is in front), and its
+//! joints: a hinge at one point of two parts, the front part and the part behind it. A
+//! deformer of a puppet ([`super::Deformer::with_puppet`]) keeps the two sheets' points of
+//! each joint together, which is a constraint between a point of one sheet and a point of
+//! another, written like a handle between two sheets: the penalty
+//! `mu |x_front(p) - x_back(p)|^2` on the barycentric blends of the two triangles the point
+//! lies in (AKAP on the velocities, closing the current gap; ARAP on the positions). It adds
+//! the 3 x 3 vertex blocks between the two triangles to the systems' patterns, which stay
+//! sparse, symmetric and positive definite, analysed once per joint set.
+//!
+//! Sheets may be free (a hat touching nothing, no handle on it) or held by one hinge alone
+//! with nothing to turn them, which leaves the systems singular: a deformer of a puppet adds
+//! a small least-motion term ([`LEAST_MOTION`]) to every unknown, so that such a sheet
+//! takes the least motion (stays, or only follows its hinge) and no system is ever
+//! singular. A mesh without a puppet has no such term, and its results are unchanged.
+
+use super::error::DeformError;
+use super::handles::HandlePoint;
+use crate::geometry::Point;
+use crate::mesh::Mesh;
+
+/// The weight of a joint's penalty in AKAP's systems (whose entries are dimensionless, about
+/// 1 to 10 per vertex): stiff enough that the two points of a joint stay together to a tiny
+/// fraction of the shape's size, and the gap left by a step is closed in the next.
+pub const AKAP_JOINT_WEIGHT: f64 = 1e4;
+
+/// The least-motion term of a puppet's systems, relative to their typical diagonal entry:
+/// AKAP adds it to every diagonal entry of its matrix (the velocity's squared length
+/// weighted by it), ARAP this times its mean diagonal entry (pulling every vertex towards
+/// its place before the step).
+pub const LEAST_MOTION: f64 = 1e-6;
+
+/// One part of a puppet: its sheet's triangles, its name and its depth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Part {
+    /// The part's name (from the drawing's layer: its label or id).
+    pub name: String,
+    /// The mesh's triangles that make up the part's sheet.
+    pub triangles: Vec<u32>,
+    /// The drawing order: larger is in front.
+    pub depth: i32,
+}
+
+/// A joint: a hinge at one point of two parts, about which the front part turns freely,
+/// both sheets keeping that point together.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Joint {
+    /// Where the joint is at rest (a point of both parts' sheets).
+    pub point: Point,
+    /// The parts it joins, `[front, back]`, as indices into [`Puppet::parts`].
+    pub parts: [usize; 2],
+}
+
+/// A mesh's parts and joints.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Puppet {
+    /// The parts: together they hold every triangle of the mesh exactly once.
+    pub parts: Vec<Part>,
+    /// The joints.
+    pub joints: Vec<Joint>,
+}
+
+/// A puppet's joints as the solvers take them: per joint its point on the front part's
+/// sheet and on the back part's, and whether the mesh is a puppet at all (then every system
+/// gets the least-motion term).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Joins {
+    pub(crate) points: Vec<[HandlePoint; 2]>,
+    pub(crate) puppet: bool,
+}
+
+impl Joins {
+    /// The gap `x_front - x_back` of each joint's two points at `positions`.
+    pub(crate) fn gap(pair: &[HandlePoint; 2], positions: &[Point]) -> Point {
+        let (a, b) = (pair[0].position(positions), pair[1].position(positions));
+        [a[0] - b[0], a[1] - b[1]]
+    }
+
+    /// The joint's coefficients on its vertices: `+w` on the front triangle's corners,
+    /// `-w` on the back's (`x_front - x_back = sum c_k x_(v_k)`).
+    pub(crate) fn blend(pair: &[HandlePoint; 2]) -> [(u32, f64); 6] {
+        let [a, b] = pair;
+        [
+            (a.vertices[0], a.weights[0]),
+            (a.vertices[1], a.weights[1]),
+            (a.vertices[2], a.weights[2]),
+            (b.vertices[0], -b.weights[0]),
+            (b.vertices[1], -b.weights[1]),
+            (b.vertices[2], -b.weights[2]),
+        ]
+    }
+
+    /// The vertex pairs the joints couple that the mesh's edges do not: the extra blocks
+    /// of the systems' patterns.
+    pub(crate) fn extra_pairs(&self) -> Vec<[u32; 2]> {
+        let mut pairs = Vec::new();
+        for pair in &self.points {
+            for &(v, _) in &Self::blend(pair) {
+                for &(w, _) in &Self::blend(pair) {
+                    if v != w {
+                        pairs.push([v, w]);
+                    }
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+}
+
+impl Puppet {
+    /// Checks the puppet against `mesh` (its rest pose) and places its joints: every
+    /// triangle in exactly one part, each joint joining two different parts in range at a
+    /// finite point that lies on both parts' sheets (within 1e-9 of the mesh's size).
+    pub(crate) fn joins(&self, mesh: &Mesh) -> Result<Joins, DeformError> {
+        let part_of = self.part_of_triangles(mesh)?;
+        let size = super::handles::diagonal(mesh.positions());
+        let points = self
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(joint, j)| {
+                let invalid = |reason: String| DeformError::InvalidJoint { joint, reason };
+                if !(j.point[0].is_finite() && j.point[1].is_finite()) {
+                    return Err(invalid(format!("its point {:?} is not finite", j.point)));
+                }
+                for &part in &j.parts {
+                    if part >= self.parts.len() {
+                        return Err(invalid(format!(
+                            "it names part {part}, but the puppet has {} parts",
+                            self.parts.len()
+                        )));
+                    }
+                }
+                if j.parts[0] == j.parts[1] {
+                    return Err(invalid(format!("it joins part {} to itself", j.parts[0])));
+                }
+                let place = |part: usize| {
+                    locate(mesh, &self.parts[part].triangles, j.point, 1e-9 * size).ok_or_else(|| {
+                        invalid(format!(
+                            "its point ({}, {}) is not on part {part} (\"{}\")",
+                            j.point[0], j.point[1], self.parts[part].name
+                        ))
+                    })
+                };
+                Ok([place(j.parts[0])?, place(j.parts[1])?])
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        debug_assert_eq!(part_of.len(), mesh.triangle_count());
+        Ok(Joins { points, puppet: true })
+    }
+
+    /// The part of each triangle, checking that the parts hold every triangle exactly once.
+    pub fn part_of_triangles(&self, mesh: &Mesh) -> Result<Vec<u32>, DeformError> {
+        let count = mesh.triangle_count();
+        if self.parts.is_empty() {
+            return Err(DeformError::InvalidParts { reason: "a puppet needs at least one part".into() });
+        }
+        const NONE: u32 = u32::MAX;
+        let mut part_of = vec![NONE; count];
+        for (p, part) in self.parts.iter().enumerate() {
+            for &t in &part.triangles {
+                let Some(slot) = part_of.get_mut(t as usize) else {
+                    return Err(DeformError::InvalidParts {
+                        reason: format!("part {p} names triangle {t}, but the mesh has {count} triangles"),
+                    });
+                };
+                if *slot != NONE {
+                    return Err(DeformError::InvalidParts {
+                        reason: format!("triangle {t} is in part {} and in part {p}", *slot),
+                    });
+                }
+                *slot = p as u32;
+            }
+        }
+        if let Some(t) = part_of.iter().position(|&p| p == NONE) {
+            return Err(DeformError::InvalidParts { reason: format!("triangle {t} is in no part") });
+        }
+        Ok(part_of)
+    }
+}
+
+/// The point `p` of the triangles `triangles` of `mesh` at rest: the triangle that holds it
+/// best (largest smallest barycentric coordinate), if one holds it within `tolerance`, with
+/// its barycentric coordinates clamped to the triangle.
+fn locate(mesh: &Mesh, triangles: &[u32], p: Point, tolerance: f64) -> Option<HandlePoint> {
+    let x = mesh.positions();
+    let mut best: Option<(f64, usize, [f64; 3])> = None;
+    for &t in triangles {
+        let corners = mesh.triangles()[t as usize];
+        let [a, b, c] = corners.map(|v| x[v as usize]);
+        let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        if area <= 0.0 {
+            continue;
+        }
+        let signed = |u: Point, v: Point| (u[0] - p[0]) * (v[1] - p[1]) - (u[1] - p[1]) * (v[0] - p[0]);
+        let w = [signed(b, c) / area, signed(c, a) / area, signed(a, b) / area];
+        let least = w[0].min(w[1]).min(w[2]);
+        // Distance outside the triangle, about: the negative weight times the height.
+        let longest = [a, b, c]
+            .iter()
+            .zip([b, c, a])
+            .map(|(u, v)| libm::hypot(u[0] - v[0], u[1] - v[1]))
+            .fold(0.0, f64::max);
+        let outside = -least * area / longest.max(f64::MIN_POSITIVE);
+        if outside > tolerance {
+            continue;
+        }
+        if best.is_none_or(|(l, _, _)| least > l) {
+            best = Some((least, t as usize, w));
+        }
+    }
+    best.map(|(_, triangle, w)| {
+        let w = w.map(|x| x.max(0.0));
+        let sum = w[0] + w[1] + w[2];
+        HandlePoint { triangle, vertices: mesh.triangles()[triangle], weights: w.map(|x| x / sum) }
+    })
+}
