@@ -286,3 +286,34 @@ fn joints_are_placed_anew_and_bad_ones_refused_changing_nothing() {
     deformer.set_handle_vertices(&[0]).unwrap();
     deformer.step(&[[0.01, 0.0]]).unwrap();
 }
+
+#[test]
+fn a_recorded_puppet_session_replays_to_the_same_bits() {
+    use akap::pose::replay;
+    use akap::session::Session;
+    for options in [MethodOptions::from(AkapOptions::default()), ArapOptions::default().into()] {
+        let (mesh, puppet) = figure();
+        let mut poser = Poser::new(Deformer::with_puppet(mesh.clone(), options, puppet.clone(), None).unwrap());
+        poser.start_recording(None);
+        for (part, p) in [(TORSO, [0.4, 0.4]), (ARM, [3.8, 2.55]), (HEAD, [1.0, 3.5])] {
+            let (t, w) = point_on(&mesh, &puppet, part, p);
+            poser.add_handle(t, w).unwrap();
+        }
+        for frame in 1..=10 {
+            let f = f64::from(frame);
+            poser.set_target(1, [3.8 - 0.05 * f, 2.55 + 0.1 * f]).unwrap();
+            poser.set_target(2, [1.0 + 0.02 * f, 3.5]).unwrap();
+            poser.advance().unwrap();
+            if frame == 5 {
+                poser.set_joints(vec![Joint { point: [1.85, 2.5], parts: [ARM, TORSO] }]).unwrap();
+            }
+        }
+        let recorded = poser.deformer().positions().to_vec();
+        let session = Session::from_json(&poser.recorded().unwrap().to_json()).unwrap();
+        assert_eq!(session.puppet.as_ref().unwrap().puppet().parts, puppet.parts);
+        let mut deformer = session.recorded_deformer().unwrap();
+        replay(&session, &mut deformer).unwrap();
+        assert_eq!(deformer.positions(), &recorded[..], "{:?}", options.method());
+        assert_eq!(deformer.puppet().unwrap().joints.len(), 1);
+    }
+}
