@@ -229,7 +229,7 @@ fn read(text: &str, options: &SvgOptions, by_layer: bool) -> Result<Read, Import
     let layer_nodes = if by_layer { layers::layers(root) } else { Vec::new() };
     if layer_nodes.len() > MAX_LAYERS {
         return Err(ImportError::TooLarge {
-            what: "the SVG's layers",
+            what: "the SVG",
             size: layer_nodes.len(),
             limit: MAX_LAYERS,
             unit: "layers",
