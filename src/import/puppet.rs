@@ -300,7 +300,8 @@ fn clearance(rings: &[Vec<Point>], p: Point) -> Option<f64> {
             let b = ring[(i + 1) % ring.len()];
             let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
             let length2 = dx * dx + dy * dy;
-            let t = if length2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
+            let t =
+                if length2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
             nearest = nearest.min(libm::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy));
         }
     }

@@ -1,7 +1,7 @@
 //! An SVG's layers, as the document has them: its top-level groups (an Inkscape layer,
 //! `<g inkscape:groupmode="layer">`, or any `<g>` with an `id` or an `inkscape:label`) and
 //! its top-level elements that draw outside groups (shapes, `<use>`, links, `<switch>`,
-//! nested `<svg>`). A `<g>` with neither `id` nor label is no layer: its children are
+//! nested `<svg>`). A `<g>` with none of these marks is no layer: its children are
 //! taken in its place, as if it were not there. A document whose only layer is a group of
 //! several layers (everything drawn in Inkscape's "Layer 1") has those as its layers.
 //! Document order is the drawing order, back to front.
@@ -23,7 +23,7 @@ fn layers_in<'a, 'i>(group: Node<'a, 'i>) -> Vec<Node<'a, 'i>> {
             continue;
         }
         match node.tag_name().name() {
-            "g" if node.attribute("id").is_none() && label(node).is_none() => {
+            "g" if node.attribute("id").is_none() && label(node).is_none() && !is_layer(node) => {
                 pending.extend(node.children().filter(Node::is_element).collect::<Vec<_>>().into_iter().rev());
             }
             "g" | "use" | "a" | "switch" | "svg" | "path" | "rect" | "circle" | "ellipse" | "line" | "polyline"
@@ -45,6 +45,11 @@ pub(super) fn layers<'a, 'i>(root: Node<'a, 'i>) -> Vec<Node<'a, 'i>> {
         layers = inner;
     }
     layers
+}
+
+/// Whether `node` is marked as an Inkscape layer.
+fn is_layer(node: Node) -> bool {
+    node.attribute((INKSCAPE, "groupmode")) == Some("layer")
 }
 
 fn label<'a>(node: Node<'a, '_>) -> Option<&'a str> {
