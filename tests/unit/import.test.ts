@@ -112,7 +112,7 @@ describe("importPuppet", () => {
     // The torso's area: its rectangle, 80 x 120.
     let area = 0;
     for (const t of puppet.parts[0]!.triangles) {
-      const [a, b, c] = [0, 1, 2].map((k) => puppet.triangles[3 * t + k]!);
+      const [a, b, c] = [0, 1, 2].map((k) => puppet.triangles[3 * t + k]!) as [number, number, number];
       const x = (v: number) => puppet.positions[2 * v]!;
       const y = (v: number) => puppet.positions[2 * v + 1]!;
       area += ((x(b) - x(a)) * (y(c) - y(a)) - (y(b) - y(a)) * (x(c) - x(a))) / 2;

@@ -39,10 +39,9 @@ use crate::import::union::{self, Region};
 use crate::import::vector::{FillRule, VectorPath, Verb};
 use crate::import::Limits;
 use crate::outline::Outline;
+use layers::in_svg_namespace;
 use text::{check_attributes, Cursor};
 use tree::{Clip, Drawing};
-
-const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
 /// Elements deeper than this are refused (they would only come from hostile files).
 pub const MAX_DEPTH: usize = 256;
@@ -647,8 +646,4 @@ fn check_numbers(document: &Document, text: &str, limit: f64) -> Result<(), Impo
         }
     }
     Ok(())
-}
-
-fn in_svg_namespace(node: Node) -> bool {
-    matches!(node.tag_name().namespace(), None | Some(SVG_NAMESPACE))
 }
