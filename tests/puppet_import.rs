@@ -269,3 +269,20 @@ fn an_image_gives_a_part_per_region() {
     let centre = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
     assert!(inside(centre, 2.0, 8.0, 10.0), "{centre:?}");
 }
+
+#[test]
+fn many_stacked_layers_join_every_pair_in_bounded_work() {
+    // Layers of one square, shifted a little each: every pair overlaps, so every pair is
+    // joined, at a point on both sheets; the work is one overlay per pair.
+    let n = 60;
+    let body: String = (0..n)
+        .map(|k| format!(r#"<rect id="r{k}" x="{}" y="10" width="50" height="50"/>"#, f64::from(k) * 0.5))
+        .collect();
+    let p = import_puppet(&svg(&body), &PuppetOptions::default().with_vertices(2000)).unwrap();
+    assert_eq!(p.puppet.parts.len(), n as usize);
+    assert_eq!(p.puppet.joints.len(), (n * (n - 1) / 2) as usize);
+    for joint in &p.puppet.joints {
+        let [front, back] = joint.parts;
+        assert!(front > back && on_part(&p, front, joint.point) && on_part(&p, back, joint.point), "{joint:?}");
+    }
+}
