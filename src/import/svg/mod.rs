@@ -275,7 +275,9 @@ fn read(text: &str, options: &SvgOptions, by_layer: bool) -> Result<Read, Import
 /// The document's text with its root sized to its `viewBox` (or 1 x 1 with a unit
 /// `viewBox` when it has none), an id on every shape without one (`SHAPE_ID` and its
 /// index among the shapes) and each layer wrapped in a group of id `LAYER_ID` and its
-/// index, and the map from the root's user units to output.
+/// index (which changes what CSS child and sibling selectors match, `svg > g` say, if a
+/// `<style>` has them; Inkscape and Illustrator write none), and the map from the root's
+/// user units to output.
 struct Sized {
     text: String,
     output: [f64; 6],
