@@ -29,6 +29,7 @@ mod pose;
 #[cfg(not(target_arch = "wasm32"))]
 mod pose_obj;
 mod puppet;
+mod puppet_import;
 mod session;
 mod sparse;
 mod stiffness;
@@ -38,3 +39,5 @@ mod turning;
 mod wasm_animation;
 #[cfg(target_arch = "wasm32")]
 mod wasm_api;
+#[cfg(target_arch = "wasm32")]
+mod wasm_puppet;
