@@ -2,6 +2,7 @@
 //! between parts, joints in the overlaps. Expected names, areas and places come from the
 //! drawings' shapes (tests/fixtures/svg/layered-puppet.svg says how its areas are made).
 
+use akap::deform::{AkapOptions, ArapOptions, Deformer, MethodOptions};
 use std::f64::consts::PI;
 
 use akap::geometry::{point_in_polygon, triangle_area, Point};
@@ -111,6 +112,11 @@ fn a_layered_character_gives_a_sheet_per_layer_joined_where_they_overlap() {
         |a: &&akap::import::svg::SvgPath| a.fill.is_some_and(|c| (c.red, c.green, c.blue) == (46, 139, 87));
     assert_eq!(p.art.iter().map(|paths| paths.iter().filter(torso_green).count()).collect::<Vec<_>>(), [1, 0, 0, 0]);
     assert!(p.skipped.is_empty());
+    // The deformers take the puppet as it is: its joints are on both sheets.
+    for options in [MethodOptions::from(AkapOptions::default()), ArapOptions::default().into()] {
+        let deformer = Deformer::with_puppet(p.mesh.clone(), options, p.puppet.clone(), None).unwrap();
+        assert_eq!(deformer.puppet().unwrap(), &p.puppet);
+    }
 }
 
 #[test]

@@ -163,6 +163,44 @@ export interface DeformerOptions {
   smoothness?: number;
 }
 
+/** A part of a puppet as a {@link Deformer} takes it: its sheet's triangles, name and depth
+ * (the parts of {@link importPuppet}'s result, whose `paths` it leaves alone). */
+export interface PuppetSheet {
+  /** The part's name. */
+  name: string;
+  /** Indices of the mesh's triangles (not vertices) that make up the part's sheet; the
+   * parts together hold every triangle exactly once. */
+  triangles: Uint32Array;
+  /** The drawing order: larger is in front. A whole number. */
+  depth: number;
+}
+
+/** A joint: a hinge at one point of two parts, about which the front part turns freely,
+ * both sheets keeping that point together. */
+export interface PuppetJoint {
+  /** Where it is at rest: a point on both parts' sheets. */
+  point: [number, number];
+  /** The parts it joins, `[front, back]`, as indices into the parts. */
+  parts: [number, number];
+}
+
+/**
+ * A new {@link Deformer}'s options: the method and its settings, and for a puppet (a mesh
+ * made of sheets, one per part, that may overlap and need not be connected) its parts and
+ * joints. AKAP and ARAP couple the sheets at the joints; a sheet with no joint and no
+ * handle stays where it is, and one held by a single joint with nothing to turn it follows
+ * without turning. Moving least squares and Cauchy-Green pose the whole puppet as one
+ * shape. A joint naming a part out of range, a part twice, or a point not on both parts is
+ * refused (code `invalid-joint`); parts that do not hold every triangle exactly once
+ * (`invalid-argument`). Without `parts` a Deformer behaves as for one connected shape.
+ */
+export interface DeformerSetup extends DeformerOptions {
+  /** The puppet's parts. */
+  parts?: readonly PuppetSheet[];
+  /** The joints between them (none if left out); needs `parts`. */
+  joints?: readonly PuppetJoint[];
+}
+
 /** The deformation methods (see {@link DeformerOptions.method}). */
 export type Method = "akap" | "arap" | "mls" | "cauchy-green";
 
@@ -298,15 +336,16 @@ export class Deformer {
 
   /**
    * @param positions xy-interleaved vertex positions (length 2n)
-   * @param triangles counter-clockwise index triples (length 3m); the mesh must be connected
-   * @param options the method and its settings
+   * @param triangles counter-clockwise index triples (length 3m); the mesh must be connected,
+   *   but for a puppet's sheets (`options.parts`)
+   * @param options the method and its settings, and a puppet's parts and joints
    * @param orders the fill-reducing orders from {@link deformerOrders} (same mesh and
    *   method), when the bulk of the set-up already ran elsewhere, e.g. in a worker
    */
   constructor(
     positions: Coordinates,
     triangles: Indices,
-    options: DeformerOptions = {},
+    options: DeformerSetup = {},
     orders?: readonly Uint32Array[],
   ) {
     assertLoaded();
@@ -319,6 +358,26 @@ export class Deformer {
   get #raw(): rawTypes.Deformer {
     if (!this.#inner) throw new Error("this Deformer was freed; make a new one");
     return this.#inner;
+  }
+
+  /** A puppet's parts (name, triangles, depth), or `undefined` for one shape. */
+  get parts(): PuppetSheet[] | undefined {
+    return this.#raw.parts as PuppetSheet[] | undefined;
+  }
+
+  /** A puppet's joints (empty for one shape). */
+  get joints(): PuppetJoint[] {
+    return this.#raw.joints as PuppetJoint[];
+  }
+
+  /**
+   * Replaces a puppet's joints (the Joint tool), keeping the pose, the handles, the
+   * stiffness and the bones; the systems are analysed again for them. Refused, changing
+   * nothing, for a deformer of one shape and for a joint naming a part out of range or a
+   * part twice, or whose point is not on both parts (code `invalid-joint`).
+   */
+  setJoints(joints: readonly PuppetJoint[]): void {
+    this.#raw.setJoints(joints);
   }
 
   /**
