@@ -143,7 +143,7 @@ pub(crate) fn pose_obj(obj: Option<&str>, pose: &Pose) -> Result<Posed, String> 
     let miss = (deformer.handle_positions().iter().zip(&targets))
         .fold(0.0f64, |m, (p, t)| m.max((p[0] - t[0]).hypot(p[1] - t[1])));
     // The pose as it is, flipped triangles included (the summary counts them).
-    let obj = write_obj_pose(deformer.positions(), deformer.mesh().triangles(), uvs.as_deref(), &limits)
+    let obj = write_obj_pose(deformer.positions(), deformer.mesh().triangles(), uvs.as_deref(), None, &limits)
         .map_err(|e| e.to_string())?;
     Ok(Posed { obj, vertices, triangles, has_uvs: uvs.is_some(), pose, steps, setup_ms, steps_ms, metrics, miss })
 }

@@ -18,7 +18,7 @@ fn square() -> Animation {
     let mesh = Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], vec![[0, 1, 2], [0, 2, 3]]).unwrap();
     let uvs = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [1.0 / 3.0, 1.0]];
     Animation {
-        mesh: MeshFile { mesh, uvs: Some(uvs), stiffness: Some(vec![1.0, 2.5]) },
+        mesh: MeshFile { mesh, uvs: Some(uvs), stiffness: Some(vec![1.0, 2.5]), puppet: None },
         fps: 29.97,
         keys: vec![
             Key { time: 0.0, easing: Easing::Linear, handles: vec![[0.0, 0.0], [1.0, 1.0]] },

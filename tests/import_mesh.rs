@@ -24,7 +24,7 @@ fn limits() -> Limits {
 fn json_round_trip_is_exact() {
     let (mesh, uvs) = figure();
     for with_uvs in [false, true] {
-        let text = write_json(&mesh, with_uvs.then_some(uvs.as_slice()), None, &limits()).unwrap();
+        let text = write_json(&mesh, with_uvs.then_some(uvs.as_slice()), None, None, &limits()).unwrap();
         let back = read_json(&text, &limits()).unwrap();
         assert_eq!(back.mesh, mesh);
         assert_eq!(back.uvs.as_deref(), with_uvs.then_some(uvs.as_slice()));
@@ -38,23 +38,23 @@ fn json_carries_stiffness_exactly_and_refuses_bad_values() {
     let n = mesh.triangle_count();
     // Awkward binary fractions across the whole range, the ends included.
     let stiffness: Vec<f64> = (0..n).map(|t| [0.001, 1.0 / 3.0, 1.0, 7.1, 1000.0][t % 5]).collect();
-    let text = write_json(&mesh, None, Some(&stiffness), &limits()).unwrap();
+    let text = write_json(&mesh, None, Some(&stiffness), None, &limits()).unwrap();
     let back = read_json(&text, &limits()).unwrap();
     assert_eq!((back.mesh, back.stiffness.as_deref()), (mesh.clone(), Some(&stiffness[..])));
-    assert_eq!(read_json(&write_json(&mesh, None, None, &limits()).unwrap(), &limits()).unwrap().stiffness, None);
+    assert_eq!(read_json(&write_json(&mesh, None, None, None, &limits()).unwrap(), &limits()).unwrap().stiffness, None);
     // OBJ has no place for it.
-    assert_eq!(read_obj(&write_obj(&mesh, None, &limits()).unwrap(), &limits()).unwrap().stiffness, None);
+    assert_eq!(read_obj(&write_obj(&mesh, None, None, &limits()).unwrap(), &limits()).unwrap().stiffness, None);
 
     let square = r#"{"positions": [0,0, 1,0, 1,1, 0,1], "triangles": [0,1,2, 0,2,3], "stiffness": "#;
     let message = |tail: &str| read_json(&format!("{square}{tail}}}"), &limits()).unwrap_err().to_string();
     assert_eq!(message("[1]"), "stiffness: 1 numbers for 2 triangles; one per triangle is needed");
     assert_eq!(message("[1, 0]"), "stiffness: triangle 1 has 0, expected a number from 0.001 to 1000");
     assert!(message("[1e400, 1]").starts_with("JSON error at line 1"));
-    let short = write_json(&mesh, None, Some(&stiffness[1..]), &limits()).unwrap_err();
+    let short = write_json(&mesh, None, Some(&stiffness[1..]), None, &limits()).unwrap_err();
     assert!(matches!(short, ImportError::Stiffness { .. }), "{short}");
     let mut high = stiffness.clone();
     high[n - 1] = 1_000.000_000_1;
-    let error = write_json_pose(mesh.positions(), mesh.triangles(), None, Some(&high), &limits()).unwrap_err();
+    let error = write_json_pose(mesh.positions(), mesh.triangles(), None, Some(&high), None, &limits()).unwrap_err();
     assert_eq!(
         error.to_string(),
         format!("stiffness: triangle {} has 1000.0000001, expected a number from 0.001 to 1000", n - 1)
@@ -65,7 +65,7 @@ fn json_carries_stiffness_exactly_and_refuses_bad_values() {
 fn obj_round_trip_is_exact() {
     let (mesh, uvs) = figure();
     for with_uvs in [false, true] {
-        let text = write_obj(&mesh, with_uvs.then_some(uvs.as_slice()), &limits()).unwrap();
+        let text = write_obj(&mesh, with_uvs.then_some(uvs.as_slice()), None, &limits()).unwrap();
         assert!(text.starts_with("# akap mesh:"));
         let back = read_obj(&text, &limits()).unwrap();
         assert_eq!(back.mesh, mesh);
@@ -178,13 +178,13 @@ fn size_limits_apply() {
     assert!(matches!(read_json(json, &few), Err(ImportError::TooLarge { .. })));
     // Writers check texture coordinates too.
     let (mesh, _) = figure();
-    let error = write_obj(&mesh, Some(&[[0.0, 0.0]]), &limits()).unwrap_err();
+    let error = write_obj(&mesh, Some(&[[0.0, 0.0]]), None, &limits()).unwrap_err();
     let n = mesh.vertex_count();
     assert_eq!(
         error.to_string(),
         format!("texture coordinates: 2 numbers for {n} vertices; {} are needed, a u and a v per vertex", 2 * n)
     );
-    assert!(write_json(&mesh, Some(&vec![[f64::NAN, 0.0]; n]), None, &limits()).is_err());
+    assert!(write_json(&mesh, Some(&vec![[f64::NAN, 0.0]; n]), None, None, &limits()).is_err());
     // A limit of 0 is refused, not read as "unlimited".
     let zero = Limits { max_points: 0, ..Limits::default() };
     assert_eq!(
@@ -219,8 +219,8 @@ fn what_the_writers_write_the_readers_read_and_what_they_refuse_the_readers_woul
     // the writer with the reader's own error.
     let mesh = grid(30, 20); // 651 vertices, 1200 triangles
     let uvs: Vec<Point> = mesh.positions().iter().map(|p| [p[0] / 7.0, p[1] / 11.0]).collect();
-    let obj = write_obj(&mesh, Some(&uvs), &limits()).unwrap();
-    let json = write_json(&mesh, Some(&uvs), None, &limits()).unwrap();
+    let obj = write_obj(&mesh, Some(&uvs), None, &limits()).unwrap();
+    let json = write_json(&mesh, Some(&uvs), None, None, &limits()).unwrap();
     for (name, limits) in [
         ("vertices", Limits { max_vertices: 650, ..limits() }),
         ("triangles", Limits { max_vertices: 599, ..limits() }),
@@ -229,8 +229,8 @@ fn what_the_writers_write_the_readers_read_and_what_they_refuse_the_readers_woul
         ("enough", Limits { max_vertices: 651, max_bytes: obj.len().max(json.len()), ..limits() }),
     ] {
         for (written, read) in [
-            (write_obj(&mesh, Some(&uvs), &limits), read_obj(&obj, &limits).map(|f| f.mesh)),
-            (write_json(&mesh, Some(&uvs), None, &limits), read_json(&json, &limits).map(|f| f.mesh)),
+            (write_obj(&mesh, Some(&uvs), None, &limits), read_obj(&obj, &limits).map(|f| f.mesh)),
+            (write_json(&mesh, Some(&uvs), None, None, &limits), read_json(&json, &limits).map(|f| f.mesh)),
         ] {
             match (written, read) {
                 (Ok(text), Ok(back)) => {
@@ -248,7 +248,7 @@ fn what_the_writers_write_the_readers_read_and_what_they_refuse_the_readers_woul
         }
     }
     assert_eq!(
-        write_obj(&mesh, None, &Limits { max_vertices: 650, ..limits() }).unwrap_err().to_string(),
+        write_obj(&mesh, None, None, &Limits { max_vertices: 650, ..limits() }).unwrap_err().to_string(),
         "the mesh to write has 651 vertices, more than the limit of 650 vertices"
     );
 }
@@ -266,11 +266,11 @@ fn the_largest_mesh_within_the_default_limits_writes_within_them() {
     let positions: Vec<Point> = mesh.positions().iter().map(long).collect();
     let mesh = Mesh::new(positions, mesh.triangles().to_vec()).unwrap();
     let uvs: Vec<Point> = mesh.positions().iter().map(|p| [p[0] * 3.0, p[1] * 7.0]).collect();
-    let obj = write_obj(&mesh, Some(&uvs), &limits()).unwrap();
+    let obj = write_obj(&mesh, Some(&uvs), None, &limits()).unwrap();
     assert_eq!(obj.split_whitespace().map(str::len).max(), Some(25));
     assert!(obj.len() < limits().max_bytes, "{} bytes", obj.len());
     assert_eq!(read_obj(&obj, &limits()).unwrap().mesh, mesh);
-    let json = write_json(&mesh, Some(&uvs), None, &limits()).unwrap();
+    let json = write_json(&mesh, Some(&uvs), None, None, &limits()).unwrap();
     assert!(json.len() < obj.len());
 }
 
@@ -287,7 +287,7 @@ fn a_pose_with_flipped_and_collapsed_triangles_is_written_as_it_is() {
     (pose[e], pose[f]) = (pose[d], pose[d]);
     let triangles = mesh.triangles();
 
-    let obj = write_obj_pose(&pose, triangles, Some(&uvs), &limits()).unwrap();
+    let obj = write_obj_pose(&pose, triangles, Some(&uvs), None, &limits()).unwrap();
     let written: Vec<Point> = (obj.lines().filter_map(|l| l.strip_prefix("v ")))
         .map(|l| {
             let n: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
@@ -300,19 +300,19 @@ fn a_pose_with_flipped_and_collapsed_triangles_is_written_as_it_is() {
     // Read back, the file is held to a rest mesh's rules.
     assert!(matches!(read_obj(&obj, &limits()), Err(ImportError::Mesh(MeshError::Clockwise { triangle: 0 }))));
 
-    let json = write_json_pose(&pose, triangles, None, None, &limits()).unwrap();
+    let json = write_json_pose(&pose, triangles, None, None, None, &limits()).unwrap();
     let value: serde_json::Value = serde_json::from_str(&json).unwrap();
     let numbers: Vec<f64> = value["positions"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
     assert_eq!(numbers, pose.iter().flatten().copied().collect::<Vec<_>>());
 
     // The rest positions through the pose writers: the mesh writers' text exactly.
     assert_eq!(
-        write_obj_pose(mesh.positions(), triangles, Some(&uvs), &limits()).unwrap(),
-        write_obj(&mesh, Some(&uvs), &limits()).unwrap()
+        write_obj_pose(mesh.positions(), triangles, Some(&uvs), None, &limits()).unwrap(),
+        write_obj(&mesh, Some(&uvs), None, &limits()).unwrap()
     );
     assert_eq!(
-        write_json_pose(mesh.positions(), triangles, None, None, &limits()).unwrap(),
-        write_json(&mesh, None, None, &limits()).unwrap()
+        write_json_pose(mesh.positions(), triangles, None, None, None, &limits()).unwrap(),
+        write_json(&mesh, None, None, None, &limits()).unwrap()
     );
 }
 
@@ -321,7 +321,7 @@ fn a_pose_that_names_no_vertex_or_is_not_finite_is_refused() {
     let (mesh, _) = figure();
     let n = mesh.vertex_count();
     let t = mesh.triangles();
-    let error = |p: &[Point], t: &[[u32; 3]]| write_obj_pose(p, t, None, &limits()).unwrap_err();
+    let error = |p: &[Point], t: &[[u32; 3]]| write_obj_pose(p, t, None, None, &limits()).unwrap_err();
     let mut nan = mesh.positions().to_vec();
     nan[7][1] = f64::NAN;
     assert!(matches!(error(&nan, t), ImportError::Mesh(MeshError::NonFinitePosition { vertex: 7 })));
@@ -335,5 +335,5 @@ fn a_pose_that_names_no_vertex_or_is_not_finite_is_refused() {
     twice[2][1] = twice[2][0];
     assert!(matches!(error(mesh.positions(), &twice), ImportError::Mesh(MeshError::RepeatedVertex { triangle: 2 })));
     assert!(matches!(error(mesh.positions(), &[]), ImportError::Mesh(MeshError::Empty)));
-    assert!(write_json_pose(&nan, t, None, None, &limits()).is_err());
+    assert!(write_json_pose(&nan, t, None, None, None, &limits()).is_err());
 }

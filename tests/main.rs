@@ -24,6 +24,7 @@ mod import_svg_art;
 mod killing;
 mod limits;
 mod mesh;
+mod mesh_file_puppet;
 mod mls;
 mod pose;
 #[cfg(not(target_arch = "wasm32"))]

@@ -189,7 +189,7 @@ fn problem(vertices: usize, fps: f64, keys: &[JsonKey], frames: &[Vec<f64>], lim
 /// use akap::import::{mesh_file::MeshFile, Limits};
 /// let mesh = akap::Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0, 1, 2]])?;
 /// let animation = Animation {
-///     mesh: MeshFile { mesh, uvs: None, stiffness: None },
+///     mesh: MeshFile { mesh, uvs: None, stiffness: None, puppet: None },
 ///     fps: 24.0,
 ///     keys: vec![Key { time: 0.0, easing: Easing::Linear, handles: vec![[0.0, 0.0]] }],
 ///     frames: vec![vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0.1, 0.0], [1.0, 0.0], [0.0, 1.0]]],
@@ -203,11 +203,15 @@ pub fn write_animation(animation: &Animation, limits: &Limits) -> Result<String,
     let invalid = |message| AnimationError::Invalid { message };
     limits.validate().map_err(|e| invalid(e.to_string()))?;
     let file = &animation.mesh;
+    if let Some(puppet) = &file.puppet {
+        mesh_file::check_puppet(puppet, &file.mesh, limits)?;
+    }
     let mesh = mesh_file::to_json_mesh(
         file.mesh.positions(),
         file.mesh.triangles(),
         file.uvs.as_deref(),
         file.stiffness.as_deref(),
+        file.puppet.as_ref(),
         limits,
     )?;
     // Sizes first, so that nothing huge is copied before being refused.

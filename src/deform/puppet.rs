@@ -44,6 +44,9 @@ pub const LEAST_MOTION: f64 = 1e-8;
 /// costs 1/1000 of the handles' least force.
 pub const AKAP_TURN_WEIGHT: f64 = 1e-3;
 
+/// The longest name of a part that the bindings and the mesh files take, in bytes.
+pub const MAX_PART_NAME_BYTES: usize = 1024;
+
 /// One part of a puppet: its sheet's triangles, its name and its depth.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Part {
@@ -122,46 +125,70 @@ impl Puppet {
     /// triangle in exactly one part, each joint joining two different parts in range at a
     /// finite point that lies on both parts' sheets (within 1e-9 of the mesh's size).
     pub(crate) fn joins(&self, mesh: &Mesh) -> Result<Joins, DeformError> {
-        let part_of = self.part_of_triangles(mesh)?;
+        self.part_of_triangles(mesh)?;
+        self.check_joints()?;
         let size = super::handles::diagonal(mesh.positions());
         let points = self
             .joints
             .iter()
             .enumerate()
             .map(|(joint, j)| {
-                let invalid = |reason: String| DeformError::InvalidJoint { joint, reason };
-                if !(j.point[0].is_finite() && j.point[1].is_finite()) {
-                    return Err(invalid(format!("its point {:?} is not finite", j.point)));
-                }
-                for &part in &j.parts {
-                    if part >= self.parts.len() {
-                        return Err(invalid(format!(
-                            "it names part {part}, but the puppet has {} parts",
-                            self.parts.len()
-                        )));
-                    }
-                }
-                if j.parts[0] == j.parts[1] {
-                    return Err(invalid(format!("it joins part {} to itself", j.parts[0])));
-                }
                 let place = |part: usize| {
                     locate(mesh, &self.parts[part].triangles, j.point, 1e-9 * size).ok_or_else(|| {
-                        invalid(format!(
-                            "its point ({}, {}) is not on part {part} (\"{}\")",
-                            j.point[0], j.point[1], self.parts[part].name
-                        ))
+                        DeformError::InvalidJoint {
+                            joint,
+                            reason: format!(
+                                "its point ({}, {}) is not on part {part} (\"{}\")",
+                                j.point[0], j.point[1], self.parts[part].name
+                            ),
+                        }
                     })
                 };
                 Ok([place(j.parts[0])?, place(j.parts[1])?])
             })
-            .collect::<Result<Vec<_>, _>>()?;
-        debug_assert_eq!(part_of.len(), mesh.triangle_count());
+            .collect::<Result<Vec<_>, DeformError>>()?;
         Ok(Joins { points, puppet: true })
+    }
+
+    /// Checks what can be checked without the rest positions, for a mesh of
+    /// `triangle_count` triangles (say, to write a pose of the puppet's mesh): every triangle
+    /// in exactly one part, each joint joining two different parts in range at a finite
+    /// point. Whether each joint's point lies on both parts needs the rest mesh
+    /// ([`super::Deformer::with_puppet`] checks it).
+    pub fn check_indices(&self, triangle_count: usize) -> Result<(), DeformError> {
+        self.part_of(triangle_count)?;
+        self.check_joints()
+    }
+
+    /// Each joint joins two different parts in range at a finite point.
+    fn check_joints(&self) -> Result<(), DeformError> {
+        for (joint, j) in self.joints.iter().enumerate() {
+            let invalid = |reason: String| DeformError::InvalidJoint { joint, reason };
+            if !(j.point[0].is_finite() && j.point[1].is_finite()) {
+                return Err(invalid(format!("its point {:?} is not finite", j.point)));
+            }
+            for &part in &j.parts {
+                if part >= self.parts.len() {
+                    return Err(invalid(format!(
+                        "it names part {part}, but the puppet has {} parts",
+                        self.parts.len()
+                    )));
+                }
+            }
+            if j.parts[0] == j.parts[1] {
+                return Err(invalid(format!("it joins part {} to itself", j.parts[0])));
+            }
+        }
+        Ok(())
     }
 
     /// The part of each triangle, checking that the parts hold every triangle exactly once.
     pub fn part_of_triangles(&self, mesh: &Mesh) -> Result<Vec<u32>, DeformError> {
-        let count = mesh.triangle_count();
+        self.part_of(mesh.triangle_count())
+    }
+
+    /// The part of each of `count` triangles, checking that the parts hold each exactly once.
+    fn part_of(&self, count: usize) -> Result<Vec<u32>, DeformError> {
         if self.parts.is_empty() {
             return Err(DeformError::InvalidParts { reason: "a puppet needs at least one part".into() });
         }

@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use crate::deform::DeformError;
 use crate::error_code::ErrorCode;
 use crate::mesh::MeshError;
 use crate::message::Number;
@@ -145,6 +146,10 @@ pub enum ImportError {
     },
     /// The mesh in the file is invalid (the same rules and errors as [`crate::Mesh::new`]).
     Mesh(MeshError),
+    /// A mesh file's puppet (its parts and joints) does not fit its mesh: the same rules and
+    /// errors as [`crate::deform::Deformer::with_puppet`] (a part's name longer than
+    /// [`crate::deform::MAX_PART_NAME_BYTES`] is refused as invalid parts).
+    Puppet(DeformError),
     /// More points than the limit ([`crate::import::Limits::max_points`]).
     TooManyPoints {
         /// What has them, e.g. "the SVG's shapes".
@@ -261,6 +266,7 @@ impl fmt::Display for ImportError {
             Self::TextureCoordinates { message } => write!(f, "texture coordinates: {message}"),
             Self::Stiffness { message } => write!(f, "stiffness: {message}"),
             Self::Mesh(e) => e.fmt(f),
+            Self::Puppet(e) => write!(f, "the file's puppet: {e}"),
             Self::Triangulation(e) => e.fmt(f),
             Self::TooManyPoints { what, needed: Some(needed), limit } => write!(
                 f,
@@ -297,6 +303,7 @@ impl std::error::Error for ImportError {
         match self {
             Self::Mesh(e) => Some(e),
             Self::Triangulation(e) => Some(e),
+            Self::Puppet(e) => Some(e),
             _ => None,
         }
     }
@@ -309,6 +316,7 @@ impl ImportError {
         match self {
             Self::Mesh(e) => e.code(),
             Self::Triangulation(e) => e.code(),
+            Self::Puppet(e) => e.code(),
             Self::TooLarge { .. }
             | Self::TooDeep { .. }
             | Self::CoordinateTooLarge { .. }

@@ -12,6 +12,7 @@ use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;
 use super::mesh::read_mesh;
+use super::puppet::{puppet_fields, read_optional_puppet};
 use super::read::{self, field, optional, Options};
 use super::{flat, limits, max_coordinates, max_indices, object, pairs};
 use crate::animation::zip::{MAX_FILES, MAX_NAME_BYTES, MAX_ZIP_BYTES};
@@ -108,7 +109,8 @@ pub fn zip_files(files: JsValue) -> Result<Vec<u8>, BindingError> {
     Ok(animation::write_zip(&entries)?)
 }
 
-/// Reads `{ positions, triangles, uvs?, stiffness? }`, a rest mesh validated.
+/// Reads `{ positions, triangles, uvs?, stiffness?, parts?, joints? }`, a rest mesh
+/// validated (a puppet's parts and joints are checked when the animation is written).
 fn read_mesh_file(value: &JsValue) -> Result<MeshFile, BindingError> {
     let what = "animation.mesh";
     let mesh = read_mesh(&field(value, "positions", what)?, &field(value, "triangles", what)?)?;
@@ -120,7 +122,11 @@ fn read_mesh_file(value: &JsValue) -> Result<MeshFile, BindingError> {
         Some(v) => Some(read::float64s(&v, "animation.mesh.stiffness", max_indices())?),
         None => None,
     };
-    Ok(MeshFile { mesh, uvs, stiffness })
+    let none = JsValue::UNDEFINED;
+    let parts = optional(value, "parts", what)?.unwrap_or_else(|| none.clone());
+    let joints = optional(value, "joints", what)?.unwrap_or(none);
+    let puppet = read_optional_puppet(&parts, &joints)?;
+    Ok(MeshFile { mesh, uvs, stiffness, puppet })
 }
 
 /// Reads an animation object: `{ mesh, fps, keys: { time, easing, handles }[], frames:
@@ -177,6 +183,7 @@ pub fn animation_from_json(text: JsValue) -> Result<Object, BindingError> {
     if let Some(stiffness) = &file.stiffness {
         mesh.push(("stiffness", Float64Array::from(stiffness.as_slice()).into()));
     }
+    mesh.extend(puppet_fields(file.puppet.as_ref())?);
     let keys = Array::new();
     for key in &animation.keys {
         let easing = match key.easing {

@@ -6,6 +6,7 @@ use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;
 use super::mesh::{read_mesh, read_positions, JsMesh};
+use super::puppet::{joints_to_js, parts_to_js, read_optional_puppet};
 use super::read::{self, Options};
 use super::{flat, limits, max_coordinates, max_indices, object, outlines_to_js, pairs};
 use crate::import::mesh_file::{self, MeshFile};
@@ -166,21 +167,12 @@ fn puppet_to_js(imported: &ImportedPuppet) -> Result<Object, BindingError> {
         ])?;
         parts.push(&entry);
     }
-    let joints = Array::new();
-    for joint in &puppet.joints {
-        let [x, y] = joint.point;
-        let [front, back] = joint.parts;
-        let point = Array::of2(&x.into(), &y.into());
-        let pair = Array::of2(&(front as u32).into(), &(back as u32).into());
-        let entry = object(&[("point", point.into()), ("parts", pair.into())])?;
-        joints.push(&entry);
-    }
     let skipped: Array = skipped.iter().map(|s| JsValue::from_str(s)).collect();
     object(&[
         ("positions", flat(mesh.positions()).into()),
         ("triangles", Uint32Array::from(triangles.as_slice()).into()),
         ("parts", parts.into()),
-        ("joints", joints.into()),
+        ("joints", joints_to_js(&puppet.joints)?.into()),
         ("skipped", skipped.into()),
     ])
 }
@@ -227,6 +219,24 @@ impl JsMeshFile {
     pub fn stiffness(&self) -> Option<Vec<f64>> {
         self.file.stiffness.clone()
     }
+
+    /// A puppet's parts, `[{ name, triangles: Uint32Array, depth }]` (OBJ: its groups), or
+    /// undefined for one shape.
+    pub fn parts(&self) -> Result<JsValue, BindingError> {
+        match &self.file.puppet {
+            Some(puppet) => Ok(parts_to_js(&puppet.parts)?.into()),
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
+
+    /// A puppet's joints, `[{ point: [x, y], parts: [front, back] }]` (none from OBJ), or
+    /// undefined for one shape.
+    pub fn joints(&self) -> Result<JsValue, BindingError> {
+        match &self.file.puppet {
+            Some(puppet) => Ok(joints_to_js(&puppet.joints)?.into()),
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
 }
 
 /// Reads a Wavefront OBJ mesh (xy plane) from a string.
@@ -269,21 +279,32 @@ fn to_write(positions: &JsValue, triangles: &JsValue, uvs: &JsValue) -> Result<T
 }
 
 /// Writes a mesh, or a pose of one (flipped triangles as they are), as Wavefront OBJ, with
-/// `vt` lines when `uvs` (a `Float64Array`) are given.
+/// `vt` lines when `uvs` (a `Float64Array`) are given, and a puppet's `parts` (`[{ name,
+/// triangles, depth }]`, or undefined) as groups (its joints have no place in OBJ).
 #[wasm_bindgen]
-pub fn mesh_to_obj(positions: JsValue, triangles: JsValue, uvs: JsValue) -> Result<String, BindingError> {
+pub fn mesh_to_obj(
+    positions: JsValue,
+    triangles: JsValue,
+    uvs: JsValue,
+    parts: JsValue,
+) -> Result<String, BindingError> {
     let m = to_write(&positions, &triangles, &uvs)?;
-    Ok(mesh_file::write_obj_pose(&m.positions, &m.triangles, m.uvs.as_deref(), &limits())?)
+    let puppet = read_optional_puppet(&parts, &JsValue::UNDEFINED)?;
+    Ok(mesh_file::write_obj_pose(&m.positions, &m.triangles, m.uvs.as_deref(), puppet.as_ref(), &limits())?)
 }
 
 /// Writes a mesh, or a pose of one (flipped triangles as they are), in our JSON format,
-/// with its `uvs` and per-triangle `stiffness` (`Float64Array`s) when given.
+/// with its `uvs` and per-triangle `stiffness` (`Float64Array`s) when given, and a
+/// puppet's `parts` (`[{ name, triangles, depth }]`) and `joints` (`[{ point: [x, y],
+/// parts: [front, back] }]`) when given (joints need parts).
 #[wasm_bindgen]
 pub fn mesh_to_json(
     positions: JsValue,
     triangles: JsValue,
     uvs: JsValue,
     stiffness: JsValue,
+    parts: JsValue,
+    joints: JsValue,
 ) -> Result<String, BindingError> {
     let m = to_write(&positions, &triangles, &uvs)?;
     let stiffness = if stiffness.is_undefined() || stiffness.is_null() {
@@ -291,7 +312,15 @@ pub fn mesh_to_json(
     } else {
         Some(read::float64s(&stiffness, "stiffness", max_indices())?)
     };
-    Ok(mesh_file::write_json_pose(&m.positions, &m.triangles, m.uvs.as_deref(), stiffness.as_deref(), &limits())?)
+    let puppet = read_optional_puppet(&parts, &joints)?;
+    Ok(mesh_file::write_json_pose(
+        &m.positions,
+        &m.triangles,
+        m.uvs.as_deref(),
+        stiffness.as_deref(),
+        puppet.as_ref(),
+        &limits(),
+    )?)
 }
 
 /// Texture coordinates (u, v interleaved) of positions (`Float64Array`) in a traced

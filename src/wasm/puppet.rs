@@ -9,10 +9,7 @@ use wasm_bindgen::prelude::*;
 use super::error::BindingError;
 use super::read::{self, field};
 use super::{max_indices, object};
-use crate::deform::{Joint, Part, Puppet};
-
-/// Longest part name, in bytes.
-const MAX_NAME_BYTES: usize = 1024;
+use crate::deform::{Joint, Part, Puppet, MAX_PART_NAME_BYTES};
 
 /// The parts of a puppet (`parts`, an array) and its joints (`joints`, an array, or
 /// `undefined` for none).
@@ -22,7 +19,7 @@ pub(super) fn read_puppet(parts: &JsValue, joints: Option<&JsValue>) -> Result<P
         .enumerate()
         .map(|(i, part)| {
             let what = format!("parts[{i}]");
-            let name = read::string(&field(part, "name", &what)?, &format!("{what}.name"), MAX_NAME_BYTES)?;
+            let name = read::string(&field(part, "name", &what)?, &format!("{what}.name"), MAX_PART_NAME_BYTES)?;
             let triangles =
                 read::uint32s(&field(part, "triangles", &what)?, &format!("{what}.triangles"), max_indices())?;
             let depth = read::number(&field(part, "depth", &what)?, &format!("{what}.depth"))?;
@@ -40,6 +37,27 @@ pub(super) fn read_puppet(parts: &JsValue, joints: Option<&JsValue>) -> Result<P
         None => Vec::new(),
     };
     Ok(Puppet { parts, joints })
+}
+
+/// The puppet of a mesh to write: `parts` (an array, or `undefined`/`null` for one shape)
+/// and `joints` (an array, or `undefined`/`null` for none; refused without parts).
+pub(super) fn read_optional_puppet(parts: &JsValue, joints: &JsValue) -> Result<Option<Puppet>, BindingError> {
+    let absent = |v: &JsValue| v.is_undefined() || v.is_null();
+    match (absent(parts), absent(joints)) {
+        (true, true) => Ok(None),
+        (true, false) => Err(BindingError::argument("joints were given without parts; joints join parts")),
+        (false, _) => Ok(Some(read_puppet(parts, (!absent(joints)).then_some(joints))?)),
+    }
+}
+
+/// A puppet's `parts` and `joints` as fields of a JavaScript object (none for `None`).
+pub(super) fn puppet_fields(puppet: Option<&Puppet>) -> Result<Vec<(&'static str, JsValue)>, BindingError> {
+    Ok(match puppet {
+        Some(puppet) => {
+            vec![("parts", parts_to_js(&puppet.parts)?.into()), ("joints", joints_to_js(&puppet.joints)?.into())]
+        }
+        None => Vec::new(),
+    })
 }
 
 /// Joints: `[{ point: [x, y], parts: [front, back] }]`. Part indices are whole numbers

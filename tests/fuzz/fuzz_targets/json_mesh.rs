@@ -11,7 +11,7 @@ fuzz_target!(|data: &[u8]| {
     let limits = Limits { max_vertices: 10_000, ..Limits::default() };
     let Ok(file) = read_json(text, &limits) else { return };
     let written =
-        write_json(&file.mesh, file.uvs.as_deref(), file.stiffness.as_deref(), &limits).expect("a read mesh writes within the same limits");
+        write_json(&file.mesh, file.uvs.as_deref(), file.stiffness.as_deref(), file.puppet.as_ref(), &limits).expect("a read mesh writes within the same limits");
     let again = read_json(&written, &limits).expect("a written mesh reads");
     assert_eq!(again, file);
 });
