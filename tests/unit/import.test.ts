@@ -378,6 +378,42 @@ describe("traceImage", () => {
   });
 });
 
+describe("mesh files of a puppet", () => {
+  const layered = readFileSync("tests/fixtures/svg/layered-puppet.svg", "utf8");
+
+  it("carries parts and joints through JSON, and parts as OBJ groups", () => {
+    const puppet = importPuppet(layered, { vertices: 600 });
+    const json = meshToJson(puppet);
+    expect(json).toContain('"parts":[{"name":"Torso","triangles":[');
+    const back = meshFromJson(json);
+    expect(Array.from(back.positions)).toEqual(Array.from(puppet.positions));
+    const sheet = (p: { name: string; triangles: Uint32Array; depth: number }) => ({
+      name: p.name,
+      triangles: Array.from(p.triangles),
+      depth: p.depth,
+    });
+    expect(back.parts!.map(sheet)).toEqual(puppet.parts.map(sheet));
+    expect(back.joints).toEqual(puppet.joints);
+    // OBJ: the same parts (back to front already), no joints.
+    const obj = meshFromObj(meshToObj(puppet));
+    expect(obj.parts!.map(sheet)).toEqual(puppet.parts.map(sheet));
+    expect(obj.joints).toEqual([]);
+    // One shape: no parts, as before.
+    expect(
+      meshFromJson(meshToJson({ positions: puppet.positions, triangles: puppet.triangles })).parts,
+    ).toBeUndefined();
+  });
+
+  it("refuses a joint off its parts, with its code, and joints without parts", () => {
+    const puppet = importPuppet(layered, { vertices: 600 });
+    const json = meshToJson({ ...puppet, joints: [{ point: [-1000, -1000], parts: [1, 0] }] });
+    expect(() => meshFromJson(json)).toThrow(expect.objectContaining({ code: "invalid-joint" }));
+    expect(() =>
+      meshToJson({ positions: puppet.positions, triangles: puppet.triangles, joints: puppet.joints }),
+    ).toThrow(/joints were given without parts/);
+  });
+});
+
 describe("mesh files", () => {
   const positions = [0, 0, 1, 0, 1, 1, 0, 1];
   const triangles = [0, 1, 2, 0, 2, 3];

@@ -16,6 +16,7 @@
 import { coded, toFloat64, toUint32, type Coordinates } from "./internal/arrays.js";
 import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
 import type { MeshToWrite } from "./import.js";
+import type { PuppetJoint, PuppetSheet } from "./core.js";
 
 /** `"gif"`: 256 colours a frame, alpha on or off (below 128 transparent); `"apng"`: lossless RGBA. */
 export type AnimationFormat = "gif" | "apng";
@@ -135,8 +136,16 @@ export interface AnimationKey<C = Float64Array> {
 
 /** An animation as {@link animationFromJson} gives it. */
 export interface AnimationData {
-  /** The rest mesh, as {@link meshToJson} takes it. */
-  mesh: { positions: Float64Array; triangles: Uint32Array; uvs?: Float64Array; stiffness?: Float64Array };
+  /** The rest mesh, as {@link meshToJson} takes it (with a puppet's parts and joints if it
+   * is one). */
+  mesh: {
+    positions: Float64Array;
+    triangles: Uint32Array;
+    uvs?: Float64Array;
+    stiffness?: Float64Array;
+    parts?: PuppetSheet[];
+    joints?: PuppetJoint[];
+  };
   /** Frames per second, 1 to 120. */
   fps: number;
   /** By strictly increasing time, each with the same number of handles. */
@@ -168,6 +177,8 @@ export function animationToJson(animation: AnimationToWrite): string {
       triangles: toUint32(mesh.triangles, "mesh.triangles"),
       uvs: optional(mesh.uvs, "mesh.uvs"),
       stiffness: optional(mesh.stiffness, "mesh.stiffness"),
+      parts: mesh.parts,
+      joints: mesh.joints,
     },
     fps: animation.fps,
     keys: animation.keys.map((key, k) => ({ ...key, handles: toFloat64(key.handles, `keys[${k}].handles`) })),

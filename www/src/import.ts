@@ -266,6 +266,13 @@ export interface MeshFileData extends MeshData {
   uvs?: Float64Array;
   /** One stiffness per triangle (JSON files only; see `Deformer.setStiffness`). */
   stiffness?: Float64Array;
+  /** A puppet's parts (JSON's `parts`; OBJ's groups, back to front, each of depth its
+   * place), or absent for one shape. Pass them, with {@link MeshFileData.joints}, to a
+   * `Deformer`. */
+  parts?: PuppetSheet[];
+  /** A puppet's joints (JSON files only: OBJ has no place for them, so a puppet read from
+   * OBJ has none); present whenever `parts` is. */
+  joints?: PuppetJoint[];
 }
 
 function readMeshFile(file: rawTypes.MeshFile): MeshFileData {
@@ -277,6 +284,11 @@ function readMeshFile(file: rawTypes.MeshFile): MeshFileData {
       if (uvs !== undefined) data.uvs = uvs;
       const stiffness = file.stiffness();
       if (stiffness !== undefined) data.stiffness = stiffness;
+      const parts = file.parts() as PuppetSheet[] | undefined;
+      if (parts !== undefined) {
+        data.parts = parts;
+        data.joints = file.joints() as PuppetJoint[];
+      }
       return data;
     } finally {
       mesh.free();
@@ -289,7 +301,9 @@ function readMeshFile(file: rawTypes.MeshFile): MeshFileData {
 /**
  * Reads a Wavefront OBJ mesh in the xy plane (`v`, `vt`, `f`; polygons are fanned into
  * triangles, negative indices count back). Validated like {@link meshFromArrays}: throws
- * an `Error` naming the line and column, or the mesh problem.
+ * an `Error` naming the line and column, or the mesh problem. Groups (`g name`) make it a
+ * puppet: each group a part, in the order they first hold a face, each of depth its
+ * place, with no joints (faces before the first `g` are in `default`).
  */
 export function meshFromObj(text: string): MeshFileData {
   assertLoaded();
@@ -298,7 +312,10 @@ export function meshFromObj(text: string): MeshFileData {
 
 /**
  * Reads our JSON mesh format: `{ "positions": [...], "triangles": [...], "uvs"?: [...],
- * "stiffness"?: [...] }` (`stiffness`: one per triangle, from 0.001 to 1000).
+ * "stiffness"?: [...], "parts"?: [...], "joints"?: [...] }` (`stiffness`: one per triangle,
+ * from 0.001 to 1000; `parts` and `joints` a puppet's, as {@link importPuppet} gives them,
+ * checked as a `Deformer` checks them: an `Error` with `code` `invalid-joint` for a joint
+ * off its parts).
  */
 export function meshFromJson(text: string): MeshFileData {
   assertLoaded();
@@ -317,6 +334,12 @@ export interface MeshToWrite {
   uvs?: Coordinates;
   /** One stiffness per triangle, written by {@link meshToJson} (OBJ has no place for it). */
   stiffness?: Coordinates;
+  /** A puppet's parts (other fields, such as an imported part's `paths`, are left out):
+   * JSON's `parts`, OBJ's groups (`g`, back to front, names made OBJ names). */
+  parts?: readonly PuppetSheet[];
+  /** A puppet's joints (needs `parts`), written by {@link meshToJson} (OBJ has no place
+   * for them). Their points are where they are at rest, as given. */
+  joints?: readonly PuppetJoint[];
 }
 
 function writeArgs(mesh: MeshToWrite): [Float64Array, Uint32Array, Float64Array | undefined] {
@@ -324,17 +347,19 @@ function writeArgs(mesh: MeshToWrite): [Float64Array, Uint32Array, Float64Array 
   return [toFloat64(mesh.positions, "positions"), toUint32(mesh.triangles, "triangles"), uvs];
 }
 
-/** Writes a mesh or a pose of one as Wavefront OBJ, with `vt` lines when it has uvs. */
+/** Writes a mesh or a pose of one as Wavefront OBJ, with `vt` lines when it has uvs and
+ * a group per part (`g name`, back to front) when it has parts. */
 export function meshToObj(mesh: MeshToWrite): string {
   assertLoaded();
-  return raw.mesh_to_obj(...writeArgs(mesh));
+  return raw.mesh_to_obj(...writeArgs(mesh), mesh.parts);
 }
 
-/** Writes a mesh or a pose of one in our JSON format, with its uvs and stiffness when given. */
+/** Writes a mesh or a pose of one in our JSON format, with its uvs, stiffness, parts and
+ * joints when given. */
 export function meshToJson(mesh: MeshToWrite): string {
   assertLoaded();
   const stiffness = mesh.stiffness === undefined ? undefined : toFloat64(mesh.stiffness, "stiffness");
-  return raw.mesh_to_json(...writeArgs(mesh), stiffness);
+  return raw.mesh_to_json(...writeArgs(mesh), stiffness, mesh.parts, mesh.joints);
 }
 
 /**

@@ -2,7 +2,7 @@
  * Exports of the current pose: the mesh as JSON or Wavefront OBJ (the core's writers), the
  * outline or vector art as SVG, and a file download helper for pages.
  */
-import { PointMapper, meshToJson, meshToObj, pathData, type VectorPath } from "../../import.js";
+import { PointMapper, meshToJson, meshToObj, pathData, type PuppetPart, type VectorPath } from "../../import.js";
 import { boundaryLoops } from "../model/geometry.js";
 import { drawOrder, type Layering } from "../model/layers.js";
 import { locate } from "../model/picking.js";
@@ -56,11 +56,135 @@ export function vectorSvg(paths: readonly { path: VectorPath; points: Float64Arr
   const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
   const [x0, y0] = [b.minX - margin, -b.maxY - margin];
   const [w, h] = [b.maxX - b.minX + 2 * margin, b.maxY - b.minY + 2 * margin];
-  const body = paths.map(
-    ({ path, points }) =>
-      `  <path d="${pathData(path, points, { flipY: true })}" ${fillAttributes(path.fill ?? fill)} fill-rule="${path.fillRule}"/>`,
-  );
+  const body = paths.map(({ path, points }) => `  ${pathElement(path, points, fill)}`);
   return [`<svg xmlns="http://www.w3.org/2000/svg" viewBox="${x0} ${y0} ${w} ${h}">`, ...body, "</svg>", ""].join("\n");
+}
+
+/** A `<path>` element for a vector path at `points` (y up, flipped to SVG's y down). */
+function pathElement(path: VectorPath, points: Float64Array, fill: string): string {
+  return `<path d="${pathData(path, points, { flipY: true })}" ${fillAttributes(path.fill ?? fill)} fill-rule="${path.fillRule}"/>`;
+}
+
+/** A part of a puppet with its art, as `importPuppet` gives it: its name, its sheet's
+ * triangles (indices of the mesh's triangles), its depth (larger in front) and its paths
+ * at rest (y up). */
+export type PuppetArt = Pick<PuppetPart, "name" | "triangles" | "depth" | "paths">;
+
+/** Inkscape's namespace, whose `label` and `groupmode` mark a layer. */
+const INKSCAPE = "http://www.inkscape.org/namespaces/inkscape";
+
+/**
+ * A puppet's art in a pose as a layered SVG document: each part's paths carried through
+ * its own sheet only (their points located at rest in the part's own triangles, so that
+ * the torso's art under an arm stays with the torso however the arm moves, and a point
+ * off its sheet follows the sheet's nearest triangle), written back to front (by `depth`,
+ * parts of the same depth in their order), each part in its own layer, `<g
+ * inkscape:groupmode="layer" inkscape:label="name" id="...">` (the `id` the name made an
+ * XML name, unique). Paths keep their fill rule and colour as {@link vectorSvg} writes
+ * them. `importPuppet` reads the file back with the same parts, names and order (a part
+ * without paths has no area, so it is left out; a puppet of one part reads back as its
+ * paths, the one layer being looked through).
+ *
+ * @param mesh The puppet's rest mesh: `positions` (x, y interleaved, y up) and `triangles`
+ * (three vertex indices each), as `importPuppet` gives them.
+ * @param parts The parts with their art (an `ImportedPuppet`'s `parts` as they are).
+ * @param positions The pose: one x, y pair per rest vertex (a deformer's positions).
+ * @param fill The colour of paths whose colour is unknown.
+ * @returns The SVG text, y down, with a small margin around the posed art.
+ */
+export function puppetSvg(
+  mesh: { positions: Float64Array; triangles: Uint32Array },
+  parts: readonly PuppetArt[],
+  positions: Float64Array,
+  fill = DEFAULT_FILL,
+): string {
+  const order = parts.map((_, k) => k).sort((a, b) => parts[a]!.depth - parts[b]!.depth || a - b);
+  const layers = order.map((k) => {
+    const part = parts[k]!;
+    return { part, points: mapOnSheet(mesh, part.triangles, part.paths, positions) };
+  });
+  const all = layers.flatMap(({ points }) => points.flatMap((p) => Array.from(p)));
+  const b = bounds(all.length > 0 ? all : Array.from(positions));
+  const margin = 0.02 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
+  const [x0, y0] = [b.minX - margin, -b.maxY - margin];
+  const [w, h] = [b.maxX - b.minX + 2 * margin, b.maxY - b.minY + 2 * margin];
+  const ids = new Set<string>();
+  const body = layers.flatMap(({ part, points }) => {
+    const id = uniqueId(part.name, ids);
+    return [
+      `  <g id="${id}" inkscape:groupmode="layer" inkscape:label="${escapeAttribute(part.name)}">`,
+      ...part.paths.map((path, i) => `    ${pathElement(path, points[i]!, fill)}`),
+      "  </g>",
+    ];
+  });
+  return [
+    `<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="${INKSCAPE}" viewBox="${x0} ${y0} ${w} ${h}">`,
+    ...body,
+    "</svg>",
+    "",
+  ].join("\n");
+}
+
+/**
+ * The points of `paths` (each's own, at rest) carried to the pose `positions` through the
+ * sheet of `triangles` alone: a mesh of those triangles and their vertices, located at
+ * rest and mapped by {@link PointMapper}. Paths of a part without triangles stay where
+ * they are (there is no sheet to carry them).
+ */
+function mapOnSheet(
+  mesh: { positions: Float64Array; triangles: Uint32Array },
+  triangles: ArrayLike<number>,
+  paths: readonly VectorPath[],
+  positions: Float64Array,
+): Float64Array[] {
+  const count = paths.reduce((n, p) => n + p.points.length, 0);
+  if (triangles.length === 0 || count === 0) return paths.map((p) => Float64Array.from(p.points));
+  // The sheet's vertices, numbered in the order met.
+  const local = new Map<number, number>();
+  const sheet = new Uint32Array(3 * triangles.length);
+  for (let i = 0; i < triangles.length; i++) {
+    const t = triangles[i]!;
+    for (let c = 0; c < 3; c++) {
+      const v = mesh.triangles[3 * t + c];
+      if (v === undefined)
+        throw new RangeError(`a part names triangle ${t}, but the mesh has ${mesh.triangles.length / 3}`);
+      if (!local.has(v)) local.set(v, local.size);
+      sheet[3 * i + c] = local.get(v)!;
+    }
+  }
+  const rest = new Float64Array(2 * local.size);
+  const posed = new Float64Array(2 * local.size);
+  for (const [v, l] of local) {
+    rest.set([mesh.positions[2 * v]!, mesh.positions[2 * v + 1]!], 2 * l);
+    posed.set([positions[2 * v]!, positions[2 * v + 1]!], 2 * l);
+  }
+  const points = new Float64Array(count);
+  let at = 0;
+  for (const path of paths) {
+    points.set(path.points, at);
+    at += path.points.length;
+  }
+  const mapper = new PointMapper(rest, sheet, points);
+  let mapped: Float64Array;
+  try {
+    mapped = mapper.map(posed);
+  } finally {
+    mapper.free();
+  }
+  at = 0;
+  return paths.map((path) => mapped.slice(at, (at += path.points.length)));
+}
+
+/** An XML name for an element's `id` made of `name` (other characters become `_`, and
+ * `part-` goes before one that cannot start a name), not among `taken` (then `-2`, `-3`,
+ * ... is added); added to `taken`. */
+function uniqueId(name: string, taken: Set<string>): string {
+  let base = name.replace(/[^A-Za-z0-9_.-]/g, "_");
+  if (!/^[A-Za-z_]/.test(base)) base = `part-${base}`;
+  let id = base;
+  for (let k = 2; taken.has(id); k++) id = `${base}-${k}`;
+  taken.add(id);
+  return id;
 }
 
 /** `fill` (and `fill-opacity`) attributes for a CSS colour: `rgba()` as SVG 1.1 writes it. */
@@ -75,8 +199,14 @@ function fillAttributes(colour: string): string {
   return alpha === 1 ? `fill="${hex}"` : `fill="${hex}" fill-opacity="${alpha}"`;
 }
 
+/** Text as an attribute's value in double quotes: `&`, `<` and `"` escaped, and white
+ * space other than spaces written as character references, which XML keeps. */
 function escapeAttribute(text: string): string {
-  return text.replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/"/g, "&quot;");
+  return text
+    .replace(/&/g, "&amp;")
+    .replace(/</g, "&lt;")
+    .replace(/"/g, "&quot;")
+    .replace(/[\t\n\r]/g, (c) => `&#${c.charCodeAt(0)};`);
 }
 
 /**
