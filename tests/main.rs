@@ -11,6 +11,7 @@ mod defop_eval;
 mod defop_file;
 mod defop_fit;
 mod defop_ground_truth;
+mod defop_puppet;
 mod defop_train;
 mod deformer;
 mod errors;

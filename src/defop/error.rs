@@ -27,6 +27,9 @@ pub enum DefOpError {
         /// The number of pieces.
         components: usize,
     },
+    /// A puppet's parts or joints that do not fit the mesh (the checks of
+    /// [`crate::deform::Deformer::with_puppet`], with their message).
+    InvalidPuppet(DeformError),
     /// A handle names a vertex or triangle that does not exist, or has invalid barycentric
     /// coordinates (the checks every deformer makes, with their message).
     InvalidHandle(DeformError),
@@ -105,9 +108,10 @@ impl fmt::Display for DefOpError {
                 write!(f, "option {name} is {}, expected {expected}", Number(*value))
             }
             Self::Disconnected { components } => {
-                write!(f, "the mesh has {components} separate pieces; the ground truth needs one connected piece")
+                write!(f, "the mesh has {components} separate pieces; the ground truth needs one connected piece, or a puppet of sheets joined at joints")
             }
             Self::InvalidHandle(e) => write!(f, "invalid handle: {e}"),
+            Self::InvalidPuppet(e) => write!(f, "invalid puppet: {e}"),
             Self::NoHandles => write!(f, "no handles: the ground truth needs at least one"),
             Self::TooManyPointHandles { count, limit } => write!(
                 f,
@@ -150,7 +154,7 @@ impl fmt::Display for DefOpError {
 impl std::error::Error for DefOpError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
-            Self::InvalidHandle(e) => Some(e),
+            Self::InvalidHandle(e) | Self::InvalidPuppet(e) => Some(e),
             Self::Factor(e) => Some(e),
             _ => None,
         }
@@ -168,7 +172,7 @@ impl DefOpError {
         match self {
             Self::InvalidOption { .. } => ErrorCode::InvalidOption,
             Self::Disconnected { .. } => ErrorCode::InvalidMesh,
-            Self::InvalidHandle(e) => e.code(),
+            Self::InvalidHandle(e) | Self::InvalidPuppet(e) => e.code(),
             Self::NoConvergence { .. } => ErrorCode::NoConvergence,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,

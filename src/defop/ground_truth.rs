@@ -77,6 +77,22 @@
 //! flipped or collapsed triangle under S-ARAP restarts from the rest pose (a fallback,
 //! counted in [`SolveReport::fallback`] and [`GroundTruth::fallbacks`]).
 //!
+//! **Puppets** ([`GroundTruth::with_puppet`]): a mesh made of sheets, one per part, joined
+//! at joints. The energy gets each joint's penalty, `w |x_front(p) - x_back(p)|^2` on the
+//! barycentric blends of the two triangles its point lies in at rest (as the deformers'
+//! joints: `crate::deform::puppet`), with `w` [`JOINT_WEIGHT`] times the mean diagonal of
+//! the rest ARAP Hessian, so that the two points stay together to a tiny fraction of the
+//! size; the penalty is quadratic, so its gradient and Hessian enter Newton's model
+//! exactly (3 x 3 vertex blocks between the two triangles, in the pattern). Sheets that no
+//! handle reaches through the mesh and the joints are held where they are at rest (their
+//! vertices fixed, as handles fix vertices), so no system is singular. A part that no
+//! handle holds itself but a joint does (a head on its neck) could turn freely about the
+//! joint at no cost, leaving the minimum undetermined: its vertices get a weak spring to
+//! their rest positions, `μ/2 D_v |x_v - x̄_v|^2` with `μ` [`LEAST_MOTION_WEIGHT`] (`D`
+//! the rest ARAP Hessian's diagonal), in the energy itself, so that such a part takes the
+//! least motion (it follows its joint without turning), while a part that a joint or a
+//! handle turns turns all the same.
+//!
 //! Everything runs on positions scaled by the power of two that brings the rest mesh's
 //! largest coordinate into [1, 2) (exact), and every buffer is sized when the solver is
 //! built: an iteration allocates nothing.
@@ -89,7 +105,8 @@ use super::linear::{cholesky, first_root};
 pub use super::problem::{GroundTruthOptions, Handles, SolveReport, Start, MAX_POINT_HANDLES};
 use crate::deform::handles::{at_vertices, check_connected, diagonal, in_triangles, HandlePoint};
 use crate::deform::pattern::BlockPattern;
-use crate::deform::DeformError;
+use crate::deform::puppet::{pieces, Joins};
+use crate::deform::{DeformError, Puppet};
 use crate::geometry::{normalising_exponent, scale_by_power_of_two, Point, MAX_COORDINATE};
 use crate::mesh::Mesh;
 use crate::sparse::{expand_blocks, fill_reducing_order, Numeric, Ordering, Symbolic};
@@ -131,6 +148,16 @@ const SETTLED: f64 = 1e-3;
 /// targets within it.
 const NEAR: f64 = 1e-12;
 
+/// The weight of a puppet's joint penalty relative to the mean diagonal entry of the rest
+/// ARAP Hessian (as `crate::deform::AKAP_JOINT_WEIGHT` is to AKAP's systems): a joint's
+/// two points stay together to about the force on it over this weight.
+pub const JOINT_WEIGHT: f64 = 1e4;
+
+/// The weight of the spring to rest of a puppet's parts that no handle holds itself,
+/// relative to the rest ARAP Hessian's diagonal: it decides only what nothing else does
+/// (how such a part turns about its one joint).
+pub const LEAST_MOTION_WEIGHT: f64 = 1e-6;
+
 /// One triangle: its rest shape, vertices and the slots of its 6 x 6 Hessian entries.
 #[derive(Debug, Clone)]
 struct Element {
@@ -155,8 +182,18 @@ pub struct GroundTruth {
     handles: Vec<HandlePoint>,
     /// Per handle, the vertex it fixes, or `NONE` for a handle inside a triangle.
     pinned: Vec<usize>,
-    /// Per vertex, whether a handle fixes it.
+    /// Per vertex, whether a handle fixes it, or it is on a sheet no handle reaches.
     fixed: Vec<bool>,
+    /// A puppet's vertices on sheets no handle reaches: held at rest.
+    frozen: Vec<usize>,
+    /// A puppet's joints: per joint, its six vertices with their blend coefficients
+    /// (`x_front - x_back = sum c_k x_(v_k)`) and, per coordinate, the slot of each entry
+    /// `(a, b)` of the penalty's Hessian at `6 a + b` (`NONE` where either vertex is fixed).
+    joints: Vec<([(u32, f64); 6], [[usize; 36]; 2])>,
+    /// The joints' penalty weight, `w`.
+    joint_weight: f64,
+    /// Per unknown, the spring to rest of parts no handle holds itself (`μ D`; 0 elsewhere).
+    springs: Vec<f64>,
     /// The handles inside triangles (indices into `handles`).
     points: Vec<usize>,
     /// Per unknown, the slot of its diagonal entry.
@@ -202,11 +239,41 @@ impl GroundTruth {
         energy: Energy,
         options: GroundTruthOptions,
     ) -> Result<Self, DefOpError> {
+        Self::build(mesh, None, handles, energy, options)
+    }
+
+    /// The solver for a puppet: `mesh` made of sheets, one per part of `puppet`, that may
+    /// overlap and need not be connected, joined at its joints (module documentation).
+    /// Parts and joints are checked as [`crate::deform::Deformer::with_puppet`] checks them
+    /// ([`DefOpError::InvalidPuppet`]).
+    pub fn with_puppet(
+        mesh: &Mesh,
+        puppet: &Puppet,
+        handles: Handles<'_>,
+        energy: Energy,
+        options: GroundTruthOptions,
+    ) -> Result<Self, DefOpError> {
+        Self::build(mesh, Some(puppet), handles, energy, options)
+    }
+
+    fn build(
+        mesh: &Mesh,
+        puppet: Option<&Puppet>,
+        handles: Handles<'_>,
+        energy: Energy,
+        options: GroundTruthOptions,
+    ) -> Result<Self, DefOpError> {
         options.check()?;
-        check_connected(mesh).map_err(|e| match e {
-            DeformError::Disconnected { components } => DefOpError::Disconnected { components },
-            other => DefOpError::InvalidHandle(other),
-        })?;
+        let joins = match puppet {
+            Some(puppet) => puppet.joins(mesh).map_err(DefOpError::InvalidPuppet)?,
+            None => {
+                check_connected(mesh).map_err(|e| match e {
+                    DeformError::Disconnected { components } => DefOpError::Disconnected { components },
+                    other => DefOpError::InvalidHandle(other),
+                })?;
+                Joins::default()
+            }
+        };
         let points = match handles {
             Handles::Vertices(vertices) => at_vertices(mesh, vertices),
             Handles::Points { triangles, barycentric } => in_triangles(mesh, triangles, barycentric),
@@ -231,12 +298,31 @@ impl GroundTruth {
         for &v in pinned.iter().filter(|&&v| v != NONE) {
             fixed[v] = true;
         }
+        let extra = joins.extra_pairs();
+        // A puppet's sheets that no handle reaches (through the mesh and the joints).
+        let frozen: Vec<usize> = if joins.puppet {
+            let piece = pieces(mesh, &extra);
+            let mut held = vec![false; n];
+            for p in &points {
+                for (&v, &w) in p.vertices.iter().zip(&p.weights) {
+                    if w != 0.0 {
+                        held[piece[v as usize] as usize] = true;
+                    }
+                }
+            }
+            (0..n).filter(|&v| !held[piece[v] as usize]).collect()
+        } else {
+            Vec::new()
+        };
+        for &v in &frozen {
+            fixed[v] = true;
+        }
         let point_handles: Vec<usize> = (0..h).filter(|&k| pinned[k] == NONE).collect();
         if point_handles.len() > MAX_POINT_HANDLES {
             return Err(DefOpError::TooManyPointHandles { count: point_handles.len(), limit: MAX_POINT_HANDLES });
         }
 
-        let pattern = BlockPattern::new(mesh, 2);
+        let pattern = BlockPattern::with_pairs(mesh, 2, &extra);
         // Entry (2 row + k, 2 col + l) from the slot of the vertex block (row, col).
         let entry = |col: usize, k: usize, l: usize, slot: usize| slot + l * pattern.column_length(col) + k;
         let triangle_slots = pattern.triangle_slots(mesh);
@@ -265,6 +351,46 @@ impl GroundTruth {
         }
         let diagonal_slots: Vec<usize> =
             (0..2 * n).map(|d| entry(d / 2, d % 2, d % 2, pattern.slot(d / 2, d / 2).expect("diagonal"))).collect();
+        let joint_weight = JOINT_WEIGHT * stiffness.iter().sum::<f64>() / stiffness.len().max(1) as f64;
+        let mut springs = vec![0.0; 2 * n];
+        if let Some(puppet) = puppet {
+            let mut handled = vec![false; n];
+            for p in &points {
+                for (&v, &w) in p.vertices.iter().zip(&p.weights) {
+                    handled[v as usize] |= w != 0.0;
+                }
+            }
+            for part in &puppet.parts {
+                let corners = || part.triangles.iter().flat_map(|&t| mesh.triangles()[t as usize]);
+                if !corners().any(|v| handled[v as usize]) {
+                    for v in corners().map(|v| v as usize).filter(|&v| !fixed[v]) {
+                        springs[2 * v] = LEAST_MOTION_WEIGHT * stiffness[2 * v];
+                        springs[2 * v + 1] = LEAST_MOTION_WEIGHT * stiffness[2 * v + 1];
+                    }
+                }
+            }
+        }
+        let joints = joins
+            .points
+            .iter()
+            .map(|pair| {
+                let blend = Joins::blend(pair);
+                let mut slots = [[NONE; 36]; 2];
+                for (a, &(v, _)) in blend.iter().enumerate() {
+                    for (b, &(u, _)) in blend.iter().enumerate() {
+                        let (v, u) = (v as usize, u as usize);
+                        if fixed[v] || fixed[u] {
+                            continue;
+                        }
+                        let block = pattern.slot(v, u).expect("the joints' vertex pairs are in the pattern");
+                        for (c, coordinate) in slots.iter_mut().enumerate() {
+                            coordinate[6 * a + b] = entry(u, c, c, block);
+                        }
+                    }
+                }
+                (blend, slots)
+            })
+            .collect();
         for (d, s) in stiffness.iter_mut().enumerate() {
             if fixed[d / 2] {
                 *s = 0.0;
@@ -292,6 +418,10 @@ impl GroundTruth {
             handles: points,
             pinned,
             fixed,
+            frozen,
+            joints,
+            joint_weight,
+            springs,
             points: point_handles,
             diagonal_slots,
             stiffness,
@@ -587,6 +717,12 @@ impl GroundTruth {
                 }
             }
         }
+        for &v in &self.frozen {
+            for c in 0..2 {
+                self.fixed_step[2 * v + c] = self.rest[v][c] - self.x[v][c];
+                largest = largest.max(self.fixed_step[2 * v + c].abs());
+            }
+        }
         for (j, &k) in self.points.iter().enumerate() {
             let p = self.handles[k].position(&self.x);
             for (c, pc) in p.iter().enumerate() {
@@ -657,6 +793,37 @@ impl GroundTruth {
                     }
                 }
             }
+        }
+        // The joints' penalty, w |sum c_k x_k|^2 per coordinate: quadratic, so exact.
+        let w = self.joint_weight;
+        for (blend, slots) in &self.joints {
+            for (c, coordinate) in slots.iter().enumerate() {
+                let gap: f64 = blend.iter().map(|&(v, k)| k * self.x[v as usize][c]).sum();
+                energy += w * gap * gap;
+                for (a, &(v, cv)) in blend.iter().enumerate() {
+                    let row = 2 * v as usize + c;
+                    self.grad[row] += 2.0 * w * cv * gap;
+                    self.true_grad[row] += 2.0 * w * cv * gap;
+                    if self.fixed[v as usize] {
+                        continue;
+                    }
+                    for (b, &(u, cu)) in blend.iter().enumerate() {
+                        let h = 2.0 * w * cv * cu;
+                        self.rhs[row] -= h * self.fixed_step[2 * u as usize + c];
+                        if coordinate[6 * a + b] != NONE {
+                            self.values[coordinate[6 * a + b]] += h;
+                        }
+                    }
+                }
+            }
+        }
+        // The springs to rest, mu D / 2 (x - rest)^2 per unknown.
+        for (d, &k) in self.springs.iter().enumerate().filter(|(_, &k)| k != 0.0) {
+            let offset = self.x[d / 2][d % 2] - self.rest[d / 2][d % 2];
+            energy += 0.5 * k * offset * offset;
+            self.grad[d] += k * offset;
+            self.true_grad[d] += k * offset;
+            self.values[self.diagonal_slots[d]] += k;
         }
         for (d, &slot) in self.diagonal_slots.iter().enumerate() {
             if self.fixed[d / 2] {
@@ -772,7 +939,18 @@ impl GroundTruth {
     }
 
     fn total_energy(&self, positions: &[Point]) -> f64 {
-        self.elements.iter().map(|el| el.rest.energy(self.energy, el.vertices.map(|v| positions[v]))).sum()
+        let joints: f64 = (self.joints.iter())
+            .flat_map(|(blend, _)| {
+                (0..2).map(|c| blend.iter().map(|&(v, k)| k * positions[v as usize][c]).sum::<f64>().powi(2))
+            })
+            .sum();
+        let elements: f64 =
+            self.elements.iter().map(|el| el.rest.energy(self.energy, el.vertices.map(|v| positions[v]))).sum();
+        let springs: f64 = (self.springs.iter().enumerate())
+            .filter(|(_, &k)| k != 0.0)
+            .map(|(d, &k)| 0.5 * k * (positions[d / 2][d % 2] - self.rest[d / 2][d % 2]).powi(2))
+            .sum();
+        elements + self.joint_weight * joints + springs
     }
 }
 

@@ -9,6 +9,7 @@ use super::basis::HandleBasis;
 use super::fit_error::{check_finite, check_length, FitError};
 use super::kernels;
 use super::spatial::MeshPoint;
+use crate::deform::Puppet;
 
 /// How a fit solved its least-squares problem.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,6 +40,8 @@ pub struct Operator {
     nodal: Vec<f64>,
     /// Scratch for canonical coordinates: the canonical targets Q̂ (2n numbers; else empty).
     canonical: Vec<f64>,
+    /// The puppet (parts and joints) of the mesh it was trained on, if it was one.
+    puppet: Option<Puppet>,
 }
 
 impl Operator {
@@ -74,7 +77,20 @@ impl Operator {
         let nodal = if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * spatial_len] };
         let psi = vec![0.0; basis.len()];
         let canonical = canonical_scratch(&basis);
-        Self { handles, basis, solver, spatial_len, vertex_count, coefficients, reduction, psi, nodal, canonical }
+        let puppet = None;
+        Self {
+            handles,
+            basis,
+            solver,
+            spatial_len,
+            vertex_count,
+            coefficients,
+            reduction,
+            psi,
+            nodal,
+            canonical,
+            puppet,
+        }
     }
 
     /// An operator from its parts as an operator file holds them, with every length checked
@@ -115,6 +131,20 @@ impl Operator {
     /// D by vertex (`[v |Φ| + i] = D_iv`); empty for the hat basis.
     pub(crate) fn reduction(&self) -> &[f64] {
         &self.reduction
+    }
+
+    /// The puppet (parts and joints) of the mesh the operator was trained on, or `None` for
+    /// one shape: a rig of a puppet poses that puppet (its operator file records it).
+    pub fn puppet(&self) -> Option<&Puppet> {
+        self.puppet.as_ref()
+    }
+
+    /// The operator for the mesh as the puppet `puppet` (or as one shape for `None`): what
+    /// [`super::Trainer`] and the operator file's reader set. Checking the puppet against
+    /// the mesh is the caller's (the trainer's ground truth and the file's reader check it).
+    pub fn with_puppet(mut self, puppet: Option<Puppet>) -> Self {
+        self.puppet = puppet;
+        self
     }
 
     /// The handles' rest positions, as given to the fit.

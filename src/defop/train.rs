@@ -24,6 +24,7 @@ use super::reduced::reduced_basis;
 pub use super::sampling::MAX_SAMPLES;
 use super::sampling::{Sampler, Sampling, SamplingError, DEFAULT_RADIUS_FRACTION};
 use super::spatial::{MeshPoint, SpatialBasis};
+use crate::deform::Puppet;
 use crate::error_code::ErrorCode;
 use crate::geometry::{bounding_box, Point};
 use crate::mesh::Mesh;
@@ -55,6 +56,11 @@ pub struct TrainOptions {
     /// operator keeps them there whatever targets it is given ([`FitOptions::fixed`];
     /// default none; not with `canonical`).
     pub fixed: Vec<usize>,
+    /// The mesh's parts and joints when it is a puppet (default `None`, one connected
+    /// shape): the ground truth joins the sheets at the joints and holds sheets no handle
+    /// reaches ([`GroundTruth::with_puppet`]), and the trained operator records the puppet
+    /// ([`Operator::puppet`]), as its file does.
+    pub puppet: Option<Puppet>,
 }
 
 impl Default for TrainOptions {
@@ -70,6 +76,7 @@ impl Default for TrainOptions {
             ground_truth: GroundTruthOptions::default(),
             canonical: false,
             fixed: Vec::new(),
+            puppet: None,
         }
     }
 }
@@ -354,7 +361,10 @@ impl Trainer {
         let points = crate::deform::handles::resolve(mesh, handles).map_err(FitError::InvalidHandle)?;
         let (triangles, barycentric) = crate::deform::handles::as_points(points.iter());
         let handles = Handles::Points { triangles: &triangles, barycentric: &barycentric };
-        Ok(GroundTruth::new(mesh, handles, options.energy, options.ground_truth)?)
+        Ok(match &options.puppet {
+            Some(puppet) => GroundTruth::with_puppet(mesh, puppet, handles, options.energy, options.ground_truth)?,
+            None => GroundTruth::new(mesh, handles, options.energy, options.ground_truth)?,
+        })
     }
 
     /// A ground-truth solver like this training's, for a worker's [`Job`]s.
@@ -553,7 +563,7 @@ impl Trainer {
             .with_fixed(self.options.fixed.clone());
         let operator = fit(&self.mesh, &self.spatial, &self.handles, &self.samples(), &options)?;
         if solved == self.options.samples {
-            self.result = Some(operator);
+            self.result = Some(operator.with_puppet(self.options.puppet.clone()));
         } else {
             self.predictor = Some(operator);
             let size = solved.min(self.options.samples - solved);

@@ -19,11 +19,6 @@ pub(crate) struct BlockPattern {
 }
 
 impl BlockPattern {
-    /// The pattern of `mesh`'s vertex graph with `block` unknowns per vertex.
-    pub(crate) fn new(mesh: &Mesh, block: usize) -> Self {
-        Self::with_pairs(mesh, block, &[])
-    }
-
     /// The pattern of `mesh`'s vertex graph and of the vertex pairs `extra` (sorted, both
     /// orders of each pair given: a puppet's joints), with `block` unknowns per vertex.
     pub(crate) fn with_pairs(mesh: &Mesh, block: usize, extra: &[[u32; 2]]) -> Self {

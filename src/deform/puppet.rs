@@ -249,3 +249,35 @@ fn locate(mesh: &Mesh, triangles: &[u32], p: Point, tolerance: f64) -> Option<Ha
         HandlePoint { triangle, vertices: mesh.triangles()[triangle], weights: w.map(|x| x / sum) }
     })
 }
+
+/// Each vertex's piece (numbered from 0) of the graph of the mesh's edges and the extra
+/// vertex pairs `extra` (a puppet's joints): union-find with path halving.
+pub(crate) fn pieces(mesh: &Mesh, extra: &[[u32; 2]]) -> Vec<u32> {
+    let n = mesh.vertex_count();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    for [a, b] in mesh.edges().chain(extra.iter().copied()) {
+        let (a, b) = (root(&mut parent, a as usize), root(&mut parent, b as usize));
+        if a != b {
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    let mut number = vec![u32::MAX; n];
+    let mut count = 0;
+    (0..n)
+        .map(|v| {
+            let r = root(&mut parent, v);
+            if number[r] == u32::MAX {
+                number[r] = count;
+                count += 1;
+            }
+            number[r]
+        })
+        .collect()
+}

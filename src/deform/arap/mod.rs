@@ -50,7 +50,7 @@ pub use super::method::IterationReport;
 use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 pub use super::options::{ArapOptions, MAX_CONVERGENCE_ITERATIONS, MAX_ITERATIONS};
 use super::pattern::BlockPattern;
-use super::puppet::Joins;
+use super::puppet::{pieces, Joins};
 use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
@@ -646,38 +646,6 @@ fn best_rotation(p: [Point; 3], c: &[f64; 3], e: &[Point; 3]) -> Option<[f64; 2]
     let (x, y) = (s[0][0] + s[1][1], s[1][0] - s[0][1]);
     let r = libm::hypot(x, y);
     (r > 0.0 && r.is_finite()).then(|| [x / r, y / r])
-}
-
-/// Each vertex's piece (numbered from 0) of the graph of the mesh's edges and the extra
-/// vertex pairs `extra` (a puppet's joints): union-find with path halving.
-fn pieces(mesh: &Mesh, extra: &[[u32; 2]]) -> Vec<u32> {
-    let n = mesh.vertex_count();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut v: usize) -> usize {
-        while parent[v] != v {
-            parent[v] = parent[parent[v]];
-            v = parent[v];
-        }
-        v
-    }
-    for [a, b] in mesh.edges().chain(extra.iter().copied()) {
-        let (a, b) = (root(&mut parent, a as usize), root(&mut parent, b as usize));
-        if a != b {
-            parent[a.max(b)] = a.min(b);
-        }
-    }
-    let mut number = vec![u32::MAX; n];
-    let mut count = 0;
-    (0..n)
-        .map(|v| {
-            let r = root(&mut parent, v);
-            if number[r] == u32::MAX {
-                number[r] = count;
-                count += 1;
-            }
-            number[r]
-        })
-        .collect()
 }
 
 fn sub(a: Point, b: Point) -> Point {
