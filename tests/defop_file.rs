@@ -128,8 +128,8 @@ fn damaged_files_are_refused() {
         assert!(read_operator(&altered).is_err(), "a flip at byte {at} was not noticed");
     }
     let mut future = bytes.clone();
-    future[8] = 3;
-    assert_eq!(read_operator(&future).unwrap_err(), OperatorFileError::Version { found: 3 });
+    future[8] = 4;
+    assert_eq!(read_operator(&future).unwrap_err(), OperatorFileError::Version { found: 4 });
     assert_eq!(read_operator(b"PNG\x0d\x0a").unwrap_err(), OperatorFileError::NotAnOperator);
     let other = akap::shapes::grid_mesh(3, 3);
     assert!(write_operator(&other, &operator).is_err(), "an operator is written with its own mesh");

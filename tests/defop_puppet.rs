@@ -240,4 +240,26 @@ fn a_rig_trained_on_a_puppet_reproduces_held_out_ground_truths_and_its_file_reco
     let (read_mesh, read) = read_operator(&bytes).unwrap();
     assert_eq!(read_mesh, mesh);
     assert_eq!(read.puppet(), Some(&puppet));
+    // Version 3: the version-2 file of the same operator, its puppet before the checksum.
+    let plain = write_operator(&mesh, &operator.clone().with_puppet(None)).unwrap();
+    assert_eq!((bytes[8], plain[8]), (3, 2));
+    let body = plain.len() - 8;
+    assert_eq!(bytes[12..body], plain[12..body]);
+    let section = &bytes[body..bytes.len() - 8];
+    let name_bytes: usize = puppet.parts.iter().map(|p| p.name.len()).sum();
+    assert_eq!(section.len(), 8 + 12 * 4 + name_bytes + 4 * mesh.triangle_count() + 24 * 2);
+    assert_eq!(section[..8], [4, 0, 0, 0, 2, 0, 0, 0], "4 parts, 2 joints");
+    assert_eq!(read_operator(&plain).unwrap().1.puppet(), None);
+    // Damaged: every truncation of the section, and flips throughout it, refused.
+    for cut in body..bytes.len() {
+        assert!(read_operator(&bytes[..cut]).is_err(), "{cut} bytes read");
+    }
+    for at in (body..bytes.len()).step_by(7) {
+        let mut altered = bytes.clone();
+        altered[at] ^= 0x04;
+        assert!(read_operator(&altered).is_err(), "a flip at byte {at} was not noticed");
+    }
+    // An operator's puppet must fit the mesh it is written with.
+    let off = Puppet { joints: vec![Joint { point: [3.5, 2.55], parts: [ARM, TORSO] }], ..puppet };
+    assert!(write_operator(&mesh, &operator.with_puppet(Some(off))).is_err());
 }

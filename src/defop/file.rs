@@ -7,7 +7,7 @@
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `AKAPDEFO` |
-//! | 8 | 4 | version, 2 (1: no canonical flag, no fixed handles) |
+//! | 8 | 4 | version, 2 (1: no canonical flag, no fixed handles; 3: a puppet's, below) |
 //! | 12 | 4 | N, vertices |
 //! | 16 | 4 | F, triangles |
 //! | 20 | 4 | n, handles |
@@ -27,9 +27,18 @@
 //! | | 8 k m | TPS centres in scaled coordinates (f64), k = 2(n − f), or 2n − 3 canonical (0 for n = 1) |
 //! | | 16 \|Φ\| \|Ψ\| | coefficients: for each spatial function, its row of X^x then of X^y (f64) |
 //! | | 8 \|Φ\| N | reduced basis only: D by vertex, `[v |Φ| + i] = D_iv` (f64) |
+//! | | | version 3 only, a puppet's parts and joints: |
+//! | | 4 | P, parts (u32, 1 to 256) |
+//! | | 4 | J, joints (u32, at most N) |
+//! | | 12 + L + 4 T per part | depth (i32), T its triangles' count (u32), L its name's length in bytes (u32, at most 1024), the name (UTF-8), its triangles (u32) |
+//! | | 24 J | joints: point x, y (f64), front part, back part (u32) |
 //! | end − 8 | 8 | FNV-1a 64 of every byte before it |
 //!
-//! A version-1 file is a version-2 file with bytes 35..40 zero: it reads as one.
+//! A version-1 file is a version-2 file with bytes 35..40 zero: it reads as one. An
+//! operator trained on a puppet ([`Operator::puppet`]) is written as version 3, a
+//! version-2 file with the puppet before the checksum (checked on reading as
+//! [`crate::deform::Deformer::with_puppet`] checks it), so that its rig is not applied to
+//! another puppet of the same mesh; any other is written as version 2, as before.
 //!
 //! Evaluation: u = Bᵀ(q̂ − rest) / r_s (multiplied by 1/r_s), B and q̂ as `coordinates`
 //! defines them (B = I and q̂ = q without canonical coordinates or fixed handles; fixed
@@ -51,12 +60,16 @@ use super::fit_error::FitError;
 use super::operator::{Operator, Solver};
 use super::sampling::MAX_SAMPLES;
 use super::spatial::MeshPoint;
+use crate::deform::{Joint, Part, Puppet, MAX_PARTS, MAX_PART_NAME_BYTES};
 use crate::mesh::{Mesh, DEFAULT_MAX_VERTICES};
 
 /// The first 8 bytes of an operator file.
 pub const MAGIC: [u8; 8] = *b"AKAPDEFO";
-/// The version this code writes (it reads this one and version 1).
-pub const VERSION: u32 = 2;
+/// The newest version this code writes (version 3 for an operator of a puppet, 2 for any
+/// other; it reads versions 1 to 3).
+pub const VERSION: u32 = 3;
+/// The version of an operator without a puppet.
+const VERSION_WITHOUT_PUPPET: u32 = 2;
 const HEADER: usize = 48;
 
 /// Why an operator file could not be read.
@@ -140,9 +153,13 @@ pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitEr
     let n = operator.handles().len();
     let coordinates = basis.coordinates();
     let m = basis.scaled_centres().len() / coordinates.len().max(1);
+    if let Some(puppet) = operator.puppet() {
+        check_puppet(puppet, mesh).map_err(|why| FitError::InvalidPuppet(why))?;
+    }
+    let version = if operator.puppet().is_some() { VERSION } else { VERSION_WITHOUT_PUPPET };
     let mut out = Vec::new();
     out.extend_from_slice(&MAGIC);
-    for count in [VERSION as usize, mesh.vertex_count(), mesh.triangle_count(), n, m, operator.spatial_len()] {
+    for count in [version as usize, mesh.vertex_count(), mesh.triangle_count(), n, m, operator.spatial_len()] {
         out.extend_from_slice(&(count as u32).to_le_bytes());
     }
     let reduced = !operator.reduction().is_empty();
@@ -169,6 +186,21 @@ pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitEr
     f64s(&mut out, &mut basis.scaled_centres().iter().copied());
     f64s(&mut out, &mut operator.coefficients().iter().copied());
     f64s(&mut out, &mut operator.reduction().iter().copied());
+    if let Some(puppet) = operator.puppet() {
+        out.extend_from_slice(&(puppet.parts.len() as u32).to_le_bytes());
+        out.extend_from_slice(&(puppet.joints.len() as u32).to_le_bytes());
+        for part in &puppet.parts {
+            out.extend_from_slice(&part.depth.to_le_bytes());
+            out.extend_from_slice(&(part.triangles.len() as u32).to_le_bytes());
+            out.extend_from_slice(&(part.name.len() as u32).to_le_bytes());
+            out.extend_from_slice(part.name.as_bytes());
+            part.triangles.iter().for_each(|t| out.extend_from_slice(&t.to_le_bytes()));
+        }
+        for joint in &puppet.joints {
+            f64s(&mut out, &mut joint.point.into_iter());
+            joint.parts.iter().for_each(|&p| out.extend_from_slice(&(p as u32).to_le_bytes()));
+        }
+    }
     let checksum = fnv1a(&out);
     out.extend_from_slice(&checksum.to_le_bytes());
     Ok(out)
@@ -249,7 +281,10 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
         + 16 * phi * psi
         + if reduced { 8 * phi * nv } else { 0 }
         + 8;
-    if expected != bytes.len() as u64 {
+    // Version 3: the puppet's section follows, its length read from it.
+    let puppet_bytes = (bytes.len() as u64).saturating_sub(expected);
+    if (version < 3 && expected != bytes.len() as u64) || (version == 3 && puppet_bytes < 8) {
+        let expected = expected + if version == 3 { 8 } else { 0 };
         return Err(OperatorFileError::Length { expected, found: bytes.len() });
     }
     let (body, tail) = bytes.split_at(bytes.len() - 8);
@@ -275,14 +310,21 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     let centres = cursor.f64s(k * m);
     let coefficients = cursor.f64s(2 * phi * psi);
     let reduction = if reduced { cursor.f64s(phi * nv) } else { Vec::new() };
-    debug_assert_eq!(cursor.at, body.len(), "the length check covered every field");
+    let puppet = if version == 3 { Some(read_puppet(&mut cursor, nv)?) } else { None };
+    if cursor.at != body.len() {
+        return Err(OperatorFileError::Length { expected: (cursor.at + 8) as u64, found: bytes.len() });
+    }
     let finite = |values: &[f64]| values.iter().all(|x| x.is_finite());
-    let fields = [&positions, &rest, &centres, &coefficients, &reduction];
+    let joint_points: Vec<f64> = puppet.iter().flat_map(|p| p.joints.iter().flat_map(|j| j.point)).collect();
+    let fields = [&positions, &rest, &centres, &coefficients, &reduction, &joint_points];
     if !(scale.is_finite() && fields.iter().all(|values| finite(values))) {
         return Err(OperatorFileError::Invalid("a number is not finite".into()));
     }
     let invalid = |e: &dyn std::fmt::Display| OperatorFileError::Invalid(e.to_string());
     let mesh = Mesh::from_flat(&positions, &triangles).map_err(|e| invalid(&e))?;
+    if let Some(puppet) = &puppet {
+        check_puppet(puppet, &mesh).map_err(OperatorFileError::Invalid)?;
+    }
     for handle in &handles {
         let fine = match *handle {
             MeshPoint::Vertex(v) => (v as u64) < nv,
@@ -306,7 +348,68 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     let basis = HandleBasis::from_parts(kind, coordinates, scale, centres).map_err(|e| invalid(&e))?;
     let operator = Operator::from_parts(handles, basis, solver, phi as usize, nv as usize, coefficients, reduction)
         .map_err(|e| invalid(&e))?;
-    Ok((mesh, operator))
+    Ok((mesh, operator.with_puppet(puppet)))
+}
+
+/// Checks a puppet against its mesh as a deformer does, and its sizes as the file's
+/// fields allow; the reason if it does not fit.
+fn check_puppet(puppet: &Puppet, mesh: &Mesh) -> Result<(), String> {
+    if !(1..=MAX_PARTS).contains(&puppet.parts.len()) {
+        return Err(format!("the puppet has {} parts, not 1 to {MAX_PARTS}", puppet.parts.len()));
+    }
+    if puppet.joints.len() > mesh.vertex_count() {
+        return Err(format!("the puppet has {} joints, more than its mesh's vertices", puppet.joints.len()));
+    }
+    if let Some((p, _)) = puppet.parts.iter().enumerate().find(|(_, part)| part.name.len() > MAX_PART_NAME_BYTES) {
+        return Err(format!("the name of the puppet's part {p} is longer than {MAX_PART_NAME_BYTES} bytes"));
+    }
+    puppet.joins(mesh).map(drop).map_err(|e| e.to_string())
+}
+
+/// A version-3 file's puppet section (module documentation), every length checked
+/// against what is left before the checksum.
+fn read_puppet(cursor: &mut Cursor<'_>, vertices: u64) -> Result<Puppet, OperatorFileError> {
+    let short = |cursor: &Cursor<'_>| {
+        OperatorFileError::Invalid(format!("the puppet's section ends before its counts say (at byte {})", cursor.at))
+    };
+    let count = |cursor: &mut Cursor<'_>| -> Result<u64, OperatorFileError> {
+        if cursor.left() < 4 {
+            return Err(short(cursor));
+        }
+        Ok(u64::from(cursor.u32s(1)[0]))
+    };
+    let parts = count(cursor)?;
+    let joints = count(cursor)?;
+    if !(1..=MAX_PARTS as u64).contains(&parts) {
+        return Err(OperatorFileError::Count { what: "puppet's part count", value: parts });
+    }
+    if joints > vertices {
+        return Err(OperatorFileError::Count { what: "puppet's joint count", value: joints });
+    }
+    let mut puppet = Puppet::default();
+    for _ in 0..parts {
+        let depth = count(cursor)? as u32 as i32;
+        let triangles = count(cursor)?;
+        let name = count(cursor)?;
+        if name > MAX_PART_NAME_BYTES as u64 {
+            return Err(OperatorFileError::Count { what: "puppet's part name length", value: name });
+        }
+        if (cursor.left() as u64) < name + 4 * triangles {
+            return Err(short(cursor));
+        }
+        let name = String::from_utf8(cursor.take(name as usize).to_vec())
+            .map_err(|_| OperatorFileError::Invalid("a part's name is not UTF-8".into()))?;
+        puppet.parts.push(Part { name, triangles: cursor.u32s(triangles), depth });
+    }
+    if (cursor.left() as u64) < 24 * joints {
+        return Err(short(cursor));
+    }
+    for _ in 0..joints {
+        let p = cursor.f64s(2);
+        let [front, back] = [0, 1].map(|_| cursor.u32s(1)[0] as usize);
+        puppet.joints.push(Joint { point: [p[0], p[1]], parts: [front, back] });
+    }
+    Ok(puppet)
 }
 
 /// Reads little-endian numbers in order (every length was checked beforehand).
@@ -316,6 +419,11 @@ struct Cursor<'a> {
 }
 
 impl Cursor<'_> {
+    /// The bytes left.
+    fn left(&self) -> usize {
+        self.bytes.len() - self.at
+    }
+
     fn take(&mut self, len: usize) -> &[u8] {
         let taken = &self.bytes[self.at..self.at + len];
         self.at += len;

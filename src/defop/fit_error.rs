@@ -34,6 +34,8 @@ pub enum FitError {
     NoSamples,
     /// A handle is not a point of the mesh (the deformers' check).
     InvalidHandle(crate::deform::DeformError),
+    /// An operator's puppet does not fit the mesh it is written with (why).
+    InvalidPuppet(String),
     /// Two handles have the same rest position.
     CoincidentHandles {
         /// The first handle.
@@ -101,6 +103,7 @@ impl fmt::Display for FitError {
             Self::NoHandles => write!(f, "a deformation operator needs at least one handle"),
             Self::NoSamples => write!(f, "a deformation operator needs at least one training sample"),
             Self::InvalidHandle(e) => e.fmt(f),
+            Self::InvalidPuppet(why) => write!(f, "the operator's puppet does not fit the mesh: {why}"),
             Self::CoincidentHandles { first, second } => {
                 write!(f, "handles {first} and {second} have the same rest position")
             }

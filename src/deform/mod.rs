@@ -67,5 +67,5 @@ pub use options::{
     Access, AkapOptions, ArapOptions, CauchyGreenOptions, Integrator, Method, MethodOptions, MlsOptions, MlsVariant,
     Setting, Settings, CAGE_VERTICES_RANGE, LAMBDA_RANGE, MLS_ALPHA_RANGE, SMOOTHNESS_RANGE, STIFFNESS_RANGE,
 };
-pub use puppet::{Joint, Part, Puppet, MAX_PART_NAME_BYTES};
+pub use puppet::{Joint, Part, Puppet, MAX_PARTS, MAX_PART_NAME_BYTES};
 pub use settings::SettingValue;

@@ -44,6 +44,10 @@ pub const LEAST_MOTION: f64 = 1e-8;
 /// costs 1/1000 of the handles' least force.
 pub const AKAP_TURN_WEIGHT: f64 = 1e-3;
 
+/// The most parts a puppet read from a file or a drawing has (the layers of an SVG, the
+/// parts of a mesh file or an operator file).
+pub const MAX_PARTS: usize = 256;
+
 /// The longest name of a part that the bindings and the mesh files take, in bytes.
 pub const MAX_PART_NAME_BYTES: usize = 1024;
 

@@ -30,9 +30,8 @@ use std::fmt::Write;
 
 use serde::{Deserialize, Serialize};
 
-use crate::deform::{DeformError, Joint, Part, Puppet, MAX_PART_NAME_BYTES, STIFFNESS_RANGE};
+use crate::deform::{DeformError, Joint, Part, Puppet, MAX_PARTS, MAX_PART_NAME_BYTES, STIFFNESS_RANGE};
 use crate::geometry::Point;
-use crate::import::svg::MAX_LAYERS;
 use crate::import::{ImportError, Limits};
 use crate::mesh::Mesh;
 use crate::message::Number;
@@ -148,10 +147,10 @@ fn check_uvs(uvs: &[Point], vertices: usize) -> Result<(), ImportError> {
     Ok(())
 }
 
-/// Checks a puppet's sizes against the limits: at most [`MAX_LAYERS`] parts, each name at
+/// Checks a puppet's sizes against the limits: at most [`MAX_PARTS`] parts, each name at
 /// most [`MAX_PART_NAME_BYTES`], at most `max_vertices` joints.
 fn check_puppet_sizes(puppet: &Puppet, limits: &Limits) -> Result<(), ImportError> {
-    Limits::check(puppet.parts.len(), MAX_LAYERS, "the puppet", "parts")?;
+    Limits::check(puppet.parts.len(), MAX_PARTS, "the puppet", "parts")?;
     Limits::check(puppet.joints.len(), limits.max_vertices, "the puppet", "joints")?;
     if let Some((p, part)) = puppet.parts.iter().enumerate().find(|(_, part)| part.name.len() > MAX_PART_NAME_BYTES) {
         return Err(ImportError::Puppet(DeformError::InvalidParts {
@@ -325,7 +324,7 @@ pub(crate) fn to_json_mesh(
                 .collect()
         }),
         joints: puppet.map(|p| {
-            // Part indices are below `MAX_LAYERS` (checked).
+            // Part indices are below `MAX_PARTS` (checked).
             p.joints.iter().map(|j| JsonJoint { point: j.point, parts: j.parts.map(|i| i as u32) }).collect()
         }),
     })
@@ -380,7 +379,7 @@ const OBJ_IGNORED: [&str; 34] = [
 /// alone is `default`), holding the faces that follow it until the next `g` (a name seen
 /// before adds to its part), in the order the groups first hold a face, each of depth its
 /// place (0 at the back). Faces before the first `g` are in `default`; groups without
-/// faces make no part. At most [`MAX_LAYERS`] parts, and names of at most
+/// faces make no part. At most [`MAX_PARTS`] parts, and names of at most
 /// [`MAX_PART_NAME_BYTES`]. A file without `g` is one shape (`puppet` is `None`).
 pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
     limits.validate()?;
@@ -527,7 +526,7 @@ pub fn read_obj(text: &str, limits: &Limits) -> Result<MeshFile, ImportError> {
                         let next = groups.len();
                         let part = *group_of.entry(group.clone()).or_insert(next);
                         if part == next {
-                            Limits::check(next + 1, MAX_LAYERS, "the OBJ's groups", "parts")?;
+                            Limits::check(next + 1, MAX_PARTS, "the OBJ's groups", "parts")?;
                             groups.push((group.clone(), Vec::new()));
                         }
                         group_part = Some(part);

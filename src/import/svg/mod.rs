@@ -132,8 +132,9 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
     Ok(SvgShape { outlines, paths, skipped })
 }
 
-/// Most layers [`import_svg_layers`] takes (their overlaps are found pair by pair).
-pub const MAX_LAYERS: usize = 256;
+/// Most layers [`import_svg_layers`] takes (their overlaps are found pair by pair): a
+/// puppet's most parts, [`crate::deform::MAX_PARTS`].
+pub const MAX_LAYERS: usize = crate::deform::MAX_PARTS;
 
 /// One layer of an SVG document (see [`import_svg_layers`]).
 #[derive(Debug, Clone, PartialEq)]
