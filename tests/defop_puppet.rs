@@ -7,8 +7,9 @@ use akap::defop::{
     read_operator, write_operator, DefOpError, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Start,
     TrainOptions, Trainer,
 };
-use akap::deform::{Joint, Part, Puppet};
+use akap::deform::{AkapOptions, Deformer, Joint, Part, Puppet};
 use akap::geometry::Point;
+use akap::pose::Poser;
 use akap::{triangulate, ErrorCode, Mesh, Outline, TriangulationOptions};
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -260,6 +261,18 @@ fn a_rig_trained_on_a_puppet_reproduces_held_out_ground_truths_and_its_file_reco
         assert!(read_operator(&altered).is_err(), "a flip at byte {at} was not noticed");
     }
     // An operator's puppet must fit the mesh it is written with.
-    let off = Puppet { joints: vec![Joint { point: [3.5, 2.55], parts: [ARM, TORSO] }], ..puppet };
-    assert!(write_operator(&mesh, &operator.with_puppet(Some(off))).is_err());
+    let off = Puppet { joints: vec![Joint { point: [3.5, 2.55], parts: [ARM, TORSO] }], ..puppet.clone() };
+    assert!(write_operator(&mesh, &operator.clone().with_puppet(Some(off))).is_err());
+
+    // The rig poses the puppet it was trained on, and no other.
+    let poser = |puppet: Puppet| {
+        let mut deformer = Deformer::with_puppet(mesh.clone(), AkapOptions::default(), puppet, None).unwrap();
+        deformer.set_handle_vertices(&handle_vertices).unwrap();
+        Poser::new(deformer)
+    };
+    let mut same = poser(puppet.clone());
+    same.set_rig(Some(operator.clone())).unwrap();
+    let moved = Puppet { joints: vec![Joint { point: [1.95, 2.5], parts: [ARM, TORSO] }], ..puppet };
+    let error = poser(moved).set_rig(Some(operator)).unwrap_err();
+    assert!(error.to_string().contains("trained on another puppet"), "{error}");
 }

@@ -706,7 +706,9 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Poses with `operator`, a trained rig, instead of stepping: each frame the pose is
     /// the rig's for the handles' targets (there is nothing to step through). Refused
-    /// ([`DeformError::RigMismatch`]) for a rig of other handle or vertex counts; the
+    /// ([`DeformError::RigMismatch`]) for a rig of other handle or vertex counts, and
+    /// ([`DeformError::InvalidParts`]) for a rig trained on another puppet than the
+    /// deformer's (other parts or joints, or one for a puppet and the other not); the
     /// caller is to check it was trained for this mesh and these handle points. `None`
     /// poses with the deformer again; so does any new handle set.
     pub fn set_rig(&mut self, operator: Option<Operator>) -> Result<(), DeformError> {
@@ -720,6 +722,13 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         );
         if rig != deformer {
             return Err(DeformError::RigMismatch { rig, deformer });
+        }
+        if operator.puppet() != self.deformer.borrow().puppet() {
+            return Err(DeformError::InvalidParts {
+                reason: "the rig was trained on another puppet (its parts or joints differ from the deformer's): \
+                         train it again for this puppet"
+                    .into(),
+            });
         }
         let n = self.handles.len();
         self.rig = Some(Rig { operator, evaluated: Vec::new(), targets: vec![0.0; 2 * n] });

@@ -7,6 +7,7 @@ use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;
 use super::mesh::{read_mesh, JsMesh};
+use super::puppet::{joints_to_js, parts_to_js, read_optional_puppet};
 use super::read::{self, Options};
 use super::{flat, limits, object, pairs};
 use crate::defop::sampling::Sampling;
@@ -14,11 +15,12 @@ use crate::defop::{
     read_operator, write_operator, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
     Progress, Start, TrainError, TrainOptions, Trainer,
 };
+use crate::deform::Puppet;
 use crate::mesh::Mesh;
 
 /// The trainer's option names.
-const TRAINER_OPTIONS: [&str; 9] =
-    ["energy", "basis", "samples", "radius", "sampling", "spatial", "seed", "canonical", "fixed"];
+const TRAINER_OPTIONS: [&str; 11] =
+    ["energy", "basis", "samples", "radius", "sampling", "spatial", "seed", "canonical", "fixed", "parts", "joints"];
 const ENERGIES: [(&str, Energy); 2] = [("sarap", Energy::SArap), ("arap", Energy::Arap)];
 const BASES: [(&str, BasisKind); 4] = [
     ("linear", BasisKind::Linear),
@@ -30,7 +32,8 @@ const SAMPLINGS: [(&str, Sampling); 3] =
     [("disc", Sampling::Disc), ("voronoi", Sampling::Voronoi), ("mixed", Sampling::Mixed)];
 
 /// Reads `{ energy?, basis?, samples?, radius?, sampling?, spatial?, seed?, canonical?,
-/// fixed? }`.
+/// fixed?, parts?, joints? }` (`parts` and `joints`: a puppet's, as the `Deformer` takes
+/// them; joints need parts).
 fn train_options(value: &JsValue) -> Result<TrainOptions, BindingError> {
     let given = Options::read(value, "DefOp training", &TRAINER_OPTIONS)?;
     let mut options = TrainOptions::default();
@@ -58,7 +61,14 @@ fn train_options(value: &JsValue) -> Result<TrainOptions, BindingError> {
             })
             .collect::<Result<_, _>>()?;
     }
+    options.puppet = given_puppet(&given)?;
     Ok(options)
+}
+
+/// The puppet of options `{ parts?, joints? }`, as the `Deformer`'s options give it.
+fn given_puppet(given: &Options) -> Result<Option<Puppet>, BindingError> {
+    let none = JsValue::UNDEFINED;
+    read_optional_puppet(given.get("parts").unwrap_or(&none), given.get("joints").unwrap_or(&none))
 }
 
 /// Handles at vertices (a `Uint32Array`), as mesh points.
@@ -417,6 +427,26 @@ impl JsDefOp {
     pub fn vertex_count(&self) -> usize {
         self.operator.vertex_count()
     }
+
+    /// The parts of the puppet the operator was trained on (`[{ name, triangles, depth }]`),
+    /// or undefined for one shape.
+    #[wasm_bindgen(getter)]
+    pub fn parts(&self) -> Result<JsValue, BindingError> {
+        match self.operator.puppet() {
+            Some(puppet) => Ok(parts_to_js(&puppet.parts)?.into()),
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
+
+    /// The joints of the puppet the operator was trained on (`[{ point, parts: [front,
+    /// back] }]`), or undefined for one shape.
+    #[wasm_bindgen(getter)]
+    pub fn joints(&self) -> Result<JsValue, BindingError> {
+        match self.operator.puppet() {
+            Some(puppet) => Ok(joints_to_js(&puppet.joints)?.into()),
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
 }
 
 /// A ground-truth solver for a worker of a `DefOpTrainer`: made from the same mesh, handles
@@ -491,7 +521,8 @@ impl JsDefOpSolver {
 /// The variational deformation a DefOp approximates: the mesh's pose of least ARAP or
 /// S-ARAP energy with a handle on each vertex of `handles` (`Uint32Array`) exactly at
 /// `targets` (`Float64Array`, 2 per handle), from the rest pose. `options`: `{ energy?:
-/// "sarap" | "arap" }`. Returns the positions (`Float64Array`, 2 per vertex).
+/// "sarap" | "arap", parts?, joints? }` (a puppet's, joined at its joints). Returns the
+/// positions (`Float64Array`, 2 per vertex).
 #[wasm_bindgen(js_name = groundTruth)]
 pub fn ground_truth(
     positions: JsValue,
@@ -500,13 +531,18 @@ pub fn ground_truth(
     targets: JsValue,
     options: JsValue,
 ) -> Result<Vec<f64>, BindingError> {
-    let given = Options::read(&options, "ground truth", &["energy"])?;
+    let given = Options::read(&options, "ground truth", &["energy", "parts", "joints"])?;
     let energy = given.choice("energy", &ENERGIES)?.unwrap_or(Energy::SArap);
+    let puppet = given_puppet(&given)?;
     let mesh = read_mesh(&positions, &triangles)?;
     let handles = read::uint32s(&handles, "handles", limits().max_vertices)?;
     let targets = pairs(&read::float64s(&targets, "targets", 2 * limits().max_vertices)?, "targets")?;
-    let mut solver = GroundTruth::new(&mesh, Handles::Vertices(&handles), energy, GroundTruthOptions::default())
-        .map_err(TrainError::from)?;
+    let (h, o) = (Handles::Vertices(&handles), GroundTruthOptions::default());
+    let mut solver = match &puppet {
+        Some(puppet) => GroundTruth::with_puppet(&mesh, puppet, h, energy, o),
+        None => GroundTruth::new(&mesh, h, energy, o),
+    }
+    .map_err(TrainError::from)?;
     let report = solver.solve(&targets, Start::Rest).map_err(TrainError::from)?;
     Ok(report.positions.iter().flatten().copied().collect())
 }

@@ -13,6 +13,7 @@ import {
   DefOpTrainer,
   defaultShape,
   groundTruth,
+  importPuppet,
   init,
   readOperatorFile,
   triangulate,
@@ -151,6 +152,57 @@ describe("DefOp", () => {
     expect(
       () => new DefOpTrainer(m.positions, m.triangles, handles, { canonical: "yes" as unknown as boolean }),
     ).toThrow(/canonical/);
+  });
+
+  it("trains on a puppet, whose operator and file record it, the free hat held still", () => {
+    const puppet = importPuppet(readFileSync("tests/fixtures/svg/layered-puppet.svg", "utf8"), { vertices: 300 });
+    expect(puppet.parts.map((p) => p.name)).toEqual(["Torso", "Head", "Arm", "Hat"]);
+    const first = (part: number) => puppet.triangles[3 * puppet.parts[part]!.triangles[0]!]!;
+    const last = (part: number) => {
+      const t = puppet.parts[part]!.triangles;
+      return puppet.triangles[3 * t[t.length - 1]! + 2]!;
+    };
+    const handles = [first(0), last(0), last(2)];
+    const { positions, triangles, parts, joints } = puppet;
+    // A mesh in pieces needs its parts.
+    expect(() => new DefOpTrainer(positions, triangles, handles, { samples: 6 })).toThrow(
+      expect.objectContaining({ code: "invalid-mesh" }),
+    );
+    const trainer = new DefOpTrainer(positions, triangles, handles, { energy: "arap", samples: 8, parts, joints });
+    while (trainer.advance(50).stage !== "done");
+    const op = trainer.finish();
+    const sheet = (p: { name: string; triangles: Uint32Array; depth: number }) => ({
+      name: p.name,
+      triangles: Array.from(p.triangles),
+      depth: p.depth,
+    });
+    expect(op.parts!.map(sheet)).toEqual(parts.map(sheet));
+    expect(op.joints).toEqual(joints);
+    const bytes = op.toBytes();
+    expect(bytes[8]).toBe(3);
+    const plain = readOperatorFile(bytes);
+    expect(plain.parts!.map(sheet)).toEqual(parts.map(sheet));
+    expect(plain.joints).toEqual(joints);
+    const again = DefOp.fromBytes(bytes);
+    expect(again.parts!.map(sheet)).toEqual(parts.map(sheet));
+    // Any targets: the two evaluators agree, and the hat, which no handle reaches, stays.
+    const targets = at(positions, handles).map((x, i) => x + [3, -2, 1, 4, -5, 2][i]!);
+    const posed = op.evaluate(targets);
+    const out = new Float64Array(2 * plain.vertexCount);
+    plain.evaluateInto(targets, out);
+    out.forEach((x, i) => expect(Math.abs(x - posed[i]!)).toBeLessThan(1e-9));
+    for (const t of parts[3]!.triangles) {
+      for (let c = 0; c < 3; c++) {
+        const v = triangles[3 * t + c]!;
+        expect(Math.hypot(posed[2 * v]! - positions[2 * v]!, posed[2 * v + 1]! - positions[2 * v + 1]!)).toBeLessThan(
+          1e-9,
+        );
+      }
+    }
+    expect(() => new DefOpTrainer(positions, triangles, handles, { samples: 6, joints })).toThrow(
+      /joints were given without parts/,
+    );
+    [op, again].forEach((o) => o.free());
   });
 
   it("reads a version-1 operator file, with and without wasm", () => {

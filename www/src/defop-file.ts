@@ -28,6 +28,11 @@ export interface OperatorFile {
   readonly canonical: boolean;
   /** Handles held at rest (ascending): their targets are ignored. */
   readonly fixed: Uint32Array;
+  /** The parts of the puppet the operator was trained on (a version-3 file), else
+   * `undefined`: `triangles` are indices of the mesh's triangles, larger `depth` in front. */
+  readonly parts?: { name: string; triangles: Uint32Array; depth: number }[];
+  /** The puppet's joints (a version-3 file), `parts` `[front, back]`, else `undefined`. */
+  readonly joints?: { point: [number, number]; parts: [number, number] }[];
   /** Writes the vertex positions (2 per vertex) for handle targets (2 per handle) to `out`. */
   evaluateInto(targets: ArrayLike<number>, out: Float64Array): void;
 }
@@ -191,7 +196,7 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   const u32 = (at: number) => view.getUint32(at, true);
   const version = u32(8);
-  if (version !== 1 && version !== 2) fail(`version ${version} (only 1 and 2 are read)`);
+  if (version < 1 || version > 3) fail(`version ${version} (only 1 to 3 are read)`);
   const [nv, nt, n, m, phi] = [12, 16, 20, 24, 28].map(u32) as [number, number, number, number, number];
   // Version 1 holds zeros where version 2 holds the canonical flag and the fixed count.
   const [kind, reduced, canonical, f] = [bytes[32]!, bytes[33]!, bytes[35]!, u32(36)];
@@ -206,7 +211,9 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   ]!;
   const expected =
     HEADER + 16 * nv + 12 * nt + 48 * n + 4 * f + 8 * k * m + 16 * phi * psi + (reduced ? 8 * phi * nv : 0) + 8;
-  if (bytes.length !== expected) fail(`${bytes.length} bytes where its counts need ${expected}`);
+  // Version 3: a puppet's section follows, its length read from it.
+  if (version < 3 ? bytes.length !== expected : bytes.length < expected + 8)
+    fail(`${bytes.length} bytes where its counts need ${expected}`);
   const [hi, lo] = fnv1a(bytes.subarray(0, bytes.length - 8));
   if (u32(bytes.length - 8) !== lo || u32(bytes.length - 4) !== hi) fail("the checksum does not match");
 
@@ -229,6 +236,42 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   const hat = new Float64Array(d);
   const coefficients = f64s(2 * phi * psi);
   const reduction = reduced ? f64s(phi * nv) : undefined;
+  const puppet = version === 3 ? readPuppet() : undefined;
+  if (at !== bytes.length - 8) fail(`${bytes.length} bytes where its counts need ${at + 8}`);
+  /** The puppet's section (Rust's layout): parts, joints, each part, each joint. */
+  function readPuppet() {
+    const need = (count: number) => {
+      if (at + count > bytes.length - 8) fail("the puppet's section ends before its counts say");
+    };
+    const u32s = (count: number) => {
+      need(4 * count);
+      const out = new Uint32Array(count);
+      for (let k = 0; k < count; k++, at += 4) out[k] = u32(at);
+      return out;
+    };
+    const [partCount, jointCount] = u32s(2) as unknown as [number, number];
+    if (partCount < 1 || partCount > 256 || jointCount > nv) fail("the puppet's counts are beyond the limits");
+    const parts = [];
+    for (let p = 0; p < partCount; p++) {
+      const [depth, count, length] = u32s(3) as unknown as [number, number, number];
+      if (length > 1024) fail("a part's name is longer than 1024 bytes");
+      need(length);
+      const name = new TextDecoder("utf-8", { fatal: true }).decode(bytes.subarray(at, at + length));
+      at += length;
+      const triangles = u32s(count);
+      if (triangles.some((t) => t >= nt)) fail("a part names a triangle the mesh does not have");
+      parts.push({ name, triangles, depth: depth | 0 });
+    }
+    need(24 * jointCount);
+    const joints = [];
+    for (let j = 0; j < jointCount; j++) {
+      const [x, y] = f64s(2) as unknown as [number, number];
+      const [front, back] = u32s(2) as unknown as [number, number];
+      if (front >= partCount || back >= partCount || front === back) fail("a joint names parts it cannot join");
+      joints.push({ point: [x, y] as [number, number], parts: [front, back] as [number, number] });
+    }
+    return { parts, joints };
+  }
   const psiValues = new Float64Array(psi);
   const nodal = new Float64Array(2 * phi);
   const inv = 1 / scale;
@@ -241,6 +284,7 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
     rest,
     canonical: canonical === 1,
     fixed,
+    ...(puppet ?? {}),
     evaluateInto(targets: ArrayLike<number>, out: Float64Array): void {
       if (targets.length !== d) throw new Error(`targets has ${targets.length} numbers; ${n} handles need ${d}`);
       if (out.length !== 2 * nv) throw new Error(`out has ${out.length} numbers; ${nv} vertices need ${2 * nv}`);

@@ -24,7 +24,7 @@ import {
   type HandleSpec,
   type Indices,
 } from "./internal/arrays.js";
-import type { MeshData } from "./core.js";
+import type { MeshData, PuppetJoint, PuppetSheet } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
 import { assertLoaded, raw, registerBinding, type rawTypes } from "./internal/wasm.js";
 
@@ -57,6 +57,16 @@ export interface DefOpTrainerOptions {
    * (default none): the operator keeps them there, and ignores the targets given for them.
    */
   fixed?: number[];
+  /**
+   * A puppet's parts (as the `Deformer` and `importPuppet` give them; other fields, such as
+   * `paths`, are left alone): the ground truth then keeps each joint's two points together,
+   * holds the sheets no handle reaches where they are, and the operator (and its file)
+   * records the puppet, so that its rig poses only that puppet. A mesh in several pieces
+   * needs them.
+   */
+  parts?: readonly PuppetSheet[];
+  /** The puppet's joints (needs `parts`; none if left out). */
+  joints?: readonly PuppetJoint[];
 }
 
 export type { HandleSpec } from "./internal/arrays.js";
@@ -285,6 +295,17 @@ export class DefOp {
     return this.#raw.vertexCount;
   }
 
+  /** The parts of the puppet it was trained on (its file records them), or `undefined`
+   * for one shape. */
+  get parts(): PuppetSheet[] | undefined {
+    return this.#raw.parts as PuppetSheet[] | undefined;
+  }
+
+  /** The joints of the puppet it was trained on, or `undefined` for one shape. */
+  get joints(): PuppetJoint[] | undefined {
+    return this.#raw.joints as PuppetJoint[] | undefined;
+  }
+
   /** Releases the WebAssembly memory. */
   free(): void {
     this.#inner?.free();
@@ -343,14 +364,15 @@ export class DefOpSolver {
 /**
  * The deformation a DefOp approximates: the pose of least ARAP or S-ARAP energy (default)
  * with a handle on each vertex of `handles` exactly at `targets` (2 per handle), solved
- * from the rest pose by Newton's method. Returns the positions (2 per vertex).
+ * from the rest pose by Newton's method; for a puppet (`parts` and `joints`), with its
+ * sheets joined at the joints. Returns the positions (2 per vertex).
  */
 export function groundTruth(
   positions: Coordinates,
   triangles: Indices,
   handles: Indices,
   targets: Coordinates,
-  options: { energy?: "sarap" | "arap" } = {},
+  options: { energy?: "sarap" | "arap"; parts?: readonly PuppetSheet[]; joints?: readonly PuppetJoint[] } = {},
 ): Float64Array {
   assertLoaded();
   return raw.groundTruth(
