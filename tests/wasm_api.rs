@@ -244,7 +244,7 @@ fn careless_callers_get_errors_in_their_own_numbers_and_never_nan() {
         strip.extend([2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1]);
     }
     assert_eq!(
-        message(mesh_to_obj(f64s(&positions), u32s(&strip), JsValue::UNDEFINED)),
+        message(mesh_to_obj(f64s(&positions), u32s(&strip), JsValue::UNDEFINED, JsValue::UNDEFINED)),
         "the mesh has 100002 vertices (200004 numbers), more than the limit of 100000 vertices"
     );
 }

@@ -154,7 +154,7 @@ pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitEr
     let coordinates = basis.coordinates();
     let m = basis.scaled_centres().len() / coordinates.len().max(1);
     if let Some(puppet) = operator.puppet() {
-        check_puppet(puppet, mesh).map_err(|why| FitError::InvalidPuppet(why))?;
+        check_puppet(puppet, mesh).map_err(FitError::InvalidPuppet)?;
     }
     let version = if operator.puppet().is_some() { VERSION } else { VERSION_WITHOUT_PUPPET };
     let mut out = Vec::new();

@@ -158,6 +158,10 @@ pub const JOINT_WEIGHT: f64 = 1e4;
 /// (how such a part turns about its one joint).
 pub const LEAST_MOTION_WEIGHT: f64 = 1e-6;
 
+/// A puppet's joint in the solver: its six vertices with their blend coefficients and,
+/// per coordinate, the slots of its penalty's 6 x 6 Hessian entries (`NONE` where fixed).
+type JointTerm = ([(u32, f64); 6], [[usize; 36]; 2]);
+
 /// One triangle: its rest shape, vertices and the slots of its 6 x 6 Hessian entries.
 #[derive(Debug, Clone)]
 struct Element {
@@ -189,7 +193,7 @@ pub struct GroundTruth {
     /// A puppet's joints: per joint, its six vertices with their blend coefficients
     /// (`x_front - x_back = sum c_k x_(v_k)`) and, per coordinate, the slot of each entry
     /// `(a, b)` of the penalty's Hessian at `6 a + b` (`NONE` where either vertex is fixed).
-    joints: Vec<([(u32, f64); 6], [[usize; 36]; 2])>,
+    joints: Vec<JointTerm>,
     /// The joints' penalty weight, `w`.
     joint_weight: f64,
     /// Per unknown, the spring to rest of parts no handle holds itself (`μ D`; 0 elsewhere).
