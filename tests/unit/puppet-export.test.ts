@@ -1,7 +1,7 @@
 /** SVG export of a posed puppet: each part's art carried by its own sheet, back to front. */
 import { beforeAll, describe, expect, it } from "vitest";
-import { importPuppet, init, type ImportedPuppet } from "../../www/src/index.js";
-import { puppetSvg } from "../../www/src/widget/store/pose-export.js";
+import { importPuppet, init, meshFromJson, meshFromObj, type ImportedPuppet } from "../../www/src/index.js";
+import { posedMesh, puppetSvg } from "../../www/src/widget/store/pose-export.js";
 
 beforeAll(async () => {
   await init();
@@ -118,5 +118,32 @@ describe("SVG export of a posed puppet", () => {
     expect(layers(svg).map((l) => l.id)).toEqual(["left__arm_____hand_", "part-2_left__arm_____hand_"]);
     const again = importPuppet(svg, { vertices: 300 });
     expect(again.parts.map((p) => p.name)).toEqual(['left "arm"\n& <hand>', '2 left "arm"\n& <hand>']);
+  });
+
+  it("writes a posed puppet's mesh that reads back as the puppet in that pose", () => {
+    const puppet = importPuppet(LAYERED, { vertices: 300 });
+    const [jx, jy] = puppet.joints[0]!.point;
+    // The whole puppet moved by (10, 5), the arm also turned a quarter turn about the joint:
+    // the joint goes to (jx + 10, jy + 5), where neither sheet was at rest.
+    const arm = new Set(
+      [...puppet.parts[1]!.triangles].flatMap((t) => [0, 1, 2].map((k) => puppet.triangles[3 * t + k]!)),
+    );
+    const posed = Float64Array.from(puppet.positions);
+    for (let v = 0; v < posed.length / 2; v++) {
+      let [x, y] = [posed[2 * v]!, posed[2 * v + 1]!];
+      if (arm.has(v)) [x, y] = [jx - (y - jy), jy + (x - jx)];
+      posed.set([x + 10, y + 5], 2 * v);
+    }
+    const shape = { mesh: { triangles: puppet.triangles }, uvs: new Float64Array(posed.length) };
+    const extras = { puppet: { mesh: puppet, parts: puppet.parts, joints: puppet.joints } };
+    const back = meshFromJson(posedMesh(shape, posed, "json", extras));
+    expect(back.parts!.map((p) => [p.name, Array.from(p.triangles)])).toEqual(
+      puppet.parts.map((p) => [p.name, Array.from(p.triangles)]),
+    );
+    const [x, y] = back.joints![0]!.point;
+    expect(Math.hypot(x - (jx + 10), y - (jy + 5))).toBeLessThan(1e-9);
+    // OBJ: the parts as groups.
+    const obj = meshFromObj(posedMesh(shape, posed, "obj", extras));
+    expect(obj.parts!.map((p) => p.name)).toEqual(["torso", "arm"]);
   });
 });

@@ -3,6 +3,7 @@
  * outline or vector art as SVG, and a file download helper for pages.
  */
 import { PointMapper, meshToJson, meshToObj, pathData, type PuppetPart, type VectorPath } from "../../import.js";
+import type { PuppetJoint, PuppetSheet } from "../../core.js";
 import { boundaryLoops } from "../model/geometry.js";
 import { drawOrder, type Layering } from "../model/layers.js";
 import { locate } from "../model/picking.js";
@@ -134,7 +135,7 @@ export function puppetSvg(
 function mapOnSheet(
   mesh: { positions: Float64Array; triangles: Uint32Array },
   triangles: ArrayLike<number>,
-  paths: readonly VectorPath[],
+  paths: readonly { points: Float64Array }[],
   positions: Float64Array,
 ): Float64Array[] {
   const count = paths.reduce((n, p) => n + p.points.length, 0);
@@ -214,18 +215,68 @@ function escapeAttribute(text: string): string {
  * would see) as JSON or OBJ text, with its texture coordinates, and in JSON its painted
  * `stiffness` (OBJ has no place for it): the core's writers. With a depth order (`layers`)
  * the triangles are written back to front, as they are drawn (and the stiffness with them).
+ * With a puppet (`extras.puppet`, its rest mesh, parts and joints), its parts are written
+ * (their triangles renumbered with the order; OBJ's groups) and in JSON its joints where
+ * they are in the pose ({@link posedJoints}), so that the file reads back as the puppet in
+ * that pose.
  */
 export function posedMesh(
   shape: { mesh: { triangles: Uint32Array }; uvs: ArrayLike<number> },
   positions: Float64Array,
   format: "json" | "obj",
-  extras: { stiffness?: Float64Array | undefined; layers?: Layering | undefined } = {},
+  extras: {
+    stiffness?: Float64Array | undefined;
+    layers?: Layering | undefined;
+    puppet?: PosedPuppet | undefined;
+  } = {},
 ): string {
   const { triangles, order } = backToFront(shape.mesh.triangles, extras.layers);
   const pose = { positions, triangles, uvs: Float64Array.from(shape.uvs) };
-  if (format === "obj") return meshToObj(pose);
+  const puppet = extras.puppet;
+  let sheets: Pick<PuppetSheet, "name" | "triangles" | "depth">[] | undefined;
+  if (puppet) {
+    const place = new Uint32Array(order.length);
+    order.forEach((t, i) => (place[t] = i));
+    sheets = puppet.parts.map(({ name, triangles, depth }) => ({
+      name,
+      depth,
+      triangles: Uint32Array.from(triangles, (t) => place[t]!),
+    }));
+  }
+  if (format === "obj") return meshToObj({ ...pose, ...(sheets ? { parts: sheets } : {}) });
   const stiffness = extras.stiffness && order.map((t) => extras.stiffness![t]!);
-  return meshToJson({ ...pose, ...(stiffness ? { stiffness } : {}) });
+  const joints = puppet && posedJoints(puppet.mesh, puppet.parts, puppet.joints, positions);
+  return meshToJson({ ...pose, ...(stiffness ? { stiffness } : {}), ...(sheets ? { parts: sheets, joints } : {}) });
+}
+
+/** A puppet as {@link posedMesh} takes it: its rest mesh, parts and joints. */
+export interface PosedPuppet {
+  mesh: { positions: Float64Array; triangles: Uint32Array };
+  parts: readonly Pick<PuppetSheet, "name" | "triangles" | "depth">[];
+  joints: readonly PuppetJoint[];
+}
+
+/**
+ * A puppet's joints in a pose: each joint's point carried through its front part's sheet
+ * and through its back part's (as {@link puppetSvg} carries art), and put halfway between
+ * the two, which the deformers keep within a tiny fraction of the size of each other; so
+ * the point lies on both posed sheets, as a joint's point must at rest.
+ */
+export function posedJoints(
+  mesh: { positions: Float64Array; triangles: Uint32Array },
+  parts: readonly Pick<PuppetSheet, "triangles">[],
+  joints: readonly PuppetJoint[],
+  positions: Float64Array,
+): PuppetJoint[] {
+  return joints.map(({ point, parts: [front, back] }) => {
+    const at = (part: number) => {
+      const sheet = parts[part];
+      if (!sheet) throw new RangeError(`a joint names part ${part}, but the puppet has ${parts.length}`);
+      return mapOnSheet(mesh, sheet.triangles, [{ points: Float64Array.from(point) }], positions)[0]!;
+    };
+    const [a, b] = [at(front), at(back)];
+    return { point: [(a[0]! + b[0]!) / 2, (a[1]! + b[1]!) / 2], parts: [front, back] };
+  });
 }
 
 /** The triangles in drawing order, and the original index of each. */
