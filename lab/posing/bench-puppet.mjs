@@ -13,6 +13,7 @@
 //   npm run build && node lab/posing/bench-puppet.mjs [--method akap|arap] [--rounds N] [vertices ...]
 import { readFileSync } from "node:fs";
 import process from "node:process";
+import { URL } from "node:url";
 import { performance } from "node:perf_hooks";
 import { Deformer, importPuppet, importSvg, init, triangulateToVertices } from "../../www/lib/index.js";
 
