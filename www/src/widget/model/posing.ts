@@ -23,6 +23,15 @@ import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
 import type { Rig } from "./rig.js";
 import type { Loaded, Shape } from "./shape.js";
 import { newHandle, type Handle, type HandleState } from "./handle.js";
+import {
+  deformerJoints,
+  importedDepths,
+  puppetOptions,
+  sameJoints,
+  setDeformerJoints,
+  stepDepth,
+  type Joint,
+} from "./puppet.js";
 
 export { newHandle, type Handle, type HandleState } from "./handle.js";
 
@@ -45,6 +54,9 @@ export interface Snapshot {
   stiffness?: Float64Array | undefined;
   /** The bones (work saved before bones existed has none). */
   bones?: Bone[] | undefined;
+  /** A puppet's parts' depths and its deformer's joints (undefined for other shapes). */
+  depths?: number[] | undefined;
+  joints?: Joint[] | undefined;
 }
 
 /**
@@ -92,6 +104,13 @@ export class Posing {
    */
   handles: Handle[] = [];
   parts: Parts | undefined;
+  /**
+   * A puppet's parts' depths (larger in front; see `puppet.ts`), as the user ordered them;
+   * undefined for other shapes.
+   */
+  depths: number[] | undefined;
+  /** The depth of each triangle's part, and the depths it was made from. */
+  #triangleDepths: { depths: number[]; layers: Int32Array } | undefined;
   /** While a session replays: nothing is recorded. */
   replaying = false;
   /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
@@ -164,7 +183,9 @@ export class Posing {
    * are the caller's to set); fails without changing anything. A recording ends.
    */
   adopt(shape: Shape, orders: Uint32Array[] | undefined, refit: boolean): void {
-    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.deformerOptions(), orders);
+    const { puppet } = shape;
+    const options = puppet ? puppetOptions(this.deformerOptions(), puppet, puppet.joints) : this.deformerOptions();
+    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, options, orders);
     this.deformer?.free();
     this.deformer = deformer;
     this.#sent = [];
@@ -172,6 +193,8 @@ export class Posing {
     this.#trackingSent = "";
     this.#sendTracking();
     this.shape = shape;
+    this.depths = puppet && importedDepths(puppet);
+    this.#triangleDepths = undefined;
     this.stiffness = undefined;
     this.#stiffnessPending = false;
     this.bones.forget();
@@ -218,28 +241,54 @@ export class Posing {
     const stiffness = carryStiffness(this.stiffness, old.shape.mesh, shape.mesh, 0.05 * shape.size);
     const bones = this.bones.carried(old.shape.mesh, shape.mesh, 0.05 * shape.size);
     const targets = this.deformer.targets();
+    const oldPuppet = old.shape.puppet;
     const handles = this.handles.map((h, i) => ({
       rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
       target: [targets[2 * i]!, targets[2 * i + 1]!],
       layer: h.layer,
       ordered: h.ordered,
+      part: oldPuppet?.partOf[h.point.triangle],
     }));
+    const carried = oldPuppet && shape.puppet && { depths: this.depths, joints: this.joints };
     this.adopt(shape, orders, false);
     this.handles = [];
-    if (!old.atRest) {
-      const mapper = new PointMapper(old.shape.mesh.positions, old.shape.mesh.triangles, shape.mesh.positions);
+    // A puppet's parts overlap at rest: each part's points are found in that part alone.
+    const puppet = carried && shape.puppet?.parts.length === oldPuppet!.parts.length ? shape.puppet : undefined;
+    if (puppet && carried) {
+      this.depths = carried.depths;
       try {
-        this.deformer.setPositions(mapper.map(old.positions));
-      } finally {
-        mapper.free();
+        this.setJoints(carried.joints);
+      } catch {
+        // The joints the new import placed stay where a carried one would not fit.
       }
+    }
+    if (!old.atRest) {
+      const next = new Float64Array(shape.mesh.positions);
+      const pieces = puppet
+        ? puppet.meshes.map((mesh, k) => ({ from: oldPuppet!.meshes[k]!, to: mesh }))
+        : [{ from: old.shape.mesh.triangles, to: shape.mesh.triangles }];
+      for (const { from, to } of pieces) {
+        const vertices = [...new Set(to)];
+        const points = new Float64Array(2 * vertices.length);
+        vertices.forEach((v, i) => points.set([shape.mesh.positions[2 * v]!, shape.mesh.positions[2 * v + 1]!], 2 * i));
+        const mapper = new PointMapper(old.shape.mesh.positions, from, points);
+        try {
+          const mapped = mapper.map(old.positions);
+          vertices.forEach((v, i) => next.set([mapped[2 * i]!, mapped[2 * i + 1]!], 2 * v));
+        } finally {
+          mapper.free();
+        }
+      }
+      this.deformer.setPositions(next);
     }
     const { positions: rest, triangles } = shape.mesh;
     const kept: number[] = [];
-    for (const { rest: at, target, layer, ordered } of handles) {
+    for (const { rest: at, target, layer, ordered, part } of handles) {
+      const own = puppet && part !== undefined ? puppet.meshes[part]! : triangles;
+      const found =
+        locate(rest, own, at[0], at[1], 1e-6 * shape.size) ?? locate(rest, own, at[0], at[1], 0.05 * shape.size);
       const point =
-        locate(rest, triangles, at[0], at[1], 1e-6 * shape.size) ??
-        locate(rest, triangles, at[0], at[1], 0.05 * shape.size);
+        found && own !== triangles ? { ...found, triangle: puppet!.parts[part!]!.triangles[found.triangle]! } : found;
       if (point) {
         this.handles.push({ ...newHandle(point), layer, ordered });
         kept.push(...target);
@@ -487,6 +536,47 @@ export class Posing {
     return this.handles.some((h) => h.pointerId !== undefined);
   }
 
+  // ---------------------------------------------------------------- puppets
+
+  /** The joints a puppet's deformer poses with (copies); none for other shapes. */
+  get joints(): Joint[] {
+    return this.shape.puppet ? deformerJoints(this.deformer) : [];
+  }
+
+  /**
+   * Replaces a puppet's joints (the deformer analyses its systems again); throws (code
+   * `invalid-joint`), changing nothing, for a part out of range or a point not on both
+   * parts, or when the shape is no puppet.
+   */
+  setJoints(joints: readonly Joint[]): void {
+    if (!this.shape.puppet) throw new Error("only a puppet (an SVG of several layers) has joints");
+    setDeformerJoints(this.deformer, joints);
+    this.#host.schedule();
+  }
+
+  /** Each triangle's layer: its part's depth for a puppet (see {@link depths}); undefined for other shapes. */
+  triangleDepths(): Int32Array | undefined {
+    const { puppet } = this.shape;
+    const depths = this.depths;
+    if (!puppet || !depths) return undefined;
+    if (this.#triangleDepths?.depths !== depths) {
+      this.#triangleDepths = { depths, layers: Int32Array.from(puppet.partOf, (part) => depths[part] ?? 0) };
+    }
+    return this.#triangleDepths.layers;
+  }
+
+  /**
+   * Moves a puppet's part one step in front of the next part (`step` 1) or behind it (-1);
+   * false when it is already in front (or at the back).
+   */
+  reorderPart(part: number, step: 1 | -1): boolean {
+    const next = this.depths && stepDepth(this.depths, part, step);
+    if (!next) return false;
+    this.depths = next;
+    this.#host.schedule();
+    return true;
+  }
+
   // ---------------------------------------------------------------- gestures and history
 
   snapshot(): Snapshot {
@@ -506,6 +596,7 @@ export class Posing {
       })),
       stiffness: this.stiffness?.slice(),
       bones: [...this.bones.list],
+      ...(this.shape.puppet ? { depths: this.depths, joints: this.joints } : {}),
     };
   }
 
@@ -534,6 +625,10 @@ export class Posing {
       layer: h.layer ?? 0,
       ordered: h.ordered ?? false,
     }));
+    if (this.shape.puppet) {
+      if (snapshot.depths) this.depths = snapshot.depths;
+      if (snapshot.joints && !sameJoints(snapshot.joints, this.joints)) setDeformerJoints(this.deformer, snapshot.joints);
+    }
     this.#sent = [];
     this.applyHandles();
     this.deformer.setTargets(snapshot.handles.flatMap((h) => h.target));

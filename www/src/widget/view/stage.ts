@@ -14,7 +14,7 @@ import { Hud } from "./hud.js";
 import type { WidgetSettings } from "../options.js";
 import { HANDLE_RADIUS, RING_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { regionOutlines } from "../model/geometry.js";
-import { drawOrder, layering, type Layering } from "../model/layers.js";
+import { drawOrder, layering, partLayering, type Layering } from "../model/layers.js";
 import type { Posing } from "../model/posing.js";
 import type { Shape } from "../model/shape.js";
 import { BusyIndicator } from "./busy-indicator.js";
@@ -126,14 +126,23 @@ export class Stage {
   }
 
   /**
-   * The depth order the handles give the shape, computed again when the shape, the
-   * handles or their layers change; the renderer draws the triangles back to front.
+   * The depth order of the shape: a puppet's parts by their depths, else what the handles
+   * give it; computed again when the shape, the depths, the handles or their layers change.
+   * The renderer draws the triangles back to front.
    */
   layering(posing: Posing): Layering | undefined {
-    const key = posing.handles.map((h) => `${h.point.triangle}/${h.point.barycentric.join()}/${h.layer}`).join(";");
+    const { puppet } = posing.shape;
+    const depths = posing.depths;
+    const key =
+      puppet && depths
+        ? `parts ${depths.join()}`
+        : posing.handles.map((h) => `${h.point.triangle}/${h.point.barycentric.join()}/${h.layer}`).join(";");
     if (this.#layers?.shape !== posing.shape || this.#layers.key !== key) {
-      const { positions, triangles, boundaryEdges } = posing.shape.mesh;
-      const layers = layering(positions, triangles, boundaryEdges, posing.handles);
+      const { positions, triangles, boundaryEdges, vertexCount } = posing.shape.mesh;
+      const layers =
+        puppet && depths
+          ? partLayering(vertexCount, triangles, boundaryEdges, puppet.partOf, depths)
+          : layering(positions, triangles, boundaryEdges, posing.handles);
       if (layers || this.#layers?.layers) this.renderer.setTriangles(drawOrder(triangles, layers));
       this.#layers = { shape: posing.shape, key, layers };
     }
