@@ -116,7 +116,12 @@ export function locateFront(
 }
 
 /** Every triangle containing (x, y), as mesh points, in triangle order. */
-export function locateAll(positions: ArrayLike<number>, triangles: ArrayLike<number>, x: number, y: number): MeshPoint[] {
+export function locateAll(
+  positions: ArrayLike<number>,
+  triangles: ArrayLike<number>,
+  x: number,
+  y: number,
+): MeshPoint[] {
   const found: MeshPoint[] = [];
   for (let t = 0; 3 * t + 2 < triangles.length; t++) {
     const a = triangles[3 * t]!;

@@ -16,7 +16,7 @@ import { Deformer, checkStiffness, type DeformerOptions, type Timings } from "..
 import { PointMapper } from "../../import.js";
 import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset } from "./methods.js";
-import { locate, pointPosition, type MeshPoint } from "./picking.js";
+import { locate, locateFront, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
 import { Session, type SessionEvent } from "../../session.js";
 import { Bones, bonesFrom, type Bone } from "./bones.js";
 import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
@@ -109,6 +109,8 @@ export class Posing {
    * undefined for other shapes.
    */
   depths: number[] | undefined;
+  /** The joint selected with the joint tool (an index into {@link joints}), if any. */
+  selectedJoint: number | undefined;
   /** The depth of each triangle's part, and the depths it was made from. */
   #triangleDepths: { depths: number[]; layers: Int32Array } | undefined;
   /** While a session replays: nothing is recorded. */
@@ -194,6 +196,7 @@ export class Posing {
     this.#sendTracking();
     this.shape = shape;
     this.depths = puppet && importedDepths(puppet);
+    this.selectedJoint = undefined;
     this.#triangleDepths = undefined;
     this.stiffness = undefined;
     this.#stiffnessPending = false;
@@ -358,6 +361,42 @@ export class Posing {
   }
 
   // ---------------------------------------------------------------- handles
+
+  /**
+   * The mesh point at (x, y) in the pose on screen (or the closest within `tolerance`): on
+   * a puppet, on the front-most part there.
+   */
+  pointAt(x: number, y: number, tolerance = 0): MeshPoint | undefined {
+    const positions = this.deformer.positionsView();
+    const { triangles } = this.shape.mesh;
+    const layers = this.triangleDepths();
+    return layers
+      ? locateFront(positions, triangles, layers, x, y, tolerance)
+      : locate(positions, triangles, x, y, tolerance);
+  }
+
+  /**
+   * The handle at (x, y) within `radius` (shape units), or -1: the nearest, and on a puppet
+   * the one on the front-most part among those within reach.
+   */
+  handleAt(x: number, y: number, radius: number): number {
+    const at = this.deformer.handlePositions();
+    const layers = this.triangleDepths();
+    if (!layers) return nearestPoint(at, x, y, radius);
+    let best = -1;
+    let bestDistance = Infinity;
+    this.handles.forEach((h, i) => {
+      const distance = Math.hypot(at[2 * i]! - x, at[2 * i + 1]! - y);
+      if (distance > radius) return;
+      const depth = layers[h.point.triangle]!;
+      const bestDepth = best < 0 ? -Infinity : layers[this.handles[best]!.point.triangle]!;
+      if (depth > bestDepth || (depth === bestDepth && distance < bestDistance)) {
+        best = i;
+        bestDistance = distance;
+      }
+    });
+    return best;
+  }
 
   /** A new handle at `point`, last, its target where the point is; the others keep theirs. */
   addHandle(point: MeshPoint): Handle {
@@ -551,6 +590,7 @@ export class Posing {
   setJoints(joints: readonly Joint[]): void {
     if (!this.shape.puppet) throw new Error("only a puppet (an SVG of several layers) has joints");
     setDeformerJoints(this.deformer, joints);
+    if (this.selectedJoint !== undefined && this.selectedJoint >= joints.length) this.selectedJoint = undefined;
     this.#host.schedule();
   }
 
@@ -627,7 +667,10 @@ export class Posing {
     }));
     if (this.shape.puppet) {
       if (snapshot.depths) this.depths = snapshot.depths;
-      if (snapshot.joints && !sameJoints(snapshot.joints, this.joints)) setDeformerJoints(this.deformer, snapshot.joints);
+      if (snapshot.joints && !sameJoints(snapshot.joints, this.joints)) {
+        setDeformerJoints(this.deformer, snapshot.joints);
+        this.selectedJoint = undefined;
+      }
     }
     this.#sent = [];
     this.applyHandles();

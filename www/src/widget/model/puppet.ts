@@ -8,6 +8,7 @@
  * (`Deformer.joints`); the posing keeps them for undo.
  */
 import type { VectorPath } from "../../import.js";
+import { METHODS, type MethodPreset } from "./methods.js";
 import { locate, locateAll, pointPosition, type MeshPoint } from "./picking.js";
 
 /** A part of a puppet, as `importPuppet` gives it. */
@@ -79,6 +80,16 @@ export function puppetOf(
     meshes,
     source,
   };
+}
+
+/**
+ * What the status line says when a method without sheets poses a puppet (moving least
+ * squares and Cauchy-Green pose the whole puppet as one shape); undefined for the others.
+ */
+export function oneShapeNote(method: MethodPreset): string | undefined {
+  const { options, label } = METHODS[method];
+  if (options.method !== "mls" && options.method !== "cauchy-green") return undefined;
+  return `${label} has no sheets: it poses the whole puppet as one shape (parts bend together, joints do not hinge); AKAP and ARAP pose each part on its own sheet.`;
 }
 
 /** The parts' depths as imported. */
@@ -190,12 +201,17 @@ export function puppetOptions<O extends object>(options: O, puppet: Puppet, join
 
 /** The joints a puppet's deformer poses with (copies). */
 export function deformerJoints(deformer: object): Joint[] {
-  return (deformer as JointedDeformer).joints.map((j) => ({ point: [j.point[0], j.point[1]], parts: [j.parts[0], j.parts[1]] }));
+  return (deformer as JointedDeformer).joints.map((j) => ({
+    point: [j.point[0], j.point[1]],
+    parts: [j.parts[0], j.parts[1]],
+  }));
 }
 
 /** Gives a puppet's deformer new joints; throws (code `invalid-joint`), changing nothing, for bad ones. */
 export function setDeformerJoints(deformer: object, joints: readonly Joint[]): void {
-  (deformer as JointedDeformer).setJoints(joints.map((j) => ({ point: [j.point[0], j.point[1]], parts: [j.parts[0], j.parts[1]] })));
+  (deformer as JointedDeformer).setJoints(
+    joints.map((j) => ({ point: [j.point[0], j.point[1]], parts: [j.parts[0], j.parts[1]] })),
+  );
 }
 
 /** Whether two joint lists are the same joints in the same order. */
@@ -204,7 +220,9 @@ export function sameJoints(a: readonly Joint[], b: readonly Joint[]): boolean {
     a.length === b.length &&
     a.every((j, i) => {
       const k = b[i]!;
-      return j.point[0] === k.point[0] && j.point[1] === k.point[1] && j.parts[0] === k.parts[0] && j.parts[1] === k.parts[1];
+      return (
+        j.point[0] === k.point[0] && j.point[1] === k.point[1] && j.parts[0] === k.parts[0] && j.parts[1] === k.parts[1]
+      );
     })
   );
 }

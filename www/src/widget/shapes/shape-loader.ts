@@ -8,6 +8,7 @@ import { builtinShape, builtinShapes, type Outline } from "../../core.js";
 import { DEFAULTS, type WidgetSettings } from "../options.js";
 import { restoreWork, savedShape, type SavedWork } from "../store/work-store.js";
 import type { Parts, Posing } from "../model/posing.js";
+import { oneShapeNote } from "../model/puppet.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./shape-maker.js";
 import { meshOutline, shapeFromMesh, type Loaded } from "../model/shape.js";
 import { importLayers, paintVector, partShape, puppetShape, readShapeFile } from "./shape-files.js";
@@ -156,7 +157,8 @@ export class ShapeLoader {
       const joints = puppet.joints.length;
       stage.status.info(
         `${loaded.name} is a puppet of ${puppet.parts.length} parts (${names}) with ${joints} joint${joints === 1 ? "" : "s"}; ` +
-          "every part is posed at once (the Joint tool moves, adds and removes joints)",
+          "every part is posed at once (the Joint tool moves, adds and removes joints)" +
+          (oneShapeNote(this.#host.settings.method) ? `. ${oneShapeNote(this.#host.settings.method)}` : ""),
       );
     } else if (loaded.kind === "outlines" && loaded.parts.length > 1) {
       stage.status.info(
