@@ -8,6 +8,7 @@ import type { Bone } from "../model/bones.js";
 import { builtinShape, meshFromArrays, triangulate } from "../../core.js";
 import type { VectorPath } from "../../import.js";
 import type { ShapeSpec } from "../../session.js";
+import { boxUvs } from "../model/geometry.js";
 import { shapeFromMesh, type Shape } from "../model/shape.js";
 import { METHODS, type MethodPreset } from "../model/methods.js";
 import type { WidgetSettings } from "../options.js";
@@ -150,7 +151,9 @@ export function savedWork(
           name: shape.name,
           positions: Float64Array.from(mesh.positions),
           triangles: Uint32Array.from(mesh.triangles),
-          uvs: shape.uvs,
+          // A puppet's texture coordinates point into its atlas, which saved work does not
+          // keep: it comes back as one shape, its art drawn over its bounding box.
+          uvs: shape.puppet ? boxUvs(mesh.positions) : shape.uvs,
           ...(texture ? { texture } : {}),
           ...(shape.vector ? { vector: shape.vector } : {}),
         },
