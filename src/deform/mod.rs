@@ -63,9 +63,9 @@ pub use metrics::Metrics;
 pub use mls::MlsSolver;
 #[allow(deprecated)]
 pub use options::DeformerOptions;
-pub use puppet::{Joint, Part, Puppet};
 pub use options::{
     Access, AkapOptions, ArapOptions, CauchyGreenOptions, Integrator, Method, MethodOptions, MlsOptions, MlsVariant,
     Setting, Settings, CAGE_VERTICES_RANGE, LAMBDA_RANGE, MLS_ALPHA_RANGE, SMOOTHNESS_RANGE, STIFFNESS_RANGE,
 };
+pub use puppet::{Joint, Part, Puppet};
 pub use settings::SettingValue;

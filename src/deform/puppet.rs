@@ -201,11 +201,8 @@ fn locate(mesh: &Mesh, triangles: &[u32], p: Point, tolerance: f64) -> Option<Ha
         let w = [signed(b, c) / area, signed(c, a) / area, signed(a, b) / area];
         let least = w[0].min(w[1]).min(w[2]);
         // Distance outside the triangle, about: the negative weight times the height.
-        let longest = [a, b, c]
-            .iter()
-            .zip([b, c, a])
-            .map(|(u, v)| libm::hypot(u[0] - v[0], u[1] - v[1]))
-            .fold(0.0, f64::max);
+        let longest =
+            [a, b, c].iter().zip([b, c, a]).map(|(u, v)| libm::hypot(u[0] - v[0], u[1] - v[1])).fold(0.0, f64::max);
         let outside = -least * area / longest.max(f64::MIN_POSITIVE);
         if outside > tolerance {
             continue;

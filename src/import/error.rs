@@ -5,6 +5,7 @@ use std::fmt;
 use crate::error_code::ErrorCode;
 use crate::mesh::MeshError;
 use crate::message::Number;
+use crate::triangulate::TriangulationError;
 
 /// An element of an SVG document, for error messages: its name, its `id` if it has one, and
 /// where its start tag begins (1-based line and column).
@@ -186,6 +187,8 @@ pub enum ImportError {
         /// Its index.
         index: usize,
     },
+    /// An imported shape could not be meshed (a puppet's part).
+    Triangulation(TriangulationError),
     /// An option is out of range.
     InvalidOption {
         /// The option's name as the JavaScript API spells it.
@@ -258,6 +261,7 @@ impl fmt::Display for ImportError {
             Self::TextureCoordinates { message } => write!(f, "texture coordinates: {message}"),
             Self::Stiffness { message } => write!(f, "stiffness: {message}"),
             Self::Mesh(e) => e.fmt(f),
+            Self::Triangulation(e) => e.fmt(f),
             Self::TooManyPoints { what, needed: Some(needed), limit } => write!(
                 f,
                 "{what} would need {} points, more than the limit of {limit} (maxPoints)",
@@ -292,6 +296,7 @@ impl std::error::Error for ImportError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             Self::Mesh(e) => Some(e),
+            Self::Triangulation(e) => Some(e),
             _ => None,
         }
     }
@@ -303,6 +308,7 @@ impl ImportError {
     pub fn code(&self) -> ErrorCode {
         match self {
             Self::Mesh(e) => e.code(),
+            Self::Triangulation(e) => e.code(),
             Self::TooLarge { .. }
             | Self::TooDeep { .. }
             | Self::CoordinateTooLarge { .. }
@@ -322,6 +328,12 @@ impl ImportError {
             Self::NonFiniteResult { .. } => ErrorCode::Overflow,
             Self::InvalidOption { .. } => ErrorCode::InvalidOption,
         }
+    }
+}
+
+impl From<TriangulationError> for ImportError {
+    fn from(e: TriangulationError) -> Self {
+        Self::Triangulation(e)
     }
 }
 

@@ -8,7 +8,8 @@
 //!
 //! | module | what |
 //! |---|---|
-//! | [`svg`] | SVG to outlines, through usvg (and the filled and stroked areas as paths, for exporting the art deformed) |
+//! | [`svg`] | SVG to outlines, through usvg (and the filled and stroked areas as paths, for exporting the art deformed); layer by layer |
+//! | [`puppet`] | a layered SVG (or an image's separate regions) to a puppet: a sheet per part, one mesh, joints where parts overlap |
 //! | [`raster`] | RGBA pixels to outlines: threshold, marching squares, simplification |
 //! | [`mesh_file`] | JSON and OBJ meshes, read (validated) and written |
 //! | [`warp`] | points through a deformed mesh (barycentric), texture coordinates |
@@ -16,6 +17,7 @@
 
 mod error;
 pub mod mesh_file;
+pub mod puppet;
 pub mod raster;
 mod regions;
 pub(crate) mod simplify;

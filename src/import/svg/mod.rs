@@ -22,6 +22,7 @@
 //! Output coordinates are the root's user units (its `viewBox`) with y flipped to point
 //! up: the bottom-left corner of the `viewBox` is the origin.
 
+mod layers;
 mod text;
 pub mod tree;
 
@@ -39,7 +40,7 @@ use crate::import::vector::{FillRule, VectorPath, Verb};
 use crate::import::Limits;
 use crate::outline::Outline;
 use text::{check_attributes, Cursor};
-use tree::Drawing;
+use tree::{Clip, Drawing};
 
 const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
@@ -121,6 +122,101 @@ pub struct SvgShape {
 /// # Ok::<(), akap::import::ImportError>(())
 /// ```
 pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportError> {
+    let Read { drawing: Drawing { paths, clips, .. }, skipped, .. } = read(text, options, false)?;
+    let Some(mut shaper) = Shaper::new(&paths, &clips, options) else {
+        return Err(ImportError::NoShapes { skipped });
+    };
+    let (outlines, paths) = shaper.shape(paths)?;
+    if outlines.is_empty() {
+        return Err(ImportError::NoShapes { skipped });
+    }
+    Ok(SvgShape { outlines, paths, skipped })
+}
+
+/// Most layers [`import_svg_layers`] takes (their overlaps are found pair by pair).
+pub const MAX_LAYERS: usize = 256;
+
+/// One layer of an SVG document (see [`import_svg_layers`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SvgLayer {
+    /// Its `inkscape:label`, else its `id`; `None` when it has neither.
+    pub name: Option<String>,
+    /// Its filled region's separate parts, largest first, built as [`import_svg`] builds a
+    /// whole document's (overlapping shapes of the layer united).
+    pub outlines: Vec<Outline>,
+    /// Its filled areas in drawing order, as [`SvgShape::paths`].
+    pub paths: Vec<SvgPath>,
+}
+
+/// What [`import_svg_layers`] gave.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SvgLayers {
+    /// The layers with an area, back to front.
+    pub layers: Vec<SvgLayer>,
+    /// Elements that were skipped (`text`, `image`, `foreignObject`), once each.
+    pub skipped: Vec<String>,
+}
+
+/// Reads an SVG document layer by layer: its top-level groups (an Inkscape layer, a `<g>`
+/// with an `id` or `inkscape:label`) and top-level shapes outside groups, back to front in
+/// document order (a `<g>` with neither `id` nor label is looked through; a document whose
+/// only layer is a group of several takes those). Each layer's outlines are built on their
+/// own, as [`import_svg`] builds a document's, and hold only its own paths. Layers without
+/// area are left out; a document with none is refused as [`import_svg`] refuses it, one
+/// with more than [`MAX_LAYERS`] too.
+///
+/// ```
+/// use akap::import::svg::{import_svg_layers, SvgOptions};
+/// let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">
+///   <g id="body"><rect width="4" height="4"/></g> <rect id="arm" x="3" y="3" width="4" height="1"/></svg>"#;
+/// let read = import_svg_layers(svg, &SvgOptions::default())?;
+/// let names: Vec<_> = read.layers.iter().map(|l| l.name.as_deref()).collect();
+/// assert_eq!(names, [Some("body"), Some("arm")]);
+/// assert_eq!(read.layers[1].outlines[0].area(), 4.0);
+/// # Ok::<(), akap::import::ImportError>(())
+/// ```
+pub fn import_svg_layers(text: &str, options: &SvgOptions) -> Result<SvgLayers, ImportError> {
+    let Read { drawing: Drawing { paths, clips, layers }, skipped, names } = read(text, options, true)?;
+    let Some(mut shaper) = Shaper::new(&paths, &clips, options) else {
+        return Err(ImportError::NoShapes { skipped });
+    };
+    let mut by_layer: Vec<Vec<(SvgPath, Vec<usize>)>> = vec![Vec::new(); names.len()];
+    let mut outside = Vec::new();
+    for (path, layer) in paths.into_iter().zip(layers) {
+        match layer.and_then(|k| by_layer.get_mut(k)) {
+            Some(paths) => paths.push(path),
+            None => outside.push(path),
+        }
+    }
+    // Every drawn element lies in a layer; should usvg ever draw one outside them, it is a
+    // layer of its own, in front.
+    let mut layers = Vec::new();
+    let named = names.into_iter().map(Some);
+    for (name, paths) in named.chain([None]).zip(by_layer.into_iter().chain([outside])) {
+        if paths.is_empty() {
+            continue;
+        }
+        let (outlines, paths) = shaper.shape(paths)?;
+        if !outlines.is_empty() {
+            layers.push(SvgLayer { name: name.flatten(), outlines, paths });
+        }
+    }
+    if layers.is_empty() {
+        return Err(ImportError::NoShapes { skipped });
+    }
+    Ok(SvgLayers { layers, skipped })
+}
+
+/// A document read into a drawing.
+struct Read {
+    drawing: Drawing,
+    skipped: Vec<String>,
+    /// The layers' names, when read by layer ([`Drawing::layers`] index them).
+    names: Vec<Option<String>>,
+}
+
+/// Reads the document into a drawing, by layer if `by_layer`.
+fn read(text: &str, options: &SvgOptions, by_layer: bool) -> Result<Read, ImportError> {
     options.validate()?;
     let limits = &options.limits;
     let document = parse_document(text, limits)?;
@@ -130,7 +226,17 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
     }
     check_depth(root, text)?;
     check_numbers(&document, text, limits.max_coordinate)?;
-    let sized = sized_to_view_box(text, &document);
+    let layer_nodes = if by_layer { layers::layers(root) } else { Vec::new() };
+    if layer_nodes.len() > MAX_LAYERS {
+        return Err(ImportError::TooLarge {
+            what: "the SVG",
+            size: layer_nodes.len(),
+            limit: MAX_LAYERS,
+            unit: "layers",
+        });
+    }
+    let names = layer_nodes.iter().map(|&n| layers::name(n)).collect();
+    let sized = sized_to_view_box(text, &document, &layer_nodes);
     let output = sized.output;
     let sized = parse_document(&sized.text, limits)?;
     let tree = usvg::Tree::from_xmltree(&sized, &usvg::Options::default())
@@ -158,14 +264,19 @@ pub fn import_svg(text: &str, options: &SvgOptions) -> Result<SvgShape, ImportEr
             None => ElementRef { name: "path".into(), id: Some(id.to_string()), line: 0, column: 0 },
         }
     };
-    let drawing = tree::drawing(&tree, output, options.strokes, &locate);
+    let layer = |id: &str| {
+        let k = id.strip_prefix(LAYER_ID)?.parse::<usize>().ok()?;
+        (k < layer_nodes.len()).then_some(k)
+    };
+    let drawing = tree::drawing(&tree, output, options.strokes, &locate, &layer);
     check_points(&drawing, limits)?;
-    shape_of(drawing, skipped, options)
+    Ok(Read { drawing, skipped, names })
 }
 
 /// The document's text with its root sized to its `viewBox` (or 1 x 1 with a unit
-/// `viewBox` when it has none) and an id on every shape without one (`SHAPE_ID` and its
-/// index among the shapes), and the map from the root's user units to output.
+/// `viewBox` when it has none), an id on every shape without one (`SHAPE_ID` and its
+/// index among the shapes) and each layer wrapped in a group of id `LAYER_ID` and its
+/// index, and the map from the root's user units to output.
 struct Sized {
     text: String,
     output: [f64; 6],
@@ -174,7 +285,7 @@ struct Sized {
 /// usvg maps the root's user units into its size through the viewBox; with the size set to
 /// the viewBox's own, that map is the shift by the viewBox's corner, and none of usvg's
 /// sizing rules (percentages, aspect ratios) apply.
-fn sized_to_view_box(text: &str, document: &Document) -> Sized {
+fn sized_to_view_box(text: &str, document: &Document, layers: &[Node]) -> Sized {
     let root = document.root_element();
     let (view_box, output) = match root.attribute("viewBox").and_then(|v| v.parse::<svgtypes::ViewBox>().ok()) {
         Some(v) if v.w > 0.0 && v.h > 0.0 && v.w.is_finite() && v.h.is_finite() => {
@@ -206,6 +317,16 @@ fn sized_to_view_box(text: &str, document: &Document) -> Sized {
                 edits.push((range, collapsed));
             }
         }
+    }
+    // Openings before closings: where one layer ends and the next begins, the closing,
+    // made second, comes first.
+    for (k, layer) in layers.iter().enumerate() {
+        let at = layer.range().start;
+        edits.push((at..at, format!(r#"<g id="{LAYER_ID}{k}">"#)));
+    }
+    for layer in layers {
+        let at = layer.range().end;
+        edits.push((at..at, "</g>".to_string()));
     }
     let mut sized = text.to_string();
     for a in root.attributes().filter(|a| matches!(a.name(), "width" | "height" | "viewBox" | "preserveAspectRatio")) {
@@ -307,88 +428,108 @@ fn flatten(
     Ok(flat)
 }
 
-/// The outlines of the drawing (flattened, then nested, or united where shapes cross or
-/// clips apply), and its paths.
-fn shape_of(drawing: Drawing, skipped: Vec<String>, options: &SvgOptions) -> Result<SvgShape, ImportError> {
-    let limits = &options.limits;
-    let Drawing { paths, clips } = drawing;
-    let every_point = paths.iter().flat_map(|(p, _)| p.path.points.iter().copied());
-    let Some((lo, hi)) = bounding_box(every_point) else {
-        return Err(ImportError::NoShapes { skipped });
-    };
-    let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
-    let tolerance = options.tolerance.unwrap_or(DEFAULT_RELATIVE_TOLERANCE * size);
-    let mut count = 0;
-    let mut flat = Vec::with_capacity(paths.len());
-    for (p, _) in &paths {
-        flat.push(flatten(&p.path, tolerance, &mut count, limits)?);
-    }
-    // Nesting is exact and keeps every vertex, but only decides drawings whose boundaries
-    // neither cross nor touch. A stroke's outline nearly always meets itself (at the inner
-    // side of each corner), so with strokes the union is taken straight away: skipping the
-    // sweep that would find the crossing took 20% off a 1 MB drawing and 15% off resvg's
-    // test files (see the commit).
-    let clipped = paths.iter().any(|(_, c)| !c.is_empty());
-    let stroked = paths.iter().any(|(p, _)| p.part == Part::Stroke);
-    if !clipped && !stroked {
-        let rings: Vec<SourceRing> = flat
-            .iter()
-            .enumerate()
-            .flat_map(|(shape, rings)| rings.iter().map(move |r| SourceRing { points: r.clone(), shape }))
-            .collect();
-        let rules: Vec<FillRule> = paths.iter().map(|(p, _)| p.fill_rule).collect();
-        match assemble(&rings, &rules, options.min_area, limits.max_segment_pairs) {
-            Ok(outlines) => return finish(outlines, paths.into_iter().map(|(p, _)| p).collect(), skipped),
-            Err(RegionError::Crossing(..)) => {}
-            Err(RegionError::TooComplex) => return Err(ImportError::TooComplex { pairs: limits.max_segment_pairs }),
-        }
-    }
-    // Clip regions in order (a clip only refers to earlier ones).
-    let mut regions: Vec<Region> = Vec::with_capacity(clips.len());
-    for clip in &clips {
-        let mut members = Vec::with_capacity(clip.members.len());
-        for (member, own) in &clip.members {
-            let rings = flatten(&member.path, tolerance, &mut count, limits)?;
-            members.push(clipped_by(union::resolve(&rings, member.fill_rule), own, &regions));
-        }
-        regions.push(clipped_by(union::union(members), &clip.clips, &regions));
-    }
-    let mut parts = Vec::with_capacity(paths.len());
-    let mut kept = Vec::with_capacity(paths.len());
-    for ((mut p, own), rings) in paths.into_iter().zip(&flat) {
-        let region = union::resolve(rings, p.fill_rule);
-        if own.is_empty() {
-            parts.push(region);
-            kept.push(p);
-            continue;
-        }
-        // A clipped area is exported as what is left of it.
-        let region = clipped_by(region, &own, &regions);
-        if region.is_empty() {
-            continue;
-        }
-        p.path = polygon_path(&region);
-        p.fill_rule = FillRule::NonZero;
-        parts.push(region);
-        kept.push(p);
-    }
-    let region = union::union(parts);
-    let points = union::point_count(&region);
-    if points > limits.max_points {
-        return Err(ImportError::TooManyPoints {
-            what: "the united outline",
-            needed: Some(points as f64),
-            limit: limits.max_points,
-        });
-    }
-    finish(union::outlines(region, options.min_area), kept, skipped)
+/// Builds outlines from a drawing's paths (all of them, or each layer's in turn): one
+/// flattening tolerance for the whole drawing, one point budget, the clips' regions built
+/// once.
+struct Shaper<'a> {
+    options: &'a SvgOptions,
+    tolerance: f64,
+    /// Points made so far, against [`Limits::max_points`].
+    count: usize,
+    clips: &'a [Clip],
+    /// The clips' regions, once built.
+    regions: Option<Vec<Region>>,
 }
 
-fn finish(outlines: Vec<Outline>, paths: Vec<SvgPath>, skipped: Vec<String>) -> Result<SvgShape, ImportError> {
-    if outlines.is_empty() {
-        return Err(ImportError::NoShapes { skipped });
+impl<'a> Shaper<'a> {
+    /// For the drawing's `paths` and `clips`; `None` when the paths have no point.
+    fn new(paths: &[(SvgPath, Vec<usize>)], clips: &'a [Clip], options: &'a SvgOptions) -> Option<Self> {
+        let every_point = paths.iter().flat_map(|(p, _)| p.path.points.iter().copied());
+        let (lo, hi) = bounding_box(every_point)?;
+        let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+        let tolerance = options.tolerance.unwrap_or(DEFAULT_RELATIVE_TOLERANCE * size);
+        Some(Self { options, tolerance, count: 0, clips, regions: None })
     }
-    Ok(SvgShape { outlines, paths, skipped })
+
+    /// The clip regions in order (a clip only refers to earlier ones).
+    fn regions(&mut self) -> Result<&[Region], ImportError> {
+        if self.regions.is_none() {
+            let mut regions: Vec<Region> = Vec::with_capacity(self.clips.len());
+            for clip in self.clips {
+                let mut members = Vec::with_capacity(clip.members.len());
+                for (member, own) in &clip.members {
+                    let rings = flatten(&member.path, self.tolerance, &mut self.count, &self.options.limits)?;
+                    members.push(clipped_by(union::resolve(&rings, member.fill_rule), own, &regions));
+                }
+                regions.push(clipped_by(union::union(members), &clip.clips, &regions));
+            }
+            self.regions = Some(regions);
+        }
+        Ok(self.regions.as_deref().unwrap_or_default())
+    }
+
+    /// The outlines of `paths` (flattened, then nested, or united where shapes cross or
+    /// clips apply), largest first, and the paths kept (what is left of clipped ones).
+    fn shape(&mut self, paths: Vec<(SvgPath, Vec<usize>)>) -> Result<(Vec<Outline>, Vec<SvgPath>), ImportError> {
+        let (options, tolerance) = (self.options, self.tolerance);
+        let limits = &options.limits;
+        let mut flat = Vec::with_capacity(paths.len());
+        for (p, _) in &paths {
+            flat.push(flatten(&p.path, tolerance, &mut self.count, limits)?);
+        }
+        // Nesting is exact and keeps every vertex, but only decides drawings whose
+        // boundaries neither cross nor touch. A stroke's outline nearly always meets itself
+        // (at the inner side of each corner), so with strokes the union is taken straight
+        // away: skipping the sweep that would find the crossing took 20% off a 1 MB drawing
+        // and 15% off resvg's test files (see the commit).
+        let clipped = paths.iter().any(|(_, c)| !c.is_empty());
+        let stroked = paths.iter().any(|(p, _)| p.part == Part::Stroke);
+        if !clipped && !stroked {
+            let rings: Vec<SourceRing> = flat
+                .iter()
+                .enumerate()
+                .flat_map(|(shape, rings)| rings.iter().map(move |r| SourceRing { points: r.clone(), shape }))
+                .collect();
+            let rules: Vec<FillRule> = paths.iter().map(|(p, _)| p.fill_rule).collect();
+            match assemble(&rings, &rules, options.min_area, limits.max_segment_pairs) {
+                Ok(outlines) => return Ok((outlines, paths.into_iter().map(|(p, _)| p).collect())),
+                Err(RegionError::Crossing(..)) => {}
+                Err(RegionError::TooComplex) => {
+                    return Err(ImportError::TooComplex { pairs: limits.max_segment_pairs })
+                }
+            }
+        }
+        let regions = if clipped { self.regions()? } else { &[] };
+        let mut parts = Vec::with_capacity(paths.len());
+        let mut kept = Vec::with_capacity(paths.len());
+        for ((mut p, own), rings) in paths.into_iter().zip(&flat) {
+            let region = union::resolve(rings, p.fill_rule);
+            if own.is_empty() {
+                parts.push(region);
+                kept.push(p);
+                continue;
+            }
+            // A clipped area is exported as what is left of it.
+            let region = clipped_by(region, &own, regions);
+            if region.is_empty() {
+                continue;
+            }
+            p.path = polygon_path(&region);
+            p.fill_rule = FillRule::NonZero;
+            parts.push(region);
+            kept.push(p);
+        }
+        let region = union::union(parts);
+        let points = union::point_count(&region);
+        if points > limits.max_points {
+            return Err(ImportError::TooManyPoints {
+                what: "the united outline",
+                needed: Some(points as f64),
+                limit: limits.max_points,
+            });
+        }
+        Ok((union::outlines(region, options.min_area), kept))
+    }
 }
 
 /// `region` intersected with each of `clips` (indices into `regions`).
@@ -456,6 +597,9 @@ fn check_depth(root: Node, text: &str) -> Result<(), ImportError> {
 
 /// The prefix of the ids given to shapes without one.
 const SHAPE_ID: &str = "akap-shape-";
+
+/// The prefix of the ids of the groups wrapped around layers.
+const LAYER_ID: &str = "akap-layer-";
 
 /// Whether `node` is an SVG shape element.
 fn is_shape(node: &Node) -> bool {

@@ -77,10 +77,17 @@ pub struct Drawing {
     pub paths: Vec<(SvgPath, Vec<usize>)>,
     /// Regions referred to by [`Drawing::paths`] (each path is intersected with all of its).
     pub clips: Vec<Clip>,
+    /// For each of [`Drawing::paths`], the layer it is drawn in: the one of its outermost
+    /// group that `layer` (given to [`drawing`]) knows; `None` when there is none.
+    pub layers: Vec<Option<usize>>,
 }
 
 /// Where an element came from, for messages: usvg keeps the `id`, and `locate` finds it.
 pub type Locate<'a> = dyn Fn(&str) -> ElementRef + 'a;
+
+/// The layer a group is, by its `id` (usvg keeps every `<g>` and `<use>` as a group with
+/// its `id`), if it is one.
+pub type Layer<'a> = dyn Fn(&str) -> Option<usize> + 'a;
 
 /// A plane affine map `[a, b, c, d, e, f]`: `(x, y) -> (a x + c y + e, b x + d y + f)`.
 type Map = [f64; 6];
@@ -107,23 +114,28 @@ enum Take {
     Mask,
 }
 
-/// Walks `tree`: the root's user units mapped by `output`.
-pub fn drawing(tree: &usvg::Tree, output: Map, strokes: bool, locate: &Locate) -> Drawing {
-    let mut walker = Walker { drawing: Drawing::default(), locate };
+/// Walks `tree`: the root's user units mapped by `output`, each path in the layer of its
+/// outermost group that `layer` names.
+pub fn drawing(tree: &usvg::Tree, output: Map, strokes: bool, locate: &Locate, layer: &Layer) -> Drawing {
+    let mut walker = Walker { drawing: Drawing::default(), locate, layer };
     let mut paths = Vec::new();
-    walker.walk(tree.root(), output, Take::Drawing { strokes }, &[], &mut paths);
+    let mut layers = Vec::new();
+    walker.walk(tree.root(), output, Take::Drawing { strokes }, &[], &mut paths, &mut layers);
     walker.drawing.paths = paths;
+    walker.drawing.layers = layers;
     walker.drawing
 }
 
 struct Walker<'a> {
     drawing: Drawing,
     locate: &'a Locate<'a>,
+    layer: &'a Layer<'a>,
 }
 
 impl Walker<'_> {
     /// Adds the paths under `group` (whose parent's user units `map` takes to output) to
-    /// `out`, each with `clips` and those of the groups on the way. Without recursion.
+    /// `out`, each with `clips` and those of the groups on the way, and its layer to
+    /// `layers`. Without recursion.
     fn walk(
         &mut self,
         group: &usvg::Group,
@@ -131,14 +143,16 @@ impl Walker<'_> {
         take: Take,
         clips: &[usize],
         out: &mut Vec<(SvgPath, Vec<usize>)>,
+        layers: &mut Vec<Option<usize>>,
     ) {
-        let mut pending: Vec<(&usvg::Node, Map, f32, Vec<usize>)> = Vec::new();
+        let mut pending: Vec<(&usvg::Node, Map, f32, Vec<usize>, Option<usize>)> = Vec::new();
         for child in group.children().iter().rev() {
-            pending.push((child, map, 1.0, clips.to_vec()));
+            pending.push((child, map, 1.0, clips.to_vec(), None));
         }
-        while let Some((node, map, opacity, clips)) = pending.pop() {
+        while let Some((node, map, opacity, clips, layer)) = pending.pop() {
             match node {
                 usvg::Node::Group(g) => {
+                    let layer = layer.or_else(|| (self.layer)(g.id()));
                     // A group with zero opacity draws nothing (in a clip path opacity does
                     // not apply).
                     let opacity = opacity * g.opacity().get();
@@ -154,11 +168,13 @@ impl Walker<'_> {
                         clips.push(self.mask(mask, map));
                     }
                     for child in g.children().iter().rev() {
-                        pending.push((child, map, opacity, clips.clone()));
+                        pending.push((child, map, opacity, clips.clone(), layer));
                     }
                 }
                 usvg::Node::Path(p) if p.is_visible() => {
-                    out.extend(self.parts(p, map, opacity, take).into_iter().map(|path| (path, clips.clone())));
+                    let parts = self.parts(p, map, opacity, take);
+                    layers.extend(std::iter::repeat_n(layer, parts.len()));
+                    out.extend(parts.into_iter().map(|path| (path, clips.clone())));
                 }
                 _ => {}
             }
@@ -172,7 +188,8 @@ impl Walker<'_> {
             clips.push(self.clip(inner, map));
         }
         let mut members = Vec::new();
-        self.walk(clip.root(), then(map, of(clip.transform())), Take::Clip, &[], &mut members);
+        let root = clip.root();
+        self.walk(root, then(map, of(clip.transform())), Take::Clip, &[], &mut members, &mut Vec::new());
         self.add(members, clips)
     }
 
@@ -189,7 +206,7 @@ impl Walker<'_> {
         let rect = VectorPath { verbs, points: corners.map(place).to_vec() };
         clips.push(self.add(vec![(rect_path(rect), Vec::new())], Vec::new()));
         let mut members = Vec::new();
-        self.walk(mask.root(), map, Take::Mask, &[], &mut members);
+        self.walk(mask.root(), map, Take::Mask, &[], &mut members, &mut Vec::new());
         self.add(members, clips)
     }
 
