@@ -204,8 +204,15 @@ export class Posing {
     this.#host.adopted(shape, deformer, refit);
   }
 
+  /** The method's options (see {@link shapeOptions} for a deformer of the shape). */
   deformerOptions(): DeformerOptions {
     return methodOptions(this.settings.method, this.settings.lambda);
+  }
+
+  /** The options a deformer of the shape as posed is made with: the method's, and a puppet's parts and joints now. */
+  shapeOptions(): DeformerOptions {
+    const { puppet } = this.shape;
+    return puppet ? puppetOptions(this.deformerOptions(), puppet, this.joints) : this.deformerOptions();
   }
 
   /** Changes the method and/or lambda (recorded). */
