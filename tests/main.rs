@@ -38,3 +38,5 @@ mod turning;
 mod wasm_animation;
 #[cfg(target_arch = "wasm32")]
 mod wasm_api;
+#[cfg(target_arch = "wasm32")]
+mod wasm_puppet;

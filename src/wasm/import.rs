@@ -1,7 +1,7 @@
 //! Shapes from files (`crate::import`): SVG documents, images, mesh files; mesh writers;
 //! texture coordinates; `PointMapper`.
 
-use js_sys::Array;
+use js_sys::{Array, Object, Uint32Array};
 use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;
@@ -9,15 +9,23 @@ use super::mesh::{read_mesh, read_positions, JsMesh};
 use super::read::{self, Options};
 use super::{flat, limits, max_coordinates, max_indices, object, outlines_to_js, pairs};
 use crate::import::mesh_file::{self, MeshFile};
+use crate::import::puppet::{self, ImportedPuppet, PuppetOptions, DEFAULT_PUPPET_VERTICES};
 use crate::import::raster::{self, MaskMode, TraceOptions};
-use crate::import::svg::{self as svg_import, Part, SvgOptions};
+use crate::import::svg::{self as svg_import, Part, SvgOptions, SvgPath};
 use crate::import::vector::{FillRule, VectorPath};
 use crate::import::warp::{self, PointMapper};
 use crate::mesh::MeshError;
 
+/// The options of an SVG import.
+const SVG_OPTIONS: [&str; 5] = ["tolerance", "minArea", "strokes", "maxPoints", "maxBytes"];
+
 /// Reads `{ tolerance?, minArea?, strokes?, maxPoints?, maxBytes? }`.
 fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, BindingError> {
-    let given = Options::read(value, "SVG import", &["tolerance", "minArea", "strokes", "maxPoints", "maxBytes"])?;
+    svg_options(&Options::read(value, "SVG import", &SVG_OPTIONS)?)
+}
+
+/// The SVG import's options of those `given`.
+fn svg_options(given: &Options) -> Result<SvgOptions, BindingError> {
     let mut options = SvgOptions::default();
     options.tolerance = given.number("tolerance")?.or(options.tolerance);
     options.min_area = given.number("minArea")?.unwrap_or(options.min_area);
@@ -27,12 +35,18 @@ fn parse_svg_options(value: &JsValue) -> Result<SvgOptions, BindingError> {
     Ok(options)
 }
 
+/// The options of image tracing.
+const TRACE_OPTIONS: [&str; 7] =
+    ["mode", "alphaThreshold", "colourThreshold", "tolerance", "minArea", "maxPoints", "maxPixels"];
+
 /// Reads `{ mode?, alphaThreshold?, colourThreshold?, tolerance?, minArea?, maxPoints?,
 /// maxPixels? }`.
 fn parse_trace_options(value: &JsValue) -> Result<TraceOptions, BindingError> {
-    const NAMES: [&str; 7] =
-        ["mode", "alphaThreshold", "colourThreshold", "tolerance", "minArea", "maxPoints", "maxPixels"];
-    let given = Options::read(value, "image tracing", &NAMES)?;
+    trace_options(&Options::read(value, "image tracing", &TRACE_OPTIONS)?)
+}
+
+/// Image tracing's options of those `given`.
+fn trace_options(given: &Options) -> Result<TraceOptions, BindingError> {
     let mut options = TraceOptions::default();
     let modes = [("auto", MaskMode::Auto), ("alpha", MaskMode::Alpha), ("colour", MaskMode::Colour)];
     options.mode = given.choice("mode", &modes)?.unwrap_or(options.mode);
@@ -68,8 +82,13 @@ pub fn import_svg(text: JsValue, options: JsValue) -> Result<Array, BindingError
 pub fn import_svg_paths(text: JsValue, options: JsValue) -> Result<Array, BindingError> {
     let options = parse_svg_options(&options)?;
     let shape = svg_import::import_svg(&svg_text(&text, &options)?, &options)?;
+    paths_to_js(&shape.paths)
+}
+
+/// Paths as [`import_svg_paths`] gives them: the one writer of them.
+fn paths_to_js(paths: &[SvgPath]) -> Result<Array, BindingError> {
     let list = Array::new();
-    for p in &shape.paths {
+    for p in paths {
         let commands: String = p.path.verbs.iter().map(|v| v.letter()).collect();
         let rule = match p.fill_rule {
             FillRule::NonZero => "nonzero",
@@ -86,6 +105,84 @@ pub fn import_svg_paths(text: JsValue, options: JsValue) -> Result<Array, Bindin
         list.push(&entry);
     }
     Ok(list)
+}
+
+/// Reads `{ tolerance?, minArea?, strokes?, maxPoints?, maxBytes?, vertices? }`.
+fn parse_puppet_options(value: &JsValue) -> Result<PuppetOptions, BindingError> {
+    const NAMES: [&str; 6] = ["tolerance", "minArea", "strokes", "maxPoints", "maxBytes", "vertices"];
+    debug_assert!(SVG_OPTIONS.iter().all(|n| NAMES.contains(n)));
+    let given = Options::read(value, "puppet import", &NAMES)?;
+    let svg = svg_options(&given)?;
+    let vertices = given.count("vertices", usize::MAX)?.unwrap_or(DEFAULT_PUPPET_VERTICES);
+    Ok(PuppetOptions { svg, vertices })
+}
+
+/// A layered SVG document as a puppet, a sheet per layer, joined where layers overlap:
+/// `{ positions: Float64Array, triangles: Uint32Array, parts: [{ name, triangles:
+/// Uint32Array (indices of triangles), depth (larger in front), paths (each as
+/// importSvgPaths gives them) }], joints: [{ point: [x, y], parts: [front, back] }],
+/// skipped: string[] }`. `options`: those of [`import_svg`] and `vertices` (about how many
+/// in all, default 3000).
+#[wasm_bindgen(js_name = importPuppet)]
+pub fn import_puppet(text: JsValue, options: JsValue) -> Result<Object, BindingError> {
+    let options = parse_puppet_options(&options)?;
+    let text = svg_text(&text, &options.svg)?;
+    puppet_to_js(&puppet::import_puppet(&text, &options)?)
+}
+
+/// An image's separate opaque regions as a puppet, a part per region (no joints), in the
+/// form [`import_puppet`] gives (parts' `paths` empty). `options`: those of
+/// [`trace_image`] and `vertices` (about how many in all, default 3000).
+#[wasm_bindgen(js_name = importImagePuppet)]
+pub fn import_image_puppet(
+    rgba: JsValue,
+    width: JsValue,
+    height: JsValue,
+    options: JsValue,
+) -> Result<Object, BindingError> {
+    const NAMES: [&str; 8] =
+        ["mode", "alphaThreshold", "colourThreshold", "tolerance", "minArea", "maxPoints", "maxPixels", "vertices"];
+    debug_assert!(TRACE_OPTIONS.iter().all(|n| NAMES.contains(n)));
+    let given = Options::read(&options, "image puppet", &NAMES)?;
+    let trace = trace_options(&given)?;
+    let vertices = given.count("vertices", usize::MAX)?.unwrap_or(DEFAULT_PUPPET_VERTICES);
+    let pixels = trace.limits.max_pixels;
+    let width = read::count(&width, "width", pixels)?;
+    let height = read::count(&height, "height", pixels)?;
+    let rgba = read::bytes(&rgba, "the pixels", 4 * pixels)?;
+    puppet_to_js(&puppet::import_image_puppet(&rgba, width, height, &trace, vertices)?)
+}
+
+fn puppet_to_js(imported: &ImportedPuppet) -> Result<Object, BindingError> {
+    let ImportedPuppet { mesh, puppet, art, skipped } = imported;
+    let triangles: Vec<u32> = mesh.triangles().iter().flatten().copied().collect();
+    let parts = Array::new();
+    for (part, paths) in puppet.parts.iter().zip(art) {
+        let entry = object(&[
+            ("name", part.name.as_str().into()),
+            ("triangles", Uint32Array::from(part.triangles.as_slice()).into()),
+            ("depth", part.depth.into()),
+            ("paths", paths_to_js(paths)?.into()),
+        ])?;
+        parts.push(&entry);
+    }
+    let joints = Array::new();
+    for joint in &puppet.joints {
+        let [x, y] = joint.point;
+        let [front, back] = joint.parts;
+        let point = Array::of2(&x.into(), &y.into());
+        let pair = Array::of2(&(front as u32).into(), &(back as u32).into());
+        let entry = object(&[("point", point.into()), ("parts", pair.into())])?;
+        joints.push(&entry);
+    }
+    let skipped: Array = skipped.iter().map(|s| JsValue::from_str(s)).collect();
+    object(&[
+        ("positions", flat(mesh.positions()).into()),
+        ("triangles", Uint32Array::from(triangles.as_slice()).into()),
+        ("parts", parts.into()),
+        ("joints", joints.into()),
+        ("skipped", skipped.into()),
+    ])
 }
 
 /// A fill colour as CSS writes it, `rgba(R, G, B, A)`: exact, and usable as it is by a

@@ -30,8 +30,8 @@ pub use defop::{ground_truth, JsDefOp, JsDefOpSolver, JsDefOpTrainer};
 pub use deformer::{check_stiffness, deformer_orders, JsDeformer};
 pub use error::BindingError;
 pub use import::{
-    import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json, mesh_to_obj, path_data,
-    texture_coordinates, trace_image, JsMeshFile, JsPointMapper,
+    import_image_puppet, import_puppet, import_svg, import_svg_paths, mesh_from_json, mesh_from_obj, mesh_to_json,
+    mesh_to_obj, path_data, texture_coordinates, trace_image, JsMeshFile, JsPointMapper,
 };
 pub use mesh::{builtin_shape, builtin_shapes, default_shape, triangulate_outline, triangulate_to_vertices, JsMesh};
 pub use session::{session_json, session_mesh};

@@ -126,6 +126,16 @@ pub fn drawing(tree: &usvg::Tree, output: Map, strokes: bool, locate: &Locate, l
     walker.drawing
 }
 
+/// A node still to walk, with what it inherits: the map of its parent's user units to
+/// output, the opacity, the clips and the layer of its groups.
+struct Pending<'t> {
+    node: &'t usvg::Node,
+    map: Map,
+    opacity: f32,
+    clips: Vec<usize>,
+    layer: Option<usize>,
+}
+
 struct Walker<'a> {
     drawing: Drawing,
     locate: &'a Locate<'a>,
@@ -145,11 +155,11 @@ impl Walker<'_> {
         out: &mut Vec<(SvgPath, Vec<usize>)>,
         layers: &mut Vec<Option<usize>>,
     ) {
-        let mut pending: Vec<(&usvg::Node, Map, f32, Vec<usize>, Option<usize>)> = Vec::new();
-        for child in group.children().iter().rev() {
-            pending.push((child, map, 1.0, clips.to_vec(), None));
+        let mut pending: Vec<Pending> = Vec::new();
+        for node in group.children().iter().rev() {
+            pending.push(Pending { node, map, opacity: 1.0, clips: clips.to_vec(), layer: None });
         }
-        while let Some((node, map, opacity, clips, layer)) = pending.pop() {
+        while let Some(Pending { node, map, opacity, clips, layer }) = pending.pop() {
             match node {
                 usvg::Node::Group(g) => {
                     let layer = layer.or_else(|| (self.layer)(g.id()));
@@ -167,8 +177,8 @@ impl Walker<'_> {
                     if let Some(mask) = g.mask() {
                         clips.push(self.mask(mask, map));
                     }
-                    for child in g.children().iter().rev() {
-                        pending.push((child, map, opacity, clips.clone(), layer));
+                    for node in g.children().iter().rev() {
+                        pending.push(Pending { node, map, opacity, clips: clips.clone(), layer });
                     }
                 }
                 usvg::Node::Path(p) if p.is_visible() => {
