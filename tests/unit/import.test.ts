@@ -2,6 +2,8 @@
 import { readFileSync } from "node:fs";
 import { beforeAll, describe, expect, it } from "vitest";
 import {
+  importImagePuppet,
+  importPuppet,
   importSvg,
   importSvgPaths,
   init,
@@ -80,6 +82,73 @@ describe("importSvg", () => {
     expect(() => importSvg(svg('<rect width="1" height="1"/>'), { maxBytes: 10 })).toThrow(
       /the SVG text is \d+ bytes; the limit is 10/,
     );
+  });
+});
+
+describe("importPuppet", () => {
+  const layered = readFileSync("tests/fixtures/svg/layered-puppet.svg", "utf8");
+
+  it("gives a sheet per layer, named and in depth order, joined where layers overlap", () => {
+    const puppet = importPuppet(layered, { vertices: 1500 });
+    expect(puppet.positions).toBeInstanceOf(Float64Array);
+    expect(puppet.triangles).toBeInstanceOf(Uint32Array);
+    expect(puppet.parts.map((p) => p.name)).toEqual(["Torso", "Head", "Arm", "Hat"]);
+    expect(puppet.parts.map((p) => p.depth)).toEqual([0, 1, 2, 3]);
+    // Every triangle in one part, and no vertex in two.
+    const owner = new Int32Array(puppet.positions.length / 2).fill(-1);
+    let count = 0;
+    puppet.parts.forEach((part, k) => {
+      expect(part.triangles).toBeInstanceOf(Uint32Array);
+      count += part.triangles.length;
+      for (const t of part.triangles) {
+        for (let c = 0; c < 3; c++) {
+          const v = puppet.triangles[3 * t + c]!;
+          expect(owner[v] === -1 || owner[v] === k).toBe(true);
+          owner[v] = k;
+        }
+      }
+    });
+    expect(count).toBe(puppet.triangles.length / 3);
+    // The torso's area: its rectangle, 80 x 120.
+    let area = 0;
+    for (const t of puppet.parts[0]!.triangles) {
+      const [a, b, c] = [0, 1, 2].map((k) => puppet.triangles[3 * t + k]!);
+      const x = (v: number) => puppet.positions[2 * v]!;
+      const y = (v: number) => puppet.positions[2 * v + 1]!;
+      area += ((x(b) - x(a)) * (y(c) - y(a)) - (y(b) - y(a)) * (x(c) - x(a))) / 2;
+    }
+    expect(area).toBeCloseTo(9600, 6);
+    const pairs = puppet.joints.map((j) => j.parts).sort((p, q) => p[0] - q[0]);
+    expect(pairs).toEqual([
+      [1, 0],
+      [2, 0],
+    ]);
+    for (const { point } of puppet.joints) expect(point).toHaveLength(2);
+    // Each part's art is its own, in the form importSvgPaths gives.
+    expect(puppet.parts.flatMap((p) => p.paths)).toEqual(importSvgPaths(layered));
+    expect(puppet.parts[0]!.paths.map((p) => p.fill)).toEqual(["rgba(46, 139, 87, 1)", "rgba(139, 69, 19, 1)"]);
+    expect(puppet.skipped).toEqual([]);
+  });
+
+  it("checks its options by name and refuses what is not an SVG", () => {
+    expect(() => importPuppet(layered, { vertexes: 10 } as never)).toThrow(/unknown puppet import option `vertexes`/);
+    expect(() => importPuppet(layered, { vertices: 1 })).toThrow(/option vertices is 1/);
+    expect(() => importPuppet("<html/>")).toThrow(/not <svg>/);
+  });
+
+  it("gives an image a part per separate region", () => {
+    const [w, h] = [20, 10];
+    const rgba = new Uint8ClampedArray(4 * w * h);
+    for (const [x0, s] of [
+      [1, 6],
+      [12, 5],
+    ] as const) {
+      for (let y = 2; y < 2 + s; y++) for (let x = x0; x < x0 + s; x++) rgba[4 * (y * w + x) + 3] = 255;
+    }
+    const puppet = importImagePuppet(rgba, w, h, { minArea: 1, vertices: 100 });
+    expect(puppet.parts.map((p) => p.name)).toEqual(["Part 1", "Part 2"]);
+    expect(puppet.joints).toEqual([]);
+    expect(() => importImagePuppet(rgba, 0, h)).toThrow(/not a pixel count/);
   });
 });
 

@@ -1,7 +1,7 @@
 /**
- * Shapes in: SVG documents and images to outlines, mesh files (OBJ, our JSON) in and out,
- * and helpers that carry imported art along with a deformed mesh. Re-exported by the
- * package's main module; call `init()` first.
+ * Shapes in: SVG documents and images to outlines, layered drawings to puppets, mesh files
+ * (OBJ, our JSON) in and out, and helpers that carry imported art along with a deformed
+ * mesh. Re-exported by the package's main module; call `init()` first.
  *
  * @example
  * ```ts
@@ -119,6 +119,73 @@ export function pathData(
   return raw.path_data(path.commands, toFloat64(points, "points"), options.flipY ?? false);
 }
 
+/** Options of {@link importPuppet}: those of {@link importSvg}, and `vertices`. */
+export interface PuppetImportOptions extends SvgImportOptions {
+  /** About how many vertices the puppet's mesh has in all, shared between the parts by
+   * area, each part getting at least a few (default 3000). */
+  vertices?: number;
+}
+
+/** One part of a puppet: a layer of the drawing, with its own sheet of the mesh. */
+export interface PuppetPart {
+  /** The layer's `inkscape:label`, else its `id`, else "Part N" (N its place, from 1). */
+  name: string;
+  /** Indices of the puppet's triangles (not vertices) that make up this part's sheet. */
+  triangles: Uint32Array;
+  /** The drawing order: larger is in front (the back-most part has depth 0). */
+  depth: number;
+  /** The part's own art (fills and strokes) in drawing order, as {@link importSvgPaths}
+   * gives it: draw each part's paths in its own layer, back to front by depth. */
+  paths: VectorPath[];
+}
+
+/** A joint: a hinge at one point of two overlapping parts. */
+export interface PuppetJoint {
+  /** Where it is at rest: a point on both parts' sheets, inside their overlap. */
+  point: [number, number];
+  /** The parts it joins, `[front, back]`, as indices into {@link ImportedPuppet.parts}. */
+  parts: [number, number];
+}
+
+/** A layered drawing as a puppet: one mesh made of sheets, one per part, joined where
+ * parts overlap. Pass `positions`, `triangles`, `parts` and `joints` to a `Deformer`. */
+export interface ImportedPuppet {
+  /** Every sheet's vertices, x and y interleaved, in the coordinates of {@link importSvg}. */
+  positions: Float64Array;
+  /** Every sheet's triangles, three vertex indices each; no vertex is shared between
+   * parts. */
+  triangles: Uint32Array;
+  /** The parts, back to front (in document order). */
+  parts: PuppetPart[];
+  /** One joint per pair of parts that overlap (front on back); none for a part that
+   * overlaps nothing. */
+  joints: PuppetJoint[];
+  /** Elements that are not imported (`text`, `image`, `foreignObject`), once each. */
+  skipped: string[];
+}
+
+/**
+ * Reads a layered SVG document as a puppet. Its parts are its layers: the top-level groups
+ * (an Inkscape layer, or any `<g>` with an `id` or `inkscape:label`) and top-level shapes
+ * outside groups, back to front in document order; a `<g>` with neither is looked
+ * through, and a document whose only layer is a group of several takes those. Each part is
+ * read as {@link importSvg} reads a whole document (overlapping shapes of a part united,
+ * holes, strokes) and meshed on its own, to about `vertices` in all shared by area. Where a
+ * part overlaps a part behind it, one joint is placed well inside the overlap (at its
+ * centroid when that is well inside). Layers without area are left out. Throws as
+ * {@link importSvg} throws, and for more than 256 layers.
+ *
+ * @example
+ * ```ts
+ * const puppet = importPuppet(svgText, { vertices: 3000 });
+ * const d = new Deformer(puppet.positions, puppet.triangles, { method: "akap", parts: puppet.parts, joints: puppet.joints });
+ * ```
+ */
+export function importPuppet(text: string, options: PuppetImportOptions = {}): ImportedPuppet {
+  assertLoaded();
+  return raw.importPuppet(text, options) as ImportedPuppet;
+}
+
 /** Options of {@link traceImage}. Every field is optional. */
 export interface TraceOptions {
   /** "alpha": pixels whose alpha reaches `alphaThreshold`; "colour": pixels at least
@@ -152,6 +219,11 @@ export function traceImage(
   options: TraceOptions = {},
 ): ImportedOutline[] {
   assertLoaded();
+  return raw.trace_image(pixelBytes(rgba, width, height), width, height, options) as ImportedOutline[];
+}
+
+/** The pixels as bytes, after checking the arguments' types and the size's counts. */
+function pixelBytes(rgba: Uint8Array | Uint8ClampedArray, width: number, height: number): Uint8Array {
   if (!(rgba instanceof Uint8Array || rgba instanceof Uint8ClampedArray)) {
     throw coded(new TypeError("rgba must be a Uint8Array or Uint8ClampedArray"), "invalid-argument");
   }
@@ -162,8 +234,29 @@ export function traceImage(
     if (!Number.isInteger(value) || value < 1 || value > 0xffffffff)
       throw coded(new RangeError(`${name} is ${value}, not a pixel count`), "invalid-argument");
   }
-  const bytes = rgba instanceof Uint8Array ? rgba : new Uint8Array(rgba.buffer, rgba.byteOffset, rgba.byteLength);
-  return raw.trace_image(bytes, width, height, options) as ImportedOutline[];
+  return rgba instanceof Uint8Array ? rgba : new Uint8Array(rgba.buffer, rgba.byteOffset, rgba.byteLength);
+}
+
+/** Options of {@link importImagePuppet}: those of {@link traceImage}, and `vertices`. */
+export interface ImagePuppetOptions extends TraceOptions {
+  /** About how many vertices the puppet's mesh has in all (default 3000). */
+  vertices?: number;
+}
+
+/**
+ * Traces an image's separate opaque regions (as {@link traceImage} does) into a puppet
+ * with a part per region, named "Part 1" (the largest), "Part 2" and so on, in pixel units
+ * with y up. Regions do not overlap, so there are no joints, and parts have no `paths`
+ * (the image is their art: see {@link textureCoordinates}).
+ */
+export function importImagePuppet(
+  rgba: Uint8Array | Uint8ClampedArray,
+  width: number,
+  height: number,
+  options: ImagePuppetOptions = {},
+): ImportedPuppet {
+  assertLoaded();
+  return raw.importImagePuppet(pixelBytes(rgba, width, height), width, height, options) as ImportedPuppet;
 }
 
 /**
