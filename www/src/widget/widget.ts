@@ -45,7 +45,7 @@ import { PointerState } from "./input/pointer-state.js";
 import { WidgetInput } from "./input/widget-input.js";
 import { METHODS, type MethodPreset } from "./model/methods.js";
 import { Posing } from "./model/posing.js";
-import type { Joint } from "./model/puppet.js";
+import type { PuppetJoint } from "../import.js";
 import { meshOutline, type Shape } from "./model/shape.js";
 import type { BrushSettings } from "./model/stiffness.js";
 import { widgetSettings, type WidgetOptions, type WidgetSettings, type WidgetTool } from "./options.js";
@@ -62,7 +62,6 @@ import { messageOf } from "./view/status-line.js";
 export { METHODS, type MethodPreset } from "./model/methods.js";
 export type { GalleryItem, PoseDetail, WidgetOptions, WidgetTool } from "./options.js";
 export type { BrushSettings } from "./model/stiffness.js";
-export type { Joint } from "./model/puppet.js";
 export type { RigInfo, WidgetTrainOptions } from "./rigs/rig-manager.js";
 export type { AnimationExport } from "./animation/controller.js";
 export type { AnimationExportOptions, AnimationExportFormat, SpriteSheet } from "./animation/formats.js";
@@ -644,7 +643,7 @@ export class Widget {
    * A puppet's joints (copies): each a rest point and the two parts it joins, `[front,
    * back]`. Empty for other shapes.
    */
-  get joints(): Joint[] {
+  get joints(): PuppetJoint[] {
     return this.#posing.joints;
   }
 
@@ -653,7 +652,7 @@ export class Widget {
    * `invalid-joint`), changing nothing, for a part out of range or a point not on both
    * parts.
    */
-  setJoints(joints: readonly Joint[]): void {
+  setJoints(joints: readonly PuppetJoint[]): void {
     this.#perform(tools.setJoints, { joints });
   }
 

@@ -7,7 +7,7 @@ import { coded } from "../../internal/arrays.js";
 import { boneEnds } from "../model/bones.js";
 import { METHODS } from "../model/methods.js";
 import { locate } from "../model/picking.js";
-import type { Joint } from "../model/puppet.js";
+import type { PuppetJoint } from "../../import.js";
 import { BRUSH_SIZE_RANGE, BRUSH_VALUES, type BrushSettings } from "../model/stiffness.js";
 import { brushSettings, checkTool, type WidgetTool } from "../options.js";
 import { action } from "./action.js";
@@ -174,7 +174,7 @@ export const jointTool = action({
 export const setJoints = action({
   name: "set-joints",
   description: "Replaces a puppet's joints",
-  perform(parts, { joints }: { joints: readonly Joint[] }): void {
+  perform(parts, { joints }: { joints: readonly PuppetJoint[] }): void {
     parts.gesture(() => parts.posing.setJoints(joints));
   },
 });

@@ -13,7 +13,7 @@
  * recording runs.
  */
 import { Deformer, checkStiffness, type DeformerOptions, type Timings } from "../../core.js";
-import { PointMapper } from "../../import.js";
+import { PointMapper, type PuppetJoint } from "../../import.js";
 import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset } from "./methods.js";
 import { locate, locateFront, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
@@ -23,15 +23,7 @@ import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
 import type { Rig } from "./rig.js";
 import type { Loaded, Shape } from "./shape.js";
 import { newHandle, type Handle, type HandleState } from "./handle.js";
-import {
-  deformerJoints,
-  importedDepths,
-  puppetOptions,
-  sameJoints,
-  setDeformerJoints,
-  stepDepth,
-  type Joint,
-} from "./puppet.js";
+import { deformerJoints, importedDepths, puppetOptions, sameJoints, setDeformerJoints, stepDepth } from "./puppet.js";
 
 export { newHandle, type Handle, type HandleState } from "./handle.js";
 
@@ -56,7 +48,7 @@ export interface Snapshot {
   bones?: Bone[] | undefined;
   /** A puppet's parts' depths and its deformer's joints (undefined for other shapes). */
   depths?: number[] | undefined;
-  joints?: Joint[] | undefined;
+  joints?: PuppetJoint[] | undefined;
 }
 
 /**
@@ -585,7 +577,7 @@ export class Posing {
   // ---------------------------------------------------------------- puppets
 
   /** The joints a puppet's deformer poses with (copies); none for other shapes. */
-  get joints(): Joint[] {
+  get joints(): PuppetJoint[] {
     return this.shape.puppet ? deformerJoints(this.deformer) : [];
   }
 
@@ -594,7 +586,7 @@ export class Posing {
    * `invalid-joint`), changing nothing, for a part out of range or a point not on both
    * parts, or when the shape is no puppet.
    */
-  setJoints(joints: readonly Joint[]): void {
+  setJoints(joints: readonly PuppetJoint[]): void {
     if (!this.shape.puppet) throw new Error("only a puppet (an SVG of several layers) has joints");
     setDeformerJoints(this.deformer, joints);
     if (this.selectedJoint !== undefined && this.selectedJoint >= joints.length) this.selectedJoint = undefined;

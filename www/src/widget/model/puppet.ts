@@ -7,41 +7,15 @@
  * depth order the user changes (Forward/Back). The deformer holds the joints it poses with
  * (`Deformer.joints`); the posing keeps them for undo.
  */
-import type { VectorPath } from "../../import.js";
+import type { PuppetJoint, PuppetPart } from "../../import.js";
 import { METHODS, type MethodPreset } from "./methods.js";
 import { locate, locateAll, pointPosition, type MeshPoint } from "./picking.js";
-
-/** A part of a puppet, as `importPuppet` gives it. */
-export interface PuppetPart {
-  name: string;
-  /** Its triangles (indices into the mesh's triangles). */
-  triangles: Uint32Array;
-  /** Its depth: larger is in front. */
-  depth: number;
-  /** Its art, as `importSvgPaths` gives it. */
-  paths: VectorPath[];
-}
-
-/** A joint: a rest point on two parts, which keep it together (a hinge). */
-export interface Joint {
-  point: [number, number];
-  /** The parts it joins: the one in front and the one behind (indices into the parts). */
-  parts: [number, number];
-}
-
-/** What `importPuppet` gives: one mesh of every part's sheet, the parts and the joints it placed. */
-export interface ImportedPuppet {
-  positions: Float64Array;
-  triangles: Uint32Array;
-  parts: PuppetPart[];
-  joints: Joint[];
-}
 
 /** A puppet as the widget holds it with its shape. */
 export interface Puppet {
   parts: PuppetPart[];
   /** The joints the import placed (the deformer's may have changed since). */
-  joints: Joint[];
+  joints: PuppetJoint[];
   /** Each triangle's part. */
   partOf: Int32Array;
   /** Each part's triangles as a mesh of their own: 3 vertex indices (of the whole mesh) each. */
@@ -55,7 +29,7 @@ export interface Puppet {
  * triangle is in no part or in two, or a part names a triangle the mesh lacks.
  */
 export function puppetOf(
-  imported: { parts: readonly PuppetPart[]; joints: readonly Joint[] },
+  imported: { parts: readonly PuppetPart[]; joints: readonly PuppetJoint[] },
   triangles: ArrayLike<number>,
   source: string,
 ): Puppet {
@@ -168,7 +142,7 @@ export function restPoint(
  */
 export function jointPositions(
   puppet: Puppet,
-  joints: readonly Joint[],
+  joints: readonly PuppetJoint[],
   rest: ArrayLike<number>,
   positions: ArrayLike<number>,
   tolerance: number,
@@ -186,12 +160,12 @@ export function jointPositions(
  * options that make one, its joints and `setJoints`.
  */
 interface JointedDeformer {
-  readonly joints: Joint[];
-  setJoints(joints: Joint[]): void;
+  readonly joints: PuppetJoint[];
+  setJoints(joints: PuppetJoint[]): void;
 }
 
 /** Deformer options for `puppet` with `joints` added to a method's options. */
-export function puppetOptions<O extends object>(options: O, puppet: Puppet, joints: readonly Joint[]): O {
+export function puppetOptions<O extends object>(options: O, puppet: Puppet, joints: readonly PuppetJoint[]): O {
   return {
     ...options,
     parts: puppet.parts.map((p) => ({ name: p.name, triangles: p.triangles, depth: p.depth })),
@@ -200,7 +174,7 @@ export function puppetOptions<O extends object>(options: O, puppet: Puppet, join
 }
 
 /** The joints a puppet's deformer poses with (copies). */
-export function deformerJoints(deformer: object): Joint[] {
+export function deformerJoints(deformer: object): PuppetJoint[] {
   return (deformer as JointedDeformer).joints.map((j) => ({
     point: [j.point[0], j.point[1]],
     parts: [j.parts[0], j.parts[1]],
@@ -208,14 +182,14 @@ export function deformerJoints(deformer: object): Joint[] {
 }
 
 /** Gives a puppet's deformer new joints; throws (code `invalid-joint`), changing nothing, for bad ones. */
-export function setDeformerJoints(deformer: object, joints: readonly Joint[]): void {
+export function setDeformerJoints(deformer: object, joints: readonly PuppetJoint[]): void {
   (deformer as JointedDeformer).setJoints(
     joints.map((j) => ({ point: [j.point[0], j.point[1]], parts: [j.parts[0], j.parts[1]] })),
   );
 }
 
 /** Whether two joint lists are the same joints in the same order. */
-export function sameJoints(a: readonly Joint[], b: readonly Joint[]): boolean {
+export function sameJoints(a: readonly PuppetJoint[], b: readonly PuppetJoint[]): boolean {
   return (
     a.length === b.length &&
     a.every((j, i) => {

@@ -4,10 +4,10 @@
  * it exactly).
  */
 import { limits, triangulateToVertices, type MeshData, type Outline } from "../../core.js";
-import type { ImportedOutline, VectorPath } from "../../import.js";
+import type { ImportedOutline, ImportedPuppet, VectorPath } from "../../import.js";
 import { sessionMesh, type Session, type ShapeSpec } from "../../session.js";
 import { bounds, boxUvs, uniqueEdges } from "./geometry.js";
-import type { ImportedPuppet, Puppet } from "./puppet.js";
+import type { Puppet } from "./puppet.js";
 
 export interface Shape {
   /** What to call it (a built-in name, a file name). */

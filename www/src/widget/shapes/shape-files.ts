@@ -10,9 +10,9 @@ import { shapeFromMesh, type Loaded, type Shape } from "../model/shape.js";
 import { atlasTexture, vectorTexture } from "./vector-texture.js";
 import { puppetAtlas } from "../model/atlas.js";
 import { bounds } from "../model/geometry.js";
-import { puppetOf, type ImportedPuppet } from "../model/puppet.js";
-import * as imports from "../../import.js";
+import { puppetOf } from "../model/puppet.js";
 import {
+  importPuppet,
   importSvg,
   importSvgPaths,
   meshFromJson,
@@ -20,6 +20,7 @@ import {
   textureCoordinates,
   traceImage,
   type ImportedOutline,
+  type ImportedPuppet,
   type VectorPath,
 } from "../../import.js";
 
@@ -143,13 +144,8 @@ export async function partShape<P extends { shape: Shape }>(
   return prepared;
 }
 
-/** The core's `importPuppet` (the package's import functions). */
-type ImportPuppet = (text: string, options: { vertices: number }) => ImportedPuppet;
-
 /** An SVG's layers as a puppet with about `vertices` vertices in all (one part: not a puppet). */
 export function importLayers(text: string, vertices: number): ImportedPuppet {
-  const importPuppet = (imports as unknown as { importPuppet?: ImportPuppet }).importPuppet;
-  if (!importPuppet) return { positions: new Float64Array(0), triangles: new Uint32Array(0), parts: [], joints: [] };
   return importPuppet(text, { vertices });
 }
 
