@@ -152,7 +152,8 @@ export function savedWork(
           positions: Float64Array.from(mesh.positions),
           triangles: Uint32Array.from(mesh.triangles),
           // A puppet's texture coordinates point into its atlas, which saved work does not
-          // keep: it comes back as one shape, its art drawn over its bounding box.
+          // keep (its art is drawn again over the bounding box). Its parts and joints are
+          // not kept yet either, so it does not restore as a puppet.
           uvs: shape.puppet ? boxUvs(mesh.positions) : shape.uvs,
           ...(texture ? { texture } : {}),
           ...(shape.vector ? { vector: shape.vector } : {}),
