@@ -4,6 +4,7 @@
  * the help (the input's state machine performs them).
  */
 import { action, type Gesture } from "./action.js";
+import { stepDepth } from "../model/puppet.js";
 import { removeJoint } from "./tools.js";
 import type { WidgetParts } from "./context.js";
 
@@ -224,9 +225,12 @@ export const layer = action({
         );
         return false;
       }
-      parts.gesture(() => {
-        for (const part of chosen) moved = posing.reorderPart(part, step) || moved;
-      });
+      // Nothing to undo when no part can move.
+      if (chosen.some((k) => posing.depths && stepDepth(posing.depths, k, step))) {
+        parts.gesture(() => {
+          for (const part of chosen) moved = posing.reorderPart(part, step) || moved;
+        });
+      }
       if (!moved) {
         const names = chosen.map((k) => puppet.parts[k]!.name).join(", ");
         parts.stage.status.info(
