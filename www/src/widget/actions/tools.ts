@@ -6,7 +6,6 @@
 import { coded } from "../../internal/arrays.js";
 import { boneEnds } from "../model/bones.js";
 import { METHODS } from "../model/methods.js";
-import { locate } from "../model/picking.js";
 import type { PuppetJoint } from "../../import.js";
 import { BRUSH_SIZE_RANGE, BRUSH_VALUES, type BrushSettings } from "../model/stiffness.js";
 import { brushSettings, checkTool, type WidgetTool } from "../options.js";
@@ -264,8 +263,7 @@ export const addBone = action({
   perform(parts, { x0, y0, x1, y1 }: { x0: number; y0: number; x1: number; y1: number }): number {
     const posing = parts.posing;
     const tolerance = 1e-9 * posing.shape.size;
-    const at = (x: number, y: number) =>
-      locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, tolerance);
+    const at = (x: number, y: number) => posing.pointAt(x, y, tolerance);
     const [from, to] = [at(x0, y0), at(x1, y1)];
     if (!from || !to) {
       throw coded(

@@ -13,7 +13,7 @@ import { open } from "../actions/shape.js";
 import type { PointerState } from "./pointer-state.js";
 import type { Camera } from "../view/camera.js";
 import { HANDLE_RADIUS, JOINT_RADIUS, RING_RADIUS } from "../view/overlay.js";
-import { locate, nearestPoint, pointPosition } from "../model/picking.js";
+import { nearestPoint, pointPosition } from "../model/picking.js";
 import { jointPositions, partsUnder, restPoint } from "../model/puppet.js";
 import { PointerInput } from "./pointer-events.js";
 import type { WidgetSettings } from "../options.js";
@@ -213,8 +213,8 @@ export class WidgetInput {
     brush.boneDraft = undefined;
     this.#host.draw();
     if (!draft || Math.hypot(draft[2] - draft[0], draft[3] - draft[1]) < this.#pixels(8)) return;
-    const at = (x: number, y: number) =>
-      locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, this.#pixels(4));
+    // On a puppet, the ends on the front-most part there.
+    const at = (x: number, y: number) => posing.pointAt(x, y, this.#pixels(4));
     const [from, to] = [at(draft[0], draft[1]), at(draft[2], draft[3])];
     if (!from || !to) throw new Error("a bone's ends must lie on the shape");
     posing.bones.set([...posing.bones.list, { ends: [from, to] }]);
