@@ -28,6 +28,7 @@ mod mls;
 mod pose;
 #[cfg(not(target_arch = "wasm32"))]
 mod pose_obj;
+mod puppet;
 mod puppet_import;
 mod session;
 mod sparse;

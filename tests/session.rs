@@ -62,6 +62,7 @@ fn json_round_trips_every_double_exactly() {
                 | Event::Bones { barycentric: v, .. } => v.clone(),
                 Event::Stiffness(v) => v.clone().unwrap_or_default(),
                 Event::Turn { velocities, turns } => [&velocities[..], &turns[..]].concat(),
+                Event::Joints(joints) => joints.iter().flat_map(|j| j.point).collect(),
                 Event::Reset(_) | Event::Options(_) => Vec::new(),
             })
             .map(f64::to_bits)
@@ -559,6 +560,7 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
             Event::Stiffness(_) => "stiffness",
             Event::Turn { .. } => "turn",
             Event::Bones { .. } => "bones",
+            Event::Joints(_) => "joints",
         })
         .collect();
     for kind in ["handles", "step", "options", "reset"] {

@@ -15,6 +15,7 @@ use super::handles::{self, check_connected, check_pose, check_stiffness, check_t
 use super::method::{default_clock, Checkpoint, Clock, IterationReport, Orders, Shared, Solver, Timings};
 use super::metrics::{metrics, Metrics};
 use super::options::{Method, MethodOptions};
+use super::puppet::{Joins, Joint, Puppet};
 use super::{AkapSolver, ArapSolver, CauchyGreenSolver};
 use crate::geometry::Point;
 use crate::mesh::Mesh;
@@ -59,6 +60,11 @@ pub struct Deformer {
     /// The stiffness painted per triangle, if any (methods with stiffness only).
     painted: Option<Vec<f64>>,
     bones: Bones,
+    /// A puppet's parts and joints, if the mesh is one, and its joints placed on the sheets.
+    puppet: Option<Puppet>,
+    joins: Joins,
+    /// The fill-reducing orders the solver was set up with (kept for a new joint set).
+    orders: Orders,
     clock: Clock,
     timings: Timings,
     solver: Solver,
@@ -68,11 +74,7 @@ impl Deformer {
     /// A deformer of the method `options` name for a connected mesh: orderings, analyses
     /// and every buffer; at rest, without handles.
     pub fn new(mesh: Mesh, options: impl Into<MethodOptions>) -> Result<Self, DeformError> {
-        let options = options.into();
-        options.check()?;
-        check_connected(&mesh)?;
-        let orders = options.orders(&mesh);
-        Self::with_orders(mesh, options, &orders)
+        Self::build(mesh, options.into(), None, None)
     }
 
     /// [`Self::new`] with the fill-reducing orders computed beforehand by
@@ -80,21 +82,79 @@ impl Deformer {
     /// made here. Orders that are not permutations of the right sizes are refused
     /// ([`DeformError::OrdersMismatch`]).
     pub fn with_orders(mesh: Mesh, options: impl Into<MethodOptions>, orders: &Orders) -> Result<Self, DeformError> {
-        let options = options.into();
+        Self::build(mesh, options.into(), Some(orders), None)
+    }
+
+    /// A deformer of a puppet: a mesh made of sheets, one per part, that may overlap and
+    /// need not be connected, coupled at the puppet's joints (see [`super::puppet`]), with
+    /// orders from [`MethodOptions::orders`] if given (the mesh's: they do not depend on
+    /// the joints). Parts that do not hold every triangle exactly once
+    /// ([`DeformError::InvalidParts`]) and joints out of range or off their parts
+    /// ([`DeformError::InvalidJoint`]) are refused. AKAP and ARAP couple the sheets in their
+    /// systems; moving least squares and Cauchy-Green, which have no sheets, pose the whole
+    /// puppet as one shape.
+    pub fn with_puppet(
+        mesh: Mesh,
+        options: impl Into<MethodOptions>,
+        puppet: Puppet,
+        orders: Option<&Orders>,
+    ) -> Result<Self, DeformError> {
+        Self::build(mesh, options.into(), orders, Some(puppet))
+    }
+
+    fn build(
+        mesh: Mesh,
+        options: MethodOptions,
+        orders: Option<&Orders>,
+        puppet: Option<Puppet>,
+    ) -> Result<Self, DeformError> {
         options.check()?;
-        check_connected(&mesh)?;
-        let solver = options.solver(&mesh, orders)?;
+        let joins = match &puppet {
+            Some(puppet) => puppet.joins(&mesh)?,
+            None => {
+                check_connected(&mesh)?;
+                Joins::default()
+            }
+        };
+        let orders = match orders {
+            Some(orders) => orders.clone(),
+            None => options.orders(&mesh),
+        };
+        let solver = options.solver(&mesh, &joins, &orders)?;
         Ok(Self {
             positions: mesh.positions().to_vec(),
             next: mesh.positions().to_vec(),
             handles: Vec::new(),
             painted: None,
             bones: Bones::default(),
+            puppet,
+            joins,
+            orders,
             clock: default_clock,
             timings: Timings::default(),
             solver,
             mesh,
         })
+    }
+
+    /// The puppet's parts and joints, if the deformer was made for one.
+    pub fn puppet(&self) -> Option<&Puppet> {
+        self.puppet.as_ref()
+    }
+
+    /// Replaces a puppet's joints (the solver's systems are analysed again for them),
+    /// keeping the pose, the handles, the stiffness and the bones. Refused, changing
+    /// nothing, for a deformer without a puppet and for joints the puppet's checks refuse
+    /// ([`DeformError::InvalidJoint`]).
+    pub fn set_joints(&mut self, joints: Vec<Joint>) -> Result<(), DeformError> {
+        let Some(current) = &self.puppet else {
+            return Err(DeformError::InvalidParts { reason: "the deformer was not made for a puppet".into() });
+        };
+        let puppet = Puppet { parts: current.parts.clone(), joints };
+        let joins = puppet.joins(&self.mesh)?;
+        self.rebuild(self.options(), self.orders.clone(), joins)?;
+        self.puppet = Some(puppet);
+        Ok(())
     }
 
     /// The method and its current settings.
@@ -120,7 +180,15 @@ impl Deformer {
         }
         options.check()?;
         let orders = options.orders(&self.mesh);
-        let mut solver = options.solver(&self.mesh, &orders)?;
+        self.rebuild(options, orders, self.joins.clone())
+    }
+
+    /// Puts a new solver of `options`' method, set up with `orders` and `joins`, behind
+    /// this deformer, keeping the pose, the handles, the clock, and the painted stiffness
+    /// and bones where the method has them (bones laid again in the current pose). On
+    /// error nothing changes.
+    fn rebuild(&mut self, options: MethodOptions, orders: Orders, joins: Joins) -> Result<(), DeformError> {
+        let mut solver = options.solver(&self.mesh, &joins, &orders)?;
         let abilities = solver.get().abilities();
         let bones = match abilities.bones && !self.bones.is_empty() {
             true => {
@@ -141,6 +209,8 @@ impl Deformer {
         self.solver = solver;
         self.painted = painted;
         self.bones = bones;
+        self.orders = orders;
+        self.joins = joins;
         Ok(())
     }
 

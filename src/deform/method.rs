@@ -10,6 +10,7 @@ use super::bones::Bones;
 use super::error::DeformError;
 use super::handles::HandlePoint;
 use super::options::{methods, AkapOptions, ArapOptions, CauchyGreenOptions, Method, MethodOptions, MlsOptions};
+use super::puppet::Joins;
 use crate::geometry::Point;
 use crate::mesh::Mesh;
 
@@ -25,9 +26,9 @@ pub(crate) trait Build {
     fn check(&self) -> Result<(), DeformError>;
     /// The fill-reducing orders the method's solver needs for `mesh`.
     fn orders(&self, mesh: &Mesh) -> Orders;
-    /// The method's solver for a connected mesh, with orders from [`Build::orders`]
-    /// (checked here), at rest and without handles.
-    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<Self::Solver, DeformError>;
+    /// The method's solver for a connected mesh, or a puppet's sheets coupled by `joins`,
+    /// with orders from [`Build::orders`] (checked here), at rest and without handles.
+    fn build(self, mesh: &Mesh, joins: &Joins, orders: &Orders) -> Result<Self::Solver, DeformError>;
     /// The settings `solver` has.
     fn of(solver: &Self::Solver) -> Self;
     /// Puts these settings (checked by [`Build::check`]) into effect on `solver`, from its
@@ -97,10 +98,10 @@ macro_rules! method_dispatch {
                 }
             }
 
-            /// This method's solver for `mesh`, with orders from [`Self::orders`].
-            pub(crate) fn solver(self, mesh: &Mesh, orders: &Orders) -> Result<Solver, DeformError> {
+            /// This method's solver for `mesh` and its joins, with orders from [`Self::orders`].
+            pub(crate) fn solver(self, mesh: &Mesh, joins: &Joins, orders: &Orders) -> Result<Solver, DeformError> {
                 match self {
-                    $(Self::$variant(options) => Ok(Solver::$variant(Build::build(options, mesh, orders)?)),)*
+                    $(Self::$variant(options) => Ok(Solver::$variant(Build::build(options, mesh, joins, orders)?)),)*
                 }
             }
         }

@@ -18,6 +18,7 @@ use super::error::DeformError;
 use super::handles::{in_range, HandlePoint};
 use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 use super::options::{Method, MlsOptions, MlsVariant, MLS_ALPHA_RANGE};
+use super::puppet::Joins;
 use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 
@@ -256,7 +257,7 @@ impl Build for MlsOptions {
         Orders { systems: Vec::new() }
     }
 
-    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<MlsSolver, DeformError> {
+    fn build(self, mesh: &Mesh, _joins: &Joins, orders: &Orders) -> Result<MlsSolver, DeformError> {
         orders.check(&[])?;
         MlsSolver::new(mesh, self)
     }

@@ -1,6 +1,7 @@
 //! The sparsity pattern every deformer's matrix has: a `block x block` block for every vertex
 //! and every pair of vertices sharing an edge (AKAP's Killing matrix: 2 x 2 blocks, one row
-//! and column per velocity component; ARAP's Laplacian: 1 x 1), in full symmetric storage,
+//! and column per velocity component; ARAP's Laplacian: 1 x 1), and for a puppet every pair
+//! of vertices a joint couples, in full symmetric storage,
 //! compressed sparse columns, with the slots of each triangle's entries found once.
 
 use sprs::CsMat;
@@ -20,20 +21,30 @@ pub(crate) struct BlockPattern {
 impl BlockPattern {
     /// The pattern of `mesh`'s vertex graph with `block` unknowns per vertex.
     pub(crate) fn new(mesh: &Mesh, block: usize) -> Self {
+        Self::with_pairs(mesh, block, &[])
+    }
+
+    /// The pattern of `mesh`'s vertex graph and of the vertex pairs `extra` (sorted, both
+    /// orders of each pair given: a puppet's joints), with `block` unknowns per vertex.
+    pub(crate) fn with_pairs(mesh: &Mesh, block: usize, extra: &[[u32; 2]]) -> Self {
         let n = mesh.vertex_count();
         let mut indptr = Vec::with_capacity(block * n + 1);
         let mut indices = Vec::new();
         indptr.push(0);
+        let mut rows = Vec::new();
+        let mut at = 0;
         for v in 0..n {
-            let neighbors = mesh.neighbors(v);
-            let split = neighbors.partition_point(|&w| (w as usize) < v);
+            rows.clear();
+            rows.extend(mesh.neighbors(v).iter().map(|&w| w as usize));
+            rows.push(v);
+            while at < extra.len() && extra[at][0] as usize == v {
+                rows.push(extra[at][1] as usize);
+                at += 1;
+            }
+            rows.sort_unstable();
+            rows.dedup();
             let start = indices.len();
-            for w in neighbors[..split]
-                .iter()
-                .map(|&w| w as usize)
-                .chain([v])
-                .chain(neighbors[split..].iter().map(|&w| w as usize))
-            {
+            for &w in &rows {
                 indices.extend((0..block).map(|k| block * w + k));
             }
             indptr.push(indices.len());

@@ -12,10 +12,13 @@
 //! sparse, symmetric and positive definite, analysed once per joint set.
 //!
 //! Sheets may be free (a hat touching nothing, no handle on it) or held by one hinge alone
-//! with nothing to turn them, which leaves the systems singular: a deformer of a puppet adds
-//! a small least-motion term ([`LEAST_MOTION`]) to every unknown, so that such a sheet
-//! takes the least motion (stays, or only follows its hinge) and no system is ever
-//! singular. A mesh without a puppet has no such term, and its results are unchanged.
+//! with nothing to turn them, which leaves the systems singular. AKAP adds a tiny
+//! least-motion term ([`LEAST_MOTION`]) to every unknown, so that a free sheet stays
+//! (exactly: its right-hand side is zero) and no system is ever singular, and a small term
+//! against turning ([`AKAP_TURN_WEIGHT`]), so that a sheet on one hinge follows it without
+//! turning. ARAP pins the vertices of sheets no handle holds (through joints or the mesh)
+//! where they are, and its rotations already stay unless something turns them. A mesh
+//! without a puppet has none of this, and its results are unchanged.
 
 use super::error::DeformError;
 use super::handles::HandlePoint;
@@ -27,11 +30,19 @@ use crate::mesh::Mesh;
 /// fraction of the shape's size, and the gap left by a step is closed in the next.
 pub const AKAP_JOINT_WEIGHT: f64 = 1e4;
 
-/// The least-motion term of a puppet's systems, relative to their typical diagonal entry:
-/// AKAP adds it to every diagonal entry of its matrix (the velocity's squared length
-/// weighted by it), ARAP this times its mean diagonal entry (pulling every vertex towards
-/// its place before the step).
-pub const LEAST_MOTION: f64 = 1e-6;
+/// The least-motion term of AKAP's systems for a puppet, relative to their typical diagonal
+/// entry: added to every diagonal entry of its matrix (the velocity's squared length
+/// weighted by it). It decides only what nothing else does: where a free sheet goes
+/// (nowhere: its right-hand side is zero, so its velocity is exactly zero).
+pub const LEAST_MOTION: f64 = 1e-8;
+
+/// AKAP's rotation term for a puppet: the weight of the integral of the velocity field's
+/// curl squared, beside the Killing energy's (whose weights are 2 to 4). A Killing field
+/// may turn at no cost, so without it a sheet held by one hinge alone would take the least
+/// motion by turning partly about its centre; with it, it follows its hinge without
+/// turning. A part that something turns (a handle, a joint) turns all the same: the term
+/// costs 1/1000 of the handles' least force.
+pub const AKAP_TURN_WEIGHT: f64 = 1e-3;
 
 /// One part of a puppet: its sheet's triangles, its name and its depth.
 #[derive(Debug, Clone, PartialEq)]
@@ -73,12 +84,6 @@ pub(crate) struct Joins {
 }
 
 impl Joins {
-    /// The gap `x_front - x_back` of each joint's two points at `positions`.
-    pub(crate) fn gap(pair: &[HandlePoint; 2], positions: &[Point]) -> Point {
-        let (a, b) = (pair[0].position(positions), pair[1].position(positions));
-        [a[0] - b[0], a[1] - b[1]]
-    }
-
     /// The joint's coefficients on its vertices: `+w` on the front triangle's corners,
     /// `-w` on the back's (`x_front - x_back = sum c_k x_(v_k)`).
     pub(crate) fn blend(pair: &[HandlePoint; 2]) -> [(u32, f64); 6] {

@@ -28,10 +28,14 @@ mod replay;
 use std::borrow::BorrowMut;
 
 use crate::defop::Operator;
-use crate::deform::{DeformError, Deformer, FoldoverGuard, FoldoverStepper, GuardedStep, MethodOptions, Timings};
+use crate::deform::{
+    DeformError, Deformer, FoldoverGuard, FoldoverStepper, GuardedStep, Joint, MethodOptions, Timings,
+};
 use crate::geometry::Point;
 use crate::mesh::MeshPoint;
-use crate::session::{Event, MeshCounts, RecordedOptions, Session, SessionMesh, ShapeSpec};
+use crate::session::{
+    Event, MeshCounts, RecordedOptions, Session, SessionJoint, SessionMesh, SessionPuppet, ShapeSpec,
+};
 
 pub use replay::{replay, replay_to_targets, Replay};
 
@@ -792,6 +796,14 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         Ok(())
     }
 
+    /// Replaces a puppet's joints ([`Deformer::set_joints`]). Recorded.
+    pub fn set_joints(&mut self, joints: Vec<Joint>) -> Result<(), DeformError> {
+        let recorded = SessionJoint::all(&joints);
+        self.deformer.borrow_mut().set_joints(joints)?;
+        self.record(|| Event::Joints(recorded));
+        Ok(())
+    }
+
     /// Sets each triangle's stiffness ([`Deformer::set_stiffness`]). Recorded (methods
     /// without stiffness take only `None`).
     pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
@@ -828,6 +840,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         let deformer = self.deformer.borrow();
         let mesh = deformer.mesh();
         let mut session = Session::with_mesh(mesh, deformer.options());
+        session.puppet = deformer.puppet().map(SessionPuppet::of);
         if let Some(shape) = shape {
             session.shape = Some(shape);
             session.mesh = SessionMesh::counts_of(MeshCounts::of(mesh));

@@ -5,7 +5,7 @@
 use super::Poser;
 use crate::deform::{DeformError, Deformer};
 use crate::geometry::Point;
-use crate::session::{Event, Session, SessionError};
+use crate::session::{Event, Session, SessionError, SessionJoint};
 
 /// What a replay did.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -118,6 +118,7 @@ fn run(
                 let ends = triples(barycentric, triangles.len(), "bone barycentric", "bone ends").map_err(refused)?;
                 set(poser, compared, |p| p.set_bones(triangles, ends)).map_err(refused)?;
             }
+            Event::Joints(joints) => poser.set_joints(SessionJoint::joints(joints)).map_err(refused)?,
             Event::Reset(true) => poser.reset(),
             Event::Reset(false) => {}
         }

@@ -59,7 +59,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::deform::handles::check_stiffness;
 use crate::deform::settings::is_whole;
-use crate::deform::{AkapOptions, DeformError, Deformer, Method, MethodOptions, SettingValue};
+use crate::deform::{AkapOptions, DeformError, Deformer, Joint, Method, MethodOptions, Part, Puppet, SettingValue};
 use crate::error_code::ErrorCode;
 use crate::mesh::{Mesh, MeshError};
 use crate::shapes;
@@ -92,6 +92,9 @@ pub struct Session {
     /// The method and options of the recording at its start (left out: AKAP's defaults).
     #[serde(default)]
     pub options: RecordedOptions,
+    /// A puppet's parts and joints at the start (left out for one shape).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub puppet: Option<SessionPuppet>,
     /// What happened, in order.
     pub events: Vec<Event>,
 }
@@ -125,6 +128,76 @@ impl ShapeSpec {
             options.min_angle_degrees = angle;
         }
         options
+    }
+}
+
+/// A puppet's parts and joints as a session records them ([`crate::deform::Puppet`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SessionPuppet {
+    /// Each part: its name, triangles and depth.
+    pub parts: Vec<SessionPart>,
+    /// The joints.
+    pub joints: Vec<SessionJoint>,
+}
+
+/// One part of a recorded puppet.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SessionPart {
+    /// The part's name.
+    pub name: String,
+    /// Its triangles.
+    pub triangles: Vec<u32>,
+    /// Its depth (larger is in front).
+    pub depth: i32,
+}
+
+/// One joint of a recorded puppet: its point and its parts, `[front, back]`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SessionJoint {
+    /// Where it is at rest.
+    pub point: [f64; 2],
+    /// The parts it joins, front then back.
+    pub parts: [usize; 2],
+}
+
+impl SessionPuppet {
+    /// A puppet as recorded.
+    pub fn of(puppet: &Puppet) -> Self {
+        Self {
+            parts: puppet
+                .parts
+                .iter()
+                .map(|p| SessionPart { name: p.name.clone(), triangles: p.triangles.clone(), depth: p.depth })
+                .collect(),
+            joints: SessionJoint::all(&puppet.joints),
+        }
+    }
+
+    /// The recorded puppet (checked by the deformer that takes it).
+    pub fn puppet(&self) -> Puppet {
+        Puppet {
+            parts: self
+                .parts
+                .iter()
+                .map(|p| Part { name: p.name.clone(), triangles: p.triangles.clone(), depth: p.depth })
+                .collect(),
+            joints: SessionJoint::joints(&self.joints),
+        }
+    }
+}
+
+impl SessionJoint {
+    /// Joints as recorded.
+    pub fn all(joints: &[Joint]) -> Vec<Self> {
+        joints.iter().map(|j| Self { point: j.point, parts: j.parts }).collect()
+    }
+
+    /// The recorded joints.
+    pub fn joints(recorded: &[Self]) -> Vec<Joint> {
+        recorded.iter().map(|j| Joint { point: j.point, parts: j.parts }).collect()
     }
 }
 
@@ -320,6 +393,8 @@ pub enum Event {
         /// Barycentric coordinates, three per end.
         barycentric: Vec<f64>,
     },
+    /// A puppet's joints replaced ([`Deformer::set_joints`]).
+    Joints(Vec<SessionJoint>),
     /// One frame in which handles also turn ([`Deformer::step_turning`]).
     Turn {
         /// x and y velocity of each handle.
@@ -467,6 +542,7 @@ impl Session {
             shape: Some(shape),
             mesh: SessionMesh::counts_of(mesh),
             options: options.into(),
+            puppet: None,
             events: Vec::new(),
         }
     }
@@ -479,6 +555,7 @@ impl Session {
             shape: None,
             mesh: SessionMesh::inline(mesh),
             options: RecordedOptions::of(options),
+            puppet: None,
             events: Vec::new(),
         }
     }
@@ -511,6 +588,9 @@ impl Session {
         if self.mesh.positions.is_some() || self.mesh.triangles.is_some() {
             return Some("an inline mesh");
         }
+        if self.puppet.is_some() {
+            return Some("a puppet");
+        }
         if self.options.beyond_version_1() {
             return Some("options naming a method or ARAP's iterations");
         }
@@ -520,6 +600,7 @@ impl Session {
             Event::Stiffness(_) => Some("a stiffness event"),
             Event::Turn { .. } => Some("a turn event"),
             Event::Bones { .. } => Some("a bones event"),
+            Event::Joints(_) => Some("a joints event"),
             _ => None,
         })
     }
@@ -577,6 +658,11 @@ impl Session {
                         return Err(length("bone triangles", triangles.len() + 1, triangles.len(), 2, "bones"));
                     }
                 }
+                Event::Joints(_) if self.puppet.is_none() => {
+                    let error =
+                        DeformError::InvalidParts { reason: "joints were recorded for a mesh without parts".into() };
+                    return Err(SessionError::Event { index, error });
+                }
                 _ => {}
             }
         }
@@ -593,6 +679,9 @@ impl Session {
         }
         out += &format!("  \"mesh\": {},\n", json(&self.mesh));
         out += &format!("  \"options\": {},\n", json(&self.options));
+        if let Some(puppet) = &self.puppet {
+            out += &format!("  \"puppet\": {},\n", json(puppet));
+        }
         out += "  \"events\": [";
         for (k, event) in self.events.iter().enumerate() {
             out += if k == 0 { "\n    " } else { ",\n    " };
@@ -628,9 +717,14 @@ impl Session {
         self.options.over(MethodOptions::default(), None)
     }
 
-    /// A deformer of the recorded method and options on the session's mesh.
+    /// A deformer of the recorded method and options on the session's mesh (and puppet).
     pub fn recorded_deformer(&self) -> Result<Deformer, SessionError> {
-        Deformer::new(self.mesh()?, self.method_options()?).map_err(SessionError::Setup)
+        let (mesh, options) = (self.mesh()?, self.method_options()?);
+        match &self.puppet {
+            Some(puppet) => Deformer::with_puppet(mesh, options, puppet.puppet(), None),
+            None => Deformer::new(mesh, options),
+        }
+        .map_err(SessionError::Setup)
     }
 
     /// Number of `step` events.

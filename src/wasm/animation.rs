@@ -12,27 +12,13 @@ use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;
 use super::mesh::read_mesh;
-use super::read::{self, Options};
+use super::read::{self, field, optional, Options};
 use super::{flat, limits, max_coordinates, max_indices, object, pairs};
 use crate::animation::zip::{MAX_FILES, MAX_NAME_BYTES, MAX_ZIP_BYTES};
 use crate::animation::{
     self, Animation, AnimationEncoder, AnimationError, Easing, Format, Key, SpriteSheet, MAX_FRAMES, MAX_KEYS,
 };
 use crate::import::mesh_file::MeshFile;
-
-/// Field `key` of `value`, which must be an object (`what` names it in messages).
-fn field(value: &JsValue, key: &str, what: &str) -> Result<JsValue, BindingError> {
-    if !value.is_object() || value.is_function() {
-        return Err(read::type_error(what, "an object", value));
-    }
-    Reflect::get(value, &JsValue::from_str(key)).map_err(|e| read::unreadable(&format!("{what}.{key}"), &e))
-}
-
-/// Field `key` of `value`, `None` when it is `undefined` or `null`.
-fn optional(value: &JsValue, key: &str, what: &str) -> Result<Option<JsValue>, BindingError> {
-    let v = field(value, key, what)?;
-    Ok((!(v.is_undefined() || v.is_null())).then_some(v))
-}
 
 /// Animated images: `new AnimationEncoder("gif" | "apng", width, height, { loop? })`, then
 /// `addFrame(rgba, delayMs)` per frame and `finish()` for the file's bytes.

@@ -9,7 +9,8 @@ use wasm_bindgen::prelude::*;
 use super::defop::JsDefOp;
 use super::error::BindingError;
 use super::mesh::read_mesh;
-use super::options::deformer_options;
+use super::options::{deformer_options, deformer_setup};
+use super::puppet::{joints_to_js, parts_to_js, read_joints};
 use super::read::{self, Options};
 use super::session::shape_spec;
 use super::{limits, max_coordinates, object, pairs, performance_now};
@@ -39,7 +40,9 @@ impl JsDeformer {
 /// bulk of its set-up), as an array of `Uint32Array`s for `Deformer.withOrders`.
 #[wasm_bindgen]
 pub fn deformer_orders(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<Array, BindingError> {
-    let options = deformer_options(&options, MethodOptions::default())?;
+    // A puppet's orders are its mesh's: its parts and joints are read (and checked by the
+    // deformer that takes the orders) but change nothing here.
+    let (options, _) = deformer_setup(&options)?;
     let mesh = read_mesh(&positions, &triangles)?;
     let list = Array::new();
     for order in options.orders(&mesh).systems {
@@ -67,14 +70,17 @@ fn max_handles() -> usize {
 #[wasm_bindgen(js_class = Deformer)]
 impl JsDeformer {
     /// Validates the mesh (xy-interleaved positions, counter-clockwise index triples) and
-    /// prepares the solver. `options`: `{ method?: "akap" | "arap", lambda?: number,
-    /// dirichlet?: boolean, integrator?: "spiral" | "linear", iterations?: number }`
-    /// (the last for ARAP, the three before it for AKAP).
+    /// prepares the solver. `options`: `{ method?, ...the method's settings, parts?,
+    /// joints? }`; with `parts` (and `joints`) the mesh is a puppet's sheets (see
+    /// `crate::deform::puppet`).
     #[wasm_bindgen(constructor)]
     pub fn new(positions: JsValue, triangles: JsValue, options: JsValue) -> Result<JsDeformer, BindingError> {
-        let options = deformer_options(&options, MethodOptions::default())?;
+        let (options, puppet) = deformer_setup(&options)?;
         let mesh = read_mesh(&positions, &triangles)?;
-        Ok(Self::made(Deformer::new(mesh, options)?))
+        Ok(Self::made(match puppet {
+            Some(puppet) => Deformer::with_puppet(mesh, options, puppet, None)?,
+            None => Deformer::new(mesh, options)?,
+        }))
     }
 
     /// The constructor with the fill-reducing orders computed beforehand by
@@ -87,7 +93,7 @@ impl JsDeformer {
         options: JsValue,
         orders: JsValue,
     ) -> Result<JsDeformer, BindingError> {
-        let options = deformer_options(&options, MethodOptions::default())?;
+        let (options, puppet) = deformer_setup(&options)?;
         let mesh = read_mesh(&positions, &triangles)?;
         let systems = read::list(&orders, "orders", 4)?
             .iter()
@@ -97,7 +103,38 @@ impl JsDeformer {
                 Ok(order.into_iter().map(|v| v as usize).collect())
             })
             .collect::<Result<Vec<_>, BindingError>>()?;
-        Ok(Self::made(Deformer::with_orders(mesh, options, &Orders { systems })?))
+        let orders = Orders { systems };
+        Ok(Self::made(match puppet {
+            Some(puppet) => Deformer::with_puppet(mesh, options, puppet, Some(&orders))?,
+            None => Deformer::with_orders(mesh, options, &orders)?,
+        }))
+    }
+
+    /// A puppet's parts (`[{ name, triangles: Uint32Array, depth }]`), or `undefined` for a
+    /// deformer of one shape.
+    #[wasm_bindgen(getter)]
+    pub fn parts(&self) -> Result<JsValue, BindingError> {
+        match self.deformer().puppet() {
+            Some(puppet) => Ok(parts_to_js(&puppet.parts)?.into()),
+            None => Ok(JsValue::UNDEFINED),
+        }
+    }
+
+    /// A puppet's joints (`[{ point: [x, y], parts: [front, back] }]`; empty for a deformer
+    /// of one shape).
+    #[wasm_bindgen(getter)]
+    pub fn joints(&self) -> Result<Array, BindingError> {
+        joints_to_js(self.deformer().puppet().map_or(&[][..], |p| &p.joints[..]))
+    }
+
+    /// Replaces a puppet's joints (`[{ point: [x, y], parts: [front, back] }]`), keeping the
+    /// pose, the handles, the stiffness and the bones; the systems are analysed again. A
+    /// part out of range, a part joined to itself or a point not on both parts is refused
+    /// (code `invalid-joint`), as is a deformer of one shape; nothing changes.
+    #[wasm_bindgen(js_name = setJoints)]
+    pub fn set_joints(&mut self, joints: JsValue) -> Result<(), BindingError> {
+        let joints = read_joints(&joints)?;
+        Ok(self.inner.set_joints(joints)?)
     }
 
     /// Changes some options; the others keep their values. A different `method` switches

@@ -22,6 +22,7 @@ mod error;
 mod import;
 mod mesh;
 mod options;
+mod puppet;
 mod read;
 mod session;
 

@@ -266,6 +266,20 @@ impl Options {
     }
 }
 
+/// Field `key` of `value`, which must be an object (`what` names it in messages).
+pub(super) fn field(value: &JsValue, key: &str, what: &str) -> Result<JsValue, BindingError> {
+    if !value.is_object() || value.is_function() {
+        return Err(type_error(what, "an object", value));
+    }
+    Reflect::get(value, &JsValue::from_str(key)).map_err(|e| unreadable(&format!("{what}.{key}"), &e))
+}
+
+/// Field `key` of `value`, `None` when it is `undefined` or `null`.
+pub(super) fn optional(value: &JsValue, key: &str, what: &str) -> Result<Option<JsValue>, BindingError> {
+    let v = field(value, key, what)?;
+    Ok((!(v.is_undefined() || v.is_null())).then_some(v))
+}
+
 /// An argument whose reading threw: the exception's message.
 pub(super) fn unreadable(what: &str, thrown: &JsValue) -> BindingError {
     BindingError::argument(format!("{what} could not be read: {}", message(thrown)))

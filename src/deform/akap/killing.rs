@@ -35,13 +35,23 @@ pub struct KillingMatrix {
     /// Each triangle's stiffness, the factor on its energy (`None`: 1 everywhere, and no
     /// multiplication at all).
     stiffness: Option<Vec<f64>>,
+    /// The weight of the rotation term a puppet's sheets get (0: none, and no work at all).
+    turn_weight: f64,
 }
 
 impl KillingMatrix {
     /// Builds the pattern for a mesh (values are zero until [`Self::assemble`]).
     pub fn new(mesh: &Mesh) -> Self {
-        // Column 2v and 2v + 1 hold rows 2w, 2w + 1 for w in N(v) and v itself, ascending.
-        let pattern = BlockPattern::new(mesh, 2);
+        Self::with_pairs(mesh, &[])
+    }
+
+    /// Builds the pattern for a mesh and the extra vertex pairs `extra` (sorted, both
+    /// orders of each pair: a puppet's joints, whose entries [`Self::data_mut`] adds after
+    /// each [`Self::assemble`]).
+    pub(crate) fn with_pairs(mesh: &Mesh, extra: &[[u32; 2]]) -> Self {
+        // Column 2v and 2v + 1 hold rows 2w, 2w + 1 for w in N(v), v itself and v's extra
+        // pairs, ascending.
+        let pattern = BlockPattern::with_pairs(mesh, 2, extra);
         let slots = pattern
             .triangle_slots(mesh)
             .into_iter()
@@ -57,7 +67,7 @@ impl KillingMatrix {
             .collect();
         let nnz = pattern.nnz();
         let matrix = pattern.matrix(vec![0.0; nnz]);
-        Self { matrix, triangles: mesh.triangles().to_vec(), slots, stiffness: None }
+        Self { matrix, triangles: mesh.triangles().to_vec(), slots, stiffness: None, turn_weight: 0.0 }
     }
 
     /// Recomputes the values, `K = P^T P` of eqs. (6)-(7), for vertex positions `positions`
@@ -92,6 +102,20 @@ impl KillingMatrix {
                     data[c1 + 1] += xx + 2.0 * yy;
                 }
             }
+            if self.turn_weight != 0.0 {
+                // The rotation term `w A curl(U)^2`, `curl = gx.U2 - gy.U1`, entry by entry
+                // with `A g_i g_j = h_i g_j / 2`.
+                let w = 0.5 * self.turn_weight;
+                for (i, hi) in h.iter().enumerate() {
+                    for (j, gj) in g.iter().enumerate() {
+                        let [c0, c1] = slots[3 * i + j];
+                        data[c0] += w * hi[1] * gj[1];
+                        data[c0 + 1] -= w * hi[0] * gj[1];
+                        data[c1] -= w * hi[1] * gj[0];
+                        data[c1 + 1] += w * hi[0] * gj[0];
+                    }
+                }
+            }
         }
     }
 
@@ -99,6 +123,13 @@ impl KillingMatrix {
     /// everywhere with `None`. The next [`Self::assemble`] uses it.
     pub fn set_stiffness(&mut self, stiffness: Option<Vec<f64>>) {
         self.stiffness = stiffness;
+    }
+
+    /// Adds `weight` times the integral of the field's curl squared (its rotation) to the
+    /// energy from the next [`Self::assemble`]: a puppet's sheets held by one hinge alone
+    /// then follow it without turning (see `deform::puppet`). 0, the default, adds nothing.
+    pub(crate) fn set_turn_weight(&mut self, weight: f64) {
+        self.turn_weight = weight;
     }
 
     /// Each triangle's stiffness, if set.
@@ -109,6 +140,11 @@ impl KillingMatrix {
     /// The matrix (full symmetric storage, CSC).
     pub fn matrix(&self) -> &CsMat<f64> {
         &self.matrix
+    }
+
+    /// The matrix's values, to add terms of the same pattern to after [`Self::assemble`].
+    pub(crate) fn data_mut(&mut self) -> &mut [f64] {
+        self.matrix.data_mut()
     }
 
     /// Slots in the matrix's data of the 2 x 2 block at vertices `(row, col)`, as

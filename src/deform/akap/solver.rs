@@ -32,6 +32,7 @@ use crate::deform::error::{out_of_memory, DeformError};
 use crate::deform::handles::{self, diagonal, in_range, HandlePoint};
 use crate::deform::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 use crate::deform::options::{AkapOptions, Integrator, LAMBDA_RANGE};
+use crate::deform::puppet::{Joins, AKAP_JOINT_WEIGHT, AKAP_TURN_WEIGHT, LEAST_MOTION};
 use crate::geometry::{in_comfortable_range, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{dissection_if_large, expand_blocks, fill_or_dissection, Numeric, Ordering, Symbolic};
@@ -88,6 +89,16 @@ pub struct AkapSolver {
     distinct_points: usize,
     /// Whether every handle weighs only on boundary vertices (then step 2 changes nothing).
     boundary_handles_only: bool,
+    /// A puppet's joints: each joint's six vertices with their blend coefficients
+    /// (`x_front - x_back = sum c x_v`), and the entries `mu c_i c_j` it adds to K (the
+    /// slots of the two diagonal entries of each 2 x 2 block, and the value).
+    joints: Vec<[(u32, f64); 6]>,
+    joint_entries: Vec<([usize; 2], f64)>,
+    /// A puppet's least-motion term: the slots of every diagonal entry of K (empty for a
+    /// single shape, which has none).
+    least_motion: Vec<usize>,
+    /// Scratch: each joint's gap `x_front - x_back` in the current pose.
+    gaps: Vec<Point>,
     /// Per handle, the vertices it carries when it turns ([`turning`]).
     neighbourhoods: Vec<Neighbourhood>,
     /// Scratch: the turning handles' velocities at their neighbourhoods' vertices.
@@ -125,15 +136,39 @@ impl AkapSolver {
         Orders { systems: vec![soft, interior] }
     }
 
-    /// The solver for a connected mesh with orders from [`Self::orders`]: the analyses and
-    /// buffers. Orders that are not permutations of the right sizes are refused
-    /// ([`DeformError::OrdersMismatch`]).
-    fn new(mesh: &Mesh, options: AkapOptions, orders: &Orders) -> Result<Self, DeformError> {
+    /// The solver for a connected mesh, or a puppet's sheets coupled by `joins`, with
+    /// orders from [`Self::orders`] (the mesh's alone: the joints' few extra entries are
+    /// analysed in the mesh's order): the analyses and buffers. Orders that are not
+    /// permutations of the right sizes are refused ([`DeformError::OrdersMismatch`]).
+    fn new(mesh: &Mesh, options: AkapOptions, joins: &Joins, orders: &Orders) -> Result<Self, DeformError> {
         check_options(&options)?;
         let n = mesh.vertex_count();
         let (interior_index, interior_count) = interior_numbering(mesh);
         orders.check(&[n, interior_count])?;
-        let killing = KillingMatrix::new(mesh);
+        let mut killing = KillingMatrix::with_pairs(mesh, &joins.extra_pairs());
+        if joins.puppet {
+            killing.set_turn_weight(AKAP_TURN_WEIGHT);
+        }
+        let joints: Vec<[(u32, f64); 6]> = joins.points.iter().map(Joins::blend).collect();
+        let mut joint_entries = Vec::with_capacity(36 * joints.len());
+        for blend in &joints {
+            for &(v, cv) in blend {
+                for &(w, cw) in blend {
+                    let block =
+                        killing.block_slots(v as usize, w as usize).expect("the joints' pairs are in the pattern");
+                    joint_entries.push(([block[0][0], block[1][1]], AKAP_JOINT_WEIGHT * cv * cw));
+                }
+            }
+        }
+        let least_motion = match joins.puppet {
+            true => (0..n)
+                .flat_map(|v| {
+                    let block = killing.block_slots(v, v).expect("every vertex has its diagonal block");
+                    [block[0][0], block[1][1]]
+                })
+                .collect(),
+            false => Vec::new(),
+        };
         let k = killing.matrix();
         let soft = System::new(k, k, None, &orders.systems[0])?;
         let dirichlet = if interior_count > 0 {
@@ -150,6 +185,10 @@ impl AkapSolver {
             interior_rhs: vec![0.0; 2 * interior_count],
             interior_index,
             penalty_slots: Vec::new(),
+            gaps: vec![[0.0; 2]; joints.len()],
+            joints,
+            joint_entries,
+            least_motion,
             distinct_points: 0,
             boundary_handles_only: true,
             neighbourhoods: Vec::new(),
@@ -199,17 +238,43 @@ impl AkapSolver {
                 &mut self.turn_targets,
             );
         }
-        let asked = || velocities.iter().chain(turns.map_or(&[][..], |_| &self.turn_targets[..]));
+        for (gap, pair) in self.gaps.iter_mut().zip(&self.joints) {
+            *gap = [0.0, 0.0];
+            for &(v, c) in pair {
+                gap[0] += c * shared.positions[v as usize][0];
+                gap[1] += c * shared.positions[v as usize][1];
+            }
+        }
+        let asked =
+            || velocities.iter().chain(turns.map_or(&[][..], |_| &self.turn_targets[..])).chain(self.gaps.iter());
         let largest = asked().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
         let e =
             if largest == 0.0 || in_comfortable_range(largest) { 0 } else { normalising_exponent(asked().copied()) };
         let t0 = clock();
         self.killing.assemble(shared.positions);
+        // A puppet's joints and least-motion term, part of the energy both steps minimise.
+        let data = self.killing.data_mut();
+        for &(slots, value) in &self.joint_entries {
+            data[slots[0]] += value;
+            data[slots[1]] += value;
+        }
+        for &slot in &self.least_motion {
+            data[slot] += LEAST_MOTION;
+        }
         let k = self.killing.matrix().data();
         self.soft.values.copy_from_slice(k);
         let data = &mut self.soft.values;
         let rhs = &mut self.next_soft;
         rhs.fill(0.0);
+        // Each joint asks its two points' velocities to close the current gap:
+        // mu |J U + g|^2, whose gradient puts -mu J^T g on the right-hand side.
+        for (pair, gap) in self.joints.iter().zip(&self.gaps) {
+            let g = gap.map(|x| scale_by_power_of_two(x, e));
+            for &(v, c) in pair {
+                rhs[2 * v as usize] -= AKAP_JOINT_WEIGHT * c * g[0];
+                rhs[2 * v as usize + 1] -= AKAP_JOINT_WEIGHT * c * g[1];
+            }
+        }
         let mut at_target = 0;
         for (index, ((h, slots), u)) in shared.handles.iter().zip(&self.penalty_slots).zip(velocities).enumerate() {
             if turns.is_some_and(|turns| turns[index] != 0.0) {
@@ -238,7 +303,10 @@ impl AkapSolver {
                 rhs[2 * v + 1] += lambda * h.weights[i] * u[1];
             }
         }
-        // Step 2 re-solves the interior with U0's boundary values. When the penalties touch
+        // Step 2 re-solves the interior with U0's boundary values (and a puppet's joints,
+        // which are part of K here: its correction's right-hand side below has only the
+        // handles' forces, since the joints' terms of K U0 and of step 1's right-hand side
+        // cancel). When the penalties touch
         // boundary unknowns only, U0 already makes the interior gradient of E_K vanish, which
         // is step 2's condition, and step 2's solution is unique (K_II is positive definite):
         // U_opt = U0, so the second factorisation is skipped.
@@ -373,7 +441,9 @@ impl Solve for AkapSolver {
         timings: &mut Timings,
     ) -> Result<bool, DeformError> {
         let clock = shared.clock;
-        if self.distinct_points < 2 {
+        // A puppet's sheets follow a single handle through its joints, so it always solves.
+        let puppet = !self.least_motion.is_empty() && !shared.handles.is_empty();
+        if self.distinct_points < 2 && !puppet {
             // No handle: nothing moves. One handle point: the whole shape follows it rigidly
             // (and turns with it).
             let mut mean = [0.0, 0.0];
@@ -466,8 +536,8 @@ impl Build for AkapOptions {
         AkapSolver::orders(mesh)
     }
 
-    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<AkapSolver, DeformError> {
-        AkapSolver::new(mesh, self, orders)
+    fn build(self, mesh: &Mesh, joins: &Joins, orders: &Orders) -> Result<AkapSolver, DeformError> {
+        AkapSolver::new(mesh, self, joins, orders)
     }
 
     fn of(solver: &AkapSolver) -> Self {

@@ -50,6 +50,7 @@ pub use super::method::IterationReport;
 use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 pub use super::options::{ArapOptions, MAX_CONVERGENCE_ITERATIONS, MAX_ITERATIONS};
 use super::pattern::BlockPattern;
+use super::puppet::Joins;
 use crate::geometry::{normalising_exponent, power_of_two, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::{fill_reducing_order, Numeric, Ordering, Symbolic};
@@ -89,6 +90,17 @@ pub struct ArapSolver {
     laplacian: Vec<f64>,
     /// Per triangle, the slots of the 9 entries `(v[i], v[j])` (index `3 i + j`).
     triangle_slots: Vec<[usize; 9]>,
+    /// A puppet's joints: per entry of `x_front - x_back = J x` squared, the slot and
+    /// `c_v c_w` (the matrix gets the handles' penalty times it, so joints hold like handles).
+    joint_entries: Vec<(usize, f64)>,
+    /// A puppet's joints: each one's six vertices and blend coefficients.
+    joints: Vec<[(u32, f64); 6]>,
+    /// A puppet's pieces: per vertex, its piece of the mesh's sheets joined at the joints
+    /// (empty for a single shape).
+    pieces: Vec<u32>,
+    /// The vertices of pieces that no handle holds, pinned where they are (a puppet's free
+    /// sheets, which nothing moves: ARAP's matrix would be singular on them).
+    frozen: Vec<usize>,
     /// `L` plus penalties, with pinned rows and columns replaced by the identity.
     matrix: CsMat<f64>,
     numeric: Numeric,
@@ -127,15 +139,16 @@ impl ArapSolver {
 
     /// The solver for a connected mesh with the order from [`Self::orders`]: cotangent
     /// weights, the Laplacian, its symbolic analysis, and every buffer.
-    fn new(mesh: &Mesh, options: ArapOptions, orders: &Orders) -> Result<Self, DeformError> {
+    fn new(mesh: &Mesh, options: ArapOptions, joins: &Joins, orders: &Orders) -> Result<Self, DeformError> {
         check_options(&options)?;
         let n = mesh.vertex_count();
         orders.check(&[n])?;
         let m = mesh.triangle_count();
         let x = mesh.positions();
 
-        // Pattern: column v holds rows N(v) and v, ascending (full symmetric storage).
-        let pattern = BlockPattern::new(mesh, 1);
+        // Pattern: column v holds rows N(v), v and the vertices a joint couples v with,
+        // ascending (full symmetric storage).
+        let pattern = BlockPattern::with_pairs(mesh, 1, &joins.extra_pairs());
         let slot = |row: usize, col: usize| pattern.slot(row, col).expect("a vertex pair of the pattern");
         let all_slots = pattern.triangle_slots(mesh);
         let mut cot = Vec::with_capacity(m);
@@ -159,6 +172,19 @@ impl ArapSolver {
         }
         let (laplacian, penalty) = laplacian_of(&cot, &all_slots, pattern.nnz(), n, |v| slot(v, v));
 
+        let joints: Vec<[(u32, f64); 6]> = joins.points.iter().map(Joins::blend).collect();
+        let mut joint_entries = Vec::with_capacity(36 * joints.len());
+        for blend in &joints {
+            for &(v, cv) in blend {
+                for &(w, cw) in blend {
+                    joint_entries.push((slot(v as usize, w as usize), cv * cw));
+                }
+            }
+        }
+        let pieces = match joins.puppet {
+            true => pieces(mesh, &joins.extra_pairs()),
+            false => Vec::new(),
+        };
         let matrix = pattern.matrix(laplacian.clone());
         let best = Symbolic::analyse(matrix.view(), &Ordering::Given(orders.systems[0].clone()))
             .expect("a checked vertex order is a valid ordering of the vertex Laplacian");
@@ -176,6 +202,10 @@ impl ArapSolver {
             numeric: Numeric::try_new(Arc::new(best)).map_err(out_of_memory)?,
             factored: false,
             penalty,
+            joint_entries,
+            joints,
+            pieces,
+            frozen: Vec::new(),
             pinned: Vec::new(),
             pin_count: vec![0; n],
             coupling: Vec::new(),
@@ -236,8 +266,14 @@ impl ArapSolver {
         for &v in self.pinned.iter().filter(|&&v| v != NONE) {
             self.pin_count[v] += 1;
         }
+        for &v in &self.frozen {
+            self.pin_count[v] = 1;
+        }
         let data = self.matrix.data_mut();
         data.copy_from_slice(&self.laplacian);
+        for &(slot, c) in &self.joint_entries {
+            data[slot] += self.penalty * c;
+        }
         for (h, _) in handles.iter().zip(&self.pinned).filter(|(_, &pinned)| pinned == NONE) {
             let slots = self.triangle_slots[h.triangle];
             for i in 0..3 {
@@ -317,6 +353,9 @@ impl ArapSolver {
                 self.pin_target[v][0] += t[0] / k;
                 self.pin_target[v][1] += t[1] / k;
             }
+        }
+        for &v in &self.frozen {
+            self.pin_target[v] = shared.positions[v];
         }
         next.copy_from_slice(shared.positions);
         self.next_rotations.copy_from_slice(&self.rotations);
@@ -422,7 +461,8 @@ impl ArapSolver {
     }
 
     /// The energy `E` of the pose in `shared` with the best rotations and the current
-    /// targets (the quantity each iteration lowers).
+    /// targets, and a puppet's joints held like handles (the quantity each iteration
+    /// lowers, but for a puppet's least-motion term, which is relative to each step's start).
     pub(crate) fn energy(&self, shared: Shared<'_>) -> f64 {
         // Computed on positions scaled by 2^unit, like the rest edges, and scaled back.
         let unit = power_of_two(self.unit);
@@ -444,6 +484,15 @@ impl ArapSolver {
                 energy += 0.5 * self.penalty * ((p[0] - target[0]).powi(2) + (p[1] - target[1]).powi(2));
             }
         }
+        for blend in &self.joints {
+            let mut gap = [0.0, 0.0];
+            for &(v, c) in blend {
+                let p = into(u[v as usize]);
+                gap[0] += c * p[0];
+                gap[1] += c * p[1];
+            }
+            energy += 0.5 * self.penalty * (gap[0] * gap[0] + gap[1] * gap[1]);
+        }
         scale_by_power_of_two(energy, -2 * self.unit)
     }
 }
@@ -458,6 +507,20 @@ impl Solve for ArapSolver {
     /// 1 there, within [`AT_VERTEX`]) pins that vertex; any other point is held by the
     /// penalty.
     fn set_handles(&mut self, shared: Shared<'_>, handles: &[HandlePoint]) -> Result<(), DeformError> {
+        self.frozen = match self.pieces.is_empty() || handles.is_empty() {
+            true => Vec::new(),
+            false => {
+                let mut held = vec![false; self.pieces.len()];
+                for h in handles {
+                    for (&v, &w) in h.vertices.iter().zip(&h.weights) {
+                        if w != 0.0 {
+                            held[self.pieces[v as usize] as usize] = true;
+                        }
+                    }
+                }
+                (0..self.pieces.len()).filter(|&v| !held[self.pieces[v] as usize]).collect()
+            }
+        };
         self.pinned = handles
             .iter()
             .map(|p| (0..3).find(|&k| p.weights[k] >= 1.0 - AT_VERTEX).map_or(NONE, |k| p.vertices[k] as usize))
@@ -552,8 +615,8 @@ impl Build for ArapOptions {
         ArapSolver::orders(mesh)
     }
 
-    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<ArapSolver, DeformError> {
-        ArapSolver::new(mesh, self, orders)
+    fn build(self, mesh: &Mesh, joins: &Joins, orders: &Orders) -> Result<ArapSolver, DeformError> {
+        ArapSolver::new(mesh, self, joins, orders)
     }
 
     fn of(solver: &ArapSolver) -> Self {
@@ -583,6 +646,38 @@ fn best_rotation(p: [Point; 3], c: &[f64; 3], e: &[Point; 3]) -> Option<[f64; 2]
     let (x, y) = (s[0][0] + s[1][1], s[1][0] - s[0][1]);
     let r = libm::hypot(x, y);
     (r > 0.0 && r.is_finite()).then(|| [x / r, y / r])
+}
+
+/// Each vertex's piece (numbered from 0) of the graph of the mesh's edges and the extra
+/// vertex pairs `extra` (a puppet's joints): union-find with path halving.
+fn pieces(mesh: &Mesh, extra: &[[u32; 2]]) -> Vec<u32> {
+    let n = mesh.vertex_count();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    for [a, b] in mesh.edges().chain(extra.iter().copied()) {
+        let (a, b) = (root(&mut parent, a as usize), root(&mut parent, b as usize));
+        if a != b {
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    let mut number = vec![u32::MAX; n];
+    let mut count = 0;
+    (0..n)
+        .map(|v| {
+            let r = root(&mut parent, v);
+            if number[r] == u32::MAX {
+                number[r] = count;
+                count += 1;
+            }
+            number[r]
+        })
+        .collect()
 }
 
 fn sub(a: Point, b: Point) -> Point {

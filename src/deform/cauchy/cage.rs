@@ -113,13 +113,41 @@ pub(crate) fn checked(mesh: &Mesh, positions: &[Point], cage: &[Point]) -> Resul
     Ok(cage)
 }
 
-/// The mesh's outer boundary loop, counter-clockwise (its holes lie inside it).
+/// The mesh's outer boundary loop, counter-clockwise (its holes lie inside it); for a mesh
+/// in several pieces (a puppet's sheets, posed as one shape) the convex hull of its
+/// vertices, so that the cage goes round every piece.
 fn outer_outline(mesh: &Mesh, positions: &[Point]) -> Vec<Point> {
+    if mesh.connected_components() > 1 {
+        return convex_hull(positions);
+    }
     let rings: Vec<Vec<Point>> =
         mesh.boundary_loops().iter().map(|ring| ring.iter().map(|&v| positions[v as usize]).collect()).collect();
     // Boundary loops run with the shape on their left: the outer one counter-clockwise, with
     // the largest area.
     rings.into_iter().max_by(|a, b| polygon_area(a).total_cmp(&polygon_area(b))).expect("a mesh has a boundary")
+}
+
+/// The convex hull of `points` (at least three, not all on a line), counter-clockwise,
+/// without collinear points: Andrew's monotone chain.
+fn convex_hull(points: &[Point]) -> Vec<Point> {
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    sorted.dedup();
+    let turn = |o: Point, a: Point, b: Point| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    let mut hull: Vec<Point> = Vec::with_capacity(2 * sorted.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let sweep: Box<dyn Iterator<Item = &Point>> =
+            if pass == 0 { Box::new(sorted.iter()) } else { Box::new(sorted.iter().rev()) };
+        for &p in sweep {
+            while hull.len() >= start + 2 && turn(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
 }
 
 fn counter_clockwise(mut ring: Vec<Point>) -> Vec<Point> {

@@ -41,6 +41,7 @@ use super::error::DeformError;
 use super::handles::{self, diagonal, in_range, HandlePoint};
 use super::method::{copy_into, Abilities, Build, Checkpoint, Orders, Shared, Solve, Timings};
 use super::options::{CauchyGreenOptions, CAGE_VERTICES_RANGE, SMOOTHNESS_RANGE};
+use super::puppet::Joins;
 use crate::geometry::{bounding_box, normalising_exponent, scale_by_power_of_two, Point};
 use crate::mesh::Mesh;
 use crate::sparse::FactorError;
@@ -438,7 +439,7 @@ impl Build for CauchyGreenOptions {
         Orders { systems: Vec::new() }
     }
 
-    fn build(self, mesh: &Mesh, orders: &Orders) -> Result<CauchyGreenSolver, DeformError> {
+    fn build(self, mesh: &Mesh, _joins: &Joins, orders: &Orders) -> Result<CauchyGreenSolver, DeformError> {
         orders.check(&[])?;
         CauchyGreenSolver::new(mesh, self)
     }
