@@ -161,6 +161,31 @@ export interface DeformerOptions {
    * and nearer a similarity, with handles farther from their targets.
    */
   smoothness?: number;
+  /**
+   * A puppet (the constructor only): the mesh is its parts' sheets, which may be
+   * disconnected and overlap, each part its triangles (indices into the triangles), a
+   * name and a depth (a whole number, larger in front), as `importPuppet` gives them
+   * (other fields are left alone). AKAP and ARAP pose each sheet on its own, coupled at the
+   * {@link joints}; moving least squares and Cauchy-Green pose the whole puppet as one shape.
+   */
+  parts?: readonly DeformerPart[];
+  /** A puppet's joints (with {@link parts}): see {@link Deformer.setJoints}. */
+  joints?: readonly DeformerJoint[];
+}
+
+/** A puppet's part as the {@link Deformer} takes it (`importPuppet`'s parts are such). */
+export interface DeformerPart {
+  name: string;
+  /** Indices of its triangles. */
+  triangles: Uint32Array;
+  /** Larger is in front. */
+  depth: number;
+}
+
+/** A joint: a rest point on two parts (`[front, back]`, indices into the parts), which keep it together. */
+export interface DeformerJoint {
+  point: readonly [number, number];
+  parts: readonly [number, number];
 }
 
 /** The deformation methods (see {@link DeformerOptions.method}). */
@@ -329,6 +354,26 @@ export class Deformer {
    */
   setOptions(options: DeformerOptions): void {
     this.#raw.setOptions(options);
+  }
+
+  /** A puppet's parts (`parts` as given to the constructor), or undefined for one shape. */
+  get parts(): DeformerPart[] | undefined {
+    return this.#raw.parts as DeformerPart[] | undefined;
+  }
+
+  /** A puppet's joints now (empty for one shape). */
+  get joints(): { point: [number, number]; parts: [number, number] }[] {
+    return this.#raw.joints as { point: [number, number]; parts: [number, number] }[];
+  }
+
+  /**
+   * Replaces a puppet's joints, keeping the pose, the handles, the stiffness and the bones
+   * (the systems are analysed again). A part out of range, a part joined to itself or a
+   * point not on both parts is refused (code `invalid-joint`), as is a deformer of one
+   * shape; nothing changes.
+   */
+  setJoints(joints: readonly DeformerJoint[]): void {
+    this.#raw.setJoints(joints);
   }
 
   /** The method in use. */

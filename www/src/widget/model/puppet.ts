@@ -7,6 +7,7 @@
  * depth order the user changes (Forward/Back). The deformer holds the joints it poses with
  * (`Deformer.joints`); the posing keeps them for undo.
  */
+import type { Deformer, DeformerOptions } from "../../core.js";
 import type { PuppetJoint, PuppetPart } from "../../import.js";
 import { METHODS, type MethodPreset } from "./methods.js";
 import { locate, locateAll, pointPosition, type MeshPoint } from "./picking.js";
@@ -155,37 +156,31 @@ export function jointPositions(
   return out;
 }
 
-/**
- * The deformer's side of puppets (core's `Deformer` made with `{ parts, joints }`): the
- * options that make one, its joints and `setJoints`.
- */
-interface JointedDeformer {
-  readonly joints: PuppetJoint[];
-  setJoints(joints: PuppetJoint[]): void;
-}
-
-/** Deformer options for `puppet` with `joints` added to a method's options. */
-export function puppetOptions<O extends object>(options: O, puppet: Puppet, joints: readonly PuppetJoint[]): O {
+/** Deformer options for `puppet` with `joints`, added to a method's options. */
+export function puppetOptions(
+  options: DeformerOptions,
+  puppet: Puppet,
+  joints: readonly PuppetJoint[],
+): DeformerOptions {
   return {
     ...options,
     parts: puppet.parts.map((p) => ({ name: p.name, triangles: p.triangles, depth: p.depth })),
-    joints: joints.map((j) => ({ point: [...j.point], parts: [...j.parts] })),
+    joints: joints.map(copyJoint),
   };
 }
 
 /** The joints a puppet's deformer poses with (copies). */
-export function deformerJoints(deformer: object): PuppetJoint[] {
-  return (deformer as JointedDeformer).joints.map((j) => ({
-    point: [j.point[0], j.point[1]],
-    parts: [j.parts[0], j.parts[1]],
-  }));
+export function deformerJoints(deformer: Deformer): PuppetJoint[] {
+  return deformer.joints.map(copyJoint);
 }
 
 /** Gives a puppet's deformer new joints; throws (code `invalid-joint`), changing nothing, for bad ones. */
-export function setDeformerJoints(deformer: object, joints: readonly PuppetJoint[]): void {
-  (deformer as JointedDeformer).setJoints(
-    joints.map((j) => ({ point: [j.point[0], j.point[1]], parts: [j.parts[0], j.parts[1]] })),
-  );
+export function setDeformerJoints(deformer: Deformer, joints: readonly PuppetJoint[]): void {
+  deformer.setJoints(joints.map(copyJoint));
+}
+
+function copyJoint(j: { point: readonly [number, number]; parts: readonly [number, number] }): PuppetJoint {
+  return { point: [j.point[0], j.point[1]], parts: [j.parts[0], j.parts[1]] };
 }
 
 /** Whether two joint lists are the same joints in the same order. */
