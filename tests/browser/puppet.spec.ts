@@ -18,6 +18,7 @@ const GREEN = [0x2e, 0x8b, 0x57];
 const BLUE = [0x41, 0x69, 0xe1];
 const BRIM = [0xb2, 0x22, 0x22];
 const CROWN = [0x80, 0x00, 0x00];
+const FACE = [0xf4, 0xc2, 0x7a];
 
 /** Opens the fixture as a file, as the Open button would. */
 async function loadPuppet(page: Page): Promise<void> {
@@ -137,6 +138,10 @@ for (const renderer of ["webgl2", "2d"] as const) {
     // The torso's green shows where nothing covers it (above the belt, left of the arm).
     const open_ = await read(grid(toCss, svg, [60, 130, 120, 190], 4));
     expect(open_.filter((c) => near(c, GREEN)).length).toBe(open_.length);
+    // The torso's top edge runs under the head (y 100, the head down to 110): its outline is
+    // hidden there, the face's colour shows on it.
+    const neck = await read([90, 95, 100, 105, 110].map((x) => toCss(...svg(x, 100))));
+    for (const c of neck) expect(near(c, FACE, 16), `face ${c}`).toBe(true);
     // The hat, apart from everything: its brim and crown in their colours.
     const [brim] = await read([toCss(...svg(100, 43))]);
     expect(near(brim!, BRIM), `brim ${brim}`).toBe(true);
@@ -157,7 +162,8 @@ test("the torso hidden under the arm shows once the arm swings up about the shou
   const armTorso = joints.findIndex((j) => j.parts[0] === 2 && j.parts[1] === 0);
   expect(armTorso, "a joint holds the arm to the torso").toBeGreaterThanOrEqual(0);
   const shoulder = svg(137, 120);
-  await page.keyboard.press("j");
+  await page.locator("#app select[name=tool]").selectOption("joint");
+  await expect(page.locator("#app .brush-panel")).toContainText("Remove joint");
   await page.mouse.move(...toCss(...joints[armTorso]!.point));
   await page.mouse.down();
   await page.mouse.move(...toCss(...shoulder), { steps: 6 });
@@ -169,7 +175,8 @@ test("the torso hidden under the arm shows once the arm swings up about the shou
   );
   await page.screenshot({ path: "test-results/puppet-joint-tool.png" });
 
-  // Pose: pins on the torso (low and middle), and the hand swung a quarter turn up about the shoulder.
+  // Pose (J again, the widget focused by the drag): pins on the torso (low and middle), and
+  // the hand swung a quarter turn up about the shoulder.
   await page.keyboard.press("j");
   expect(await page.evaluate(() => window.akapDemo!.widget.tool)).toBe("pose");
   for (const [x, y] of [
@@ -223,7 +230,7 @@ test("the joint tool refuses a joint moved off its parts, adds one where parts o
   const svg = await svgToShape(page);
   const { toCss } = await mapping(page);
   const before = await page.evaluate(() => window.akapDemo!.widget.joints);
-  await page.keyboard.press("j");
+  await page.evaluate(() => window.akapDemo!.widget.setTool("joint"));
 
   // A joint dragged off the arm (to the torso's lower left): refused, said, unchanged.
   const armTorso = before.findIndex((j) => j.parts[0] === 2 && j.parts[1] === 0);

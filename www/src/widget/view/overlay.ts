@@ -210,6 +210,9 @@ function drawOutline(
         ctx.closePath();
       }
       ctx.globalCompositeOperation = "destination-out";
+      // Opaque, whatever was filled last (the flipped triangles' red is translucent): the
+      // outlines behind are erased wholly, not left showing faintly through.
+      ctx.fillStyle = "#000";
       ctx.fill("nonzero");
       ctx.globalCompositeOperation = "source-over";
     }
