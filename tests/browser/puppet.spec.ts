@@ -219,6 +219,16 @@ test("the torso hidden under the arm shows once the arm swings up about the shou
   // The hat is still drawn.
   const [crown] = await read([toCss(...svg(100, 30))]);
   expect(near(crown!, CROWN)).toBe(true);
+
+  // Re-meshed, the pose carries over part by part: the arm stays up, the torso shows.
+  await page.evaluate(() => window.akapDemo!.widget.remesh(900));
+  await idle(page);
+  const handAfter = await page.evaluate(() => Array.from(window.akapDemo!.widget.handlePositions().slice(4, 6)));
+  expect(Math.hypot(handAfter[0]! - handNow[0]!, handAfter[1]! - handNow[1]!)).toBeLessThan(0.02 * radius);
+  const again = await screen(page);
+  const shown = await again(grid(toCss, svg, [120, 110, 130, 130], 2.5, 6));
+  expect(shown.filter((c) => near(c, GREEN)).length).toBeGreaterThan(shown.length / 2);
+  await page.screenshot({ path: "test-results/puppet-swung-remeshed.png" });
 });
 
 test("the joint tool refuses a joint moved off its parts, adds one where parts overlap, and removes it", async ({
@@ -278,4 +288,63 @@ test("the joint tool refuses a joint moved off its parts, adds one where parts o
   });
   expect(code).toBe("invalid-joint");
   expect(await page.evaluate(() => window.akapDemo!.widget.joints)).toEqual(before);
+});
+
+test("a handle goes on the front-most part; Back sends that part behind; MLS says it poses one shape; re-meshing keeps the puppet", async ({
+  page,
+}) => {
+  await page.setViewportSize({ width: 900, height: 700 });
+  await open(page);
+  await loadPuppet(page);
+  const svg = await svgToShape(page);
+  const { toCss } = await mapping(page);
+  const depth = (name: string) =>
+    page.evaluate((name) => window.akapDemo!.widget.parts.find((p) => p.name === name)!.depth, name);
+  // The part of the square under the arm away from the handle (its disc covers the rest).
+  const square = grid(toCss, svg, [120, 110, 131, 121], 2, 4);
+
+  // A click where the arm lies over the torso: the handle is the arm's (selected, as added).
+  await page.mouse.click(...toCss(...svg(137, 127)));
+  expect(await page.evaluate(() => window.akapDemo!.widget.handleCount)).toBe(1);
+  const [arm, torso] = [await depth("Arm"), await depth("Torso")];
+  expect(arm).toBeGreaterThan(torso);
+  // Back: the arm goes one step back, behind the head; again, behind the torso.
+  await page.getByRole("button", { name: "Back" }).click();
+  expect(await depth("Arm")).toBeGreaterThan(await depth("Torso"));
+  await page.getByRole("button", { name: "Back" }).click();
+  expect(await depth("Arm")).toBeLessThan(await depth("Torso"));
+  let read = await screen(page);
+  expect((await read(square)).filter((c) => near(c, GREEN)).length).toBe(square.length);
+  // Undone: the arm is over the torso again.
+  await page.keyboard.press("Control+z");
+  await page.keyboard.press("Control+z");
+  expect(await depth("Arm")).toBe(arm);
+  read = await screen(page);
+  expect((await read(square)).filter((c) => near(c, BLUE)).length).toBe(square.length);
+
+  // Moving least squares has no sheets: the status line says the puppet is posed as one shape.
+  await page.locator("#app select[name=method]").selectOption("mls");
+  await expect(page.locator("#app .status")).toContainText("whole puppet as one shape");
+  await page.locator("#app select[name=method]").selectOption("akap");
+
+  // Re-meshed at about half the vertices: still a puppet of the same parts and joints.
+  const before = await page.evaluate(() => ({
+    vertices: window.akapDemo!.widget.vertexCount,
+    joints: window.akapDemo!.widget.joints,
+  }));
+  await page.evaluate(() => window.akapDemo!.widget.remesh(800));
+  await idle(page);
+  const after = await page.evaluate(() => ({
+    vertices: window.akapDemo!.widget.vertexCount,
+    parts: window.akapDemo!.widget.parts.map((p) => p.name),
+    joints: window.akapDemo!.widget.joints,
+    handles: window.akapDemo!.widget.handleCount,
+  }));
+  expect(after.vertices).toBeLessThan(0.75 * before.vertices);
+  expect(after.parts).toEqual(["Torso", "Head", "Arm", "Hat"]);
+  expect(after.joints).toEqual(before.joints);
+  expect(after.handles).toBe(1);
+  read = await screen(page);
+  expect((await read(square)).filter((c) => near(c, BLUE)).length).toBe(square.length);
+  await page.screenshot({ path: "test-results/puppet-remeshed.png" });
 });

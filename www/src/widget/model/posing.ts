@@ -264,24 +264,28 @@ export class Posing {
         // The joints the new import placed stay where a carried one would not fit.
       }
     }
-    if (!old.atRest) {
+    if (!old.atRest && puppet) {
+      // Each part's vertices through the old part's own sheet.
       const next = new Float64Array(shape.mesh.positions);
-      const pieces = puppet
-        ? puppet.meshes.map((mesh, k) => ({ from: oldPuppet!.meshes[k]!, to: mesh }))
-        : [{ from: old.shape.mesh.triangles, to: shape.mesh.triangles }];
-      for (const { from, to } of pieces) {
-        const vertices = [...new Set(to)];
-        const points = new Float64Array(2 * vertices.length);
-        vertices.forEach((v, i) => points.set([shape.mesh.positions[2 * v]!, shape.mesh.positions[2 * v + 1]!], 2 * i));
-        const mapper = new PointMapper(old.shape.mesh.positions, from, points);
+      puppet.meshes.forEach((mesh, k) => {
+        const source = subMesh(oldPuppet!.meshes[k]!, old.shape.mesh.positions, old.positions);
+        const target = subMesh(mesh, shape.mesh.positions);
+        const mapper = new PointMapper(source.rest, source.triangles, target.rest);
         try {
-          const mapped = mapper.map(old.positions);
-          vertices.forEach((v, i) => next.set([mapped[2 * i]!, mapped[2 * i + 1]!], 2 * v));
+          const mapped = mapper.map(source.posed);
+          target.vertices.forEach((v, i) => next.set([mapped[2 * i]!, mapped[2 * i + 1]!], 2 * v));
         } finally {
           mapper.free();
         }
-      }
+      });
       this.deformer.setPositions(next);
+    } else if (!old.atRest) {
+      const mapper = new PointMapper(old.shape.mesh.positions, old.shape.mesh.triangles, shape.mesh.positions);
+      try {
+        this.deformer.setPositions(mapper.map(old.positions));
+      } finally {
+        mapper.free();
+      }
     }
     const { positions: rest, triangles } = shape.mesh;
     const kept: number[] = [];
@@ -866,4 +870,28 @@ export class Posing {
       this.deformer.reset();
     }
   }
+}
+
+/**
+ * The mesh of some triangles (3 vertex indices each) on its own: their vertices in order,
+ * their rest positions and, given, posed ones, and the triangles numbered among them.
+ */
+function subMesh(
+  triangles: ArrayLike<number>,
+  rest: ArrayLike<number>,
+  posed: ArrayLike<number> = rest,
+): { vertices: number[]; rest: Float64Array; posed: Float64Array; triangles: Uint32Array } {
+  const vertices = [...new Set(Array.from(triangles))];
+  const index = new Map(vertices.map((v, i) => [v, i]));
+  const pick = (from: ArrayLike<number>) => {
+    const out = new Float64Array(2 * vertices.length);
+    vertices.forEach((v, i) => out.set([from[2 * v]!, from[2 * v + 1]!], 2 * i));
+    return out;
+  };
+  return {
+    vertices,
+    rest: pick(rest),
+    posed: pick(posed),
+    triangles: Uint32Array.from(triangles, (v) => index.get(v)!),
+  };
 }
