@@ -2,6 +2,7 @@
 //! between parts, joints in the overlaps. Expected names, areas and places come from the
 //! drawings' shapes (tests/fixtures/svg/layered-puppet.svg says how its areas are made).
 
+use akap::deform::{AkapOptions, ArapOptions, Deformer, MethodOptions};
 use std::f64::consts::PI;
 
 use akap::geometry::{point_in_polygon, triangle_area, Point};
@@ -111,6 +112,11 @@ fn a_layered_character_gives_a_sheet_per_layer_joined_where_they_overlap() {
         |a: &&akap::import::svg::SvgPath| a.fill.is_some_and(|c| (c.red, c.green, c.blue) == (46, 139, 87));
     assert_eq!(p.art.iter().map(|paths| paths.iter().filter(torso_green).count()).collect::<Vec<_>>(), [1, 0, 0, 0]);
     assert!(p.skipped.is_empty());
+    // The deformers take the puppet as it is: its joints are on both sheets.
+    for options in [MethodOptions::from(AkapOptions::default()), ArapOptions::default().into()] {
+        let deformer = Deformer::with_puppet(p.mesh.clone(), options, p.puppet.clone(), None).unwrap();
+        assert_eq!(deformer.puppet().unwrap(), &p.puppet);
+    }
 }
 
 #[test]
@@ -268,4 +274,21 @@ fn an_image_gives_a_part_per_region() {
     let [a, b, c] = corners(&p, p.puppet.parts[0].triangles[0]);
     let centre = [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0];
     assert!(inside(centre, 2.0, 8.0, 10.0), "{centre:?}");
+}
+
+#[test]
+fn many_stacked_layers_join_every_pair_in_bounded_work() {
+    // Layers of one square, shifted a little each: every pair overlaps, so every pair is
+    // joined, at a point on both sheets; the work is one overlay per pair.
+    let n = 60;
+    let body: String = (0..n)
+        .map(|k| format!(r#"<rect id="r{k}" x="{}" y="10" width="50" height="50"/>"#, f64::from(k) * 0.5))
+        .collect();
+    let p = import_puppet(&svg(&body), &PuppetOptions::default().with_vertices(2000)).unwrap();
+    assert_eq!(p.puppet.parts.len(), n as usize);
+    assert_eq!(p.puppet.joints.len(), (n * (n - 1) / 2) as usize);
+    for joint in &p.puppet.joints {
+        let [front, back] = joint.parts;
+        assert!(front > back && on_part(&p, front, joint.point) && on_part(&p, back, joint.point), "{joint:?}");
+    }
 }

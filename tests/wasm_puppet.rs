@@ -107,10 +107,14 @@ fn an_image_puppet_has_a_part_per_region() {
         }
     }
     let pixels: JsValue = Uint8Array::from(rgba.as_slice()).into();
-    let puppet: JsValue =
-        import_image_puppet(pixels, (w as u32).into(), (h as u32).into(), options(r#"{"minArea": 1, "vertices": 100}"#))
-            .unwrap()
-            .into();
+    let puppet: JsValue = import_image_puppet(
+        pixels,
+        (w as u32).into(),
+        (h as u32).into(),
+        options(r#"{"minArea": 1, "vertices": 100}"#),
+    )
+    .unwrap()
+    .into();
     let parts: Array = get(&puppet, "parts").dyn_into().unwrap();
     let names: Vec<String> = parts.iter().map(|p| get(&p, "name").as_string().unwrap()).collect();
     assert_eq!(names, ["Part 1", "Part 2"]);

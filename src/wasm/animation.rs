@@ -7,7 +7,7 @@
 //! pairs. Fields are read with `Reflect.get` (a throwing getter becomes an error naming
 //! the field) and checked by type.
 
-use js_sys::{Array, Float64Array, Object, Reflect};
+use js_sys::{Array, Float64Array, Object};
 use wasm_bindgen::prelude::*;
 
 use super::error::BindingError;

@@ -15,7 +15,7 @@ use super::read::{self, Options};
 use super::session::shape_spec;
 use super::{limits, max_coordinates, object, pairs, performance_now};
 use crate::deform::foldover::{MAX_CLAMP_TRIALS, MAX_SPLITS};
-use crate::deform::{Deformer, FoldoverGuard, MethodOptions, Orders, Timings};
+use crate::deform::{Deformer, FoldoverGuard, Orders, Timings};
 use crate::pose::{Poser, MAX_SUBSTEPS};
 
 /// A deformer for one mesh (`crate::deform::Deformer`), of the method the `method` option

@@ -39,7 +39,7 @@ pub(super) fn deformer_setup(value: &JsValue) -> Result<(MethodOptions, Option<P
     let puppet = match (given.get("parts"), given.get("joints")) {
         (None, None) => None,
         (None, Some(_)) => {
-            return Err(BindingError::option("option joints needs parts: the parts the joints join"))
+            return Err(BindingError::option("option joints needs parts: the parts the joints join".to_owned()))
         }
         (Some(parts), joints) => Some(read_puppet(parts, joints)?),
     };

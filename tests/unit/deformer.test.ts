@@ -1,6 +1,16 @@
 /** The Deformer through the real wasm package in Node: rigid motions and bad input. */
+import { readFileSync } from "node:fs";
 import { beforeAll, describe, expect, it } from "vitest";
-import { Deformer, defaultShape, deformerOrders, init, triangulate } from "../../www/src/index.js";
+import {
+  Deformer,
+  defaultShape,
+  deformerOrders,
+  importPuppet,
+  init,
+  triangulate,
+  type ImportedPuppet,
+  type PuppetJoint,
+} from "../../www/src/index.js";
 
 beforeAll(async () => {
   await init();
@@ -344,5 +354,102 @@ describe("Deformer", () => {
     const q = deformer.positions();
     for (let i = 0; i < q.length; i++) expect(q[i]!).toBeCloseTo(shifted[i]!, 9);
     deformer.free();
+  });
+});
+
+describe("Deformer of a puppet", () => {
+  const layered = readFileSync("tests/fixtures/svg/layered-puppet.svg", "utf8");
+
+  /** The point `p` of part `k` as a triangle and barycentric coordinates. */
+  function pointOn(puppet: ImportedPuppet, k: number, p: [number, number]): [number, [number, number, number]] {
+    const x = (v: number) => puppet.positions[2 * v]!;
+    const y = (v: number) => puppet.positions[2 * v + 1]!;
+    for (const t of puppet.parts[k]!.triangles) {
+      const [a, b, c] = [0, 1, 2].map((i) => puppet.triangles[3 * t + i]!) as [number, number, number];
+      const area = (x(b) - x(a)) * (y(c) - y(a)) - (y(b) - y(a)) * (x(c) - x(a));
+      const w = (u: number, v: number) => ((x(u) - p[0]) * (y(v) - p[1]) - (y(u) - p[1]) * (x(v) - p[0])) / area;
+      const weights: [number, number, number] = [w(b, c), w(c, a), w(a, b)];
+      if (weights.every((q) => q >= -1e-12)) return [t, weights];
+    }
+    throw new Error(`(${p.join(", ")}) is not on part ${k}`);
+  }
+
+  it("takes importPuppet's parts and joints as they are, and poses every sheet at once", () => {
+    const puppet = importPuppet(layered, { vertices: 1500 });
+    const d = new Deformer(puppet.positions, puppet.triangles, {
+      method: "akap",
+      parts: puppet.parts,
+      joints: puppet.joints,
+    });
+    expect(d.parts!.map((p) => p.name)).toEqual(["Torso", "Head", "Arm", "Hat"]);
+    expect(d.joints).toEqual(puppet.joints);
+    // The torso pinned by two handles, a third on the arm's far end moved up: the hat,
+    // on a sheet of its own with no joint and no handle, does not move at all.
+    const arm = puppet.parts[2]!.triangles;
+    let far = 0;
+    for (const t of arm)
+      for (let c = 0; c < 3; c++) far = Math.max(far, puppet.positions[2 * puppet.triangles[3 * t + c]!]!);
+    const joint = puppet.joints.find((j) => j.parts[0] === 2)!;
+    const handles = [
+      pointOn(puppet, 0, [70, 90]),
+      pointOn(puppet, 0, [130, 90]),
+      pointOn(puppet, 2, [far - 2, joint.point[1]]),
+    ];
+    d.setHandlePoints(
+      handles.map(([t]) => t),
+      handles.flatMap(([, w]) => w),
+    );
+    for (let k = 0; k < 10; k++) d.step([0, 0, 0, 0, 0, 2]);
+    const pose = d.positions();
+    const hat = new Set(
+      [...puppet.parts[3]!.triangles].flatMap((t) => [0, 1, 2].map((c) => puppet.triangles[3 * t + c]!)),
+    );
+    for (const v of hat) {
+      expect(pose[2 * v]).toBe(puppet.positions[2 * v]);
+      expect(pose[2 * v + 1]).toBe(puppet.positions[2 * v + 1]);
+    }
+    // The arm moved up.
+    expect(
+      Math.max(
+        ...[...arm].map(
+          (t) => pose[2 * puppet.triangles[3 * t]! + 1]! - puppet.positions[2 * puppet.triangles[3 * t]! + 1]!,
+        ),
+      ),
+    ).toBeGreaterThan(5);
+    d.free();
+  });
+
+  it("refuses bad joints with code invalid-joint and changes nothing", () => {
+    const puppet = importPuppet(layered, { vertices: 800 });
+    const make = (joints: PuppetJoint[]) =>
+      new Deformer(puppet.positions, puppet.triangles, { parts: puppet.parts, joints });
+    const code = (f: () => unknown) => {
+      try {
+        f();
+      } catch (e) {
+        return (e as { code?: string }).code;
+      }
+      return "none";
+    };
+    const hatPoint: [number, number] = [...puppet.joints[0]!.point];
+    hatPoint[1] += 1000;
+    for (const bad of [
+      { point: puppet.joints[0]!.point, parts: [2, 9] },
+      { point: puppet.joints[0]!.point, parts: [2, 2] },
+      { point: hatPoint, parts: puppet.joints[0]!.parts },
+    ] as PuppetJoint[]) {
+      expect(code(() => make([bad]))).toBe("invalid-joint");
+    }
+    const d = make(puppet.joints);
+    expect(code(() => d.setJoints([{ point: [0, 0], parts: [0, 7] }]))).toBe("invalid-joint");
+    expect(d.joints).toEqual(puppet.joints);
+    d.setJoints([]);
+    expect(d.joints).toEqual([]);
+    expect(code(() => new Deformer(puppet.positions, puppet.triangles, { joints: puppet.joints }))).toBe(
+      "invalid-option",
+    );
+    // Without parts the sheets are a mesh in pieces, refused as before.
+    expect(code(() => new Deformer(puppet.positions, puppet.triangles))).toBe("invalid-mesh");
+    d.free();
   });
 });

@@ -59,11 +59,40 @@ describe("importSvg", () => {
     const index = JSON.parse(readFileSync("www/gallery/index.json", "utf8")) as { file: string; kind: string }[];
     const svgs = index.filter((entry) => entry.kind === "svg");
     expect(svgs.length).toBeGreaterThanOrEqual(2);
-    for (const entry of svgs) {
+    // The layered characters (Inkscape layers, one per puppet part) are checked below.
+    const flat = svgs.filter(
+      (entry) => !readFileSync(`www/gallery/${entry.file}`, "utf8").includes("inkscape:groupmode"),
+    );
+    expect(flat.length).toBeGreaterThanOrEqual(2);
+    for (const entry of flat) {
       const outlines = importSvg(readFileSync(`www/gallery/${entry.file}`, "utf8"));
       expect(outlines).toHaveLength(1);
       expect(outlines[0]!.holes.length).toBeGreaterThan(0);
       expect(triangulate(outlines[0]!, { targetEdgeLength: 6 }).triangleCount).toBeGreaterThan(100);
+    }
+  });
+
+  it("imports the gallery's layered characters: labelled layers whose union triangulates", () => {
+    // Milo: the hat floats free of the rest; Basil: every part overlaps the body.
+    const expected: Record<string, { layers: string[]; pieces: number }> = {
+      "magician.svg": {
+        layers: ["Left arm", "Right leg", "Left leg", "Torso", "Head", "Right arm", "Hat"],
+        pieces: 2,
+      },
+      "dragon.svg": { layers: ["Tail", "Hind leg", "Body", "Front leg", "Wing", "Head"], pieces: 1 },
+    };
+    const index = JSON.parse(readFileSync("www/gallery/index.json", "utf8")) as { file: string }[];
+    expect(index[0]!.file).toBe("magician.svg");
+    for (const [file, { layers, pieces }] of Object.entries(expected)) {
+      expect(index.map((entry) => entry.file)).toContain(file);
+      const text = readFileSync(`www/gallery/${file}`, "utf8");
+      const labels = [...text.matchAll(/<g inkscape:groupmode="layer" id="[^"]+" inkscape:label="([^"]+)">/g)];
+      expect(labels.map((match) => match[1])).toEqual(layers);
+      const outlines = importSvg(text);
+      expect(outlines).toHaveLength(pieces);
+      for (const outline of outlines) {
+        expect(triangulate(outline, { targetEdgeLength: 6 }).triangleCount).toBeGreaterThan(100);
+      }
     }
   });
 
@@ -112,7 +141,7 @@ describe("importPuppet", () => {
     // The torso's area: its rectangle, 80 x 120.
     let area = 0;
     for (const t of puppet.parts[0]!.triangles) {
-      const [a, b, c] = [0, 1, 2].map((k) => puppet.triangles[3 * t + k]!);
+      const [a, b, c] = [0, 1, 2].map((k) => puppet.triangles[3 * t + k]!) as [number, number, number];
       const x = (v: number) => puppet.positions[2 * v]!;
       const y = (v: number) => puppet.positions[2 * v + 1]!;
       area += ((x(b) - x(a)) * (y(c) - y(a)) - (y(b) - y(a)) * (x(c) - x(a))) / 2;

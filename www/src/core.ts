@@ -161,31 +161,44 @@ export interface DeformerOptions {
    * and nearer a similarity, with handles farther from their targets.
    */
   smoothness?: number;
-  /**
-   * A puppet (the constructor only): the mesh is its parts' sheets, which may be
-   * disconnected and overlap, each part its triangles (indices into the triangles), a
-   * name and a depth (a whole number, larger in front), as `importPuppet` gives them
-   * (other fields are left alone). AKAP and ARAP pose each sheet on its own, coupled at the
-   * {@link joints}; moving least squares and Cauchy-Green pose the whole puppet as one shape.
-   */
-  parts?: readonly DeformerPart[];
-  /** A puppet's joints (with {@link parts}): see {@link Deformer.setJoints}. */
-  joints?: readonly DeformerJoint[];
 }
 
-/** A puppet's part as the {@link Deformer} takes it (`importPuppet`'s parts are such). */
-export interface DeformerPart {
+/** A part of a puppet as a {@link Deformer} takes it: its sheet's triangles, name and depth
+ * (the parts of {@link importPuppet}'s result, whose `paths` it leaves alone). */
+export interface PuppetSheet {
+  /** The part's name. */
   name: string;
-  /** Indices of its triangles. */
+  /** Indices of the mesh's triangles (not vertices) that make up the part's sheet; the
+   * parts together hold every triangle exactly once. */
   triangles: Uint32Array;
-  /** Larger is in front. */
+  /** The drawing order: larger is in front. A whole number. */
   depth: number;
 }
 
-/** A joint: a rest point on two parts (`[front, back]`, indices into the parts), which keep it together. */
-export interface DeformerJoint {
-  point: readonly [number, number];
-  parts: readonly [number, number];
+/** A joint: a hinge at one point of two parts, about which the front part turns freely,
+ * both sheets keeping that point together. */
+export interface PuppetJoint {
+  /** Where it is at rest: a point on both parts' sheets. */
+  point: [number, number];
+  /** The parts it joins, `[front, back]`, as indices into the parts. */
+  parts: [number, number];
+}
+
+/**
+ * A new {@link Deformer}'s options: the method and its settings, and for a puppet (a mesh
+ * made of sheets, one per part, that may overlap and need not be connected) its parts and
+ * joints. AKAP and ARAP couple the sheets at the joints; a sheet with no joint and no
+ * handle stays where it is, and one held by a single joint with nothing to turn it follows
+ * without turning. Moving least squares and Cauchy-Green pose the whole puppet as one
+ * shape. A joint naming a part out of range, a part twice, or a point not on both parts is
+ * refused (code `invalid-joint`); parts that do not hold every triangle exactly once
+ * (`invalid-argument`). Without `parts` a Deformer behaves as for one connected shape.
+ */
+export interface DeformerSetup extends DeformerOptions {
+  /** The puppet's parts. */
+  parts?: readonly PuppetSheet[];
+  /** The joints between them (none if left out); needs `parts`. */
+  joints?: readonly PuppetJoint[];
 }
 
 /** The deformation methods (see {@link DeformerOptions.method}). */
@@ -323,15 +336,16 @@ export class Deformer {
 
   /**
    * @param positions xy-interleaved vertex positions (length 2n)
-   * @param triangles counter-clockwise index triples (length 3m); the mesh must be connected
-   * @param options the method and its settings
+   * @param triangles counter-clockwise index triples (length 3m); the mesh must be connected,
+   *   but for a puppet's sheets (`options.parts`)
+   * @param options the method and its settings, and a puppet's parts and joints
    * @param orders the fill-reducing orders from {@link deformerOrders} (same mesh and
    *   method), when the bulk of the set-up already ran elsewhere, e.g. in a worker
    */
   constructor(
     positions: Coordinates,
     triangles: Indices,
-    options: DeformerOptions = {},
+    options: DeformerSetup = {},
     orders?: readonly Uint32Array[],
   ) {
     assertLoaded();
@@ -346,6 +360,26 @@ export class Deformer {
     return this.#inner;
   }
 
+  /** A puppet's parts (name, triangles, depth), or `undefined` for one shape. */
+  get parts(): PuppetSheet[] | undefined {
+    return this.#raw.parts as PuppetSheet[] | undefined;
+  }
+
+  /** A puppet's joints (empty for one shape). */
+  get joints(): PuppetJoint[] {
+    return this.#raw.joints as PuppetJoint[];
+  }
+
+  /**
+   * Replaces a puppet's joints (the Joint tool), keeping the pose, the handles, the
+   * stiffness and the bones; the systems are analysed again for them. Refused, changing
+   * nothing, for a deformer of one shape and for a joint naming a part out of range or a
+   * part twice, or whose point is not on both parts (code `invalid-joint`).
+   */
+  setJoints(joints: readonly PuppetJoint[]): void {
+    this.#raw.setJoints(joints);
+  }
+
   /**
    * Changes some options; the others keep their values. A different `method` switches the
    * deformer to that method (its defaults, with the settings given) on the same mesh,
@@ -354,26 +388,6 @@ export class Deformer {
    */
   setOptions(options: DeformerOptions): void {
     this.#raw.setOptions(options);
-  }
-
-  /** A puppet's parts (`parts` as given to the constructor), or undefined for one shape. */
-  get parts(): DeformerPart[] | undefined {
-    return this.#raw.parts as DeformerPart[] | undefined;
-  }
-
-  /** A puppet's joints now (empty for one shape). */
-  get joints(): { point: [number, number]; parts: [number, number] }[] {
-    return this.#raw.joints as { point: [number, number]; parts: [number, number] }[];
-  }
-
-  /**
-   * Replaces a puppet's joints, keeping the pose, the handles, the stiffness and the bones
-   * (the systems are analysed again). A part out of range, a part joined to itself or a
-   * point not on both parts is refused (code `invalid-joint`), as is a deformer of one
-   * shape; nothing changes.
-   */
-  setJoints(joints: readonly DeformerJoint[]): void {
-    this.#raw.setJoints(joints);
   }
 
   /** The method in use. */

@@ -15,7 +15,7 @@
  */
 import { coded, type Indices, type Coordinates, toFloat64, toUint32 } from "./internal/arrays.js";
 import { assertLoaded, raw, type rawTypes } from "./internal/wasm.js";
-import type { MeshData } from "./core.js";
+import type { MeshData, PuppetJoint, PuppetSheet } from "./core.js";
 import { readMesh } from "./internal/mesh.js";
 
 /** An imported outline: an outer ring and holes, x and y interleaved, y pointing up. */
@@ -127,24 +127,12 @@ export interface PuppetImportOptions extends SvgImportOptions {
 }
 
 /** One part of a puppet: a layer of the drawing, with its own sheet of the mesh. */
-export interface PuppetPart {
+export interface PuppetPart extends PuppetSheet {
   /** The layer's `inkscape:label`, else its `id`, else "Part N" (N its place, from 1). */
   name: string;
-  /** Indices of the puppet's triangles (not vertices) that make up this part's sheet. */
-  triangles: Uint32Array;
-  /** The drawing order: larger is in front (the back-most part has depth 0). */
-  depth: number;
   /** The part's own art (fills and strokes) in drawing order, as {@link importSvgPaths}
    * gives it: draw each part's paths in its own layer, back to front by depth. */
   paths: VectorPath[];
-}
-
-/** A joint: a hinge at one point of two overlapping parts. */
-export interface PuppetJoint {
-  /** Where it is at rest: a point on both parts' sheets, inside their overlap. */
-  point: [number, number];
-  /** The parts it joins, `[front, back]`, as indices into {@link ImportedPuppet.parts}. */
-  parts: [number, number];
 }
 
 /** A layered drawing as a puppet: one mesh made of sheets, one per part, joined where

@@ -8,7 +8,7 @@
 
 use roxmltree::Node;
 
-use super::in_svg_namespace;
+const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
 /// Inkscape's namespace, of `inkscape:label` and `inkscape:groupmode`.
 const INKSCAPE: &str = "http://www.inkscape.org/namespaces/inkscape";
@@ -59,4 +59,9 @@ fn label<'a>(node: Node<'a, '_>) -> Option<&'a str> {
 /// A layer's name: its `inkscape:label`, else its `id`; `None` when it has neither.
 pub(super) fn name(node: Node) -> Option<String> {
     label(node).or_else(|| node.attribute("id").filter(|id| !id.trim().is_empty())).map(|n| n.trim().to_string())
+}
+
+/// Whether `node` is in SVG's namespace (or none, as SVG without `xmlns` is read).
+pub(super) fn in_svg_namespace(node: Node) -> bool {
+    matches!(node.tag_name().namespace(), None | Some(SVG_NAMESPACE))
 }

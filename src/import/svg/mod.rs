@@ -39,10 +39,9 @@ use crate::import::union::{self, Region};
 use crate::import::vector::{FillRule, VectorPath, Verb};
 use crate::import::Limits;
 use crate::outline::Outline;
+use layers::in_svg_namespace;
 use text::{check_attributes, Cursor};
 use tree::{Clip, Drawing};
-
-const SVG_NAMESPACE: &str = "http://www.w3.org/2000/svg";
 
 /// Elements deeper than this are refused (they would only come from hostile files).
 pub const MAX_DEPTH: usize = 256;
@@ -276,7 +275,9 @@ fn read(text: &str, options: &SvgOptions, by_layer: bool) -> Result<Read, Import
 /// The document's text with its root sized to its `viewBox` (or 1 x 1 with a unit
 /// `viewBox` when it has none), an id on every shape without one (`SHAPE_ID` and its
 /// index among the shapes) and each layer wrapped in a group of id `LAYER_ID` and its
-/// index, and the map from the root's user units to output.
+/// index (which changes what CSS child and sibling selectors match, `svg > g` say, if a
+/// `<style>` has them; Inkscape and Illustrator write none), and the map from the root's
+/// user units to output.
 struct Sized {
     text: String,
     output: [f64; 6],
@@ -647,8 +648,4 @@ fn check_numbers(document: &Document, text: &str, limit: f64) -> Result<(), Impo
         }
     }
     Ok(())
-}
-
-fn in_svg_namespace(node: Node) -> bool {
-    matches!(node.tag_name().namespace(), None | Some(SVG_NAMESPACE))
 }

@@ -45,7 +45,7 @@ import { PointerState } from "./input/pointer-state.js";
 import { WidgetInput } from "./input/widget-input.js";
 import { METHODS, type MethodPreset } from "./model/methods.js";
 import { Posing } from "./model/posing.js";
-import type { PuppetJoint } from "../import.js";
+import type { PuppetJoint } from "../core.js";
 import { meshOutline, type Shape } from "./model/shape.js";
 import type { BrushSettings } from "./model/stiffness.js";
 import { widgetSettings, type WidgetOptions, type WidgetSettings, type WidgetTool } from "./options.js";

@@ -6,7 +6,7 @@
 import { coded } from "../../internal/arrays.js";
 import { boneEnds } from "../model/bones.js";
 import { METHODS } from "../model/methods.js";
-import type { PuppetJoint } from "../../import.js";
+import type { PuppetJoint } from "../../core.js";
 import { BRUSH_SIZE_RANGE, BRUSH_VALUES, type BrushSettings } from "../model/stiffness.js";
 import { brushSettings, checkTool, type WidgetTool } from "../options.js";
 import { action } from "./action.js";

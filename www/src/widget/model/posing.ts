@@ -12,8 +12,15 @@
  * with the rig in WebAssembly. The deformer records every change made through it while a
  * recording runs.
  */
-import { Deformer, checkStiffness, type DeformerOptions, type Timings } from "../../core.js";
-import { PointMapper, type PuppetJoint } from "../../import.js";
+import {
+  Deformer,
+  checkStiffness,
+  type DeformerOptions,
+  type DeformerSetup,
+  type PuppetJoint,
+  type Timings,
+} from "../../core.js";
+import { PointMapper } from "../../import.js";
 import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset } from "./methods.js";
 import { locate, locateFront, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
@@ -202,7 +209,7 @@ export class Posing {
   }
 
   /** The options a deformer of the shape as posed is made with: the method's, and a puppet's parts and joints now. */
-  shapeOptions(): DeformerOptions {
+  shapeOptions(): DeformerSetup {
     const { puppet } = this.shape;
     return puppet ? puppetOptions(this.deformerOptions(), puppet, this.joints) : this.deformerOptions();
   }

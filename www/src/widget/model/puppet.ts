@@ -7,8 +7,8 @@
  * depth order the user changes (Forward/Back). The deformer holds the joints it poses with
  * (`Deformer.joints`); the posing keeps them for undo.
  */
-import type { Deformer, DeformerOptions } from "../../core.js";
-import type { PuppetJoint, PuppetPart } from "../../import.js";
+import type { Deformer, DeformerOptions, DeformerSetup, PuppetJoint } from "../../core.js";
+import type { PuppetPart } from "../../import.js";
 import { METHODS, type MethodPreset } from "./methods.js";
 import { locate, locateAll, pointPosition, type MeshPoint } from "./picking.js";
 
@@ -157,11 +157,7 @@ export function jointPositions(
 }
 
 /** Deformer options for `puppet` with `joints`, added to a method's options. */
-export function puppetOptions(
-  options: DeformerOptions,
-  puppet: Puppet,
-  joints: readonly PuppetJoint[],
-): DeformerOptions {
+export function puppetOptions(options: DeformerOptions, puppet: Puppet, joints: readonly PuppetJoint[]): DeformerSetup {
   return {
     ...options,
     parts: puppet.parts.map((p) => ({ name: p.name, triangles: p.triangles, depth: p.depth })),
