@@ -868,6 +868,10 @@ export class Posing {
       const { triangles, barycentric } = event.bones;
       this.deformer.setBones(triangles, barycentric);
       this.bones.assign(bonesFrom(triangles, barycentric));
+    } else if ("joints" in (event as object)) {
+      // A puppet's joints replaced (the core records it; the session's TypeScript types do not name it yet).
+      setDeformerJoints(this.deformer, (event as unknown as { joints: PuppetJoint[] }).joints);
+      this.selectedJoint = undefined;
     } else if ("stiffness" in event) {
       const values = event.stiffness ?? undefined;
       this.deformer.setStiffness(values);
