@@ -83,7 +83,7 @@ async function screen(page: Page): Promise<(css: [number, number][]) => Promise<
           return [data[i]!, data[i + 1]!, data[i + 2]!];
         });
       },
-      { points: css.map(([x, y]) => [x - box.x, y - box.y]) },
+      { points: css.map(([x, y]): [number, number] => [x - box.x, y - box.y]) },
     );
 }
 
