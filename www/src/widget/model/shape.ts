@@ -4,9 +4,10 @@
  * it exactly).
  */
 import { limits, triangulateToVertices, type MeshData, type Outline } from "../../core.js";
-import type { ImportedOutline, VectorPath } from "../../import.js";
+import type { ImportedOutline, ImportedPuppet, VectorPath } from "../../import.js";
 import { sessionMesh, type Session, type ShapeSpec } from "../../session.js";
 import { bounds, boxUvs, uniqueEdges } from "./geometry.js";
+import type { Puppet } from "./puppet.js";
 
 export interface Shape {
   /** What to call it (a built-in name, a file name). */
@@ -23,6 +24,8 @@ export interface Shape {
   texture?: TexImageSource;
   /** An imported SVG's filled paths in shape coordinates, for deformed vector export. */
   vector?: VectorPath[];
+  /** Set for a puppet (an SVG of several layers): its parts, joints and source. */
+  puppet?: Puppet;
 }
 
 /** Most vertices a widget mesh may have: the library's mesh limit (see `limits()`). */
@@ -124,8 +127,16 @@ function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
   return true;
 }
 
-/** What a file gives: outlines to mesh (largest first), or a ready mesh. */
+/** What a file gives: outlines to mesh (largest first), a ready mesh, or a puppet (an SVG of layers). */
 export type Loaded =
+  | {
+      kind: "puppet";
+      name: string;
+      /** The SVG text (re-meshing imports it again). */
+      source: string;
+      /** The import at the vertex count of the time. */
+      imported: ImportedPuppet;
+    }
   | {
       kind: "outlines";
       name: string;

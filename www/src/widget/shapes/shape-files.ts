@@ -5,11 +5,14 @@
  * a huge file is refused before any work; every failure is an `Error` saying why, and
  * nothing of the widget changes until a shape is fully built.
  */
-import { limits, type Outline } from "../../core.js";
-import type { Loaded, Shape } from "../model/shape.js";
-import { vectorTexture } from "./vector-texture.js";
+import { limits, meshFromArrays, type Outline } from "../../core.js";
+import { shapeFromMesh, type Loaded, type Shape } from "../model/shape.js";
+import { atlasTexture, vectorTexture } from "./vector-texture.js";
+import { puppetAtlas } from "../model/atlas.js";
 import { bounds } from "../model/geometry.js";
+import { puppetOf } from "../model/puppet.js";
 import {
+  importPuppet,
   importSvg,
   importSvgPaths,
   meshFromJson,
@@ -17,6 +20,7 @@ import {
   textureCoordinates,
   traceImage,
   type ImportedOutline,
+  type ImportedPuppet,
   type VectorPath,
 } from "../../import.js";
 
@@ -40,10 +44,13 @@ export function fileKind(name: string, type = ""): FileKind | undefined {
   return undefined;
 }
 
-/** Reads a file (or a fetched blob with a name). Throws an `Error` naming the file. */
-export async function readShapeFile(file: Blob, name: string): Promise<Loaded> {
+/**
+ * Reads a file (or a fetched blob with a name); an SVG of two or more layers is a puppet,
+ * imported with about `vertices` vertices. Throws an `Error` naming the file.
+ */
+export async function readShapeFile(file: Blob, name: string, vertices: number): Promise<Loaded> {
   try {
-    return await read(file, name);
+    return await read(file, name, vertices);
   } catch (error) {
     const message = error instanceof Error ? error.message : String(error);
     if (message.startsWith(name)) throw error;
@@ -51,7 +58,7 @@ export async function readShapeFile(file: Blob, name: string): Promise<Loaded> {
   }
 }
 
-async function read(file: Blob, name: string): Promise<Loaded> {
+async function read(file: Blob, name: string, vertices: number): Promise<Loaded> {
   const kind = fileKind(name, file.type);
   if (!kind) {
     throw new Error(`${name}: not a file we can read (SVG, PNG, JPEG, WebP, GIF, OBJ or JSON mesh)`);
@@ -62,6 +69,8 @@ async function read(file: Blob, name: string): Promise<Loaded> {
   switch (kind) {
     case "svg": {
       const text = await file.text();
+      const imported = importLayers(text, vertices);
+      if (imported.parts.length > 1) return { kind: "puppet", name, source: text, imported };
       const parts = importSvg(text);
       return { kind: "outlines", name, parts, vector: importSvgPaths(text) };
     }
@@ -133,6 +142,36 @@ export async function partShape<P extends { shape: Shape }>(
   }
   if (loaded.vector) paintVector(document, shape, loaded.vector);
   return prepared;
+}
+
+/** An SVG's layers as a puppet with about `vertices` vertices in all (one part: not a puppet). */
+export function importLayers(text: string, vertices: number): ImportedPuppet {
+  return importPuppet(text, { vertices });
+}
+
+/**
+ * A puppet as a shape: one mesh of every part's sheet, the parts and the joints the import
+ * placed, and a texture atlas with each part's art alone in its tile (`model/atlas.ts`), so
+ * what one part hides of another shows when they move apart. The art, every part's paths
+ * back to front, is kept for vector export.
+ */
+export function puppetShape(document: Document, imported: ImportedPuppet, name: string, source: string): Shape {
+  const mesh = meshFromArrays(imported.positions, imported.triangles);
+  const puppet = puppetOf(imported, mesh.triangles, source);
+  const { layout, uvs } = puppetAtlas(
+    mesh.positions,
+    mesh.triangles,
+    puppet.parts.map((p) => p.triangles),
+  );
+  const shape = shapeFromMesh(mesh, undefined, uvs, name);
+  shape.puppet = puppet;
+  shape.vector = [...puppet.parts].sort((a, b) => a.depth - b.depth).flatMap((p) => p.paths);
+  shape.texture = atlasTexture(
+    document,
+    puppet.parts.map((p) => p.paths),
+    layout,
+  );
+  return shape;
 }
 
 /** Imported SVG art on a shape: kept for vector export, and drawn in its colours as the texture. */

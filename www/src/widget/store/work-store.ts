@@ -8,6 +8,7 @@ import type { Bone } from "../model/bones.js";
 import { builtinShape, meshFromArrays, triangulate } from "../../core.js";
 import type { VectorPath } from "../../import.js";
 import type { ShapeSpec } from "../../session.js";
+import { boxUvs } from "../model/geometry.js";
 import { shapeFromMesh, type Shape } from "../model/shape.js";
 import { METHODS, type MethodPreset } from "../model/methods.js";
 import type { WidgetSettings } from "../options.js";
@@ -150,7 +151,10 @@ export function savedWork(
           name: shape.name,
           positions: Float64Array.from(mesh.positions),
           triangles: Uint32Array.from(mesh.triangles),
-          uvs: shape.uvs,
+          // A puppet's texture coordinates point into its atlas, which saved work does not
+          // keep (its art is drawn again over the bounding box). Its parts and joints are
+          // not kept yet either, so it does not restore as a puppet.
+          uvs: shape.puppet ? boxUvs(mesh.positions) : shape.uvs,
           ...(texture ? { texture } : {}),
           ...(shape.vector ? { vector: shape.vector } : {}),
         },
