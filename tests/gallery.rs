@@ -24,9 +24,12 @@ const SVGS: [(&str, &str); 3] = [
     ("donut.svg", include_str!("../www/gallery/donut.svg")),
 ];
 const PNG: (&str, &[u8]) = ("pip.png", include_bytes!("../www/gallery/pip.png"));
-/// The layered characters, posed as puppets: each with its layers back to front and the
-/// pairs of layers that overlap (front, back), where its joints go.
-const PUPPETS: [(&str, &str, &[&str], &[(&str, &str)]); 2] = [
+/// A layered character: its file name and text, its layers back to front, and the pairs of
+/// layers that overlap (front, back), where its joints go.
+type Layered = (&'static str, &'static str, &'static [&'static str], &'static [(&'static str, &'static str)]);
+
+/// The layered characters, posed as puppets.
+const PUPPETS: [Layered; 2] = [
     (
         "magician.svg",
         include_str!("../www/gallery/magician.svg"),
