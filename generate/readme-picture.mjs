@@ -34,7 +34,7 @@ try {
   await page.waitForSelector("body[data-ready=true]");
   const svg = readFileSync("www/gallery/magician.svg", "utf8");
   await page.evaluate(async (text) => {
-    await window.akapDemo.widget.loadFile(new Blob([text], { type: "image/svg+xml" }), "magician.svg");
+    await window.akapDemo.widget.loadFile(new window.Blob([text], { type: "image/svg+xml" }), "magician.svg");
     await window.akapDemo.widget.whenIdle();
   }, svg);
   // Each part's rest bounding box, by name.
