@@ -35,6 +35,43 @@ async function drag(page: Page, from: [number, number], dx: number, dy: number):
 
 const ARM = 2;
 
+/**
+ * Waits until the work the app keeps (saved a moment after the last change) has the pose
+ * on screen, and a puppet's `depths`.
+ */
+async function savedPose(page: Page, depths: number[]): Promise<void> {
+  const stored = () =>
+    page.evaluate(
+      () =>
+        new Promise<string>((resolve) => {
+          const request = indexedDB.open("akap");
+          // Not made here: the app makes it (with its stores) when it first saves.
+          request.onupgradeneeded = () => request.transaction!.abort();
+          request.onerror = () => resolve("no database yet");
+          request.onsuccess = () => {
+            const db = request.result;
+            if (!db.objectStoreNames.contains("work")) {
+              db.close();
+              resolve("no store yet");
+              return;
+            }
+            const get = db.transaction("work").objectStore("work").get("akap-app");
+            get.onsuccess = () => {
+              const work = get.result as { positions?: Float64Array; depths?: number[] } | undefined;
+              db.close();
+              resolve(JSON.stringify([Array.from(work?.positions ?? []), work?.depths ?? []]));
+            };
+            get.onerror = () => {
+              db.close();
+              resolve("not read");
+            };
+          };
+        }),
+    );
+  const now = await page.evaluate(() => Array.from(window.akapDemo!.widget.positions()));
+  await expect.poll(stored).toBe(JSON.stringify([now, depths]));
+}
+
 test("a session of puppet posing (drag, joint moved, drag) saves, loads in a fresh page and replays to the same bits", async ({
   page,
 }) => {
@@ -165,30 +202,10 @@ test("a posed puppet comes back after a reload: its pose, joints and depths, eac
   expect(behind.torsoUnderArm, "the torso draws over the arm").toBe(armPoints.length);
 
   const posed = { bits: await poseBits(page), state: await state(page) };
-  // Saved a moment after the last change: wait until the stored work has this pose.
-  await expect
-    .poll(() =>
-      page.evaluate(
-        () =>
-          new Promise<string>((resolve) => {
-            const request = indexedDB.open("akap");
-            request.onsuccess = () => {
-              const get = request.result.transaction("work").objectStore("work").get("akap-app");
-              get.onsuccess = () => {
-                const work = get.result as { positions?: Float64Array; depths?: number[] } | undefined;
-                request.result.close();
-                resolve(JSON.stringify([Array.from(work?.positions ?? []), work?.depths ?? []]));
-              };
-            };
-          }),
-      ),
-    )
-    .toBe(
-      JSON.stringify([
-        await page.evaluate(() => Array.from(window.akapDemo!.widget.positions())),
-        posed.state.parts.map((p) => p[1]),
-      ]),
-    );
+  await savedPose(
+    page,
+    posed.state.parts.map((p) => p[1] as number),
+  );
   await page.reload();
   await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
   await idle(page);
@@ -238,7 +255,7 @@ test("an image of two separate blobs opens as a puppet of two parts; dragging on
           2;
         [a, b, c].forEach((v) => vertices.add(v));
       }
-      return { area, vertices: [...vertices] };
+      return { area, vertices: [...vertices], depth: part.depth };
     });
   });
   // Two parts, the square (3600 pixels) and the disc (900 pi, about 2827), to 3%.
@@ -271,4 +288,23 @@ test("an image of two separate blobs opens as a puppet of two parts; dragging on
   const [blue, red] = await read([toCss(150 + dx + 20, 50 + dy + 20), toCss(50, 50)]);
   expect(near(blue!, [0, 0, 255]), `square ${blue}`).toBe(true);
   expect(near(red!, [255, 0, 0]), `disc ${red}`).toBe(true);
+
+  // Kept with the work: after a reload, the same two parts in the same pose, drawn from the image.
+  await savedPose(
+    page,
+    [0, 0].map((_, k) => parts[k]!.depth),
+  );
+  await page.goto("/?hud=false");
+  await expect(page.locator("body")).toHaveAttribute("data-ready", "true");
+  await idle(page);
+  expect(await page.evaluate(() => Array.from(window.akapDemo!.widget.positions()))).toEqual(posed);
+  expect(await page.evaluate(() => window.akapDemo!.widget.parts.length)).toBe(2);
+  const again = await screen(page);
+  const [blue2, red2] = await again([toCss(150 + dx + 20, 50 + dy + 20), toCss(50, 50)]);
+  expect(near(blue2!, [0, 0, 255]), `square ${blue2}`).toBe(true);
+  expect(near(red2!, [255, 0, 0]), `disc ${red2}`).toBe(true);
+  // Re-meshed from the kept image: still two parts.
+  await page.evaluate(() => window.akapDemo!.widget.remesh(600));
+  await idle(page);
+  expect(await page.evaluate(() => window.akapDemo!.widget.parts.length)).toBe(2);
 });

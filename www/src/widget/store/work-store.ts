@@ -171,8 +171,8 @@ export function savedWork(
           triangles: Uint32Array.from(mesh.triangles),
           uvs: shape.uvs,
           ...(texture ? { texture } : {}),
-          ...(shape.vector ? { vector: shape.vector } : {}),
-          ...(shape.puppet ? { puppet: savedPuppet(shape.puppet) } : {}),
+          // A puppet's art is its parts' (drawn again into its atlas).
+          ...(shape.puppet ? { puppet: savedPuppet(shape.puppet) } : shape.vector ? { vector: shape.vector } : {}),
         },
     positions: pose.positions,
     atRest: pose.atRest,
