@@ -29,7 +29,10 @@ function twoSheets() {
     { name: "square", triangles: Uint32Array.from([0, 1]), depth: 0, paths: [] },
     { name: "bar", triangles: Uint32Array.from([2, 3]), depth: 1, paths: [] },
   ];
-  const puppet = puppetOf({ parts, joints: [{ point: [1.5, 1.5], parts: [1, 0] }] }, triangles, "<svg/>");
+  const puppet = puppetOf({ parts, joints: [{ point: [1.5, 1.5], parts: [1, 0] }] }, triangles, {
+    kind: "svg",
+    text: "<svg/>",
+  });
   return { positions, triangles, boundaryEdges, parts, puppet };
 }
 
@@ -222,12 +225,14 @@ describe("a puppet's layering and picking", () => {
   it("refuses parts that leave a triangle out or claim one twice", () => {
     const { triangles, parts } = twoSheets();
     const part = (list: number[]) => ({ ...parts[0]!, triangles: Uint32Array.from(list) });
-    expect(() => puppetOf({ parts: [part([0, 1]), part([2])], joints: [] }, triangles, "")).toThrow(
+    expect(() => puppetOf({ parts: [part([0, 1]), part([2])], joints: [] }, triangles, undefined)).toThrow(
       /triangle 3 is in no part/,
     );
-    expect(() => puppetOf({ parts: [part([0, 1, 2]), part([2, 3])], joints: [] }, triangles, "")).toThrow(
+    expect(() => puppetOf({ parts: [part([0, 1, 2]), part([2, 3])], joints: [] }, triangles, undefined)).toThrow(
       /triangle 2 is in parts 0 and 1/,
     );
-    expect(() => puppetOf({ parts: [part([0, 1, 2, 3, 9])], joints: [] }, triangles, "")).toThrow(/names triangle 9/);
+    expect(() => puppetOf({ parts: [part([0, 1, 2, 3, 9])], joints: [] }, triangles, undefined)).toThrow(
+      /names triangle 9/,
+    );
   });
 });

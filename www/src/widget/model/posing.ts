@@ -823,6 +823,9 @@ export class Posing {
         this.install(shape);
       }
       this.applyOptions(session.data.options);
+      // A puppet's joints as the recording started.
+      const puppet = session.data.puppet;
+      if (puppet && !sameJoints(puppet.joints, this.joints)) this.apply({ joints: puppet.joints });
       this.apply({ stiffness: undefined });
       this.apply({ bones: { triangles: [], barycentric: [] } });
       this.apply({ reset: true });
@@ -868,9 +871,8 @@ export class Posing {
       const { triangles, barycentric } = event.bones;
       this.deformer.setBones(triangles, barycentric);
       this.bones.assign(bonesFrom(triangles, barycentric));
-    } else if ("joints" in (event as object)) {
-      // A puppet's joints replaced (the core records it; the session's TypeScript types do not name it yet).
-      setDeformerJoints(this.deformer, (event as unknown as { joints: PuppetJoint[] }).joints);
+    } else if ("joints" in event) {
+      setDeformerJoints(this.deformer, event.joints);
       this.selectedJoint = undefined;
     } else if ("stiffness" in event) {
       const values = event.stiffness ?? undefined;

@@ -21,9 +21,17 @@ export interface Puppet {
   partOf: Int32Array;
   /** Each part's triangles as a mesh of their own: 3 vertex indices (of the whole mesh) each. */
   meshes: Uint32Array[];
-  /** The SVG text it was imported from: re-meshing imports it again. */
-  source: string;
+  /**
+   * What it was imported from, for re-meshing to import it again: an SVG's text, or an
+   * image's pixels; undefined for a puppet rebuilt from a session or saved work without
+   * it (it cannot be re-meshed).
+   */
+  source: PuppetSource | undefined;
 }
+
+/** What a puppet was imported from: an SVG's text, or an image's pixels (RGBA, row by row from the top). */
+export type PuppetSource =
+  { kind: "svg"; text: string } | { kind: "image"; rgba: Uint8ClampedArray; width: number; height: number };
 
 /**
  * The widget's puppet from an imported one on a mesh with `triangles`: throws when a
@@ -32,7 +40,7 @@ export interface Puppet {
 export function puppetOf(
   imported: { parts: readonly PuppetPart[]; joints: readonly PuppetJoint[] },
   triangles: ArrayLike<number>,
-  source: string,
+  source: PuppetSource | undefined,
 ): Puppet {
   const count = triangles.length / 3;
   const partOf = new Int32Array(count).fill(-1);
@@ -55,6 +63,22 @@ export function puppetOf(
     meshes,
     source,
   };
+}
+
+/** Whether two puppets have the same parts (names, triangles and depths, in order). */
+export function sameParts(
+  a: readonly { name: string; triangles: ArrayLike<number>; depth: number }[],
+  b: readonly { name: string; triangles: ArrayLike<number>; depth: number }[],
+): boolean {
+  return (
+    a.length === b.length &&
+    a.every((p, k) => {
+      const q = b[k]!;
+      if (p.name !== q.name || p.depth !== q.depth || p.triangles.length !== q.triangles.length) return false;
+      for (let i = 0; i < p.triangles.length; i++) if (p.triangles[i] !== q.triangles[i]) return false;
+      return true;
+    })
+  );
 }
 
 /**

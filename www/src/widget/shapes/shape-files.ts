@@ -10,8 +10,9 @@ import { shapeFromMesh, type Loaded, type Shape } from "../model/shape.js";
 import { atlasTexture, vectorTexture } from "./vector-texture.js";
 import { puppetAtlas } from "../model/atlas.js";
 import { bounds } from "../model/geometry.js";
-import { puppetOf } from "../model/puppet.js";
+import { puppetOf, type PuppetSource } from "../model/puppet.js";
 import {
+  importImagePuppet,
   importPuppet,
   importSvg,
   importSvgPaths,
@@ -45,8 +46,9 @@ export function fileKind(name: string, type = ""): FileKind | undefined {
 }
 
 /**
- * Reads a file (or a fetched blob with a name); an SVG of two or more layers is a puppet,
- * imported with about `vertices` vertices. Throws an `Error` naming the file.
+ * Reads a file (or a fetched blob with a name); an SVG of two or more layers, or an image
+ * of two or more separate regions, is a puppet, imported with about `vertices` vertices.
+ * Throws an `Error` naming the file.
  */
 export async function readShapeFile(file: Blob, name: string, vertices: number): Promise<Loaded> {
   try {
@@ -70,12 +72,12 @@ async function read(file: Blob, name: string, vertices: number): Promise<Loaded>
     case "svg": {
       const text = await file.text();
       const imported = importLayers(text, vertices);
-      if (imported.parts.length > 1) return { kind: "puppet", name, source: text, imported };
+      if (imported.parts.length > 1) return { kind: "puppet", name, source: { kind: "svg", text }, imported };
       const parts = importSvg(text);
       return { kind: "outlines", name, parts, vector: importSvgPaths(text) };
     }
     case "image":
-      return readImage(file, name);
+      return readImage(file, name, vertices);
     case "obj": {
       const mesh = meshFromObj(await file.text());
       return { kind: "mesh", name, mesh, uvs: mesh.uvs };
@@ -87,7 +89,7 @@ async function read(file: Blob, name: string, vertices: number): Promise<Loaded>
   }
 }
 
-async function readImage(file: Blob, name: string): Promise<Loaded> {
+async function readImage(file: Blob, name: string, vertices: number): Promise<Loaded> {
   let bitmap: ImageBitmap;
   try {
     bitmap = await createImageBitmap(file);
@@ -110,6 +112,12 @@ async function readImage(file: Blob, name: string): Promise<Loaded> {
   const parts = traceImage(pixels, width, height);
   // The canvas, not the bitmap, is the texture: WebGL flips canvases for upload as asked,
   // but ignores the flip for ImageBitmaps.
+  if (parts.length > 1) {
+    // Separate regions: a puppet, a part per region, the image the art of each.
+    const source: PuppetSource = { kind: "image", rgba: pixels, width, height };
+    const imported = importPuppetSource(source, vertices);
+    if (imported.parts.length > 1) return { kind: "puppet", name, source, imported, texture: canvas };
+  }
   return { kind: "outlines", name, parts, image: { source: canvas, width, height } };
 }
 
@@ -150,14 +158,47 @@ export function importLayers(text: string, vertices: number): ImportedPuppet {
 }
 
 /**
- * A puppet as a shape: one mesh of every part's sheet, the parts and the joints the import
- * placed, and a texture atlas with each part's art alone in its tile (`model/atlas.ts`), so
- * what one part hides of another shows when they move apart. The art, every part's paths
- * back to front, is kept for vector export.
+ * A puppet imported again from its source at about `vertices` vertices: an SVG's layers,
+ * or an image's separate regions.
  */
-export function puppetShape(document: Document, imported: ImportedPuppet, name: string, source: string): Shape {
+export function importPuppetSource(source: PuppetSource, vertices: number): ImportedPuppet {
+  return source.kind === "svg"
+    ? importLayers(source.text, vertices)
+    : importImagePuppet(source.rgba, source.width, source.height, { vertices });
+}
+
+/**
+ * A puppet as a shape: one mesh of every part's sheet, the parts and the joints the import
+ * placed. An image's puppet (`texture`, the image, with an image `source`) takes the image
+ * as its texture (its regions do not overlap, so each part shows its own pixels);
+ * otherwise a texture atlas has each part's art alone in its tile (`model/atlas.ts`), so
+ * what one part hides of another shows when they move apart, and the art, every part's
+ * paths back to front, is kept for vector export. Parts without art (a puppet from a
+ * session) are drawn with the widget's texture.
+ */
+export function puppetShape(
+  document: Document,
+  imported: ImportedPuppet,
+  name: string,
+  source: PuppetSource | undefined,
+  texture?: TexImageSource,
+): Shape {
   const mesh = meshFromArrays(imported.positions, imported.triangles);
   const puppet = puppetOf(imported, mesh.triangles, source);
+  if (source?.kind === "image") {
+    if (!texture) throw new Error(`${name}: the image of this puppet is missing`);
+    const uvs = textureCoordinates(mesh.positions, source.width, source.height);
+    const shape = shapeFromMesh(mesh, undefined, uvs, name);
+    shape.puppet = puppet;
+    shape.texture = texture;
+    return shape;
+  }
+  if (puppet.parts.every((p) => p.paths.length === 0)) {
+    // No art (a puppet rebuilt from a session): the widget's texture over the whole.
+    const shape = shapeFromMesh(mesh, undefined, undefined, name);
+    shape.puppet = puppet;
+    return shape;
+  }
   const { layout, uvs } = puppetAtlas(
     mesh.positions,
     mesh.triangles,

@@ -8,10 +8,11 @@ import { builtinShape, builtinShapes, type Outline } from "../../core.js";
 import { DEFAULTS, type WidgetSettings } from "../options.js";
 import { restoreWork, savedShape, type SavedWork } from "../store/work-store.js";
 import type { Parts, Posing } from "../model/posing.js";
-import { oneShapeNote } from "../model/puppet.js";
+import { oneShapeNote, type PuppetSource } from "../model/puppet.js";
+import type { ImportedPuppet } from "../../import.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./shape-maker.js";
 import { meshOutline, shapeFromMesh, type Loaded } from "../model/shape.js";
-import { importLayers, paintVector, partShape, puppetShape, readShapeFile } from "./shape-files.js";
+import { importPuppetSource, paintVector, partShape, puppetShape, readShapeFile } from "./shape-files.js";
 import type { Stage } from "../view/stage.js";
 
 /** What the loader needs of the widget. */
@@ -72,7 +73,10 @@ export class ShapeLoader {
   async resume(saved: SavedWork): Promise<void> {
     const { document, posing, settings } = this.#host;
     await restoreWork(saved, posing, settings, (shape) =>
-      savedShape(document, shape, (s, v) => paintVector(document, s, v)),
+      savedShape(document, shape, {
+        paint: (s, v) => paintVector(document, s, v),
+        puppet: (imported, name, source, texture) => puppetShape(document, imported, name, source, texture),
+      }),
     );
   }
 
@@ -113,7 +117,7 @@ export class ShapeLoader {
     let prepared: Prepared;
     try {
       prepared = shape.puppet
-        ? this.#puppet(shape.puppet.source, shape.name, vertices)
+        ? this.#puppet(shape.puppet.source, shape.name, vertices, undefined, shape.texture)
         : parts
           ? await this.#partShape(parts.loaded, parts.index)
           : await this.make({ name: shape.spec!.name, outline: undefined, label: shape.spec!.name, vertices });
@@ -144,7 +148,7 @@ export class ShapeLoader {
       loaded.kind === "mesh"
         ? { shape: shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name), orders: undefined }
         : loaded.kind === "puppet"
-          ? this.#puppet(loaded.source, loaded.name, this.#host.settings.vertices, loaded.imported)
+          ? this.#puppet(loaded.source, loaded.name, this.#host.settings.vertices, loaded.imported, loaded.texture)
           : await this.#partShape(loaded, index);
     this.#host.gesture(() => {
       posing.parts = loaded.kind === "outlines" ? { loaded, index } : undefined;
@@ -172,13 +176,25 @@ export class ShapeLoader {
   }
 
   /**
-   * A puppet's shape from its SVG text at about `vertices` vertices (`imported`: the import
-   * already made at that count). Meshed on the page: the deformer orders its own systems,
-   * which the joints couple.
+   * A puppet's shape from its source (an SVG's text, an image's pixels, with `texture` the
+   * image) at about `vertices` vertices (`imported`: the import already made at that
+   * count). Meshed on the page: the deformer orders its own systems, which the joints
+   * couple.
    */
-  #puppet(source: string, name: string, vertices: number, imported = importLayers(source, vertices)): Prepared {
-    if (imported.parts.length < 2) throw new Error(`${name} no longer has several layers`);
-    return { shape: puppetShape(this.#host.document, imported, name, source), orders: undefined };
+  #puppet(
+    source: PuppetSource | undefined,
+    name: string,
+    vertices: number,
+    imported?: ImportedPuppet,
+    texture?: TexImageSource,
+  ): Prepared {
+    if (!source)
+      throw new Error(`${name} came from a session or saved work without its file: open the file to re-mesh it`);
+    const made = imported ?? importPuppetSource(source, vertices);
+    if (made.parts.length < 2) {
+      throw new Error(`${name} no longer has several ${source.kind === "svg" ? "layers" : "regions"}`);
+    }
+    return { shape: puppetShape(this.#host.document, made, name, source, texture), orders: undefined };
   }
 
   #partShape(loaded: Parts["loaded"], index: number): Promise<Prepared> {
