@@ -317,3 +317,38 @@ fn a_recorded_puppet_session_replays_to_the_same_bits() {
         assert_eq!(deformer.puppet().unwrap().joints.len(), 1);
     }
 }
+
+#[test]
+fn a_turning_handle_at_the_shoulder_turns_the_arm_alone() {
+    // ARAP's few iterations a step lag behind a turn that only the handle's neighbourhood is
+    // asked to make; with enough of them it turns as far.
+    for options in [MethodOptions::from(AkapOptions::default()), ArapOptions { iterations: 300, tolerance: 0.0 }.into()]
+    {
+        let (mesh, puppet) = figure();
+        let mut deformer = Deformer::with_puppet(mesh.clone(), options, puppet.clone(), None).unwrap();
+        let mut poser = Poser::new(&mut deformer);
+        for (part, p) in [(TORSO, [0.4, 0.4]), (TORSO, [1.6, 0.4]), (ARM, SHOULDER)] {
+            let (t, w) = point_on(&mesh, &puppet, part, p);
+            poser.add_handle(t, w).unwrap();
+        }
+        let turn = 0.6;
+        poser.set_turn(2, turn).unwrap();
+        for _ in 0..40 {
+            poser.advance().unwrap();
+        }
+        drop(poser);
+        if options.method() == akap::deform::Method::Arap {
+            deformer.iterate(100_000, 1e-9).unwrap();
+        }
+        let (rest, posed) = (mesh.positions(), deformer.positions());
+        let arm = part_vertices(&mesh, &puppet, ARM);
+        let from: Vec<Point> = arm.iter().map(|&v| rest[v]).collect();
+        let to: Vec<Point> = arm.iter().map(|&v| posed[v]).collect();
+        let (angle, worst) = rigid_fit(&from, &to);
+        assert!((angle - turn).abs() < 0.03, "{:?}: the arm turned {angle}", options.method());
+        assert!(worst < 0.01 * 4.0, "{:?}: the arm is {worst} from rigid", options.method());
+        let torso_moved =
+            part_vertices(&mesh, &puppet, TORSO).iter().map(|&v| distance(rest[v], posed[v])).fold(0.0, f64::max);
+        assert!(torso_moved < 0.03, "{:?}: the torso moved {torso_moved}", options.method());
+    }
+}

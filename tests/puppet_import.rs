@@ -180,7 +180,8 @@ fn a_layer_inside_another_is_joined_inside_it() {
 
 #[test]
 fn shapes_that_only_touch_are_not_joined() {
-    let text = svg(r#"<rect id="a" width="10" height="10"/><rect id="b" x="10" width="10" height="10"/>"#);
+    let text =
+        svg(r#"<g id="a"><rect width="10" height="10"/></g><g id="b"><rect x="10" width="10" height="10"/></g>"#);
     let p = puppet(&text);
     assert_eq!(names(&p), ["a", "b"]);
     assert!(p.puppet.joints.is_empty());
@@ -192,6 +193,15 @@ fn a_drawing_without_layers_is_one_part_and_wrappers_are_looked_through() {
     assert_eq!(names(&p), ["Part 1"]);
     assert!((part_area(&p, 0) - 1700.0).abs() < 1e-9);
     assert!(p.puppet.joints.is_empty());
+    // Loose shapes without any group (a donut and its sprinkles) are one drawing, not taken
+    // apart: one part, the shapes united as importSvg unites them.
+    let loose = svg(concat!(
+        r#"<g transform="translate(5 0)"><rect id="donut" width="40" height="40"/>"#,
+        r#"<g fill="yellow"><rect x="5" y="5" width="10" height="2"/><rect x="50" width="10" height="10"/></g></g>"#,
+    ));
+    let p = puppet(&loose);
+    assert_eq!(names(&p), ["Part 1"]);
+    assert!((part_area(&p, 0) - 1700.0).abs() < 1e-9, "{}", part_area(&p, 0));
     // A group without id or label is no layer: its children are; so are the sub-layers of a
     // document's only layer.
     let wrapped = svg(concat!(
@@ -236,7 +246,7 @@ fn bad_input_is_refused_clearly() {
         assert!(e.to_string().starts_with("option vertices is"), "{e}");
     }
     let many: String =
-        (0..=MAX_LAYERS).map(|k| format!(r#"<rect id="r{k}" x="{k}" width="0.5" height="1"/>"#)).collect();
+        (0..=MAX_LAYERS).map(|k| format!(r#"<g id="r{k}"><rect x="{k}" width="0.5" height="1"/></g>"#)).collect();
     let e = import_puppet(&svg(&many), &PuppetOptions::default()).unwrap_err();
     assert_eq!(
         e.to_string(),
@@ -282,7 +292,7 @@ fn many_stacked_layers_join_every_pair_in_bounded_work() {
     // joined, at a point on both sheets; the work is one overlay per pair.
     let n = 60;
     let body: String = (0..n)
-        .map(|k| format!(r#"<rect id="r{k}" x="{}" y="10" width="50" height="50"/>"#, f64::from(k) * 0.5))
+        .map(|k| format!(r#"<g id="r{k}"><rect x="{}" y="10" width="50" height="50"/></g>"#, f64::from(k) * 0.5))
         .collect();
     let p = import_puppet(&svg(&body), &PuppetOptions::default().with_vertices(2000)).unwrap();
     assert_eq!(p.puppet.parts.len(), n as usize);

@@ -40,9 +40,11 @@ pub const LEAST_MOTION: f64 = 1e-8;
 /// curl squared, beside the Killing energy's (whose weights are 2 to 4). A Killing field
 /// may turn at no cost, so without it a sheet held by one hinge alone would take the least
 /// motion by turning partly about its centre; with it, it follows its hinge without
-/// turning. A part that something turns (a handle, a joint) turns all the same: the term
-/// costs 1/1000 of the handles' least force.
-pub const AKAP_TURN_WEIGHT: f64 = 1e-3;
+/// turning (a head on a torso moved half its width turns by about 0.005 rad). A part that
+/// something turns (a handle, a joint) turns all the same: against the handles' weight
+/// (100 by default) the term is negligible, and a turning handle at a shoulder turns an arm
+/// to within 2% of the angle asked.
+pub const AKAP_TURN_WEIGHT: f64 = 1e-4;
 
 /// The most parts a puppet read from a file or a drawing has (the layers of an SVG, the
 /// parts of a mesh file or an operator file).

@@ -14,14 +14,17 @@ use crate::deform::{Joint, Part, Puppet, MAX_PART_NAME_BYTES};
 /// The parts of a puppet (`parts`, an array) and its joints (`joints`, an array, or
 /// `undefined` for none).
 pub(super) fn read_puppet(parts: &JsValue, joints: Option<&JsValue>) -> Result<Puppet, BindingError> {
+    // The parts hold each triangle once: together at most as many as a mesh may have.
+    let mut room = max_indices();
     let parts = read::list(parts, "parts", max_indices())?
         .iter()
         .enumerate()
         .map(|(i, part)| {
             let what = format!("parts[{i}]");
             let name = read::string(&field(part, "name", &what)?, &format!("{what}.name"), MAX_PART_NAME_BYTES)?;
-            let triangles =
-                read::uint32s(&field(part, "triangles", &what)?, &format!("{what}.triangles"), max_indices())?;
+            // The limit left for this part: what the parts before it have not taken.
+            let triangles = read::uint32s(&field(part, "triangles", &what)?, &format!("{what}.triangles"), room)?;
+            room -= triangles.len();
             let depth = read::number(&field(part, "depth", &what)?, &format!("{what}.depth"))?;
             if !(depth.fract() == 0.0 && depth.abs() <= f64::from(i32::MAX)) {
                 return Err(BindingError::argument(format!(

@@ -234,7 +234,9 @@ test("messages: an import error goes once a file loads; information is not shown
   await expect(page.locator(".akap-host >> .status.error")).toContainText("broken.svg");
   const two =
     '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 100">' +
-    '<rect x="10" y="10" width="120" height="80"/><circle cx="220" cy="50" r="30"/></svg>';
+    // One shape of two separate pieces (a rectangle and a circle): one layer, not a puppet
+    // (two shapes would be two layers).
+    '<path d="M 10 10 H 130 V 90 H 10 Z M 250 50 A 30 30 0 1 0 190 50 A 30 30 0 1 0 250 50 Z"/></svg>';
   await picker.setInputFiles(file("two.svg", two));
   const status = page.locator(".akap-host >> .status");
   await expect(status).toContainText("2 separate parts");

@@ -69,6 +69,19 @@ describe("error codes", () => {
       /^triangle 0 is clockwise; triangles must be counter-clockwise$/,
     ],
     [
+      "invalid-joint",
+      // Two triangles apart, each a part; a joint naming a third part.
+      () =>
+        new api.Deformer([0, 0, 1, 0, 0, 1, 5, 0, 6, 0, 5, 1], [0, 1, 2, 3, 4, 5], {
+          parts: [
+            { name: "a", triangles: new Uint32Array([0]), depth: 0 },
+            { name: "b", triangles: new Uint32Array([1]), depth: 1 },
+          ],
+          joints: [{ point: [0.2, 0.2], parts: [0, 2] }],
+        }),
+      /^joint 0 cannot be used: it names part 2, but the puppet has 2 parts$/,
+    ],
+    [
       "limit",
       () => api.triangulate(square, { targetEdgeLength: 0.001, maxVertices: 100 }),
       /need more than 100 vertices/,
@@ -110,12 +123,14 @@ describe("a misspelt option is refused by every options object", () => {
   // misspelt key and listing the known ones otherwise.
   const triangulation = "maxArea, targetEdgeLength, minAngle, maxVertices";
   const deformer = "method, lambda, dirichlet, integrator, iterations, variant, alpha, cage, smoothness";
+  // A new deformer's options also take a puppet's parts and joints.
+  const setup = `${deformer}, parts, joints`;
   const svgImport = "tolerance, minArea, strokes, maxPoints, maxBytes";
   const tracing = "mode, alphaThreshold, colourThreshold, tolerance, minArea, maxPoints, maxPixels";
   const { positions, triangles } = grid;
   const cases: [string, string, (options: object) => unknown, object, object][] = [
     ["triangulation", triangulation, (o) => api.triangulate(square, o), { minAngle: 20 }, { minAngel: 20 }],
-    ["deformer", deformer, (o) => new api.Deformer(positions, triangles, o).free(), { lambda: 5 }, { lamda: 5 }],
+    ["deformer", setup, (o) => new api.Deformer(positions, triangles, o).free(), { lambda: 5 }, { lamda: 5 }],
     [
       "deformer",
       deformer,
@@ -132,7 +147,7 @@ describe("a misspelt option is refused by every options object", () => {
     ],
     [
       "deformer",
-      deformer,
+      setup,
       (o) => {
         // The orders, then the constructor that takes them (`withOrders`), each reading `o`.
         const orders = api.deformerOrders(positions, triangles, o);
@@ -143,7 +158,7 @@ describe("a misspelt option is refused by every options object", () => {
     ],
     [
       "deformer",
-      deformer,
+      setup,
       (o) => raw.Deformer.withOrders(positions, triangles, o, api.deformerOrders(positions, triangles)).free(),
       { integrator: "linear" },
       { Integrator: "linear" },

@@ -10,7 +10,7 @@ import {
 } from "../../www/src/widget/input/gestures.js";
 
 /** A host on a line of shape: handles at given x (y 0), the shape from x 0 to 10, client pixels = shape units. */
-function fixture(options: { handles?: number[]; tool?: "pose" | "stiffness" | "bone"; ring?: number } = {}) {
+function fixture(options: { handles?: number[]; tool?: "pose" | "stiffness" | "bone" | "joint"; ring?: number } = {}) {
   const handles = [...(options.handles ?? [])];
   const calls: string[] = [];
   const held = new Map<number, number>();
@@ -55,6 +55,8 @@ function fixture(options: { handles?: number[]; tool?: "pose" | "stiffness" | "b
     paintEnd: () => calls.push("paint end"),
     bone: (x, _y, erase) => calls.push(`bone ${x}${erase ? " erase" : ""}`),
     boneEnd: () => calls.push("bone end"),
+    joint: (x, _y, pressed) => calls.push(`joint ${pressed ? "press" : "drag"} ${x}`),
+    jointEnd: () => calls.push("joint end"),
     pan: (dx, dy) => calls.push(`pan ${dx} ${dy}`),
     zoom: (x, y, factor) => calls.push(`zoom ${x} ${y} ${factor}`),
   };
@@ -145,6 +147,16 @@ describe("pointer gestures", () => {
     bone.gestures.move(bone.sample(1, 8));
     bone.gestures.up(1);
     expect(bone.calls).toEqual(["begin", "bone 2", "bone 8", "bone end"]);
+  });
+
+  it("the joint tool takes (or adds) a joint on press, moves it with the pointer and puts it down on release", () => {
+    const joint = fixture({ tool: "joint", handles: [5] });
+    expect(joint.gestures.down(joint.sample(1, 5))).toBe("moving-joint");
+    joint.gestures.move(joint.sample(1, 7));
+    joint.gestures.up(1);
+    expect(joint.gestures.stateOf(1)).toBe("idle");
+    // A handle under the press is not grabbed: the press is the joint tool's.
+    expect(joint.calls).toEqual(["begin", "joint press 5", "joint drag 7", "joint end"]);
   });
 
   it("a long still press of a pen on a handle removes it; a mouse's, or a press that moved, does not", () => {

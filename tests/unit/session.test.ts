@@ -6,16 +6,26 @@
  */
 import { readFileSync } from "node:fs";
 import { beforeAll, describe, expect, it } from "vitest";
-import { builtinShape, init } from "../../www/src/index.js";
+import { builtinShape, importPuppet, init, meshFromArrays } from "../../www/src/index.js";
 import { widgetSettings } from "../../www/src/widget/options.js";
 import { Posing } from "../../www/src/widget/model/posing.js";
 import { Session, parseSession, sessionMesh, type SessionEvent } from "../../www/src/session.js";
-import { meshOutline } from "../../www/src/widget/model/shape.js";
+import { meshOutline, sessionShape, shapeFromMesh, type Shape } from "../../www/src/widget/model/shape.js";
+import { puppetOf } from "../../www/src/widget/model/puppet.js";
 import { noTimings } from "./fixtures.js";
 
 beforeAll(async () => {
   await init();
 });
+
+/** The layered fixture as the widget's puppet shape (its art left out: no document here). */
+function puppetShape(): Shape {
+  const text = readFileSync("tests/fixtures/svg/layered-puppet.svg", "utf8");
+  const imported = importPuppet(text, { vertices: 800 });
+  const shape = shapeFromMesh(meshFromArrays(imported.positions, imported.triangles), undefined, undefined, "puppet");
+  shape.puppet = puppetOf(imported, shape.mesh.triangles, { kind: "svg", text });
+  return shape;
+}
 
 function posing(): Posing {
   const p = new Posing(widgetSettings({ vertices: 300 }), {
@@ -93,6 +103,48 @@ describe("sessions through the core", () => {
     await expect(t.replay(broken, t.shape, async () => true)).rejects.toThrow(/1e300/);
     expect(bits(t.deformer.positions())).toBe(bits(before));
     expect(t.replaying).toBe(false);
+  });
+
+  it("a puppet's session replays to the same bits, on the puppet and on a puppet rebuilt from the session", async () => {
+    const p = posing();
+    const shape = puppetShape();
+    p.install(shape);
+    const joints = p.joints;
+    const arm = shape.puppet!.parts.findIndex((part) => part.name === "Arm");
+    const armTorso = joints.findIndex((j) => j.parts[0] === arm);
+    const hand = shape.puppet!.parts[arm]!.triangles.at(-1)!;
+    p.startRecording();
+    p.addHandle({ triangle: shape.puppet!.parts[0]!.triangles[0]!, barycentric: [1, 0, 0] });
+    p.addHandle({ triangle: hand, barycentric: [0.2, 0.3, 0.5] });
+    drag(p, 1, -5, -20);
+    // A joint moved to another point of the arm over the torso (SVG 130, 120: shape x - 70, y up).
+    const [x0, y0] = joints[armTorso]!.point;
+    const moved = joints.map((j, i) => (i === armTorso ? { ...j, point: [x0 - 4, y0 + 1] as [number, number] } : j));
+    p.setJoints(moved);
+    drag(p, 1, -10, 15);
+    const pose = p.deformer.positions();
+    const session = p.stopRecording()!;
+    expect(session.data.puppet?.parts.map((part) => part.name)).toEqual(["Torso", "Head", "Arm", "Hat"]);
+    expect(session.data.puppet?.joints).toEqual(joints);
+    expect(session.data.events.filter((e) => "joints" in e)).toEqual([{ joints: moved }]);
+
+    // On the same puppet (the joints moved since): the header's joints first.
+    await p.replay(parseSession(session.json), sessionShape(session, p.shape), async () => true);
+    expect(p.shape).toBe(shape);
+    expect(bits(p.deformer.positions())).toBe(bits(pose));
+    expect(p.joints).toEqual(moved);
+
+    // From another shape: the puppet rebuilt from the session's mesh, parts and joints.
+    const q = posing();
+    const rebuilt = sessionShape(session, q.shape);
+    expect(rebuilt.puppet?.parts.map((part) => [part.name, Array.from(part.triangles), part.depth])).toEqual(
+      shape.puppet!.parts.map((part) => [part.name, Array.from(part.triangles), part.depth]),
+    );
+    await q.replay(session, rebuilt, async () => true);
+    expect(bits(q.deformer.positions())).toBe(bits(pose));
+    expect(q.joints).toEqual(moved);
+    // On one shape of the same mesh, a puppet's session rebuilds the puppet.
+    expect(sessionShape(session, shapeFromMesh(shape.mesh, undefined)).puppet).toBeDefined();
   });
 
   it("keeps negative zeros and subnormals of the recorded numbers", () => {

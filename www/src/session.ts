@@ -21,12 +21,16 @@
  *               { "stiffness": [.. 1 per triangle ..] },
  *               { "turn": { "velocities": [..], "turns": [.. 1 per handle ..] } },
  *               { "bones": { "triangles": [.. 2 per bone ..], "barycentric": [.. 3 per end ..] } },
+ *               { "joints": [ { "point": [x, y], "parts": [front, back] } ] },
  *               { "reset": true } ] }
  * ```
  * `shape` names a built-in shape and how it was triangulated; a session of another shape
- * carries the mesh itself in `mesh.positions` and `mesh.triangles`.
+ * carries the mesh itself in `mesh.positions` and `mesh.triangles`. A session of a puppet
+ * has a `puppet` in its header, `{ "parts": [{ "name", "triangles", "depth" }], "joints":
+ * [{ "point", "parts" }] }` (its parts and its joints at the start), and `joints` events
+ * (the joints replaced).
  */
-import type { DeformerOptions, MeshData } from "./core.js";
+import type { DeformerOptions, MeshData, PuppetJoint } from "./core.js";
 import type { Indices, Coordinates } from "./internal/arrays.js";
 import { readMesh } from "./internal/mesh.js";
 import { assertLoaded, raw } from "./internal/wasm.js";
@@ -63,7 +67,15 @@ export type SessionEvent =
   | { stiffness: Coordinates | undefined | null }
   | { turn: { velocities: Coordinates; turns: Coordinates } }
   | { bones: { triangles: Indices; barycentric: Coordinates } }
+  | { joints: PuppetJoint[] }
   | { reset: true };
+
+/** A puppet's parts and joints at the start of a session (see `Deformer`'s `parts` and `joints`). */
+export interface SessionPuppet {
+  /** Each part: its name, its triangles (indices into the mesh's triangles) and its depth (larger in front). */
+  parts: { name: string; triangles: number[]; depth: number }[];
+  joints: PuppetJoint[];
+}
 
 /** A session's JSON, parsed. */
 export interface SessionData {
@@ -72,6 +84,8 @@ export interface SessionData {
   shape?: SessionShape;
   mesh: SessionMesh;
   options: DeformerOptions;
+  /** A puppet's parts and joints (absent for one shape). */
+  puppet?: SessionPuppet;
   events: SessionEvent[];
 }
 

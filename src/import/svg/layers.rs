@@ -4,6 +4,9 @@
 //! nested `<svg>`). A `<g>` with none of these marks is no layer: its children are
 //! taken in its place, as if it were not there. A document whose only layer is a group of
 //! several layers (everything drawn in Inkscape's "Layer 1") has those as its layers.
+//! A document without any group among its layers (loose shapes only, perhaps in unmarked
+//! wrappers: a logo, a donut with sprinkles) has no layers: it is one drawing, as
+//! `import_svg` reads it, and its shapes are not taken apart.
 //! Document order is the drawing order, back to front.
 
 use roxmltree::Node;
@@ -43,6 +46,9 @@ pub(super) fn layers<'a, 'i>(root: Node<'a, 'i>) -> Vec<Node<'a, 'i>> {
             break;
         }
         layers = inner;
+    }
+    if !layers.iter().any(|node| node.tag_name().name() == "g") {
+        return Vec::new();
     }
     layers
 }

@@ -64,7 +64,9 @@ export interface WidgetOptions {
    * What a press on the shape does: `"pose"` (the default) adds and drags handles;
    * `"stiffness"` paints stiffness with the brush (Alt-drag erases). Key B toggles;
    * `"bone"` draws bones, segments that move as one rigid body (a drag from end to end;
-   * Alt-click removes one; AKAP and ARAP). Key O toggles.
+   * Alt-click removes one; AKAP and ARAP). Key O toggles. `"joint"` edits a puppet's
+   * joints: drag one to move it, click where two parts overlap to add one, Delete removes
+   * the selected one. Key J toggles.
    */
   tool?: WidgetTool;
   /** The stiffness brush: radius in CSS pixels (2 to 400, default 24) and the value painted (0.001 to 1000, default 100). */
@@ -90,11 +92,11 @@ export interface WidgetOptions {
   fps?: number;
 }
 
-/** What a press on the shape does: pose with handles, paint stiffness, or draw bones. */
-export type WidgetTool = "pose" | "stiffness" | "bone";
+/** What a press on the shape does: pose with handles, paint stiffness, draw bones, or edit a puppet's joints. */
+export type WidgetTool = "pose" | "stiffness" | "bone" | "joint";
 
 /** The tools, in the order messages list them. */
-export const TOOLS: readonly WidgetTool[] = ["pose", "stiffness", "bone"];
+export const TOOLS: readonly WidgetTool[] = ["pose", "stiffness", "bone", "joint"];
 
 /** The settings a widget runs with (its options that can change while it runs). */
 export type WidgetSettings = Required<

@@ -45,6 +45,7 @@ import { PointerState } from "./input/pointer-state.js";
 import { WidgetInput } from "./input/widget-input.js";
 import { METHODS, type MethodPreset } from "./model/methods.js";
 import { Posing } from "./model/posing.js";
+import type { PuppetJoint } from "../core.js";
 import { meshOutline, type Shape } from "./model/shape.js";
 import type { BrushSettings } from "./model/stiffness.js";
 import { widgetSettings, type WidgetOptions, type WidgetSettings, type WidgetTool } from "./options.js";
@@ -603,14 +604,15 @@ export class Widget {
 
   /**
    * Brings the selected handles' parts in front of every other part (each part of the
-   * shape belongs to its nearest handle); they stay there when dragged. Undoable; false
-   * when no handle is selected.
+   * shape belongs to its nearest handle); they stay there when dragged. On a puppet, the
+   * parts the selected handles are on move one step in front of the next part. Undoable;
+   * false when nothing moved.
    */
   bringForward(): boolean {
     return this.#perform(handles.layer, { step: 1 });
   }
 
-  /** Sends the selected handles' parts behind every other part (see {@link bringForward}). */
+  /** Sends the selected handles' parts behind every other part (on a puppet, one step back; see {@link bringForward}). */
   sendBack(): boolean {
     return this.#perform(handles.layer, { step: -1 });
   }
@@ -620,9 +622,48 @@ export class Widget {
     return this.#posing.handles.map((h) => h.layer);
   }
 
+  // ---------------------------------------------------------------- puppets (docs/app.md, "Puppets")
+
+  /**
+   * A puppet's parts (an SVG of several layers loads as one): each part's name, its
+   * triangles (indices into {@link mesh}'s) and its depth now (larger is in front; the
+   * Forward and Back buttons change it). Empty for other shapes.
+   */
+  get parts(): { name: string; triangles: Uint32Array; depth: number }[] {
+    const { puppet } = this.#posing.shape;
+    const depths = this.#posing.depths;
+    return (puppet?.parts ?? []).map((p, k) => ({
+      name: p.name,
+      triangles: p.triangles,
+      depth: depths?.[k] ?? p.depth,
+    }));
+  }
+
+  /**
+   * A puppet's joints (copies): each a rest point and the two parts it joins, `[front,
+   * back]`. Empty for other shapes.
+   */
+  get joints(): PuppetJoint[] {
+    return this.#posing.joints;
+  }
+
+  /**
+   * Replaces a puppet's joints, as the joint tool does (one undoable step). Throws (code
+   * `invalid-joint`), changing nothing, for a part out of range or a point not on both
+   * parts.
+   */
+  setJoints(joints: readonly PuppetJoint[]): void {
+    this.#perform(tools.setJoints, { joints });
+  }
+
+  /** Removes a puppet's joint `index` (undoable); throws (code `invalid-argument`) for no such joint. */
+  removeJoint(index: number): void {
+    this.#perform(tools.removeJoint, { index });
+  }
+
   // ---------------------------------------------------------------- tools: stiffness and bones
 
-  /** What a press on the shape does: pose, paint stiffness with the brush, or draw bones. */
+  /** What a press on the shape does: pose, paint stiffness with the brush, draw bones, or edit a puppet's joints. */
   get tool(): WidgetTool {
     return this.#settings.tool;
   }
@@ -633,9 +674,9 @@ export class Widget {
   }
 
   /**
-   * Chooses the tool (`"pose"`, `"stiffness"`: the brush, `"bone"`: drawing bones) and/or
-   * changes the brush; throws (code `invalid-option`), changing nothing, for an unknown tool
-   * or a brush out of range.
+   * Chooses the tool (`"pose"`, `"stiffness"`: the brush, `"bone"`: drawing bones,
+   * `"joint"`: a puppet's joints) and/or changes the brush; throws (code `invalid-option`),
+   * changing nothing, for an unknown tool or a brush out of range.
    */
   setTool(tool: WidgetTool, brush: Partial<BrushSettings> = {}): void {
     this.#perform(tools.setTool, { tool, brush });
@@ -856,6 +897,7 @@ export class Widget {
       ghost: this.#rigs.comparison?.positions,
       brushAt: this.#pointer.at,
       boneDraft: this.#pointer.boneDraft,
+      jointDraft: this.#pointer.jointDraft,
       touch: this.#pointer.touch,
     });
     this.#root.dataset.frame = String(Number(this.#root.dataset.frame ?? 0) + 1);

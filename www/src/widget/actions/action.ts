@@ -103,9 +103,10 @@ export interface ToolbarInit {
 /** Where a control puts its elements: its group, and the tool panel over the stage. */
 export interface ControlPlace {
   group: HTMLElement;
-  /** The stiffness brush's and the bones' sections of the tool panel. */
+  /** The stiffness brush's, the bones' and the joints' sections of the tool panel. */
   brush: HTMLElement;
   bones: HTMLElement;
+  joints: HTMLElement;
   /** Shows the panel's section of the tool in use (or none for posing). */
   showTool(tool: WidgetSettings["tool"]): void;
 }

@@ -3,8 +3,9 @@
  * nudging and reordering handles; and the pointer gestures on handles, described here for
  * the help (the input's state machine performs them).
  */
-import { locate } from "../model/picking.js";
 import { action, type Gesture } from "./action.js";
+import { stepDepth } from "../model/puppet.js";
+import { removeJoint } from "./tools.js";
 import type { WidgetParts } from "./context.js";
 
 /** Undo (or redo, `forward`); a success clears the messages. */
@@ -20,7 +21,7 @@ export const addHandle = action({
   help: [{ keys: "Click or tap the shape", does: "add a handle there and drag it right away" }],
   perform(parts, { x, y }: { x: number; y: number }): number {
     const posing = parts.posing;
-    const point = locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y);
+    const point = posing.pointAt(x, y);
     if (!point) return -1;
     parts.gesture(() => posing.addHandle(point));
     return posing.handles.length - 1;
@@ -79,14 +80,20 @@ export const nudge = action({
   },
 });
 
-/** Removes the selected handles. */
+/** Removes the selected handles (with the joint tool, the selected joint). */
 export const deleteSelected = action({
   name: "delete",
-  description: "Removes the selected handles",
-  help: [{ keys: "Delete or Backspace", does: "remove the selected handles" }],
+  description: "Removes the selected handles (with the joint tool, the selected joint)",
+  help: [
+    { keys: "Delete or Backspace", does: "remove the selected handles (with the joint tool, the selected joint)" },
+  ],
   keys: [{ keys: ["delete", "backspace"] }],
   perform(parts): void {
     const posing = parts.posing;
+    if (parts.settings.tool === "joint" && posing.selectedJoint !== undefined) {
+      removeJoint.perform(parts, {});
+      return;
+    }
     const keep = posing.handles.filter((h) => !h.selected);
     if (keep.length < posing.handles.length) {
       parts.gesture(() => {
@@ -206,6 +213,32 @@ export const layer = action({
   perform(parts, { step }: { step: 1 | -1 }): boolean {
     const posing = parts.posing;
     let moved = false;
+    const puppet = posing.shape.puppet;
+    if (puppet) {
+      // A puppet's parts move one step in depth: the parts of the selected handles.
+      const chosen = [
+        ...new Set(posing.handles.filter((h) => h.selected).map((h) => puppet.partOf[h.point.triangle]!)),
+      ];
+      if (chosen.length === 0) {
+        parts.stage.status.info(
+          "Select a handle on a part first (click it) to bring the part forward or send it back.",
+        );
+        return false;
+      }
+      // Nothing to undo when no part can move.
+      if (chosen.some((k) => posing.depths && stepDepth(posing.depths, k, step))) {
+        parts.gesture(() => {
+          for (const part of chosen) moved = posing.reorderPart(part, step) || moved;
+        });
+      }
+      if (!moved) {
+        const names = chosen.map((k) => puppet.parts[k]!.name).join(", ");
+        parts.stage.status.info(
+          `${names} ${chosen.length === 1 ? "is" : "are"} already at the ${step > 0 ? "front" : "back"}.`,
+        );
+      }
+      return moved;
+    }
     if (posing.handles.some((h) => h.selected)) parts.gesture(() => (moved = posing.reorder(step)));
     else parts.stage.status.info("Select a handle first (click it) to bring its part forward or send it back.");
     return moved;

@@ -2,6 +2,7 @@
  * The deformation method and its lambda.
  */
 import { METHODS, type MethodPreset } from "../model/methods.js";
+import { oneShapeNote } from "../model/puppet.js";
 import { action } from "./action.js";
 import type { WidgetParts } from "./context.js";
 
@@ -14,6 +15,8 @@ export const setMethod = action({
     { method, lambda = parts.settings.lambda }: { method: MethodPreset; lambda?: number },
   ): void {
     parts.posing.setMethod(method, lambda);
+    const note = parts.posing.shape.puppet && oneShapeNote(method);
+    if (note) parts.stage.status.info(note);
   },
 
   controls: [
@@ -29,7 +32,9 @@ export const setMethod = action({
         lambda.name = "lambda";
         kit.labelled(place.group, "λ ", lambda);
         const changed = (): void => {
-          if (perform({ method: method.value as MethodPreset, lambda: Number(lambda.value) })) kit.succeeded();
+          const chosen = method.value as MethodPreset;
+          // A note about the method (a puppet posed as one shape) stays shown.
+          if (perform({ method: chosen, lambda: Number(lambda.value) }) && !oneShapeNote(chosen)) kit.succeeded();
         };
         method.addEventListener("change", changed);
         lambda.addEventListener("change", changed);

@@ -36,7 +36,19 @@ import { setMethod } from "./method.js";
 import { cancelTraining, rigFile, saveRig, train } from "./rig.js";
 import { loadSession, record, replay, saveSession } from "./session.js";
 import { chooseShape, choosePart, loadRig, loadUrl, open, remesh, setOutline, setShape, startOver } from "./shape.js";
-import { addBone, bones, brush, brushSize, paintAt, removeBone, setStiffness, setTool } from "./tools.js";
+import {
+  addBone,
+  bones,
+  brush,
+  brushSize,
+  jointTool,
+  paintAt,
+  removeBone,
+  removeJoint,
+  setJoints,
+  setStiffness,
+  setTool,
+} from "./tools.js";
 
 /** Every action and gesture, in the help panel's order (those without help lines after). */
 export const REGISTRY: readonly (AnyAction | Gesture)[] = [
@@ -58,6 +70,7 @@ export const REGISTRY: readonly (AnyAction | Gesture)[] = [
   brush,
   brushSize,
   bones,
+  jointTool,
   layer,
   train,
   loadRig,
@@ -83,6 +96,8 @@ export const REGISTRY: readonly (AnyAction | Gesture)[] = [
   paintAt,
   addBone,
   removeBone,
+  setJoints,
+  removeJoint,
   record,
   replay,
   saveSession,

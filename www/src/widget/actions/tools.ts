@@ -1,11 +1,12 @@
 /**
- * The tools (pose, the stiffness brush, bones) and what they change: painted stiffness
- * and bones, through the toolbar, keys B, O, [ and ], and the public API.
+ * The tools (pose, the stiffness brush, bones, a puppet's joints) and what they change:
+ * painted stiffness, bones and joints, through the toolbar, keys B, O, J, [ and ], and the
+ * public API.
  */
 import { coded } from "../../internal/arrays.js";
 import { boneEnds } from "../model/bones.js";
 import { METHODS } from "../model/methods.js";
-import { locate } from "../model/picking.js";
+import type { PuppetJoint } from "../../core.js";
 import { BRUSH_SIZE_RANGE, BRUSH_VALUES, type BrushSettings } from "../model/stiffness.js";
 import { brushSettings, checkTool, type WidgetTool } from "../options.js";
 import { action } from "./action.js";
@@ -15,13 +16,13 @@ import type { WidgetParts } from "./context.js";
 export const BRUSH_STEP = 1.25;
 
 /**
- * Chooses the tool (`"pose"`, `"stiffness"`: the brush, `"bone"`: drawing bones) and/or
- * changes the brush; throws (code `invalid-option`), changing nothing, for an unknown tool
- * or a brush out of range.
+ * Chooses the tool (`"pose"`, `"stiffness"`: the brush, `"bone"`: drawing bones,
+ * `"joint"`: a puppet's joints) and/or changes the brush; throws (code `invalid-option`),
+ * changing nothing, for an unknown tool or a brush out of range.
  */
 export const setTool = action({
   name: "tool",
-  description: "Chooses what a press on the shape does (pose, paint stiffness, draw bones) and the brush",
+  description: "Chooses what a press on the shape does (pose, paint stiffness, draw bones, edit joints) and the brush",
   perform(parts: WidgetParts, { tool, brush = {} }: { tool: WidgetTool; brush?: Partial<BrushSettings> }): void {
     const { settings, posing, stage, toolbar } = parts;
     checkTool(tool);
@@ -35,6 +36,9 @@ export const setTool = action({
     }
     if (tool === "bone" && !posing.deformer.hasBones) {
       stage.status.info(`${METHODS[settings.method].label} has no bones: choose AKAP or ARAP to draw them.`);
+    }
+    if (tool === "joint" && !posing.shape.puppet) {
+      stage.status.info("Only a puppet has joints: open an SVG whose layers (top-level groups) are its parts.");
     }
     parts.draw();
   },
@@ -57,13 +61,15 @@ export const setTool = action({
             { value: "pose", label: "Pose" },
             { value: "stiffness", label: "Brush (B)" },
             { value: "bone", label: "Bones (O)" },
+            { value: "joint", label: "Joints (J)" },
           ],
           s.tool,
         );
         toolList.name = "tool";
         toolList.title =
           "What a press on the shape does: pose with handles; paint stiffness with the brush (stiff regions bend less, " +
-          "Alt-drag erases); draw bones (drag from end to end; each moves as one rigid piece, AKAP and ARAP; Alt-click removes one)";
+          "Alt-drag erases); draw bones (drag from end to end; each moves as one rigid piece, AKAP and ARAP; Alt-click removes one); " +
+          "edit a puppet's joints (drag one to move it, click where two parts overlap to add one, Delete removes it)";
         kit.labelled(place.group, "Tool ", toolList);
         toolList.addEventListener("change", changed);
         // The brush's value and size float over the stage with the tool's panel.
@@ -100,8 +106,8 @@ export const setTool = action({
   ],
 });
 
-/** The brush (B) or the bone tool (O) on, or back to posing. */
-function toggleTool(parts: WidgetParts, tool: "stiffness" | "bone"): void {
+/** The brush (B), the bone tool (O) or the joint tool (J) on, or back to posing. */
+function toggleTool(parts: WidgetParts, tool: "stiffness" | "bone" | "joint"): void {
   setTool.perform(parts, { tool: parts.settings.tool === tool ? "pose" : tool });
 }
 
@@ -144,6 +150,64 @@ export const bones = action({
   ],
   keys: [{ keys: ["o"] }],
   perform: (parts): void => toggleTool(parts, "bone"),
+});
+
+export const jointTool = action({
+  name: "joints",
+  description: "Turns the joint tool on or off",
+  help: [
+    {
+      keys: "J; drag on a puppet",
+      does: "joint tool: drag a joint to move it (it stays on both its parts), click where two parts overlap to add one, Delete removes the selected one; J again to pose",
+    },
+  ],
+  keys: [{ keys: ["j"] }],
+  perform: (parts): void => toggleTool(parts, "joint"),
+});
+
+/**
+ * Replaces a puppet's joints (the deformer analyses its systems again), as one undoable
+ * step; throws (code `invalid-joint`), changing nothing, for a part out of range or a point
+ * not on both parts.
+ */
+export const setJoints = action({
+  name: "set-joints",
+  description: "Replaces a puppet's joints",
+  perform(parts, { joints }: { joints: readonly PuppetJoint[] }): void {
+    parts.gesture(() => parts.posing.setJoints(joints));
+  },
+});
+
+/** Removes a puppet's joint by index (default: the one selected with the joint tool); undoable. */
+export const removeJoint = action({
+  name: "remove-joint",
+  description: "Removes a puppet's joint by index, or the selected one",
+  perform(parts, { index }: { index?: number }): void {
+    const posing = parts.posing;
+    const joints = posing.joints;
+    const at = index ?? posing.selectedJoint;
+    if (at === undefined) {
+      parts.stage.status.info("Select a joint first (click it with the joint tool).");
+      return;
+    }
+    if (!Number.isInteger(at) || at < 0 || at >= joints.length) {
+      throw coded(new RangeError(`no joint ${at}; there are ${joints.length}`), "invalid-argument");
+    }
+    parts.gesture(() => {
+      posing.setJoints(joints.filter((_, k) => k !== at));
+      posing.selectedJoint = undefined;
+    });
+  },
+
+  controls: [
+    {
+      kind: "button",
+      id: "remove-joint",
+      text: "Remove joint",
+      title: "Remove the selected joint (Delete)",
+      args: {},
+    },
+  ],
 });
 
 /**
@@ -199,8 +263,7 @@ export const addBone = action({
   perform(parts, { x0, y0, x1, y1 }: { x0: number; y0: number; x1: number; y1: number }): number {
     const posing = parts.posing;
     const tolerance = 1e-9 * posing.shape.size;
-    const at = (x: number, y: number) =>
-      locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, tolerance);
+    const at = (x: number, y: number) => posing.pointAt(x, y, tolerance);
     const [from, to] = [at(x0, y0), at(x1, y1)];
     if (!from || !to) {
       throw coded(

@@ -180,6 +180,8 @@ export class Animator {
       version: this.timeline.version,
       method: settings.method,
       lambda: settings.lambda,
+      // A puppet's joints pose its frames too.
+      joints: posing.shape.puppet ? posing.joints : undefined,
       stiffness: posing.stiffnessVersion,
       bones: posing.bones.version,
       fps: this.#host.fps(),
@@ -193,7 +195,7 @@ export class Animator {
       this.#frames?.free();
       this.#frames = new AnimationFrames({
         mesh: shape.mesh,
-        options: posing.deformerOptions(),
+        options: posing.shapeOptions(),
         stiffness: unpainted(posing.stiffness) ? undefined : posing.stiffness!.slice(),
         bones: bonesEvent(posing.bones.list).bones,
         handles,

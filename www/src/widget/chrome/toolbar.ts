@@ -33,10 +33,11 @@ const LAYOUT: readonly { label: string; in: "bar" | "quick"; controls: readonly 
   { label: "Export", in: "bar", controls: ["export-json", "export-obj", "export-svg", "export-png"] },
 ];
 
-/** The tool panel's sections: the brush's controls (after the tool's own fields) and the bones'. */
+/** The tool panel's sections: the brush's controls (after the tool's own fields), the bones' and the joints'. */
 const PANEL = {
   brush: ["clear-stiffness"],
   bones: { text: "Drag from end to end; Alt-click removes ", controls: ["clear-bones"] },
+  joints: { text: "Drag a joint to move it; click where two parts overlap to add one ", controls: ["remove-joint"] },
 } as const;
 
 /** The toolbar, as the widget holds it. */
@@ -113,11 +114,13 @@ export function buildToolbar(
   };
   const brush = section("Stiffness brush");
   const bones = section("Bones");
-  panel.append(brush, bones);
+  const joints = section("Joints");
+  panel.append(brush, bones, joints);
   const showTool = (tool: WidgetSettings["tool"]): void => {
     panel.classList.toggle("hidden", tool === "pose");
     brush.classList.toggle("hidden", tool !== "stiffness");
     bones.classList.toggle("hidden", tool !== "bone");
+    joints.classList.toggle("hidden", tool !== "joint");
   };
 
   const controls = new Map<string, { action: AnyAction; control: Control<unknown> }>();
@@ -129,7 +132,7 @@ export function buildToolbar(
     const found = controls.get(id);
     if (!found) throw new Error(`the toolbar's layout names ${id}, which no action has`);
     const run = guarded(perform, kit, found.action, found.control);
-    const view = buildControl(kit, { group, brush, bones, showTool }, found.control, run, init);
+    const view = buildControl(kit, { group, brush, bones, joints, showTool }, found.control, run, init);
     if (view) views.push(view);
   };
   for (const { label, in: where, controls: ids } of LAYOUT) {
@@ -143,6 +146,8 @@ export function buildToolbar(
   for (const id of PANEL.brush) place(id, brush);
   bones.append(PANEL.bones.text);
   for (const id of PANEL.bones.controls) place(id, bones);
+  joints.append(PANEL.joints.text);
+  for (const id of PANEL.joints.controls) place(id, joints);
   showTool(init.settings.tool);
 
   return {

@@ -12,6 +12,8 @@
  * - `painting`: with the stiffness brush, a press paints (with Alt, erases) until released;
  * - `drawing-bone`: with the bone tool, a press starts a bone that the pointer stretches
  *   and its release adds (with Alt, a press removes the bone under it);
+ * - `moving-joint`: with the joint tool, a press on a joint takes it (a press elsewhere
+ *   adds one there), the pointer moves it, and its release puts it down;
  * - `panning`: a press on the background, a middle-button press, or any press while Space
  *   is held moves the view;
  * - `pinching`: two pointers moving the view (fingers): their midpoint pans, their
@@ -51,7 +53,7 @@ export interface GestureHost {
   /** The selected handle whose turning ring is at a shape point, or -1. */
   ringAt(x: number, y: number): number;
   /** What a press on the shape does (the tool in use). */
-  tool(): "pose" | "stiffness" | "bone";
+  tool(): "pose" | "stiffness" | "bone" | "joint";
   /** Whether presses pan the view instead (Space is held). */
   panMode(): boolean;
   /** Saves the state for undo before a gesture (once for overlapping gestures). */
@@ -79,6 +81,10 @@ export interface GestureHost {
   bone(x: number, y: number, erase: boolean): void;
   /** The bone tool's release: the bone drawn is added. */
   boneEnd(): void;
+  /** The joint tool's press (`pressed`) or drag at a shape point. */
+  joint(x: number, y: number, pressed: boolean): void;
+  /** The joint tool's release: the joint moved is put down. */
+  jointEnd(): void;
   /** Moves the view by (dx, dy) CSS pixels. */
   pan(dx: number, dy: number): void;
   /** Zooms the view by `factor` about a point given in client pixels. */
@@ -86,7 +92,8 @@ export interface GestureHost {
 }
 
 /** The names of the states (`idle` for a pointer that is not down). */
-export type GestureName = "idle" | "dragging-handle" | "turning" | "painting" | "drawing-bone" | "panning" | "pinching";
+export type GestureName =
+  "idle" | "dragging-handle" | "turning" | "painting" | "drawing-bone" | "moving-joint" | "panning" | "pinching";
 
 /** Where a pointer pressed and last was, in client pixels. */
 interface Track {
@@ -163,6 +170,16 @@ class DrawingBone extends PointerGesture {
   }
   up(machine: Gestures): void {
     machine.host.boneEnd();
+  }
+}
+
+class MovingJoint extends PointerGesture {
+  readonly name = "moving-joint";
+  move(machine: Gestures, sample: PointerSample): void {
+    machine.host.joint(...sample.shape, false);
+  }
+  up(machine: Gestures): void {
+    machine.host.jointEnd();
   }
 }
 
@@ -248,6 +265,10 @@ export class Gestures {
       if (tool === "bone") {
         host.bone(x, y, p.alt);
         return this.#enter(p.id, new DrawingBone(track));
+      }
+      if (tool === "joint") {
+        host.joint(x, y, true);
+        return this.#enter(p.id, new MovingJoint(track));
       }
       host.paint(p.id, x, y, p.alt);
       return this.#enter(p.id, new Painting(track));

@@ -21,6 +21,8 @@ export class PointerState {
   touch = false;
   /** The bone being drawn: from the press to the pointer (shape units). */
   boneDraft: [number, number, number, number] | undefined;
+  /** The joint being moved with the joint tool: its index and where the pointer has it (shape units). */
+  jointDraft: { index: number; start: [number, number]; at: [number, number]; moved: boolean } | undefined;
   readonly #host: PointerStateHost;
 
   constructor(host: PointerStateHost) {

@@ -12,8 +12,9 @@ import { Keyboard } from "./keyboard.js";
 import { open } from "../actions/shape.js";
 import type { PointerState } from "./pointer-state.js";
 import type { Camera } from "../view/camera.js";
-import { HANDLE_RADIUS, RING_RADIUS } from "../view/overlay.js";
-import { locate, nearestPoint } from "../model/picking.js";
+import { HANDLE_RADIUS, JOINT_RADIUS, RING_RADIUS } from "../view/overlay.js";
+import { nearestPoint, pointPosition } from "../model/picking.js";
+import { jointPositions, partsUnder, restPoint } from "../model/puppet.js";
 import { PointerInput } from "./pointer-events.js";
 import type { WidgetSettings } from "../options.js";
 import type { Posing } from "../model/posing.js";
@@ -45,6 +46,9 @@ export interface InputHost {
   perform<A>(action: Action<A, unknown>, args: A): void;
 }
 
+/** How near (CSS pixels) a press must be to a joint to take it. */
+const JOINT_REACH = JOINT_RADIUS + 4;
+
 export class WidgetInput {
   readonly #host: InputHost;
   readonly #pointer: PointerInput;
@@ -59,11 +63,11 @@ export class WidgetInput {
       accepting: () => !posing.replaying,
       focus: () => host.root.focus({ preventScroll: true }),
       toShape: (clientX, clientY) => fromPixel(host.camera.view, ...host.devicePixel(clientX, clientY)),
-      handleAt: (x, y) => nearestPoint(posing.deformer.handlePositions(), x, y, radius()),
+      handleAt: (x, y) => posing.handleAt(x, y, radius()),
       beginGesture: () => posing.beginGesture(),
       addHandleAt: (x, y) => {
         const tolerance = (4 * host.ratio()) / host.camera.view.scale;
-        const point = locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, tolerance);
+        const point = posing.pointAt(x, y, tolerance);
         if (!point) return -1;
         posing.addHandle(point);
         posing.markChanged();
@@ -106,7 +110,7 @@ export class WidgetInput {
         host.draw();
       },
       removeAt: (x, y) => {
-        const index = nearestPoint(posing.deformer.handlePositions(), x, y, radius());
+        const index = posing.handleAt(x, y, radius());
         if (index >= 0) host.perform(removeHandle, { index });
       },
       pressedOff: (additive) => {
@@ -129,6 +133,14 @@ export class WidgetInput {
           this.#endBone();
           posing.flushStiffness();
         }),
+      joint: (x, y, pressed) => {
+        try {
+          this.#joint(x, y, pressed);
+        } catch (error) {
+          host.failed(error);
+        }
+      },
+      jointEnd: () => this.#strokeEnd(() => this.#endJoint()),
       hover: (at) => host.pointer.hover(at),
       pressedWith: (touch) => {
         host.pointer.touch = touch;
@@ -201,11 +213,85 @@ export class WidgetInput {
     brush.boneDraft = undefined;
     this.#host.draw();
     if (!draft || Math.hypot(draft[2] - draft[0], draft[3] - draft[1]) < this.#pixels(8)) return;
-    const at = (x: number, y: number) =>
-      locate(posing.deformer.positionsView(), posing.shape.mesh.triangles, x, y, this.#pixels(4));
+    // On a puppet, the ends on the front-most part there.
+    const at = (x: number, y: number) => posing.pointAt(x, y, this.#pixels(4));
     const [from, to] = [at(draft[0], draft[1]), at(draft[2], draft[3])];
     if (!from || !to) throw new Error("a bone's ends must lie on the shape");
     posing.bones.set([...posing.bones.list, { ends: [from, to] }]);
+    posing.markChanged();
+    this.#host.succeeded();
+  }
+
+  /**
+   * The joint tool's press or drag at a shape point (in the pose on screen). A press on a
+   * joint selects it and takes it; a press where parts overlap adds a joint there, joining
+   * the front-most part under the pointer to the next one under it; a drag moves the joint
+   * taken (put down on release, {@link #endJoint}).
+   */
+  #joint(x: number, y: number, pressed: boolean): void {
+    const { posing, pointer } = this.#host;
+    const puppet = posing.shape.puppet;
+    const draft = pointer.jointDraft;
+    if (!pressed) {
+      if (!draft) return;
+      draft.at = [x, y];
+      draft.moved ||= Math.hypot(x - draft.start[0], y - draft.start[1]) > this.#pixels(3);
+      this.#host.draw();
+      return;
+    }
+    if (!puppet || !posing.depths) {
+      throw new Error("Only a puppet has joints: open an SVG whose layers (top-level groups) are its parts.");
+    }
+    const rest = posing.shape.mesh.positions;
+    const positions = posing.deformer.positionsView();
+    const joints = posing.joints;
+    const at = jointPositions(puppet, joints, rest, positions, this.#pixels(2));
+    const index = nearestPoint(at, x, y, this.#pixels(JOINT_REACH));
+    if (index >= 0) {
+      posing.selectedJoint = index;
+      pointer.jointDraft = { index, start: [x, y], at: [x, y], moved: false };
+      this.#host.draw();
+      return;
+    }
+    const under = partsUnder(puppet, posing.depths, positions, posing.shape.mesh.triangles, x, y);
+    posing.selectedJoint = undefined;
+    this.#host.draw();
+    if (under.length === 0) return;
+    if (under.length < 2) {
+      throw new Error(
+        `A joint joins two parts where one lies over the other; only ${puppet.parts[under[0]!.part]!.name} is here.`,
+      );
+    }
+    const [front, back] = [under[0]!, under[1]!];
+    const point = pointPosition(rest, posing.shape.mesh.triangles, front.point);
+    posing.setJoints([...joints, { point, parts: [front.part, back.part] }]);
+    posing.selectedJoint = joints.length;
+    posing.markChanged();
+    this.#host.succeeded();
+  }
+
+  /** The joint tool's release: the joint taken is put down where the pointer left it (on both its parts). */
+  #endJoint(): void {
+    const { posing, pointer } = this.#host;
+    const draft = pointer.jointDraft;
+    pointer.jointDraft = undefined;
+    const puppet = posing.shape.puppet;
+    if (!draft?.moved || !puppet) return;
+    const joints = posing.joints;
+    const joint = joints[draft.index];
+    if (!joint) return;
+    const names = joint.parts.map((k) => puppet.parts[k]?.name ?? `part ${k}`).join(" and ");
+    const rest = posing.shape.mesh.positions;
+    const positions = posing.deformer.positionsView();
+    const point = restPoint(puppet, joint.parts[0], rest, positions, ...draft.at);
+    const refused = (why: string) => new Error(`The joint stays where it was: it must lie on both ${names}${why}`);
+    if (!point) throw refused("");
+    joints[draft.index] = { point, parts: joint.parts };
+    try {
+      posing.setJoints(joints);
+    } catch (error) {
+      throw refused(` (${error instanceof Error ? error.message : String(error)})`);
+    }
     posing.markChanged();
     this.#host.succeeded();
   }

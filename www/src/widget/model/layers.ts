@@ -1,5 +1,6 @@
 /**
- * Depth order of overlapping parts, without the DOM. Each handle has a layer (a whole
+ * Depth order of overlapping parts, without the DOM. A puppet's parts are in the layers of
+ * their depths ({@link partLayering}). Otherwise each handle has a layer (a whole
  * number; higher is in front); each part of the shape takes the layer of the handle
  * nearest to it along the rest mesh (multi-source Dijkstra over the mesh's edges, from the
  * handles' points), so a limb belongs to the handle on it. Triangles are then drawn back
@@ -78,14 +79,42 @@ export function layering(
   // A triangle belongs to the handle of its corner nearest to a handle.
   const count = triangles.length / 3;
   const triangleLayers = new Int32Array(count);
-  const byEdge = new Map<number, number>();
   for (let t = 0; t < count; t++) {
     let best = triangles[3 * t]!;
     for (let k = 1; k < 3; k++) if (distance[triangles[3 * t + k]!]! < distance[best]!) best = triangles[3 * t + k]!;
     triangleLayers[t] = owner[best]! >= 0 ? handles[owner[best]!]!.layer : 0;
+  }
+  return layeringOf(n, triangles, boundaryEdges, triangleLayers);
+}
+
+/**
+ * The layering of a puppet: each triangle in the layer of its part's depth (`partOf`: the
+ * part of each triangle; `depths`: each part's depth, larger in front), so parts are drawn
+ * back to front by depth and each part's outline is hidden where a part in front covers it.
+ */
+export function partLayering(
+  vertexCount: number,
+  triangles: ArrayLike<number>,
+  boundaryEdges: ArrayLike<number>,
+  partOf: ArrayLike<number>,
+  depths: readonly number[],
+): Layering {
+  const triangleLayers = Int32Array.from(partOf, (part) => depths[part] ?? 0);
+  return layeringOf(vertexCount, triangles, boundaryEdges, triangleLayers);
+}
+
+/** The layering whose triangles have the given layers: the boundary edges' layers, the order, the outlines. */
+function layeringOf(
+  n: number,
+  triangles: ArrayLike<number>,
+  boundaryEdges: ArrayLike<number>,
+  triangleLayers: Int32Array,
+): Layering {
+  const byEdge = new Map<number, number>();
+  for (let t = 0; t < triangleLayers.length; t++) {
     for (let k = 0; k < 3; k++) byEdge.set(triangles[3 * t + k]! * n + triangles[3 * t + ((k + 1) % 3)]!, t);
   }
-  const order = [...layers].sort((a, b) => a - b);
+  const order = [...new Set(triangleLayers)].sort((a, b) => a - b);
   const regions = regionOutlines(triangles, triangleLayers, n);
   const edges = new Int32Array(boundaryEdges.length / 2);
   for (let e = 0; e < edges.length; e++) {

@@ -93,3 +93,52 @@ export function pointPosition(
   }
   return [x, y];
 }
+
+/**
+ * The mesh point at (x, y) on the front-most triangle there: of the triangles containing
+ * it, the one of the highest `layers` value (a later triangle among equals: drawn last, it
+ * is on top). Off every triangle, the closest point within `tolerance` as {@link locate}
+ * finds it. Undefined when nothing is that close.
+ */
+export function locateFront(
+  positions: ArrayLike<number>,
+  triangles: ArrayLike<number>,
+  layers: ArrayLike<number>,
+  x: number,
+  y: number,
+  tolerance = 0,
+): MeshPoint | undefined {
+  let best: MeshPoint | undefined;
+  for (const point of locateAll(positions, triangles, x, y)) {
+    if (!best || layers[point.triangle]! >= layers[best.triangle]!) best = point;
+  }
+  return best ?? locate(positions, triangles, x, y, tolerance);
+}
+
+/** Every triangle containing (x, y), as mesh points, in triangle order. */
+export function locateAll(
+  positions: ArrayLike<number>,
+  triangles: ArrayLike<number>,
+  x: number,
+  y: number,
+): MeshPoint[] {
+  const found: MeshPoint[] = [];
+  for (let t = 0; 3 * t + 2 < triangles.length; t++) {
+    const a = triangles[3 * t]!;
+    const b = triangles[3 * t + 1]!;
+    const c = triangles[3 * t + 2]!;
+    const ax = positions[2 * a]!;
+    const ay = positions[2 * a + 1]!;
+    const bx = positions[2 * b]!;
+    const by = positions[2 * b + 1]!;
+    const cx = positions[2 * c]!;
+    const cy = positions[2 * c + 1]!;
+    const area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    if (area === 0) continue;
+    const wa = ((bx - x) * (cy - y) - (by - y) * (cx - x)) / area;
+    const wb = ((cx - x) * (ay - y) - (cy - y) * (ax - x)) / area;
+    const wc = 1 - wa - wb;
+    if (wa >= 0 && wb >= 0 && wc >= 0) found.push({ triangle: t, barycentric: [wa, wb, wc] });
+  }
+  return found;
+}

@@ -12,17 +12,25 @@
  * with the rig in WebAssembly. The deformer records every change made through it while a
  * recording runs.
  */
-import { Deformer, checkStiffness, type DeformerOptions, type Timings } from "../../core.js";
+import {
+  Deformer,
+  checkStiffness,
+  type DeformerOptions,
+  type DeformerSetup,
+  type PuppetJoint,
+  type Timings,
+} from "../../core.js";
 import { PointMapper } from "../../import.js";
 import { History } from "./history.js";
 import { METHODS, methodOptions, widgetMethod, type MethodPreset } from "./methods.js";
-import { locate, pointPosition, type MeshPoint } from "./picking.js";
+import { locate, locateFront, nearestPoint, pointPosition, type MeshPoint } from "./picking.js";
 import { Session, type SessionEvent } from "../../session.js";
 import { Bones, bonesFrom, type Bone } from "./bones.js";
 import { carryStiffness, paintStiffness, unpainted } from "./stiffness.js";
 import type { Rig } from "./rig.js";
 import type { Loaded, Shape } from "./shape.js";
 import { newHandle, type Handle, type HandleState } from "./handle.js";
+import { deformerJoints, importedDepths, puppetOptions, sameJoints, setDeformerJoints, stepDepth } from "./puppet.js";
 
 export { newHandle, type Handle, type HandleState } from "./handle.js";
 
@@ -45,6 +53,9 @@ export interface Snapshot {
   stiffness?: Float64Array | undefined;
   /** The bones (work saved before bones existed has none). */
   bones?: Bone[] | undefined;
+  /** A puppet's parts' depths and its deformer's joints (undefined for other shapes). */
+  depths?: number[] | undefined;
+  joints?: PuppetJoint[] | undefined;
 }
 
 /**
@@ -92,6 +103,15 @@ export class Posing {
    */
   handles: Handle[] = [];
   parts: Parts | undefined;
+  /**
+   * A puppet's parts' depths (larger in front; see `puppet.ts`), as the user ordered them;
+   * undefined for other shapes.
+   */
+  depths: number[] | undefined;
+  /** The joint selected with the joint tool (an index into {@link joints}), if any. */
+  selectedJoint: number | undefined;
+  /** The depth of each triangle's part, and the depths it was made from. */
+  #triangleDepths: { depths: number[]; layers: Int32Array } | undefined;
   /** While a session replays: nothing is recorded. */
   replaying = false;
   /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
@@ -164,7 +184,9 @@ export class Posing {
    * are the caller's to set); fails without changing anything. A recording ends.
    */
   adopt(shape: Shape, orders: Uint32Array[] | undefined, refit: boolean): void {
-    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, this.deformerOptions(), orders);
+    const { puppet } = shape;
+    const options = puppet ? puppetOptions(this.deformerOptions(), puppet, puppet.joints) : this.deformerOptions();
+    const deformer = new Deformer(shape.mesh.positions, shape.mesh.triangles, options, orders);
     this.deformer?.free();
     this.deformer = deformer;
     this.#sent = [];
@@ -172,14 +194,24 @@ export class Posing {
     this.#trackingSent = "";
     this.#sendTracking();
     this.shape = shape;
+    this.depths = puppet && importedDepths(puppet);
+    this.selectedJoint = undefined;
+    this.#triangleDepths = undefined;
     this.stiffness = undefined;
     this.#stiffnessPending = false;
     this.bones.forget();
     this.#host.adopted(shape, deformer, refit);
   }
 
+  /** The method's options (see {@link shapeOptions} for a deformer of the shape). */
   deformerOptions(): DeformerOptions {
     return methodOptions(this.settings.method, this.settings.lambda);
+  }
+
+  /** The options a deformer of the shape as posed is made with: the method's, and a puppet's parts and joints now. */
+  shapeOptions(): DeformerSetup {
+    const { puppet } = this.shape;
+    return puppet ? puppetOptions(this.deformerOptions(), puppet, this.joints) : this.deformerOptions();
   }
 
   /** Changes the method and/or lambda (recorded). */
@@ -218,15 +250,43 @@ export class Posing {
     const stiffness = carryStiffness(this.stiffness, old.shape.mesh, shape.mesh, 0.05 * shape.size);
     const bones = this.bones.carried(old.shape.mesh, shape.mesh, 0.05 * shape.size);
     const targets = this.deformer.targets();
+    const oldPuppet = old.shape.puppet;
     const handles = this.handles.map((h, i) => ({
       rest: pointPosition(old.shape.mesh.positions, old.shape.mesh.triangles, h.point),
       target: [targets[2 * i]!, targets[2 * i + 1]!],
       layer: h.layer,
       ordered: h.ordered,
+      part: oldPuppet?.partOf[h.point.triangle],
     }));
+    const carried = oldPuppet && shape.puppet && { depths: this.depths, joints: this.joints };
     this.adopt(shape, orders, false);
     this.handles = [];
-    if (!old.atRest) {
+    // A puppet's parts overlap at rest: each part's points are found in that part alone.
+    const puppet = carried && shape.puppet?.parts.length === oldPuppet!.parts.length ? shape.puppet : undefined;
+    if (puppet && carried) {
+      this.depths = carried.depths;
+      try {
+        this.setJoints(carried.joints);
+      } catch {
+        // The joints the new import placed stay where a carried one would not fit.
+      }
+    }
+    if (!old.atRest && puppet) {
+      // Each part's vertices through the old part's own sheet.
+      const next = new Float64Array(shape.mesh.positions);
+      puppet.meshes.forEach((mesh, k) => {
+        const source = subMesh(oldPuppet!.meshes[k]!, old.shape.mesh.positions, old.positions);
+        const target = subMesh(mesh, shape.mesh.positions);
+        const mapper = new PointMapper(source.rest, source.triangles, target.rest);
+        try {
+          const mapped = mapper.map(source.posed);
+          target.vertices.forEach((v, i) => next.set([mapped[2 * i]!, mapped[2 * i + 1]!], 2 * v));
+        } finally {
+          mapper.free();
+        }
+      });
+      this.deformer.setPositions(next);
+    } else if (!old.atRest) {
       const mapper = new PointMapper(old.shape.mesh.positions, old.shape.mesh.triangles, shape.mesh.positions);
       try {
         this.deformer.setPositions(mapper.map(old.positions));
@@ -236,10 +296,12 @@ export class Posing {
     }
     const { positions: rest, triangles } = shape.mesh;
     const kept: number[] = [];
-    for (const { rest: at, target, layer, ordered } of handles) {
+    for (const { rest: at, target, layer, ordered, part } of handles) {
+      const own = puppet && part !== undefined ? puppet.meshes[part]! : triangles;
+      const found =
+        locate(rest, own, at[0], at[1], 1e-6 * shape.size) ?? locate(rest, own, at[0], at[1], 0.05 * shape.size);
       const point =
-        locate(rest, triangles, at[0], at[1], 1e-6 * shape.size) ??
-        locate(rest, triangles, at[0], at[1], 0.05 * shape.size);
+        found && own !== triangles ? { ...found, triangle: puppet!.parts[part!]!.triangles[found.triangle]! } : found;
       if (point) {
         this.handles.push({ ...newHandle(point), layer, ordered });
         kept.push(...target);
@@ -309,6 +371,42 @@ export class Posing {
   }
 
   // ---------------------------------------------------------------- handles
+
+  /**
+   * The mesh point at (x, y) in the pose on screen (or the closest within `tolerance`): on
+   * a puppet, on the front-most part there.
+   */
+  pointAt(x: number, y: number, tolerance = 0): MeshPoint | undefined {
+    const positions = this.deformer.positionsView();
+    const { triangles } = this.shape.mesh;
+    const layers = this.triangleDepths();
+    return layers
+      ? locateFront(positions, triangles, layers, x, y, tolerance)
+      : locate(positions, triangles, x, y, tolerance);
+  }
+
+  /**
+   * The handle at (x, y) within `radius` (shape units), or -1: the nearest, and on a puppet
+   * the one on the front-most part among those within reach.
+   */
+  handleAt(x: number, y: number, radius: number): number {
+    const at = this.deformer.handlePositions();
+    const layers = this.triangleDepths();
+    if (!layers) return nearestPoint(at, x, y, radius);
+    let best = -1;
+    let bestDistance = Infinity;
+    this.handles.forEach((h, i) => {
+      const distance = Math.hypot(at[2 * i]! - x, at[2 * i + 1]! - y);
+      if (distance > radius) return;
+      const depth = layers[h.point.triangle]!;
+      const bestDepth = best < 0 ? -Infinity : layers[this.handles[best]!.point.triangle]!;
+      if (depth > bestDepth || (depth === bestDepth && distance < bestDistance)) {
+        best = i;
+        bestDistance = distance;
+      }
+    });
+    return best;
+  }
 
   /** A new handle at `point`, last, its target where the point is; the others keep theirs. */
   addHandle(point: MeshPoint): Handle {
@@ -487,6 +585,48 @@ export class Posing {
     return this.handles.some((h) => h.pointerId !== undefined);
   }
 
+  // ---------------------------------------------------------------- puppets
+
+  /** The joints a puppet's deformer poses with (copies); none for other shapes. */
+  get joints(): PuppetJoint[] {
+    return this.shape.puppet ? deformerJoints(this.deformer) : [];
+  }
+
+  /**
+   * Replaces a puppet's joints (the deformer analyses its systems again); throws (code
+   * `invalid-joint`), changing nothing, for a part out of range or a point not on both
+   * parts, or when the shape is no puppet.
+   */
+  setJoints(joints: readonly PuppetJoint[]): void {
+    if (!this.shape.puppet) throw new Error("only a puppet (an SVG of several layers) has joints");
+    setDeformerJoints(this.deformer, joints);
+    if (this.selectedJoint !== undefined && this.selectedJoint >= joints.length) this.selectedJoint = undefined;
+    this.#host.schedule();
+  }
+
+  /** Each triangle's layer: its part's depth for a puppet (see {@link depths}); undefined for other shapes. */
+  triangleDepths(): Int32Array | undefined {
+    const { puppet } = this.shape;
+    const depths = this.depths;
+    if (!puppet || !depths) return undefined;
+    if (this.#triangleDepths?.depths !== depths) {
+      this.#triangleDepths = { depths, layers: Int32Array.from(puppet.partOf, (part) => depths[part] ?? 0) };
+    }
+    return this.#triangleDepths.layers;
+  }
+
+  /**
+   * Moves a puppet's part one step in front of the next part (`step` 1) or behind it (-1);
+   * false when it is already in front (or at the back).
+   */
+  reorderPart(part: number, step: 1 | -1): boolean {
+    const next = this.depths && stepDepth(this.depths, part, step);
+    if (!next) return false;
+    this.depths = next;
+    this.#host.schedule();
+    return true;
+  }
+
   // ---------------------------------------------------------------- gestures and history
 
   snapshot(): Snapshot {
@@ -506,6 +646,7 @@ export class Posing {
       })),
       stiffness: this.stiffness?.slice(),
       bones: [...this.bones.list],
+      ...(this.shape.puppet ? { depths: this.depths, joints: this.joints } : {}),
     };
   }
 
@@ -534,6 +675,13 @@ export class Posing {
       layer: h.layer ?? 0,
       ordered: h.ordered ?? false,
     }));
+    if (this.shape.puppet) {
+      if (snapshot.depths) this.depths = snapshot.depths;
+      if (snapshot.joints && !sameJoints(snapshot.joints, this.joints)) {
+        setDeformerJoints(this.deformer, snapshot.joints);
+        this.selectedJoint = undefined;
+      }
+    }
     this.#sent = [];
     this.applyHandles();
     this.deformer.setTargets(snapshot.handles.flatMap((h) => h.target));
@@ -675,6 +823,9 @@ export class Posing {
         this.install(shape);
       }
       this.applyOptions(session.data.options);
+      // A puppet's joints as the recording started.
+      const puppet = session.data.puppet;
+      if (puppet && !sameJoints(puppet.joints, this.joints)) this.apply({ joints: puppet.joints });
       this.apply({ stiffness: undefined });
       this.apply({ bones: { triangles: [], barycentric: [] } });
       this.apply({ reset: true });
@@ -720,6 +871,9 @@ export class Posing {
       const { triangles, barycentric } = event.bones;
       this.deformer.setBones(triangles, barycentric);
       this.bones.assign(bonesFrom(triangles, barycentric));
+    } else if ("joints" in event) {
+      setDeformerJoints(this.deformer, event.joints);
+      this.selectedJoint = undefined;
     } else if ("stiffness" in event) {
       const values = event.stiffness ?? undefined;
       this.deformer.setStiffness(values);
@@ -729,4 +883,28 @@ export class Posing {
       this.deformer.reset();
     }
   }
+}
+
+/**
+ * The mesh of some triangles (3 vertex indices each) on its own: their vertices in order,
+ * their rest positions and, given, posed ones, and the triangles numbered among them.
+ */
+function subMesh(
+  triangles: ArrayLike<number>,
+  rest: ArrayLike<number>,
+  posed: ArrayLike<number> = rest,
+): { vertices: number[]; rest: Float64Array; posed: Float64Array; triangles: Uint32Array } {
+  const vertices = [...new Set(Array.from(triangles))];
+  const index = new Map(vertices.map((v, i) => [v, i]));
+  const pick = (from: ArrayLike<number>) => {
+    const out = new Float64Array(2 * vertices.length);
+    vertices.forEach((v, i) => out.set([from[2 * v]!, from[2 * v + 1]!], 2 * i));
+    return out;
+  };
+  return {
+    vertices,
+    rest: pick(rest),
+    posed: pick(posed),
+    triangles: Uint32Array.from(triangles, (v) => index.get(v)!),
+  };
 }

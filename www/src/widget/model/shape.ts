@@ -4,9 +4,10 @@
  * it exactly).
  */
 import { limits, triangulateToVertices, type MeshData, type Outline } from "../../core.js";
-import type { ImportedOutline, VectorPath } from "../../import.js";
+import type { ImportedOutline, ImportedPuppet, VectorPath } from "../../import.js";
 import { sessionMesh, type Session, type ShapeSpec } from "../../session.js";
 import { bounds, boxUvs, uniqueEdges } from "./geometry.js";
+import { puppetOf, sameParts, type Puppet, type PuppetSource } from "./puppet.js";
 
 export interface Shape {
   /** What to call it (a built-in name, a file name). */
@@ -23,6 +24,8 @@ export interface Shape {
   texture?: TexImageSource;
   /** An imported SVG's filled paths in shape coordinates, for deformed vector export. */
   vector?: VectorPath[];
+  /** Set for a puppet (an SVG of several layers, an image of separate regions): its parts, joints and source. */
+  puppet?: Puppet;
 }
 
 /** Most vertices a widget mesh may have: the library's mesh limit (see `limits()`). */
@@ -93,9 +96,15 @@ export function sessionShape(session: Session, current: Shape): Shape {
 }
 
 function sessionShapeOf(session: Session, current: Shape): Shape {
-  const { shape: spec, mesh } = session.data;
+  const { shape: spec, mesh, puppet } = session.data;
   const now = current.spec;
-  if (spec) {
+  // A puppet is the current shape only with the same parts (a plain mesh only if not a puppet).
+  const sameKind = puppet
+    ? current.puppet !== undefined && sameParts(current.puppet.parts, puppet.parts)
+    : !current.puppet;
+  if (!sameKind) {
+    // Rebuilt below.
+  } else if (spec) {
     if (
       now &&
       now.name === spec.name &&
@@ -115,7 +124,13 @@ function sessionShapeOf(session: Session, current: Shape): Shape {
     spec && targetEdgeLength !== undefined && minAngle !== undefined && spec.maxArea === undefined
       ? { name: spec.name, targetEdgeLength, minAngle }
       : undefined;
-  return shapeFromMesh(sessionMesh(session), widgetSpec, undefined, spec?.name);
+  const shape = shapeFromMesh(sessionMesh(session), widgetSpec, undefined, spec?.name ?? (puppet && "recorded puppet"));
+  if (puppet) {
+    // The parts and joints from the header; the session has no art (drawn with the default texture).
+    const parts = puppet.parts.map((p) => ({ ...p, triangles: Uint32Array.from(p.triangles), paths: [] }));
+    shape.puppet = puppetOf({ parts, joints: puppet.joints }, shape.mesh.triangles, undefined);
+  }
+  return shape;
 }
 
 function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
@@ -124,8 +139,21 @@ function sameArray(a: ArrayLike<number>, b: ArrayLike<number>): boolean {
   return true;
 }
 
-/** What a file gives: outlines to mesh (largest first), or a ready mesh. */
+/**
+ * What a file gives: outlines to mesh (largest first), a ready mesh, or a puppet (an SVG of
+ * layers, an image of separate regions).
+ */
 export type Loaded =
+  | {
+      kind: "puppet";
+      name: string;
+      /** The SVG text or the image's pixels (re-meshing imports it again). */
+      source: PuppetSource;
+      /** The import at the vertex count of the time. */
+      imported: ImportedPuppet;
+      /** An image's puppet: the image, its texture. */
+      texture?: TexImageSource;
+    }
   | {
       kind: "outlines";
       name: string;

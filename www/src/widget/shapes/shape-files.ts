@@ -5,11 +5,15 @@
  * a huge file is refused before any work; every failure is an `Error` saying why, and
  * nothing of the widget changes until a shape is fully built.
  */
-import { limits, type Outline } from "../../core.js";
-import type { Loaded, Shape } from "../model/shape.js";
-import { vectorTexture } from "./vector-texture.js";
+import { limits, meshFromArrays, type Outline } from "../../core.js";
+import { shapeFromMesh, type Loaded, type Shape } from "../model/shape.js";
+import { atlasTexture, vectorTexture } from "./vector-texture.js";
+import { puppetAtlas } from "../model/atlas.js";
 import { bounds } from "../model/geometry.js";
+import { puppetOf, type PuppetSource } from "../model/puppet.js";
 import {
+  importImagePuppet,
+  importPuppet,
   importSvg,
   importSvgPaths,
   meshFromJson,
@@ -17,6 +21,7 @@ import {
   textureCoordinates,
   traceImage,
   type ImportedOutline,
+  type ImportedPuppet,
   type VectorPath,
 } from "../../import.js";
 
@@ -40,10 +45,14 @@ export function fileKind(name: string, type = ""): FileKind | undefined {
   return undefined;
 }
 
-/** Reads a file (or a fetched blob with a name). Throws an `Error` naming the file. */
-export async function readShapeFile(file: Blob, name: string): Promise<Loaded> {
+/**
+ * Reads a file (or a fetched blob with a name); an SVG of two or more layers, or an image
+ * of two or more separate regions, is a puppet, imported with about `vertices` vertices.
+ * Throws an `Error` naming the file.
+ */
+export async function readShapeFile(file: Blob, name: string, vertices: number): Promise<Loaded> {
   try {
-    return await read(file, name);
+    return await read(file, name, vertices);
   } catch (error) {
     const message = error instanceof Error ? error.message : String(error);
     if (message.startsWith(name)) throw error;
@@ -51,7 +60,7 @@ export async function readShapeFile(file: Blob, name: string): Promise<Loaded> {
   }
 }
 
-async function read(file: Blob, name: string): Promise<Loaded> {
+async function read(file: Blob, name: string, vertices: number): Promise<Loaded> {
   const kind = fileKind(name, file.type);
   if (!kind) {
     throw new Error(`${name}: not a file we can read (SVG, PNG, JPEG, WebP, GIF, OBJ or JSON mesh)`);
@@ -62,11 +71,13 @@ async function read(file: Blob, name: string): Promise<Loaded> {
   switch (kind) {
     case "svg": {
       const text = await file.text();
+      const imported = importLayers(text, vertices);
+      if (imported.parts.length > 1) return { kind: "puppet", name, source: { kind: "svg", text }, imported };
       const parts = importSvg(text);
       return { kind: "outlines", name, parts, vector: importSvgPaths(text) };
     }
     case "image":
-      return readImage(file, name);
+      return readImage(file, name, vertices);
     case "obj": {
       const mesh = meshFromObj(await file.text());
       return { kind: "mesh", name, mesh, uvs: mesh.uvs };
@@ -78,7 +89,7 @@ async function read(file: Blob, name: string): Promise<Loaded> {
   }
 }
 
-async function readImage(file: Blob, name: string): Promise<Loaded> {
+async function readImage(file: Blob, name: string, vertices: number): Promise<Loaded> {
   let bitmap: ImageBitmap;
   try {
     bitmap = await createImageBitmap(file);
@@ -101,6 +112,12 @@ async function readImage(file: Blob, name: string): Promise<Loaded> {
   const parts = traceImage(pixels, width, height);
   // The canvas, not the bitmap, is the texture: WebGL flips canvases for upload as asked,
   // but ignores the flip for ImageBitmaps.
+  if (parts.length > 1) {
+    // Separate regions: a puppet, a part per region, the image the art of each.
+    const source: PuppetSource = { kind: "image", rgba: pixels, width, height };
+    const imported = importPuppetSource(source, vertices);
+    if (imported.parts.length > 1) return { kind: "puppet", name, source, imported, texture: canvas };
+  }
   return { kind: "outlines", name, parts, image: { source: canvas, width, height } };
 }
 
@@ -133,6 +150,69 @@ export async function partShape<P extends { shape: Shape }>(
   }
   if (loaded.vector) paintVector(document, shape, loaded.vector);
   return prepared;
+}
+
+/** An SVG's layers as a puppet with about `vertices` vertices in all (one part: not a puppet). */
+export function importLayers(text: string, vertices: number): ImportedPuppet {
+  return importPuppet(text, { vertices });
+}
+
+/**
+ * A puppet imported again from its source at about `vertices` vertices: an SVG's layers,
+ * or an image's separate regions.
+ */
+export function importPuppetSource(source: PuppetSource, vertices: number): ImportedPuppet {
+  return source.kind === "svg"
+    ? importLayers(source.text, vertices)
+    : importImagePuppet(source.rgba, source.width, source.height, { vertices });
+}
+
+/**
+ * A puppet as a shape: one mesh of every part's sheet, the parts and the joints the import
+ * placed. An image's puppet (`texture`, the image, with an image `source`) takes the image
+ * as its texture (its regions do not overlap, so each part shows its own pixels);
+ * otherwise a texture atlas has each part's art alone in its tile (`model/atlas.ts`), so
+ * what one part hides of another shows when they move apart, and the art, every part's
+ * paths back to front, is kept for vector export. Parts without art (a puppet from a
+ * session) are drawn with the widget's texture.
+ */
+export function puppetShape(
+  document: Document,
+  imported: ImportedPuppet,
+  name: string,
+  source: PuppetSource | undefined,
+  texture?: TexImageSource,
+): Shape {
+  const mesh = meshFromArrays(imported.positions, imported.triangles);
+  const puppet = puppetOf(imported, mesh.triangles, source);
+  if (source?.kind === "image") {
+    if (!texture) throw new Error(`${name}: the image of this puppet is missing`);
+    const uvs = textureCoordinates(mesh.positions, source.width, source.height);
+    const shape = shapeFromMesh(mesh, undefined, uvs, name);
+    shape.puppet = puppet;
+    shape.texture = texture;
+    return shape;
+  }
+  if (puppet.parts.every((p) => p.paths.length === 0)) {
+    // No art (a puppet rebuilt from a session): the widget's texture over the whole.
+    const shape = shapeFromMesh(mesh, undefined, undefined, name);
+    shape.puppet = puppet;
+    return shape;
+  }
+  const { layout, uvs } = puppetAtlas(
+    mesh.positions,
+    mesh.triangles,
+    puppet.parts.map((p) => p.triangles),
+  );
+  const shape = shapeFromMesh(mesh, undefined, uvs, name);
+  shape.puppet = puppet;
+  shape.vector = [...puppet.parts].sort((a, b) => a.depth - b.depth).flatMap((p) => p.paths);
+  shape.texture = atlasTexture(
+    document,
+    puppet.parts.map((p) => p.paths),
+    layout,
+  );
+  return shape;
 }
 
 /** Imported SVG art on a shape: kept for vector export, and drawn in its colours as the texture. */

@@ -8,9 +8,11 @@ import { builtinShape, builtinShapes, type Outline } from "../../core.js";
 import { DEFAULTS, type WidgetSettings } from "../options.js";
 import { restoreWork, savedShape, type SavedWork } from "../store/work-store.js";
 import type { Parts, Posing } from "../model/posing.js";
+import { oneShapeNote, type PuppetSource } from "../model/puppet.js";
+import type { ImportedPuppet } from "../../import.js";
 import { Cancelled, ShapeMaker, makeShown, type Prepared, type SetupRequest } from "./shape-maker.js";
 import { meshOutline, shapeFromMesh, type Loaded } from "../model/shape.js";
-import { paintVector, partShape, readShapeFile } from "./shape-files.js";
+import { importPuppetSource, paintVector, partShape, puppetShape, readShapeFile } from "./shape-files.js";
 import type { Stage } from "../view/stage.js";
 
 /** What the loader needs of the widget. */
@@ -71,7 +73,10 @@ export class ShapeLoader {
   async resume(saved: SavedWork): Promise<void> {
     const { document, posing, settings } = this.#host;
     await restoreWork(saved, posing, settings, (shape) =>
-      savedShape(document, shape, (s, v) => paintVector(document, s, v)),
+      savedShape(document, shape, {
+        paint: (s, v) => paintVector(document, s, v),
+        puppet: (imported, name, source, texture) => puppetShape(document, imported, name, source, texture),
+      }),
     );
   }
 
@@ -86,7 +91,7 @@ export class ShapeLoader {
 
   /** A shape file (not a session or rig) read and shown, and offered in the shape list. */
   async open(file: Blob, name: string): Promise<void> {
-    const loaded = await readShapeFile(file, name);
+    const loaded = await readShapeFile(file, name, this.#host.settings.vertices);
     if (loaded.kind === "outlines" && loaded.parts.length === 0) throw new Error(`${name}: no shape found`);
     await this.show(loaded, 0);
     this.files.push(loaded);
@@ -106,14 +111,16 @@ export class ShapeLoader {
   async remesh(vertices: number, minAngle: number): Promise<void> {
     const { posing, settings } = this.#host;
     const { parts, shape } = posing;
-    if (!parts && !shape.spec) throw new Error("this shape came as a mesh; it cannot be re-meshed");
+    if (!parts && !shape.spec && !shape.puppet) throw new Error("this shape came as a mesh; it cannot be re-meshed");
     const previous = { vertices: settings.vertices, minAngle: settings.minAngle };
     Object.assign(settings, { vertices, minAngle });
     let prepared: Prepared;
     try {
-      prepared = parts
-        ? await this.#partShape(parts.loaded, parts.index)
-        : await this.make({ name: shape.spec!.name, outline: undefined, label: shape.spec!.name, vertices });
+      prepared = shape.puppet
+        ? this.#puppet(shape.puppet.source, shape.name, vertices, undefined, shape.texture)
+        : parts
+          ? await this.#partShape(parts.loaded, parts.index)
+          : await this.make({ name: shape.spec!.name, outline: undefined, label: shape.spec!.name, vertices });
     } catch (error) {
       Object.assign(settings, previous);
       throw error;
@@ -140,13 +147,24 @@ export class ShapeLoader {
     const prepared =
       loaded.kind === "mesh"
         ? { shape: shapeFromMesh(loaded.mesh, undefined, loaded.uvs, loaded.name), orders: undefined }
-        : await this.#partShape(loaded, index);
+        : loaded.kind === "puppet"
+          ? this.#puppet(loaded.source, loaded.name, this.#host.settings.vertices, loaded.imported, loaded.texture)
+          : await this.#partShape(loaded, index);
     this.#host.gesture(() => {
       posing.parts = loaded.kind === "outlines" ? { loaded, index } : undefined;
       posing.install(prepared.shape, prepared.orders);
       if (loaded.kind === "mesh" && loaded.stiffness) posing.setStiffness(loaded.stiffness);
     });
-    if (loaded.kind === "outlines" && loaded.parts.length > 1) {
+    const puppet = posing.shape.puppet;
+    if (puppet) {
+      const names = puppet.parts.map((p) => p.name).join(", ");
+      const joints = puppet.joints.length;
+      stage.status.info(
+        `${loaded.name} is a puppet of ${puppet.parts.length} parts (${names}) with ${joints} joint${joints === 1 ? "" : "s"}; ` +
+          "every part is posed at once (the Joint tool moves, adds and removes joints)" +
+          (oneShapeNote(this.#host.settings.method) ? `. ${oneShapeNote(this.#host.settings.method)}` : ""),
+      );
+    } else if (loaded.kind === "outlines" && loaded.parts.length > 1) {
       stage.status.info(
         `${loaded.name} has ${loaded.parts.length} separate parts; showing part ${index + 1} (the parts are ordered by size)`,
       );
@@ -155,6 +173,28 @@ export class ShapeLoader {
 
   destroy(): void {
     this.#maker.destroy();
+  }
+
+  /**
+   * A puppet's shape from its source (an SVG's text, an image's pixels, with `texture` the
+   * image) at about `vertices` vertices (`imported`: the import already made at that
+   * count). Meshed on the page: the deformer orders its own systems, which the joints
+   * couple.
+   */
+  #puppet(
+    source: PuppetSource | undefined,
+    name: string,
+    vertices: number,
+    imported?: ImportedPuppet,
+    texture?: TexImageSource,
+  ): Prepared {
+    if (!source)
+      throw new Error(`${name} came from a session or saved work without its file: open the file to re-mesh it`);
+    const made = imported ?? importPuppetSource(source, vertices);
+    if (made.parts.length < 2) {
+      throw new Error(`${name} no longer has several ${source.kind === "svg" ? "layers" : "regions"}`);
+    }
+    return { shape: puppetShape(this.#host.document, made, name, source, texture), orders: undefined };
   }
 
   #partShape(loaded: Parts["loaded"], index: number): Promise<Prepared> {

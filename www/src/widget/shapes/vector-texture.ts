@@ -1,9 +1,11 @@
 /**
  * A texture drawn from imported vector art: every path filled with its colour and fill
- * rule on a canvas that covers the shape, so the art deforms with the mesh.
+ * rule on a canvas that covers the shape, so the art deforms with the mesh; for a puppet,
+ * an atlas with each part's art alone in its tile.
  */
 import { pathData, type VectorPath } from "../../import.js";
 import { DEFAULT_FILL } from "../store/pose-export.js";
+import { atlasSide, type AtlasLayout } from "../model/atlas.js";
 import { uvSquare, type UvSquare } from "../model/geometry.js";
 import type { View } from "../view/projection.js";
 
@@ -80,4 +82,41 @@ export function vectorTexture(
     ctx.fill(new Path2D(pathData(path)), path.fillRule);
   }
   return { ...mapping, canvas };
+}
+
+/**
+ * A puppet's texture atlas (see `model/atlas.ts`): a square canvas `side` pixels across
+ * with each part's art (`parts[k]`, drawn as {@link vectorTexture} draws paths) alone in
+ * its tile of `layout`, clipped to the tile, the rest transparent.
+ */
+export function atlasTexture(
+  document: Document,
+  parts: readonly (readonly VectorPath[])[],
+  layout: AtlasLayout,
+  side = atlasSide(layout),
+  fill = DEFAULT_FILL,
+): HTMLCanvasElement {
+  const canvas = document.createElement("canvas");
+  canvas.width = side;
+  canvas.height = side;
+  const ctx = canvas.getContext("2d");
+  if (!ctx) throw new Error("this browser cannot draw on a canvas");
+  layout.tiles.forEach((tile, k) => {
+    const { x0, y0, size } = tile.square;
+    // Shape point (x, y) to pixel (side u, side (1 - v)), where u = u0 + s (x - x0) / size
+    // and v = v0 + s (y - y0) / size: the tile's texture coordinates (v up).
+    const scale = (side * tile.size) / size;
+    ctx.save();
+    ctx.beginPath();
+    ctx.rect(side * tile.u0, side * (1 - tile.v0 - tile.size), side * tile.size, side * tile.size);
+    ctx.clip();
+    ctx.setTransform(scale, 0, 0, -scale, side * tile.u0 - scale * x0, side * (1 - tile.v0) + scale * y0);
+    for (const path of parts[k] ?? []) {
+      ctx.fillStyle = fill;
+      if (path.fill !== undefined) ctx.fillStyle = path.fill;
+      ctx.fill(new Path2D(pathData(path)), path.fillRule);
+    }
+    ctx.restore();
+  });
+  return canvas;
 }

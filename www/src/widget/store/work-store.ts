@@ -1,12 +1,14 @@
 /**
  * Keeping the user's work across reloads: the shape (a built-in shape by how it was
  * triangulated, anything else as its mesh, with an imported image's texture and an SVG's
- * paths), the pose, the handles and the settings, in IndexedDB under a key the page
- * chooses. Saved a moment after each change; read once when the widget starts.
+ * paths; a puppet with its parts, their art and its joints), the pose, the handles and the
+ * settings, in IndexedDB under a key the page chooses. Saved a moment after each change;
+ * read once when the widget starts.
  */
 import type { Bone } from "../model/bones.js";
-import { builtinShape, meshFromArrays, triangulate } from "../../core.js";
-import type { VectorPath } from "../../import.js";
+import { builtinShape, meshFromArrays, triangulate, type PuppetJoint } from "../../core.js";
+import type { ImportedPuppet, VectorPath } from "../../import.js";
+import type { PuppetSource } from "../model/puppet.js";
 import type { ShapeSpec } from "../../session.js";
 import { shapeFromMesh, type Shape } from "../model/shape.js";
 import { METHODS, type MethodPreset } from "../model/methods.js";
@@ -44,7 +46,21 @@ export type SavedShape =
       /** An imported image, as PNG. */
       texture?: Blob;
       vector?: VectorPath[];
+      /** A puppet's parts and joints (absent: one shape; work saved before puppets were kept has none). */
+      puppet?: SavedPuppet;
     };
+
+/**
+ * A puppet kept with its mesh: its parts (name, triangles, depth as imported, and art) and
+ * the joints its import placed; the joints and depths of the pose are the work's. An
+ * image's puppet keeps the image as the shape's texture.
+ */
+export interface SavedPuppet {
+  parts: { name: string; triangles: Uint32Array; depth: number; paths: VectorPath[] }[];
+  joints: PuppetJoint[];
+  /** An SVG puppet's text, for re-meshing. */
+  svg?: string;
+}
 
 export interface SavedWork {
   format: "akap-work";
@@ -60,6 +76,9 @@ export interface SavedWork {
   bones?: Bone[];
   /** The animation's keys and frame rate (absent: none; work saved before animation has none). */
   animation?: SavedAnimation;
+  /** A puppet's parts' depths as ordered, and its joints (absent for other shapes). */
+  depths?: number[];
+  joints?: PuppetJoint[];
 }
 
 /** The animation kept with the work: its frame rate, handle set and keys (each with its pose). */
@@ -152,7 +171,8 @@ export function savedWork(
           triangles: Uint32Array.from(mesh.triangles),
           uvs: shape.uvs,
           ...(texture ? { texture } : {}),
-          ...(shape.vector ? { vector: shape.vector } : {}),
+          // A puppet's art is its parts' (drawn again into its atlas).
+          ...(shape.puppet ? { puppet: savedPuppet(shape.puppet) } : shape.vector ? { vector: shape.vector } : {}),
         },
     positions: pose.positions,
     atRest: pose.atRest,
@@ -160,6 +180,21 @@ export function savedWork(
     ...(pose.stiffness ? { stiffness: pose.stiffness } : {}),
     ...(pose.bones && pose.bones.length > 0 ? { bones: pose.bones } : {}),
     ...(animation ? { animation } : {}),
+    ...(pose.depths ? { depths: [...pose.depths] } : {}),
+    ...(pose.joints ? { joints: pose.joints.map((j) => ({ point: [...j.point], parts: [...j.parts] })) } : {}),
+  };
+}
+
+function savedPuppet(puppet: NonNullable<Shape["puppet"]>): SavedPuppet {
+  return {
+    parts: puppet.parts.map((p) => ({
+      name: p.name,
+      triangles: Uint32Array.from(p.triangles),
+      depth: p.depth,
+      paths: p.paths,
+    })),
+    joints: puppet.joints.map((j) => ({ point: [...j.point], parts: [...j.parts] })),
+    ...(puppet.source?.kind === "svg" ? { svg: puppet.source.text } : {}),
   };
 }
 
@@ -168,15 +203,20 @@ export function savedTexture(shape: Shape): TexImageSource | undefined {
   return !shape.spec && !shape.vector ? shape.texture : undefined;
 }
 
+/** How saved art becomes a shape's drawing (the page's, in `shapes/`). */
+export interface SavedArt {
+  /** Draws vector art as the shape's texture. */
+  paint(shape: Shape, vector: VectorPath[]): void;
+  /** A puppet's shape: its parts' art in an atlas, or an image's (`texture`) pixels. */
+  puppet(imported: ImportedPuppet, name: string, source: PuppetSource | undefined, texture?: TexImageSource): Shape;
+}
+
 /**
  * The shape of saved work, rebuilt: a built-in shape triangulated as it was, or the saved
- * mesh (validated again) with its texture; `paint` draws vector art as the texture.
+ * mesh (validated again) with its texture, its vector art drawn by `art`, and a puppet made
+ * again from its parts and joints.
  */
-export async function savedShape(
-  document: Document,
-  kept: SavedShape,
-  paint: (shape: Shape, vector: VectorPath[]) => void,
-): Promise<Shape> {
+export async function savedShape(document: Document, kept: SavedShape, art: SavedArt): Promise<Shape> {
   if (kept.kind === "builtin") {
     const { spec } = kept;
     const mesh = triangulate(builtinShape(spec.name), {
@@ -185,10 +225,31 @@ export async function savedShape(
     });
     return shapeFromMesh(mesh, { ...spec });
   }
-  const shape = shapeFromMesh(meshFromArrays(kept.positions, kept.triangles), undefined, kept.uvs, kept.name);
-  if (kept.texture) shape.texture = await textureCanvas(document, kept.texture);
-  if (kept.vector) paint(shape, kept.vector);
+  const mesh = meshFromArrays(kept.positions, kept.triangles);
+  const texture = kept.texture && (await textureCanvas(document, kept.texture));
+  if (kept.puppet) {
+    const { parts, joints, svg } = kept.puppet;
+    const imported = { positions: mesh.positions, triangles: mesh.triangles, parts, joints, skipped: [] };
+    // An image's puppet: its pixels again from the saved image (re-meshing traces them).
+    const source: PuppetSource | undefined = texture
+      ? { kind: "image", ...imagePixels(texture) }
+      : svg === undefined
+        ? undefined
+        : { kind: "svg", text: svg };
+    return art.puppet(imported, kept.name, source, texture);
+  }
+  const shape = shapeFromMesh(mesh, undefined, kept.uvs, kept.name);
+  if (texture) shape.texture = texture;
+  if (kept.vector) art.paint(shape, kept.vector);
   return shape;
+}
+
+/** A canvas's pixels (RGBA, rows from the top) and size. */
+function imagePixels(canvas: HTMLCanvasElement): { rgba: Uint8ClampedArray; width: number; height: number } {
+  const ctx = canvas.getContext("2d", { willReadFrequently: true });
+  if (!ctx) throw new Error("this browser cannot read image pixels");
+  const { width, height } = canvas;
+  return { rgba: ctx.getImageData(0, 0, width, height).data, width, height };
 }
 
 /** What is kept: read when a save is due. */
@@ -200,8 +261,11 @@ export interface WorkSource {
   animation?(): SavedAnimation | undefined;
 }
 
-/** The pose part of the work: positions, handles, painted stiffness and bones. */
-export type SavedPose = Pick<SavedWork, "positions" | "atRest" | "handles" | "stiffness" | "bones">;
+/** The pose part of the work: positions, handles, painted stiffness, bones, and a puppet's depths and joints. */
+export type SavedPose = Pick<
+  SavedWork,
+  "positions" | "atRest" | "handles" | "stiffness" | "bones" | "depths" | "joints"
+>;
 
 /**
  * Puts `saved` back over the shape installed in `posing`: its settings, its shape (made by

@@ -49,10 +49,14 @@ export interface OverlayScene {
   /** Bones: x0 y0 x1 y1 each (shape units), and one being drawn. */
   bones?: ArrayLike<number>;
   boneDraft?: readonly [number, number, number, number] | undefined;
+  /** A puppet's joints (shape units), shown with the joint tool. */
+  joints?: readonly { x: number; y: number; selected: boolean }[] | undefined;
 }
 
 /** Handle radius in CSS pixels. */
 export const HANDLE_RADIUS = 7;
+/** A joint marker's half-width in CSS pixels. */
+export const JOINT_RADIUS = 6;
 /** The turning ring round a selected handle, in handle radii. */
 export const RING_RADIUS = 2.6;
 /** Most arrows drawn for the field. */
@@ -148,6 +152,8 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
     ctx.stroke();
   }
 
+  if (scene.joints) drawJoints(ctx, scene.joints, view, ratio);
+
   for (const h of scene.handles) {
     const [x, y] = toPixel(view, h.x, h.y);
     const [tx, ty] = toPixel(view, h.targetX, h.targetY);
@@ -204,6 +210,9 @@ function drawOutline(
         ctx.closePath();
       }
       ctx.globalCompositeOperation = "destination-out";
+      // Opaque, whatever was filled last (the flipped triangles' red is translucent): the
+      // outlines behind are erased wholly, not left showing faintly through.
+      ctx.fillStyle = "#000";
       ctx.fill("nonzero");
       ctx.globalCompositeOperation = "source-over";
     }
@@ -216,6 +225,34 @@ function drawOutline(
       ctx.lineTo(bx, by);
     }
     ctx.stroke();
+  }
+}
+
+/** Joints as small diamonds with a dot, white-rimmed; the selected one filled yellow. */
+function drawJoints(
+  ctx: CanvasRenderingContext2D,
+  joints: readonly { x: number; y: number; selected: boolean }[],
+  view: View,
+  ratio: number,
+): void {
+  const r = JOINT_RADIUS * ratio;
+  for (const j of joints) {
+    const [x, y] = toPixel(view, j.x, j.y);
+    ctx.beginPath();
+    ctx.moveTo(x, y - r);
+    ctx.lineTo(x + r, y);
+    ctx.lineTo(x, y + r);
+    ctx.lineTo(x - r, y);
+    ctx.closePath();
+    ctx.fillStyle = j.selected ? "#ffd34d" : "rgba(255, 255, 255, 0.9)";
+    ctx.fill();
+    ctx.lineWidth = 2 * ratio;
+    ctx.strokeStyle = "#0b6e4f";
+    ctx.stroke();
+    ctx.beginPath();
+    ctx.arc(x, y, 1.5 * ratio, 0, 2 * Math.PI);
+    ctx.fillStyle = "#0b6e4f";
+    ctx.fill();
   }
 }
 

@@ -14,7 +14,8 @@ import { Hud } from "./hud.js";
 import type { WidgetSettings } from "../options.js";
 import { HANDLE_RADIUS, RING_RADIUS, drawOverlay, type OverlayHandle } from "./overlay.js";
 import { regionOutlines } from "../model/geometry.js";
-import { drawOrder, layering, type Layering } from "../model/layers.js";
+import { jointPositions } from "../model/puppet.js";
+import { drawOrder, layering, partLayering, type Layering } from "../model/layers.js";
 import type { Posing } from "../model/posing.js";
 import type { Shape } from "../model/shape.js";
 import { BusyIndicator } from "./busy-indicator.js";
@@ -32,6 +33,8 @@ export interface Extras {
   boneDraft?: readonly [number, number, number, number] | undefined;
   /** The last press was a finger's: selected handles show their rings (a finger cannot hover). */
   touch?: boolean;
+  /** A joint being moved with the joint tool: its index and where the pointer has it (shape units). */
+  jointDraft?: { index: number; at: [number, number] } | undefined;
 }
 
 /**
@@ -126,14 +129,23 @@ export class Stage {
   }
 
   /**
-   * The depth order the handles give the shape, computed again when the shape, the
-   * handles or their layers change; the renderer draws the triangles back to front.
+   * The depth order of the shape: a puppet's parts by their depths, else what the handles
+   * give it; computed again when the shape, the depths, the handles or their layers change.
+   * The renderer draws the triangles back to front.
    */
   layering(posing: Posing): Layering | undefined {
-    const key = posing.handles.map((h) => `${h.point.triangle}/${h.point.barycentric.join()}/${h.layer}`).join(";");
+    const { puppet } = posing.shape;
+    const depths = posing.depths;
+    const key =
+      puppet && depths
+        ? `parts ${depths.join()}`
+        : posing.handles.map((h) => `${h.point.triangle}/${h.point.barycentric.join()}/${h.layer}`).join(";");
     if (this.#layers?.shape !== posing.shape || this.#layers.key !== key) {
-      const { positions, triangles, boundaryEdges } = posing.shape.mesh;
-      const layers = layering(positions, triangles, boundaryEdges, posing.handles);
+      const { positions, triangles, boundaryEdges, vertexCount } = posing.shape.mesh;
+      const layers =
+        puppet && depths
+          ? partLayering(vertexCount, triangles, boundaryEdges, puppet.partOf, depths)
+          : layering(positions, triangles, boundaryEdges, posing.handles);
       if (layers || this.#layers?.layers) this.renderer.setTriangles(drawOrder(triangles, layers));
       this.#layers = { shape: posing.shape, key, layers };
     }
@@ -246,8 +258,21 @@ export class Stage {
         ? { bones: boneEnds(posing.bones.list, deformer.positionsView(), shape.mesh.triangles) }
         : {}),
       boneDraft: withHandles ? extras.boneDraft : undefined,
+      joints: withHandles && settings.tool === "joint" ? this.#joints(posing, extras) : undefined,
     };
     drawOverlay(ctx, scene, this.camera.view, this.ratio);
+  }
+
+  /** A puppet's joints where they are in the pose (a joint being moved where the pointer has it). */
+  #joints(posing: Posing, extras: Extras): { x: number; y: number; selected: boolean }[] | undefined {
+    const { puppet, mesh, size } = posing.shape;
+    if (!puppet) return undefined;
+    const at = jointPositions(puppet, posing.joints, mesh.positions, posing.deformer.positionsView(), 1e-6 * size);
+    const draft = extras.jointDraft;
+    return Array.from({ length: at.length / 2 }, (_, i) => {
+      const [x, y] = draft?.index === i ? draft.at : [at[2 * i]!, at[2 * i + 1]!];
+      return { x, y, selected: posing.selectedJoint === i };
+    });
   }
 
   /**
