@@ -138,6 +138,15 @@ fn the_ground_truth_keeps_joints_together_and_free_sheets_still() {
             let gap = (a[0] - b[0]).hypot(a[1] - b[1]);
             assert!(gap <= 0.005 * scale, "{energy:?}: joint {:?} opens by {gap}", joint.parts);
         }
+        // Pulled a tenth of the arm's length beyond its reach, the arm pulls the torso at the
+        // shoulder: the joint carries that force, and still holds within 0.5% of the size.
+        let pulled = [hand[0] + 0.23, hand[1]];
+        let stretched = flat(&solver.solve(&[rest[0], rest[1], pulled], Start::Rest).unwrap().positions);
+        let a = follow(&mesh, &puppet, ARM, SHOULDER, &stretched);
+        let b = follow(&mesh, &puppet, TORSO, SHOULDER, &stretched);
+        let gap = (a[0] - b[0]).hypot(a[1] - b[1]);
+        assert!(gap <= 0.005 * scale, "{energy:?}: the pulled shoulder opens by {gap}");
+        assert!(b[0] - SHOULDER[0] > 1e-4 * scale, "{energy:?}: the torso's shoulder is pulled along");
         // The hat, which no handle reaches, exactly where it was.
         for v in vertices_of(&mesh, &puppet, HAT) {
             assert_eq!(report.positions[v], mesh.positions()[v], "{energy:?}: the hat's vertex {v} moved");
