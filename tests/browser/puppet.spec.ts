@@ -135,6 +135,15 @@ test("the torso hidden under the arm shows once the arm swings up about the shou
   const shown = await again(grid(toCss, svg, [120, 110, 130, 130], 2.5, 6));
   expect(shown.filter((c) => near(c, GREEN)).length).toBeGreaterThan(shown.length / 2);
   await page.screenshot({ path: "test-results/puppet-swung-remeshed.png" });
+
+  // The SVG export is itself a layered file, a layer per part back to front (each part's
+  // art carried by its own sheet: tests/unit/puppet-export.test.ts), and the mesh export
+  // carries the parts.
+  const exported = await page.evaluate(() => window.akapDemo!.widget.exportSvg());
+  const labels = [...exported.matchAll(/inkscape:label="([^"]*)"/g)].map((m) => m[1]);
+  expect(labels).toEqual(["Torso", "Head", "Arm", "Hat"]);
+  const mesh = await page.evaluate(() => window.akapDemo!.widget.exportMesh("json"));
+  expect(JSON.parse(mesh).parts.map((p: { name: string }) => p.name)).toEqual(["Torso", "Head", "Arm", "Hat"]);
 });
 
 test("the joint tool refuses a joint moved off its parts, adds one where parts overlap, and removes it", async ({

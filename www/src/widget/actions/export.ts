@@ -2,7 +2,8 @@
  * The pose out: as a mesh (JSON or OBJ), an SVG or a PNG, to the API or downloaded.
  */
 import { unpainted } from "../model/stiffness.js";
-import { download, posedMesh, posedSvg } from "../store/pose-export.js";
+import type { Posing } from "../model/posing.js";
+import { download, posedMesh, posedSvg, puppetSvg, type PosedPuppet, type PuppetArt } from "../store/pose-export.js";
 import { action, type ButtonControl } from "./action.js";
 import type { WidgetParts } from "./context.js";
 
@@ -12,6 +13,20 @@ export function paintedStiffness(parts: Pick<WidgetParts, "posing">): Float64Arr
   return unpainted(s) ? undefined : s!.slice();
 }
 
+/** A puppet's parts as posed now (the user's depth order), with their art; undefined for other shapes. */
+export function puppetArt(posing: Posing): PuppetArt[] | undefined {
+  const puppet = posing.shape.puppet;
+  if (!puppet) return undefined;
+  return puppet.parts.map((part, k) => ({ ...part, depth: posing.depths?.[k] ?? part.depth }));
+}
+
+/** A puppet as the mesh writers take it (rest mesh, parts in the user's depth order, the deformer's joints). */
+function posedPuppet(posing: Posing): PosedPuppet | undefined {
+  const parts = puppetArt(posing);
+  if (!parts) return undefined;
+  return { mesh: posing.shape.mesh, parts, joints: posing.deformer.joints };
+}
+
 /** See `Widget.exportMesh`. */
 export const exportMesh = action({
   name: "export-mesh",
@@ -19,7 +34,11 @@ export const exportMesh = action({
   perform(parts, { format }: { format: "json" | "obj" }): string {
     const { posing, stage } = parts;
     const layers = stage.layering(posing);
-    return posedMesh(posing.shape, posing.deformer.positions(), format, { stiffness: paintedStiffness(parts), layers });
+    return posedMesh(posing.shape, posing.deformer.positions(), format, {
+      stiffness: paintedStiffness(parts),
+      layers,
+      puppet: posedPuppet(posing),
+    });
   },
 });
 
@@ -30,6 +49,9 @@ export const exportSvg = action({
   perform(parts): string {
     const { posing, stage } = parts;
     const { deformer, shape } = posing;
+    // A puppet's art: each part carried by its own sheet, back to front, a layer each.
+    const art = puppetArt(posing);
+    if (art && art.some((part) => part.paths.length > 0)) return puppetSvg(shape.mesh, art, deformer.positions());
     return posedSvg(shape.mesh, shape.vector, deformer.positions(), stage.layering(posing));
   },
 });
