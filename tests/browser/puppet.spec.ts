@@ -263,3 +263,33 @@ test("a handle goes on the front-most part; Back sends that part behind; MLS say
   expect((await read(square)).filter((c) => near(c, BLUE)).length).toBe(square.length);
   await page.screenshot({ path: "test-results/puppet-remeshed.png" });
 });
+
+test("a rig trains on the puppet with its joints, and a joint moved leaves it stale", async ({ page }) => {
+  await open(page);
+  await loadPuppet(page);
+  await page.evaluate(() => window.akapDemo!.widget.remesh(600));
+  await idle(page);
+  const svg = await svgToShape(page);
+  const { toCss } = await mapping(page);
+  for (const [x, y] of [
+    [80, 200],
+    [190, 120],
+  ] as const)
+    await page.mouse.click(...toCss(...svg(x, y)));
+  const state = await page.evaluate(async () => {
+    const w = window.akapDemo!.widget;
+    await w.train({ samples: 8, energy: "arap", workers: 0, cache: false });
+    return w.rig.state;
+  });
+  expect(state).toBe("ready");
+  // The joint moved (with the joint tool's call): the rig was trained with the old one.
+  const stale = await page.evaluate(() => {
+    const w = window.akapDemo!.widget;
+    const joints = w.joints.map((j) => ({ ...j, point: [...j.point] as [number, number] }));
+    const arm = joints.findIndex((j) => j.parts[0] === 2);
+    joints[arm]!.point[0] += 0.5 / w.view.scale;
+    w.setJoints(joints);
+    return w.rig.state;
+  });
+  expect(stale).toBe("stale");
+});

@@ -6,7 +6,7 @@
  * mesh, handle points, training options), which `rigs/rig-cache.ts` keeps rigs under.
  */
 import { DefOp, type DefOpTrainerOptions } from "../../defop.js";
-import type { MeshData } from "../../core.js";
+import type { MeshData, PuppetJoint } from "../../core.js";
 import { pointPosition, type MeshPoint } from "./picking.js";
 import type { Shape } from "./shape.js";
 
@@ -71,9 +71,12 @@ export class Rig {
     }
   }
 
-  /** Whether it poses `shape` with handles at `points` (in this order). */
-  fits(shape: Shape, points: readonly { point: MeshPoint }[]): boolean {
+  /** Whether it poses `shape` with handles at `points` (in this order) and, for a puppet,
+   * the deformer's `joints`. */
+  fits(shape: Shape, points: readonly { point: MeshPoint }[], joints: readonly PuppetJoint[] = []): boolean {
     if (points.length !== this.points.length) return false;
+    // A puppet's rig poses only the puppet with the joints it was trained with.
+    if (JSON.stringify(this.operator.joints ?? []) !== JSON.stringify(joints)) return false;
     const same = points.every(({ point }, i) => {
       const mine = this.points[i]!;
       return point.triangle === mine.triangle && point.barycentric.every((b, k) => b === mine.barycentric[k]);
@@ -125,12 +128,15 @@ export async function rigKey(
   mesh: MeshData,
   points: readonly MeshPoint[],
   options: RigTrainOptions,
+  joints?: readonly PuppetJoint[],
 ): Promise<string | undefined> {
   const subtle = globalThis.crypto?.subtle;
   if (!subtle) return undefined;
   const handles = new Float64Array(points.flatMap((p) => [p.triangle, ...p.barycentric]));
   const keys = Object.keys(options).sort() as (keyof RigTrainOptions)[];
-  const settings = new TextEncoder().encode(JSON.stringify(keys.map((k) => [k, options[k]])));
+  const settings = new TextEncoder().encode(
+    JSON.stringify([...keys.map((k): unknown[] => [k, options[k]]), ...(joints ? [["joints", joints]] : [])]),
+  );
   const parts = [mesh.positions, mesh.triangles, handles, settings];
   const length = parts.reduce((sum, p) => sum + p.byteLength + 8, 0);
   const bytes = new Uint8Array(length);

@@ -125,6 +125,13 @@ export class RigManager {
     }
     const shape = posing.shape;
     const points = posing.handles.map((h) => ({ triangle: h.point.triangle, barycentric: h.point.barycentric }));
+    // A puppet's rig is trained on its parts and its joints now (its key tells them apart).
+    const puppet = shape.puppet
+      ? {
+          parts: shape.puppet.parts.map(({ name, triangles, depth }) => ({ name, triangles, depth })),
+          joints: posing.deformer.joints,
+        }
+      : undefined;
     const controller = new AbortController();
     const abort = () => controller.abort(signal?.reason);
     signal?.addEventListener("abort", abort, { once: true });
@@ -132,7 +139,7 @@ export class RigManager {
     this.#training = controller;
     const cancel = () => controller.abort(new DOMException("training was cancelled; nothing changed", "AbortError"));
     try {
-      const key = await rigKey(shape.mesh, points, training).catch(() => undefined);
+      const key = await rigKey(shape.mesh, points, training, puppet?.joints).catch(() => undefined);
       controller.signal.throwIfAborted();
       const cached = key && cache ? await this.#cache.load(key, shape.mesh, points).catch(() => undefined) : undefined;
       if (cached) {
@@ -144,7 +151,7 @@ export class RigManager {
         shape.mesh.positions,
         shape.mesh.triangles,
         { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
-        training,
+        { ...training, ...puppet },
         {
           workers,
           signal: controller.signal,
@@ -183,10 +190,10 @@ export class RigManager {
 
   /** The rig cached for the current shape and handles with `options`, adopted; false if none. */
   async fromCache(options: RigTrainOptions): Promise<boolean> {
-    const { shape, handles } = this.#host.posing;
+    const { shape, handles, deformer } = this.#host.posing;
     if (handles.length === 0) return false;
     const points = handles.map((h) => h.point);
-    const key = await rigKey(shape.mesh, points, options);
+    const key = await rigKey(shape.mesh, points, options, shape.puppet ? deformer.joints : undefined);
     const rig = key ? await this.#cache.load(key, shape.mesh, points) : undefined;
     if (rig) this.adopt(rig);
     return rig !== undefined;
@@ -238,7 +245,7 @@ export class RigManager {
   info(): RigInfo {
     const posing = this.#host.posing;
     const rig = posing.rig;
-    const fits = rig?.fits(posing.shape, posing.handles) ?? false;
+    const fits = rig?.fits(posing.shape, posing.handles, posing.deformer.joints) ?? false;
     return {
       state: rig ? (fits ? "ready" : "stale") : "none",
       source: rig?.source,
