@@ -175,8 +175,7 @@ export class Animator {
     const handleList = handles.triangles.map((triangle, i) => ({
       point: { triangle, barycentric: handles.barycentric.slice(3 * i, 3 * i + 3) as [number, number, number] },
     }));
-    const withRig =
-      settings.method === "defop" && rig !== undefined && rig.fits(shape, handleList, posing.deformer.joints);
+    const withRig = settings.method === "defop" && rig !== undefined && rig.fits(shape, handleList, posing.joints);
     const key = framesKey({
       version: this.timeline.version,
       method: settings.method,

@@ -741,9 +741,7 @@ export class Posing {
   /** Whether the "defop" method is chosen and the rig fits the shape and the handles. */
   get posingWithRig(): boolean {
     return (
-      this.settings.method === "defop" &&
-      this.rig !== undefined &&
-      this.rig.fits(this.shape, this.handles, this.deformer.joints)
+      this.settings.method === "defop" && this.rig !== undefined && this.rig.fits(this.shape, this.handles, this.joints)
     );
   }
 

@@ -28,6 +28,8 @@ export class Rig {
   readonly source: RigSource;
   /** The last shape found to have this rig's rest mesh (compared by content once per shape). */
   #shape: Shape | undefined;
+  /** The joints of the puppet it was trained on, as JSON (`[]` for one shape): read once. */
+  #joints: string | undefined;
 
   constructor(
     operator: DefOp,
@@ -76,7 +78,8 @@ export class Rig {
   fits(shape: Shape, points: readonly { point: MeshPoint }[], joints: readonly PuppetJoint[] = []): boolean {
     if (points.length !== this.points.length) return false;
     // A puppet's rig poses only the puppet with the joints it was trained with.
-    if (JSON.stringify(this.operator.joints ?? []) !== JSON.stringify(joints)) return false;
+    this.#joints ??= JSON.stringify(this.operator.joints ?? []);
+    if (this.#joints !== JSON.stringify(joints)) return false;
     const same = points.every(({ point }, i) => {
       const mine = this.points[i]!;
       return point.triangle === mine.triangle && point.barycentric.every((b, k) => b === mine.barycentric[k]);

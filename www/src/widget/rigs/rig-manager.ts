@@ -190,10 +190,10 @@ export class RigManager {
 
   /** The rig cached for the current shape and handles with `options`, adopted; false if none. */
   async fromCache(options: RigTrainOptions): Promise<boolean> {
-    const { shape, handles, deformer } = this.#host.posing;
+    const { shape, handles } = this.#host.posing;
     if (handles.length === 0) return false;
     const points = handles.map((h) => h.point);
-    const key = await rigKey(shape.mesh, points, options, shape.puppet ? deformer.joints : undefined);
+    const key = await rigKey(shape.mesh, points, options, shape.puppet ? this.#host.posing.joints : undefined);
     const rig = key ? await this.#cache.load(key, shape.mesh, points) : undefined;
     if (rig) this.adopt(rig);
     return rig !== undefined;
@@ -245,7 +245,7 @@ export class RigManager {
   info(): RigInfo {
     const posing = this.#host.posing;
     const rig = posing.rig;
-    const fits = rig?.fits(posing.shape, posing.handles, posing.deformer.joints) ?? false;
+    const fits = rig?.fits(posing.shape, posing.handles, posing.joints) ?? false;
     return {
       state: rig ? (fits ? "ready" : "stale") : "none",
       source: rig?.source,
