@@ -877,20 +877,19 @@ impl GroundTruth {
             let el = &self.elements[h.triangle];
             for c in 0..2 {
                 let r = self.residual[2 * j + c];
-                for (a, (&va, wa)) in h.vertices.iter().zip(h.weights).enumerate() {
+                for (&va, wa) in h.vertices.iter().zip(h.weights) {
                     if self.fixed[va as usize] {
                         continue;
                     }
                     let la = el.vertices.iter().position(|&u| u == va as usize).expect("a corner");
                     self.rhs[2 * va as usize + c] += self.point_weight * wa * r;
-                    for (&vb, wb) in h.vertices.iter().zip(h.weights).skip(0).take(3) {
+                    for (&vb, wb) in h.vertices.iter().zip(h.weights) {
                         let lb = el.vertices.iter().position(|&u| u == vb as usize).expect("a corner");
                         let slot = el.slots[6 * (2 * la + c) + 2 * lb + c];
                         if slot != NONE {
                             self.values[slot] += self.point_weight * wa * wb;
                         }
                     }
-                    let _ = a;
                 }
             }
         }
