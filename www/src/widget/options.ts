@@ -6,7 +6,7 @@
 import { limits, type Metrics, type Outline, type Timings, type WasmSource } from "../core.js";
 import { METHODS, type MethodPreset } from "./model/methods.js";
 import { coded } from "../internal/arrays.js";
-import type { RigTrainOptions } from "./model/rig.js";
+import { DEFAULT_RIG_SPATIAL, type RigTrainOptions } from "./model/rig.js";
 import { DEFAULT_FPS, checkFps } from "./animation/timeline.js";
 import { BRUSH_SIZE_RANGE, DEFAULT_BRUSH, type BrushSettings } from "./model/stiffness.js";
 
@@ -189,7 +189,7 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     minAngle: options.minAngle ?? DEFAULTS.minAngle,
     method: options.method ?? DEFAULTS.method,
     lambda: options.lambda ?? DEFAULTS.lambda,
-    training: { ...options.training },
+    training: { spatial: DEFAULT_RIG_SPATIAL, ...options.training },
     region: options.region ?? false,
     compare: options.compare ?? false,
     paperMode: options.paperMode ?? false,

@@ -116,6 +116,14 @@ export class Posing {
   replaying = false;
   /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
   rig: Rig | undefined;
+  /**
+   * Whether a rig that poses is evaluated on the GPU (the widget's renderer is WebGL2): each
+   * frame then computes only the rig's frame, the pose on the CPU when read
+   * (`Deformer.setRigOnGpu`).
+   */
+  rigsOnGpu = false;
+  /** Counts the rigs sent to the deformer on the GPU: a renderer uploads a rig's texture once per count. */
+  gpuRigVersion = 0;
   /** The bones drawn on the shape (see bones.ts). */
   readonly bones: Bones = new Bones(this);
   /** Whether a step of the last frame stopped short to keep triangles from folding over. */
@@ -787,6 +795,7 @@ export class Posing {
     const rig = this.posingWithRig ? this.rig : undefined;
     if (rig === this.#rigSent) return;
     this.deformer.setRig(rig?.operator);
+    if (rig && this.rigsOnGpu && this.deformer.setRigOnGpu(true)) this.gpuRigVersion++;
     this.#rigSent = rig;
   }
 
