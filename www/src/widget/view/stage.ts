@@ -256,7 +256,13 @@ export class Stage {
     // The texture first: making it may grow the memory, which detaches views of it.
     const [layout, texture] = [deformer.rigGpuLayout(), deformer.rigGpuTexture()];
     const frame = deformer.rigFrame();
-    if (!(this.renderer instanceof GlRenderer) || this.#gpuRig?.deformer !== deformer || !layout || !frame || !texture) {
+    if (
+      !(this.renderer instanceof GlRenderer) ||
+      this.#gpuRig?.deformer !== deformer ||
+      !layout ||
+      !frame ||
+      !texture
+    ) {
       return undefined;
     }
     const positions = this.renderer.shaderPositions(EMPTY, frame);
