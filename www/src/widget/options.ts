@@ -47,6 +47,12 @@ export interface WidgetOptions {
   operator?: string | Uint8Array | ArrayBuffer;
   /** How the toolbar's Train (and {@link Widget.train} by default) trains a rig. */
   training?: RigTrainOptions;
+  /**
+   * Pose a trained rig on the GPU where the widget draws with WebGL2 (default true): a
+   * frame computes only the rig's short frame vector on the CPU and the vertex shader forms
+   * the pose; false evaluates the whole pose on the CPU each frame.
+   */
+  gpuRigs?: boolean;
   /** Show a trained rig's training discs, and mark handles dragged outside them. */
   region?: boolean;
   /** Draw the ground truth's outline (ARAP or S-ARAP, solved in a worker) beside a rig's pose. */
@@ -102,7 +108,7 @@ export const TOOLS: readonly WidgetTool[] = ["pose", "stiffness", "bone", "joint
 export type WidgetSettings = Required<
   Omit<
     WidgetOptions,
-    "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm" | "operator" | "brush"
+    "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm" | "operator" | "brush" | "gpuRigs"
   >
 > & { brush: BrushSettings };
 
@@ -151,6 +157,7 @@ export const WIDGET_OPTIONS = [
   "lambda",
   "operator",
   "training",
+  "gpuRigs",
   "region",
   "compare",
   "paperMode",

@@ -129,7 +129,7 @@ export class Widget {
     ({ host: this.#host, root: this.#root } = widgetShell(document));
 
     this.#stage = new Stage(document);
-    this.#posing.rigsOnGpu = this.#stage.renderer.kind === "webgl2";
+    this.#posing.rigsOnGpu = (options.gpuRigs ?? true) && this.#stage.renderer.kind === "webgl2";
     this.#help = new HelpPanel(document, () => this.#toggleHelp(false));
     this.#stage.element.append(this.#help.element);
     // The widget's parts as its actions and managers see them: read when used (some are set below).
