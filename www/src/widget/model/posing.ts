@@ -9,8 +9,9 @@
  * move, and each frame {@link Posing.advance} is one call that takes the handles toward
  * them (substeps no longer than `maxStep` of the shape's size, guarded steps, retries) or,
  * with the "defop" method and a trained {@link Rig} that fits the shape and handles, poses
- * with the rig in WebAssembly. The deformer records every change made through it while a
- * recording runs.
+ * with the rig in WebAssembly, or, with {@link Posing.rigsOnGpu}, leaves the pose to the
+ * renderer's vertex shader (the deformer computes the rig's frame; its pose is evaluated
+ * when read). The deformer records every change made through it while a recording runs.
  */
 import {
   Deformer,
