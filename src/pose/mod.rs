@@ -22,12 +22,20 @@
 //! Each plain step taken is recorded, when a recording runs, as it was taken (a guarded
 //! step's pieces each as its own `step` or `turn` event), so that a replay repeats it to
 //! the bit; so are the handles, poses, options, stiffness and bones set through the poser.
+//!
+//! A rig may pose on the GPU ([`Poser::set_rig_on_gpu`]): a frame then computes only the
+//! rig's short frame vector ([`crate::defop::GpuRig`]) for the renderer, and the deformer's
+//! positions fall behind until something reads them: [`Poser::settle`] evaluates the
+//! operator at the last frame's targets into them (the same double-precision pose a frame
+//! on the CPU writes). Every method of the poser that reads or builds on the pose settles
+//! first; readers of [`Poser::deformer`] call [`Poser::settle`] first (the bindings do). While a
+//! recording runs, each rig frame is evaluated and recorded at once, as on the CPU.
 
 mod replay;
 
 use std::borrow::BorrowMut;
 
-use crate::defop::Operator;
+use crate::defop::{gpu, FitError, GpuRig, Operator};
 use crate::deform::{
     DeformError, Deformer, FoldoverGuard, FoldoverStepper, GuardedStep, Joint, MethodOptions, Timings,
 };
@@ -132,6 +140,10 @@ struct Rig {
     evaluated: Vec<f64>,
     /// The targets to evaluate at, x and y interleaved (scratch).
     targets: Vec<f64>,
+    /// The rig on the GPU ([`Poser::set_rig_on_gpu`]): each frame computes its frame only.
+    gpu: Option<GpuRig>,
+    /// Whether the deformer's positions are behind `evaluated` (a frame on the GPU since).
+    stale: bool,
 }
 
 /// A deformer posed toward targets: see the module's description. It owns its deformer
@@ -196,13 +208,15 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         poser
     }
 
-    /// The deformer posed (read it for the pose, fields, metrics, timings).
+    /// The deformer posed (read it for the pose, fields, metrics, timings). With a rig on
+    /// the GPU its positions may be behind the last frame: [`Self::settle`] first.
     pub fn deformer(&self) -> &Deformer {
         self.deformer.borrow()
     }
 
-    /// The deformer, taken back.
-    pub fn into_deformer(self) -> D {
+    /// The deformer, taken back (settled: see [`Self::settle`]).
+    pub fn into_deformer(mut self) -> D {
+        let _ = self.settle();
         self.deformer
     }
 
@@ -260,6 +274,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Recorded. A rig posing the shape is dropped (the caller checks whether it fits the
     /// new handles and gives it again).
     pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_handle_points(triangles, barycentric)?;
         self.reset_handle_states();
         self.rig = None;
@@ -269,6 +284,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// One handle on each of these vertices, replacing any (as [`Self::set_handle_points`]).
     pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_handle_vertices(vertices)?;
         self.reset_handle_states();
         self.rig = None;
@@ -279,6 +295,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// One more handle at a point of the mesh, last, with its target where it is; the other
     /// handles keep their targets and turns. Recorded.
     pub fn add_handle(&mut self, triangle: u32, barycentric: [f64; 3]) -> Result<usize, DeformError> {
+        self.settle()?;
         let (mut triangles, mut weights) = self.deformer.borrow().handle_points();
         triangles.push(triangle);
         weights.push(barycentric);
@@ -294,6 +311,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Removes handle `index`; the others keep their targets and turns. Recorded.
     pub fn remove_handle(&mut self, index: usize) -> Result<(), DeformError> {
         self.check_handle(index)?;
+        self.settle()?;
         let (mut triangles, mut weights) = self.deformer.borrow().handle_points();
         triangles.remove(index);
         weights.remove(index);
@@ -384,6 +402,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Every handle's target where it is now, no motion pending: the handles stay where
     /// they are.
     pub fn pin_handles(&mut self) {
+        let _ = self.settle();
         let at = self.deformer.borrow().handle_positions();
         for (h, p) in self.handles.iter_mut().zip(at) {
             h.target = p;
@@ -395,6 +414,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// pending from it). Returns where it is.
     pub fn grab(&mut self, index: usize) -> Result<Point, DeformError> {
         self.check_handle(index)?;
+        self.settle()?;
         let at = self.deformer.borrow().handle_positions()[index];
         let h = &mut self.handles[index];
         h.held = true;
@@ -639,6 +659,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// A plain step asked for by hand: the turns it made count as asked.
     fn step_by_hand(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>) -> Result<(), DeformError> {
+        self.settle()?;
         let before = self.turned_before(turns);
         self.take(velocities, turns, None)?;
         self.turns_asked_as_made(&before);
@@ -656,6 +677,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         guard: FoldoverGuard,
     ) -> Result<GuardedStep, DeformError> {
         guard.check()?;
+        self.settle()?;
         let before = self.turned_before(turns);
         let (_, clamped) = self.take(velocities, turns, Some(guard))?;
         self.turns_asked_as_made(&before);
@@ -694,6 +716,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// targets stay. `remaining` 1 takes the whole way, as a replay driving another method
     /// to recorded targets does. Recorded.
     pub fn step_toward(&mut self, remaining: f64, turns: Option<&[f64]>) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow().handle_positions_into(&mut self.current);
         toward(&self.handles, &self.current, remaining, &mut self.velocities);
         let velocities = std::mem::take(&mut self.velocities);
@@ -712,6 +735,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// caller is to check it was trained for this mesh and these handle points. `None`
     /// poses with the deformer again; so does any new handle set.
     pub fn set_rig(&mut self, operator: Option<Operator>) -> Result<(), DeformError> {
+        self.settle()?;
         let Some(operator) = operator else {
             self.rig = None;
             return Ok(());
@@ -731,7 +755,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             });
         }
         let n = self.handles.len();
-        self.rig = Some(Rig { operator, evaluated: Vec::new(), targets: vec![0.0; 2 * n] });
+        self.rig = Some(Rig { operator, evaluated: Vec::new(), targets: vec![0.0; 2 * n], gpu: None, stale: false });
         Ok(())
     }
 
@@ -745,8 +769,68 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.rig.as_ref().map(|rig| rig.operator.handles())
     }
 
+    /// Poses the rig on the GPU (`on`) or on the CPU: on the GPU each frame computes the
+    /// rig's frame ([`Self::rig_gpu`]) and the deformer's positions wait for
+    /// [`Self::settle`]. Returns whether the rig is on the GPU now (never without a rig; a
+    /// new rig starts on the CPU).
+    pub fn set_rig_on_gpu(&mut self, on: bool) -> Result<bool, DeformError> {
+        if !on {
+            self.settle()?;
+        }
+        let Some(rig) = &mut self.rig else { return Ok(false) };
+        match (on, rig.gpu.is_some()) {
+            (true, false) => {
+                rig.gpu = Some(GpuRig::new(&rig.operator));
+                // The first frame on the GPU computes its frame even at the same targets.
+                rig.evaluated.clear();
+            }
+            (false, true) => rig.gpu = None,
+            _ => {}
+        }
+        Ok(on)
+    }
+
+    /// The rig's CPU side on the GPU (its layout, the last frame, the watched vertices'
+    /// positions), if a rig poses on the GPU.
+    pub fn rig_gpu(&self) -> Option<&GpuRig> {
+        self.rig.as_ref().and_then(|rig| rig.gpu.as_ref())
+    }
+
+    /// The basis texture of the rig on the GPU ([`gpu::basis_texture`]), once per rig.
+    pub fn rig_gpu_texture(&self) -> Option<Vec<f32>> {
+        self.rig.as_ref().filter(|rig| rig.gpu.is_some()).map(|rig| gpu::basis_texture(&rig.operator))
+    }
+
+    /// Watches these vertices of the rig on the GPU ([`GpuRig::watch`]): each frame gives
+    /// their positions. Returns whether a rig is on the GPU (nothing is watched without one).
+    pub fn watch_rig_vertices(&mut self, vertices: &[u32]) -> Result<bool, FitError> {
+        let Some(Rig { operator, gpu: Some(gpu), evaluated, .. }) = &mut self.rig else { return Ok(false) };
+        gpu.watch(operator, vertices)?;
+        evaluated.clear(); // the next frame gives their positions
+        Ok(true)
+    }
+
+    /// Whether the deformer's positions are behind the rig's last frame on the GPU.
+    pub fn is_stale(&self) -> bool {
+        self.rig.as_ref().is_some_and(|rig| rig.stale)
+    }
+
+    /// With a rig on the GPU, puts the rig's pose at the last frame's targets into the
+    /// deformer's positions if they are behind (nothing otherwise): what every reader of the
+    /// pose calls first. Not recorded (a recording records each rig frame as it is taken).
+    /// On error (a pose beyond the coordinate limits) the positions stay as they were.
+    pub fn settle(&mut self) -> Result<(), DeformError> {
+        let Some(rig) = self.rig.as_mut().filter(|rig| rig.stale) else { return Ok(()) };
+        rig.stale = false;
+        let Rig { operator, evaluated, .. } = rig;
+        self.deformer
+            .borrow_mut()
+            .set_positions_with(|out| operator.evaluate_into(evaluated, out).map_err(|_| DeformError::NonFiniteResult))
+    }
+
     /// The rig's pose for the handles' targets, straight into the deformer's positions,
-    /// recorded as a pose; nothing when the targets are those of the last evaluation.
+    /// recorded as a pose; on the GPU its frame only, the positions left behind (unless a
+    /// recording runs); nothing when the targets are those of the last evaluation.
     fn evaluate_rig(&mut self) -> Result<Advance, DeformError> {
         let rig = self.rig.as_mut().expect("a rig poses");
         for (t, h) in rig.targets.chunks_exact_mut(2).zip(&self.handles) {
@@ -757,10 +841,19 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         }
         let clock = self.deformer.borrow().clock();
         let started = clock();
-        let Rig { operator, targets, .. } = rig;
-        self.deformer
-            .borrow_mut()
-            .set_positions_with(|out| operator.evaluate_into(targets, out).map_err(|_| DeformError::NonFiniteResult))?;
+        let Rig { operator, targets, gpu, .. } = rig;
+        let on_gpu = gpu.is_some();
+        if let Some(gpu) = gpu {
+            gpu.frame(targets).map_err(|_| DeformError::NonFiniteResult)?;
+        }
+        // A recording keeps every frame's pose: evaluated at once, as on the CPU.
+        let recording = self.recording.is_some() && !self.paused;
+        if !on_gpu || recording {
+            self.deformer.borrow_mut().set_positions_with(|out| {
+                operator.evaluate_into(targets, out).map_err(|_| DeformError::NonFiniteResult)
+            })?;
+        }
+        rig.stale = on_gpu && !recording;
         let evaluation = clock() - started;
         rig.evaluated.clone_from(&rig.targets);
         self.at_rest = false;
@@ -779,6 +872,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.at_rest = false;
         if let Some(rig) = &mut self.rig {
             rig.evaluated.clear();
+            rig.stale = false;
         }
         self.record(|| Event::Positions(positions.as_flattened().to_vec()));
         Ok(())
@@ -791,6 +885,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.at_rest = true;
         if let Some(rig) = &mut self.rig {
             rig.evaluated.clear();
+            rig.stale = false;
         }
         self.record(|| Event::Reset(true));
         self.pin_handles();
@@ -800,6 +895,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// method, keeping pose and handles). Recorded.
     pub fn set_options(&mut self, options: impl Into<MethodOptions>) -> Result<(), DeformError> {
         let options = options.into();
+        self.settle()?;
         self.deformer.borrow_mut().set_options(options)?;
         self.record(|| Event::Options(RecordedOptions::of(options)));
         Ok(())
@@ -808,6 +904,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Replaces a puppet's joints ([`Deformer::set_joints`]). Recorded.
     pub fn set_joints(&mut self, joints: Vec<Joint>) -> Result<(), DeformError> {
         let recorded = SessionJoint::all(&joints);
+        self.settle()?;
         self.deformer.borrow_mut().set_joints(joints)?;
         self.record(|| Event::Joints(recorded));
         Ok(())
@@ -816,6 +913,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Sets each triangle's stiffness ([`Deformer::set_stiffness`]). Recorded (methods
     /// without stiffness take only `None`).
     pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_stiffness(stiffness)?;
         if self.deformer.borrow().has_stiffness() {
             self.record(|| Event::Stiffness(stiffness.map(<[f64]>::to_vec)));
@@ -825,6 +923,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Sets the bones ([`Deformer::set_bones`]). Recorded.
     pub fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_bones(triangles, barycentric)?;
         if self.deformer.borrow().has_bones() {
             let barycentric = barycentric.as_flattened().to_vec();
@@ -846,6 +945,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// that put a deformer in the current state (the pose or a reset, the handles, the
     /// stiffness and bones).
     pub fn start_recording(&mut self, shape: Option<ShapeSpec>) {
+        let _ = self.settle();
         let deformer = self.deformer.borrow();
         let mesh = deformer.mesh();
         let mut session = Session::with_mesh(mesh, deformer.options());

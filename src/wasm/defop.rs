@@ -13,7 +13,7 @@ use super::{flat, limits, object, pairs};
 use crate::defop::sampling::Sampling;
 use crate::defop::{
     read_operator, write_operator, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
-    Progress, Start, TrainError, TrainOptions, Trainer,
+    Progress, SinglePrecision, Start, TrainError, TrainOptions, Trainer,
 };
 use crate::deform::Puppet;
 use crate::mesh::Mesh;
@@ -295,6 +295,8 @@ pub struct JsDefOp {
     scratch: Vec<f64>,
     /// The same in single precision.
     scratch32: Vec<f32>,
+    /// The operator's single-precision copy, made at the first `evaluateIntoF32`.
+    single: Option<SinglePrecision>,
 }
 
 impl JsDefOp {
@@ -305,7 +307,7 @@ impl JsDefOp {
 
     fn new(mesh: Mesh, operator: Operator) -> Self {
         let n = 2 * operator.vertex_count();
-        Self { mesh, operator, scratch: vec![0.0; n], scratch32: vec![0.0; n] }
+        Self { mesh, operator, scratch: vec![0.0; n], scratch32: vec![0.0; n], single: None }
     }
 
     /// Refuses an output array of the wrong length.
@@ -363,13 +365,16 @@ impl JsDefOp {
         Ok(())
     }
 
-    /// [`Self::evaluate_into`] in single precision (`Float32Array` out, for a GPU buffer),
-    /// computed in double.
+    /// [`Self::evaluate_into`] in single precision (`Float32Array` out): computed by the
+    /// operator's single-precision copy (`crate::defop::SinglePrecision`, made at the first
+    /// call: 4 bytes per coefficient), within about (|Ψ| + |Φ|) ε_32 of the double pose's
+    /// terms' magnitudes.
     #[wasm_bindgen(js_name = evaluateIntoF32)]
     pub fn evaluate_into_f32(&mut self, targets: JsValue, out: &js_sys::Float32Array) -> Result<(), BindingError> {
         self.check_out(out.length())?;
         let targets = read::float64s(&targets, "targets", 2 * limits().max_vertices)?;
-        self.operator.evaluate_into_f32(&targets, &mut self.scratch32).map_err(TrainError::from)?;
+        let single = self.single.get_or_insert_with(|| self.operator.single_precision());
+        single.evaluate_into(&targets, &mut self.scratch32).map_err(TrainError::from)?;
         out.copy_from(&self.scratch32);
         Ok(())
     }

@@ -3,7 +3,7 @@
  */
 import type { TrainProgress } from "../../defop-pool.js";
 import { bounds } from "../model/geometry.js";
-import type { RigTrainOptions } from "../model/rig.js";
+import { DEFAULT_RIG_SPATIAL, type RigTrainOptions } from "../model/rig.js";
 import type { WidgetTrainOptions } from "../rigs/rig-manager.js";
 import { download } from "../store/pose-export.js";
 import { action } from "./action.js";
@@ -83,10 +83,10 @@ export const train = action({
         const samples = kit.number(s.training.samples ?? 200, 1, 100_000, 1);
         samples.name = "rig-samples";
         kit.labelled(group, "Samples ", samples);
-        const spatial = kit.number(s.training.spatial ?? 0, 0, 100_000, 1);
+        const spatial = kit.number(s.training.spatial ?? DEFAULT_RIG_SPATIAL, 0, 100_000, 1);
         spatial.name = "rig-spatial";
         spatial.title =
-          "Size of the reduced spatial basis (0: every mesh vertex); smaller poses faster and saves smaller files";
+          "Size of the reduced spatial basis (0: every mesh vertex; default 100, as accurate and 17 times faster to pose); smaller poses faster and saves smaller files";
         kit.labelled(group, "Reduced ", spatial);
         const radius = kit.number(15, 0.1, 1000, "any");
         radius.name = "rig-radius";
@@ -116,7 +116,7 @@ export const train = action({
             energy.value = settings.training.energy ?? "sarap";
             basis.value = settings.training.basis ?? "tps";
             samples.value = String(settings.training.samples ?? 200);
-            spatial.value = String(settings.training.spatial ?? 0);
+            spatial.value = String(settings.training.spatial ?? DEFAULT_RIG_SPATIAL);
           },
         };
       },

@@ -9,7 +9,7 @@ import { solveGroundTruth, trainDefOp, type TrainProgress } from "../../defop-po
 import { coded } from "../../internal/arrays.js";
 import { newHandle, type Posing } from "../model/posing.js";
 import { shapeFromMesh } from "../model/shape.js";
-import { Rig, rigKey, type RigTrainOptions } from "../model/rig.js";
+import { Rig, rigKey, spatialFor, type RigTrainOptions } from "../model/rig.js";
 import { RigCache } from "./rig-cache.js";
 import { fetchFile } from "../shapes/shape-files.js";
 import type { BusyIndicator } from "../view/busy-indicator.js";
@@ -117,7 +117,9 @@ export class RigManager {
    * under way, the signal aborts or a worker fails.
    */
   async train(options: WidgetTrainOptions, onProgress?: (progress: TrainProgress) => void): Promise<Rig> {
-    const { signal, workers, cache = true, ...training } = options;
+    const { signal, workers, cache = true, ...asked } = options;
+    // A reduced basis needs fewer functions than the mesh has vertices.
+    const training = { ...asked, spatial: spatialFor(asked.spatial, this.#host.posing.shape.mesh.vertexCount) };
     const { posing, indicator } = this.#host;
     if (this.#training) throw coded(new Error("a rig is being trained already; cancel it first"), "invalid-argument");
     if (posing.handles.length === 0) {
