@@ -22,6 +22,7 @@
 //!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy
 //!   for a GPU upload;
 //! - [`file`](mod@file): operator files (the operator with its mesh, versioned, checksummed);
+//! - [`training`]: what an operator keeps of its training ([`Training`]);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
 
@@ -42,11 +43,12 @@ pub mod sampling;
 pub mod single;
 pub mod spatial;
 pub mod train;
+pub mod training;
 
 pub use basis::{BasisKind, HandleBasis};
 pub use coordinates::{HandleCoordinates, Rigid};
 pub use energy::{Energy, RestTriangle, SignedSvd};
-pub use file::{read_operator, write_operator, OperatorFileError};
+pub use file::{read_operator, write_operator, write_operator_in, OperatorFileError, Precision};
 pub use fit::{fit, FitOptions, Sample};
 pub use fit_error::FitError;
 pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, SolveReport, Start};
@@ -55,3 +57,4 @@ pub use reduced::reduced_basis;
 pub use single::SinglePrecision;
 pub use spatial::{MeshPoint, SpatialBasis};
 pub use train::{Job, Progress, TrainError, TrainOptions, TrainStats, Trainer};
+pub use training::Training;
