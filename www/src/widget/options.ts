@@ -47,7 +47,7 @@ export interface WidgetOptions {
   operator?: string | Uint8Array | ArrayBuffer;
   /** How the toolbar's Train (and {@link Widget.train} by default) trains a rig. */
   training?: RigTrainOptions;
-  /** Show a trained rig's training discs, and mark handles dragged outside them. */
+  /** Show the regions a trained rig's training drew targets from (discs, Voronoi cells), and mark handles dragged outside them. */
   region?: boolean;
   /** Draw the ground truth's outline (ARAP or S-ARAP, solved in a worker) beside a rig's pose. */
   compare?: boolean;
