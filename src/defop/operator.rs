@@ -167,12 +167,17 @@ impl Operator {
         self
     }
 
+    /// Its training's sampling and radius, or, when the training is not known, discs of
+    /// radius the handle coordinates' scale (which a trainer sets to its radius).
+    pub fn sampling(&self) -> (Sampling, f64) {
+        self.training.map_or((Sampling::Disc, self.basis.scale()), |t| (t.sampling, t.radius))
+    }
+
     /// Each handle's region its training drew targets from ([`regions`]), for `mesh`, the
-    /// mesh it was trained on (whose bounding box the Voronoi cells are clipped to): by its
-    /// training's sampling and radius, or, when the training is not known, the discs of
-    /// radius the handle coordinates' scale (a trainer's radius).
+    /// mesh it was trained on (whose bounding box the Voronoi cells are clipped to), for
+    /// [`Operator::sampling`].
     pub fn sampling_regions(&self, mesh: &Mesh) -> Result<Vec<Region>, SamplingError> {
-        let (sampling, radius) = self.training.map_or((Sampling::Disc, self.basis.scale()), |t| (t.sampling, t.radius));
+        let (sampling, radius) = self.sampling();
         let rest: Vec<[f64; 2]> = self.basis.rest().chunks_exact(2).map(|c| [c[0], c[1]]).collect();
         let (lo, hi) = bounding_box(mesh.positions().iter().copied()).ok_or(SamplingError::NotFinite)?;
         regions(&rest, [lo, hi], radius, sampling)

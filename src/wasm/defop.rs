@@ -397,10 +397,7 @@ impl JsDefOp {
     /// operator whose training is not known, the discs of radius its scale.
     pub fn regions(&self) -> Result<JsValue, BindingError> {
         let regions = self.sampling_regions()?;
-        let sampling = self.operator.training().map_or(Sampling::Disc, |t| t.sampling);
-        let radius = regions.iter().find_map(|r| r.radius).unwrap_or_else(|| {
-            self.operator.training().map_or(self.operator.handle_basis().scale(), |t| t.radius)
-        });
+        let (sampling, radius) = self.operator.sampling();
         let centres: Vec<[f64; 2]> = regions.iter().map(|r| r.centre).collect();
         let cells = if regions.iter().all(|r| r.cell.is_some()) {
             let list = js_sys::Array::new();

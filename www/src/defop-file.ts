@@ -28,10 +28,10 @@ export interface OperatorFile {
   readonly canonical: boolean;
   /** Handles held at rest (ascending): their targets are ignored. */
   readonly fixed: Uint32Array;
-  /** The parts of the puppet the operator was trained on (a version-3 file), else
+  /** The parts of the puppet the operator was trained on (a file of version 3, or 4 with the puppet flag), else
    * `undefined`: `triangles` are indices of the mesh's triangles, larger `depth` in front. */
   readonly parts?: { name: string; triangles: Uint32Array; depth: number }[];
-  /** The puppet's joints (a version-3 file), `parts` `[front, back]`, else `undefined`. */
+  /** The puppet's joints (with its parts), `parts` `[front, back]`, else `undefined`. */
   readonly joints?: { point: [number, number]; parts: [number, number] }[];
   /**
    * The settings it was trained with (a version-4 file that knows them; as `DefOp.training`

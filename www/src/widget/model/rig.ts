@@ -88,7 +88,7 @@ export class Rig {
       }));
       // The file keeps the training's settings (from version 4; older files, the sampling
       // radius as the scale of the handle coordinates): `training`, not the widget's options.
-      const radius = operator.training?.radius ?? operator.radius;
+      const { radius } = operator.regions();
       return new Rig(operator, operator.mesh(), points, { radius, options: undefined, source });
     } catch (error) {
       operator.free();
