@@ -129,10 +129,16 @@ fn damaged_files_are_refused() {
     let mut longer = bytes.clone();
     longer.push(0);
     assert!(matches!(read_operator(&longer), Err(OperatorFileError::Length { .. })));
-    for at in (0..bytes.len()).step_by(13) {
-        let mut altered = bytes.clone();
-        altered[at] ^= 0x10;
-        assert!(read_operator(&altered).is_err(), "a flip at byte {at} was not noticed");
+    let single = write_operator_in(&mesh, &operator, Precision::Single).unwrap();
+    for file in [&bytes, &single] {
+        for at in (0..file.len()).step_by(13) {
+            let mut altered = file.clone();
+            altered[at] ^= 0x10;
+            assert!(read_operator(&altered).is_err(), "a flip at byte {at} was not noticed");
+        }
+        for cut in [80, 88, file.len() / 3, file.len() - 9] {
+            assert!(read_operator(&file[..cut]).is_err(), "{cut} bytes read");
+        }
     }
     let mut future = bytes.clone();
     future[8] = 5;
