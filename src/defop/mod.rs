@@ -23,6 +23,7 @@
 //!   [`gpu`](mod@gpu): its evaluation on the GPU (the basis texture once per rig, a short
 //!   vector per frame);
 //! - [`file`](mod@file): operator files (the operator with its mesh, versioned, checksummed);
+//! - [`training`]: what an operator keeps of its training ([`Training`]);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
 
@@ -44,11 +45,12 @@ pub mod sampling;
 pub mod single;
 pub mod spatial;
 pub mod train;
+pub mod training;
 
 pub use basis::{BasisKind, HandleBasis};
 pub use coordinates::{HandleCoordinates, Rigid};
 pub use energy::{Energy, RestTriangle, SignedSvd};
-pub use file::{read_operator, write_operator, OperatorFileError};
+pub use file::{read_operator, write_operator, write_operator_in, OperatorFileError, Precision};
 pub use fit::{fit, FitOptions, Sample};
 pub use fit_error::FitError;
 pub use gpu::{GpuLayout, GpuRig};
@@ -58,3 +60,4 @@ pub use reduced::reduced_basis;
 pub use single::SinglePrecision;
 pub use spatial::{MeshPoint, SpatialBasis};
 pub use train::{Job, Progress, TrainError, TrainOptions, TrainStats, Trainer};
+pub use training::Training;

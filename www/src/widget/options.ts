@@ -53,7 +53,7 @@ export interface WidgetOptions {
    * the pose; false evaluates the whole pose on the CPU each frame.
    */
   gpuRigs?: boolean;
-  /** Show a trained rig's training discs, and mark handles dragged outside them. */
+  /** Show the regions a trained rig's training drew targets from (discs, Voronoi cells), and mark handles dragged outside them. */
   region?: boolean;
   /** Draw the ground truth's outline (ARAP or S-ARAP, solved in a worker) beside a rig's pose. */
   compare?: boolean;

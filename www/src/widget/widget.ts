@@ -536,9 +536,13 @@ export class Widget {
     return this.#stage.rigGpuReadback(this.#posing);
   }
 
-  /** The rig's operator file (operator and mesh), as "Save rig" downloads it. */
-  rigFile(): Uint8Array {
-    return this.#perform(rig.rigFile, undefined);
+  /**
+   * The rig's operator file (operator, mesh and the training's settings), as "Save rig"
+   * downloads it; `precision: "single"` stores the coefficients as 32-bit floats (about
+   * half the size).
+   */
+  rigFile(options: { precision?: "double" | "single" } = {}): Uint8Array {
+    return this.#perform(rig.rigFile, options);
   }
 
   /**

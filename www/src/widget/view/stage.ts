@@ -1,7 +1,7 @@
 /**
  * The widget's picture and what floats over it: the mesh canvas (WebGL2, or a 2D canvas
  * where WebGL2 is missing), the overlay canvas (outline, handles, field arrows, flipped
- * triangles, a rig's training discs and ground-truth ghost), the view ({@link Camera}), the
+ * triangles, a rig's training regions and ground-truth ghost), the view ({@link Camera}), the
  * status line, the busy indicator, the training's progress (which never blocks posing), the
  * HUD, all in the shadow root's stage element (the widget adds the help panel and the
  * tool panel).
@@ -290,7 +290,7 @@ export class Stage {
 
   /**
    * The overlay on `ctx`: outline, flipped triangles, and with `withHandles` the handles,
-   * the field, a rig's discs and its ghost, and with the wireframe Cauchy-Green's cage.
+   * the field, a rig's training regions and its ghost, and with the wireframe Cauchy-Green's cage.
    */
   drawOverlay(
     ctx: CanvasRenderingContext2D,
@@ -309,8 +309,10 @@ export class Stage {
     const cage = withHandles && settings.wireframe ? deformer.cage() : undefined;
     const paper = settings.paperMode;
     const rig = withHandles && posing.posingWithRig ? posing.rig : undefined;
-    const radius = settings.region ? rig?.radius : undefined;
-    const rest = radius !== undefined ? rig!.restHandles() : undefined;
+    // The regions its training drew targets from (discs, Voronoi cells or both, as Rust
+    // defines them) and which handles' targets lie outside them.
+    const sampled = settings.region ? rig?.regions() : undefined;
+    const outside = sampled ? rig!.operator.outsideRegions(targets) : undefined;
     // A selected handle's turning ring shows while it turns, or while the pointer is near it
     // (off the handle itself: a pointer resting on the handle it just dragged shows none),
     // or, after a finger's press, whenever it is selected and not held.
@@ -331,14 +333,16 @@ export class Stage {
           dragged: h.pointerId !== undefined,
           ring: h.selected && (h.turning !== undefined || (h.pointerId === undefined && (extras.touch || near(i)))),
           turned: h.turning ? h.turning.turn - h.turning.start : undefined,
-          outside:
-            rest !== undefined &&
-            Math.hypot(targets[2 * i]! - rest[2 * i]!, targets[2 * i + 1]! - rest[2 * i + 1]!) > radius!,
+          outside: outside?.[i] === 1,
         }))
       : [];
-    const regions = rest
-      ? Array.from({ length: rest.length / 2 }, (_, i) => ({ x: rest[2 * i]!, y: rest[2 * i + 1]!, r: radius! }))
-      : undefined;
+    const c = sampled?.centres;
+    const regions = sampled && {
+      discs: sampled.discs
+        ? Array.from({ length: c!.length / 2 }, (_, i) => ({ x: c![2 * i]!, y: c![2 * i + 1]!, r: sampled.radius }))
+        : [],
+      cells: sampled.cells ?? [],
+    };
     // Painted stiffness shows while the brush is on, and with the wireframe (structure).
     const painting = settings.tool === "stiffness";
     const stiffness = withHandles && (painting || settings.wireframe) ? this.#tint(posing) : undefined;
