@@ -21,11 +21,14 @@
 //! - [`operator`]: the trained operator and its allocation-free evaluation, on the dot
 //!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy
 //!   for a GPU upload;
+//! - [`carry`]: an operator trained on a coarse simulation mesh carried to a fine mesh
+//!   (large shapes), evaluated as the coarse pose interpolated;
 //! - [`file`](mod@file): operator files (the operator with its mesh, versioned, checksummed);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
 
 pub mod basis;
+pub mod carry;
 pub mod coordinates;
 pub mod energy;
 mod error;
@@ -44,6 +47,7 @@ pub mod spatial;
 pub mod train;
 
 pub use basis::{BasisKind, HandleBasis};
+pub use carry::{handles_on, simulation_mesh, Carried, Embedding};
 pub use coordinates::{HandleCoordinates, Rigid};
 pub use energy::{Energy, RestTriangle, SignedSvd};
 pub use file::{read_operator, write_operator, OperatorFileError};

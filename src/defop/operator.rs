@@ -6,6 +6,7 @@
 use nalgebra::DMatrix;
 
 use super::basis::HandleBasis;
+use super::carry::Carried;
 use super::fit_error::{check_finite, check_length, FitError};
 use super::kernels;
 use super::spatial::MeshPoint;
@@ -42,6 +43,9 @@ pub struct Operator {
     canonical: Vec<f64>,
     /// The puppet (parts and joints) of the mesh it was trained on, if it was one.
     puppet: Option<Puppet>,
+    /// For an operator trained on a coarse mesh and carried to a fine one: what carries it
+    /// (`carry`); `None` for an operator of the mesh it was trained on.
+    carried: Option<Box<Carried>>,
 }
 
 impl Operator {
@@ -78,6 +82,7 @@ impl Operator {
         let psi = vec![0.0; basis.len()];
         let canonical = canonical_scratch(&basis);
         let puppet = None;
+        let carried = None;
         Self {
             handles,
             basis,
@@ -90,6 +95,7 @@ impl Operator {
             nodal,
             canonical,
             puppet,
+            carried,
         }
     }
 
@@ -147,9 +153,25 @@ impl Operator {
         self
     }
 
-    /// The handles' rest positions, as given to the fit.
+    /// The handles, as points of the mesh it poses: the fine mesh's for a carried operator
+    /// ([`Self::carried`]), else those given to the fit.
     pub fn handles(&self) -> &[MeshPoint] {
+        self.carried.as_ref().map_or(&self.handles, |c| c.handles())
+    }
+
+    /// The handles as points of the mesh it was trained on, as given to the fit.
+    pub fn trained_handles(&self) -> &[MeshPoint] {
         &self.handles
+    }
+
+    /// For an operator trained on a coarse mesh and carried to a fine one
+    /// ([`Self::carried_to`]): the coarse mesh, the fine handles and the embedding.
+    pub fn carried(&self) -> Option<&Carried> {
+        self.carried.as_deref()
+    }
+
+    pub(super) fn set_carried(&mut self, carried: Carried) {
+        self.carried = Some(Box::new(carried));
     }
 
     /// The handle basis Ψ (kind, rest handles, scale, TPS centres).
@@ -167,8 +189,13 @@ impl Operator {
         self.spatial_len
     }
 
-    /// The number of mesh vertices N.
+    /// The number of vertices of the mesh it poses: the fine mesh's for a carried operator.
     pub fn vertex_count(&self) -> usize {
+        self.carried.as_ref().map_or(self.vertex_count, |c| c.embedding().len())
+    }
+
+    /// The number of vertices N of the mesh it was trained on (the coarse one, carried).
+    pub fn trained_vertex_count(&self) -> usize {
         self.vertex_count
     }
 
@@ -211,7 +238,7 @@ impl Operator {
     /// canonical coordinates, D(v, Q) = R*(D̂(v, Q̂) − c_P) + c_Q (see `coordinates`).
     pub fn evaluate_into(&mut self, targets: &[f64], out: &mut [f64]) -> Result<(), FitError> {
         self.check(targets, out.len())?;
-        self.evaluate_rigidly(targets, |v, x, y| {
+        self.evaluate_posed(targets, |v, x, y| {
             out[2 * v] = x;
             out[2 * v + 1] = y;
         });
@@ -222,7 +249,7 @@ impl Operator {
     /// computed in double precision.
     pub fn evaluate_into_f32(&mut self, targets: &[f64], out: &mut [f32]) -> Result<(), FitError> {
         self.check(targets, out.len())?;
-        self.evaluate_rigidly(targets, |v, x, y| {
+        self.evaluate_posed(targets, |v, x, y| {
             out[2 * v] = x as f32;
             out[2 * v + 1] = y as f32;
         });
@@ -231,7 +258,7 @@ impl Operator {
 
     /// The vertex positions for the handle targets Q, in a new vector (2N numbers).
     pub fn evaluate(&mut self, targets: &[f64]) -> Result<Vec<f64>, FitError> {
-        let mut out = vec![0.0; 2 * self.vertex_count];
+        let mut out = vec![0.0; 2 * self.vertex_count()];
         self.evaluate_into(targets, &mut out)?;
         Ok(out)
     }
@@ -239,10 +266,26 @@ impl Operator {
     fn check(&self, targets: &[f64], out_len: usize) -> Result<(), FitError> {
         check_length("targets", targets, 2 * self.handles.len())?;
         check_finite("targets", targets)?;
-        if out_len != 2 * self.vertex_count {
-            return Err(FitError::Length { what: "output", expected: 2 * self.vertex_count, found: out_len });
+        let expected = 2 * self.vertex_count();
+        if out_len != expected {
+            return Err(FitError::Length { what: "output", expected, found: out_len });
         }
         Ok(())
+    }
+
+    /// The pose of the mesh it poses: [`Self::evaluate_rigidly`]'s, or for a carried
+    /// operator the coarse pose into its scratch, then interpolated per fine vertex.
+    fn evaluate_posed(&mut self, targets: &[f64], write: impl FnMut(usize, f64, f64)) {
+        let Some(mut pose) = self.carried.as_mut().map(|c| std::mem::take(&mut c.pose)) else {
+            return self.evaluate_rigidly(targets, write);
+        };
+        self.evaluate_rigidly(targets, |v, x, y| {
+            pose[2 * v] = x;
+            pose[2 * v + 1] = y;
+        });
+        let carried = self.carried.as_mut().expect("carried");
+        carried.embedding().interpolate(|v| [pose[2 * v], pose[2 * v + 1]], write);
+        carried.pose = pose;
     }
 
     /// [`Operator::evaluate_with`] at the canonical targets Q̂, each position moved back by
