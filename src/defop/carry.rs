@@ -26,7 +26,7 @@
 //!   for the coarse evaluation and 50,000 interpolations on top. Rigid motions carry over
 //!   exactly (up to rounding): the interpolation is affine with weights summing to 1.
 
-use super::fit_error::FitError;
+use super::fit_error::{check_finite, check_length, FitError};
 use super::operator::Operator;
 use super::spatial::{resolve_points, MeshPoint};
 use crate::geometry::{bounding_box, distance, polygon_area, Point};
@@ -234,6 +234,23 @@ impl Carried {
     pub fn embedding(&self) -> &Embedding {
         &self.embedding
     }
+
+    /// A pose of the coarse mesh (2 numbers per coarse vertex; a ground truth solved there,
+    /// say) carried to the fine mesh as the operator's poses are. Refuses a wrong length or
+    /// a number that is not finite.
+    pub fn carry_pose(&self, coarse: &[f64]) -> Result<Vec<f64>, FitError> {
+        check_length("coarse pose", coarse, 2 * self.coarse.vertex_count())?;
+        check_finite("coarse pose", coarse)?;
+        let mut out = vec![0.0; 2 * self.embedding.len()];
+        self.embedding.interpolate(
+            |v| [coarse[2 * v], coarse[2 * v + 1]],
+            |v, x, y| {
+                out[2 * v] = x;
+                out[2 * v + 1] = y;
+            },
+        );
+        Ok(out)
+    }
 }
 
 impl Operator {
@@ -246,6 +263,14 @@ impl Operator {
     pub fn carried_to(self, coarse: &Mesh, fine: &Mesh, handles: &[MeshPoint]) -> Result<Self, FitError> {
         let embedding = Embedding::new(coarse, fine)?;
         self.with_carried(coarse.clone(), fine, handles.to_vec(), embedding)
+    }
+
+    /// The operator as trained, of the coarse mesh ([`Carried::mesh`]) and its handles,
+    /// without the carrying (a copy; for an operator not carried, a plain copy).
+    pub fn uncarried(&self) -> Self {
+        let mut copy = self.clone();
+        copy.take_carried();
+        copy
     }
 
     /// [`Self::carried_to`] with the embedding given (an operator file's, checked already

@@ -174,6 +174,10 @@ impl Operator {
         self.carried = Some(Box::new(carried));
     }
 
+    pub(super) fn take_carried(&mut self) -> Option<Box<Carried>> {
+        self.carried.take()
+    }
+
     /// The handle basis Ψ (kind, rest handles, scale, TPS centres).
     pub fn handle_basis(&self) -> &HandleBasis {
         &self.basis

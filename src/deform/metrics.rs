@@ -80,6 +80,25 @@ pub fn triangle_distortion(sigma1: f64, sigma2: f64) -> (f64, f64) {
     (product + 1.0 / product, sigma1 / sigma2 + sigma2 / sigma1)
 }
 
+/// `(E_area, E_angle, det)` of a triangle's map `F`, as [`triangle_distortion`] of its
+/// singular values but without them (no square root: this runs per triangle per frame, and
+/// a 50,000-vertex pose has 100,000): `sigma1 sigma2 = |det F|` and `sigma1^2 + sigma2^2 =
+/// |F|^2` (Frobenius), so `E_area = |det| + 1 / |det|` and `E_angle = |F|^2 / |det|`, the
+/// latter, which scaling `F` leaves alone, on `F` scaled by a power of two outside the
+/// comfortable range. `+inf` for both when collapsed (`det = 0`, as `sigma2 = 0`).
+fn map_distortion(f: [[f64; 2]; 2]) -> (f64, f64, f64) {
+    let [[a, b], [c, d]] = f;
+    let det = a * d - b * c;
+    if det == 0.0 {
+        return (f64::INFINITY, f64::INFINITY, det);
+    }
+    let largest = a.abs().max(b.abs()).max(c.abs()).max(d.abs());
+    let k = if largest.is_finite() && !in_comfortable_range(largest) { -binary_exponent(largest) } else { 0 };
+    let [a, b, c, d] = [a, b, c, d].map(|x| scale_by_power_of_two(x, k));
+    let angle = (a * a + b * b + c * c + d * d) / (a * d - b * c).abs();
+    (det.abs() + 1.0 / det.abs(), angle, det)
+}
+
 /// Distortion of `current` against `rest` over the given triangles.
 pub fn metrics(rest: &[Point], current: &[Point], triangles: &[[u32; 3]]) -> Metrics {
     let corners = |pts: &[Point], t: &[u32; 3]| [pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]];
@@ -94,12 +113,11 @@ pub fn metrics(rest: &[Point], current: &[Point], triangles: &[[u32; 3]]) -> Met
         let r = corners(rest, t);
         let rest_area = scaled_area(r, unit);
         let f = deformation_gradient(r, corners(current, t));
-        let (s1, s2, det) = singular_values(f[0][0], f[0][1], f[1][0], f[1][1]);
+        let (e_area, e_angle, det) = map_distortion(f);
         if det <= 0.0 {
             flipped += 1;
         }
         total_area += rest_area;
-        let (e_area, e_angle) = triangle_distortion(s1, s2);
         area += rest_area * e_area;
         angle += rest_area * e_angle;
     }
@@ -126,6 +144,23 @@ mod tests {
         assert!((s1 - 2.0).abs() < 1e-15 && (s2 - 2.0).abs() < 1e-15);
         // A reflection: determinant -1.
         assert_eq!(singular_values(1.0, 0.0, 0.0, -1.0), (1.0, 1.0, -1.0));
+    }
+
+    #[test]
+    fn distortion_without_singular_values_is_distortion_with_them() {
+        let maps = [[2.0, 0.3, -0.4, 0.7], [1.0, 0.0, 0.0, 1.0], [0.1, 5.0, -3.0, 0.2], [1e-150, 3e-151, 0.0, 2e-150]];
+        for [a, b, c, d] in maps {
+            let (s1, s2, det) = singular_values(a, b, c, d);
+            let (area, angle) = triangle_distortion(s1, s2);
+            let (area2, angle2, det2) = map_distortion([[a, b], [c, d]]);
+            assert_eq!(det2, det);
+            assert!((area2 - area).abs() <= 1e-13 * area && (angle2 - angle).abs() <= 1e-13 * angle, "{a} {b} {c} {d}");
+        }
+        // Scaled tiny maps keep the angle term: a similarity shrunk 2^-300 (whose entries'
+        // squares, 2^-600, are out of the comfortable range) scores 2.
+        let f = scale_by_power_of_two(1.0, -300);
+        assert_eq!(map_distortion([[f, 0.0], [0.0, f]]).1, 2.0);
+        assert_eq!(map_distortion([[1.0, 2.0], [2.0, 4.0]]), (f64::INFINITY, f64::INFINITY, 0.0));
     }
 
     #[test]
