@@ -19,7 +19,7 @@
 //!   onto the coarse boundary and flatten the outline's detail. The coordinates are divided
 //!   by their sum, so a fine vertex at a coarse vertex gets (1, 0, 0) exactly and with it
 //!   the coarse vertex's position to the bit.
-//! - [`Carried`] ([`Operator::carried_to`]): the coarse operator, the coarse mesh, the
+//! - [`Carried`] (`Operator::carried_to`, beside the operator): the coarse operator, the coarse mesh, the
 //!   fine handles and the embedding as one operator of the fine mesh: its vertex count
 //!   and handles are the fine mesh's, and its evaluation is the coarse pose (into a
 //!   scratch buffer) then, per fine vertex, three products: allocation-free, about 0.1 ms
@@ -27,7 +27,6 @@
 //!   exactly (up to rounding): the interpolation is affine with weights summing to 1.
 
 use super::fit_error::{check_finite, check_length, FitError};
-use super::operator::Operator;
 use super::spatial::{resolve_points, MeshPoint};
 use crate::geometry::{bounding_box, distance, polygon_area, Point};
 use crate::import::simplify::simplify_rings;
@@ -50,7 +49,7 @@ const MAX_SEGMENT_PAIRS: usize = 1 << 26;
 /// summing to 1, handles and vertices where the coarse mesh puts them, in the mesh's size.
 const TOLERANCE: f64 = 1e-9;
 
-fn carry_error(reason: impl Into<String>) -> FitError {
+pub(super) fn carry_error(reason: impl Into<String>) -> FitError {
     FitError::Carry { reason: reason.into() }
 }
 
@@ -165,9 +164,9 @@ impl Embedding {
             let sum = w[0] + w[1] + w[2];
             let [a, b, c] = tri.map(|i| coarse.positions()[i as usize]);
             let at = [0, 1].map(|k| w[0] * a[k] + w[1] * b[k] + w[2] * c[k]);
-            if !(w.iter().all(|x| x.is_finite()) && (sum - 1.0).abs() <= TOLERANCE)
-                || !(distance(at, fine.positions()[v]) <= tolerance)
-            {
+            // Written so that a NaN anywhere fails.
+            let there = distance(at, fine.positions()[v]) <= tolerance;
+            if !(w.iter().all(|x| x.is_finite()) && (sum - 1.0).abs() <= TOLERANCE && there) {
                 return Err(carry_error(format!(
                     "the barycentric coordinates of fine vertex {v} do not put it where it is"
                 )));
@@ -253,47 +252,20 @@ impl Carried {
     }
 }
 
-impl Operator {
-    /// This operator, trained on `coarse` with its handles at [`handles_on`]`(coarse, fine,
-    /// handles)`, carried to `fine`: an operator of `fine`'s vertices and of `handles`
-    /// (points of `fine`), evaluated as the coarse pose interpolated (module
-    /// documentation). Refuses an operator already carried or trained on a puppet, a
-    /// `coarse` of another vertex count, handles of another count or not where the
-    /// operator's are on `coarse` (to [`TOLERANCE`] of the size).
-    pub fn carried_to(self, coarse: &Mesh, fine: &Mesh, handles: &[MeshPoint]) -> Result<Self, FitError> {
-        let embedding = Embedding::new(coarse, fine)?;
-        self.with_carried(coarse.clone(), fine, handles.to_vec(), embedding)
-    }
-
-    /// The operator as trained, of the coarse mesh ([`Carried::mesh`]) and its handles,
-    /// without the carrying (a copy; for an operator not carried, a plain copy).
-    pub fn uncarried(&self) -> Self {
-        let mut copy = self.clone();
-        copy.take_carried();
-        copy
-    }
-
-    /// [`Self::carried_to`] with the embedding given (an operator file's, checked already
-    /// against both meshes).
-    pub(crate) fn with_carried(
-        mut self,
+impl Carried {
+    /// What carries an operator trained on `coarse` with its handles at `rest` (2 numbers
+    /// each) to `fine`, checked: the handles as many as the operator's, points of `fine`
+    /// whose places on `coarse` ([`handles_on`]) are the operator's (to [`TOLERANCE`] of
+    /// the size), the embedding of `fine`'s vertices.
+    pub(super) fn new(
         coarse: Mesh,
         fine: &Mesh,
         handles: Vec<MeshPoint>,
         embedding: Embedding,
+        rest: &[f64],
     ) -> Result<Self, FitError> {
-        if self.carried().is_some() {
-            return Err(carry_error("the operator is carried to a fine mesh already"));
-        }
-        if self.puppet().is_some() {
-            return Err(carry_error("an operator of a puppet is not carried to another mesh"));
-        }
-        if coarse.vertex_count() != self.vertex_count() {
-            let (expected, found) = (self.vertex_count(), coarse.vertex_count());
-            return Err(FitError::Length { what: "coarse mesh vertices", expected, found });
-        }
-        if handles.len() != self.handles().len() {
-            let (expected, found) = (2 * self.handles().len(), 2 * handles.len());
+        if 2 * handles.len() != rest.len() {
+            let (expected, found) = (rest.len(), 2 * handles.len());
             return Err(FitError::Length { what: "carried handles", expected, found });
         }
         if embedding.len() != fine.vertex_count() {
@@ -302,16 +274,15 @@ impl Operator {
         let placed = handle_positions(&coarse, &handles_on(&coarse, fine, &handles)?)?;
         let (lo, hi) = bounding_box(coarse.positions().iter().copied()).expect("vertices");
         let tolerance = TOLERANCE * distance(lo, hi);
-        let rest = self.handle_basis().rest();
         for (a, p) in placed.iter().enumerate() {
-            if !(distance(*p, [rest[2 * a], rest[2 * a + 1]]) <= tolerance) {
+            let there = distance(*p, [rest[2 * a], rest[2 * a + 1]]) <= tolerance;
+            if !there {
                 return Err(carry_error(format!(
                     "handle {a} of the fine mesh is not where the operator's handle {a} is on the coarse mesh"
                 )));
             }
         }
         let pose = vec![0.0; 2 * coarse.vertex_count()];
-        self.set_carried(Carried { coarse, handles, embedding, pose });
-        Ok(self)
+        Ok(Self { coarse, handles, embedding, pose })
     }
 }

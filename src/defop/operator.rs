@@ -6,11 +6,12 @@
 use nalgebra::DMatrix;
 
 use super::basis::HandleBasis;
-use super::carry::Carried;
+use super::carry::{carry_error, Carried, Embedding};
 use super::fit_error::{check_finite, check_length, FitError};
 use super::kernels;
 use super::spatial::MeshPoint;
 use crate::deform::Puppet;
+use crate::mesh::Mesh;
 
 /// How a fit solved its least-squares problem.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -170,14 +171,6 @@ impl Operator {
         self.carried.as_deref()
     }
 
-    pub(super) fn set_carried(&mut self, carried: Carried) {
-        self.carried = Some(Box::new(carried));
-    }
-
-    pub(super) fn take_carried(&mut self) -> Option<Box<Carried>> {
-        self.carried.take()
-    }
-
     /// The handle basis Ψ (kind, rest handles, scale, TPS centres).
     pub fn handle_basis(&self) -> &HandleBasis {
         &self.basis
@@ -318,5 +311,49 @@ pub(super) fn canonical_scratch(basis: &HandleBasis) -> Vec<f64> {
         vec![0.0; basis.rest().len()]
     } else {
         Vec::new()
+    }
+}
+
+impl Operator {
+    /// This operator, trained on `coarse` with its handles at [`super::handles_on`]`(coarse,
+    /// fine, handles)`, carried to `fine`: an operator of `fine`'s vertices and of
+    /// `handles` (points of `fine`), evaluated as the coarse pose interpolated (`carry`).
+    /// Refuses an operator already carried or trained on a puppet, a `coarse` of another
+    /// vertex count, handles of another count or not where the operator's are on `coarse`.
+    pub fn carried_to(self, coarse: &Mesh, fine: &Mesh, handles: &[MeshPoint]) -> Result<Self, FitError> {
+        let embedding = Embedding::new(coarse, fine)?;
+        self.with_carried(coarse.clone(), fine, handles.to_vec(), embedding)
+    }
+
+    /// The operator as trained, of the coarse mesh ([`Carried::mesh`]) and its handles,
+    /// without the carrying (a copy; for an operator not carried, a plain copy).
+    pub fn uncarried(&self) -> Self {
+        let mut copy = self.clone();
+        copy.carried = None;
+        copy
+    }
+
+    /// [`Self::carried_to`] with the embedding given (an operator file's, checked already
+    /// against both meshes).
+    pub(crate) fn with_carried(
+        mut self,
+        coarse: Mesh,
+        fine: &Mesh,
+        handles: Vec<MeshPoint>,
+        embedding: Embedding,
+    ) -> Result<Self, FitError> {
+        if self.carried.is_some() {
+            return Err(carry_error("the operator is carried to a fine mesh already"));
+        }
+        if self.puppet.is_some() {
+            return Err(carry_error("an operator of a puppet is not carried to another mesh"));
+        }
+        if coarse.vertex_count() != self.vertex_count {
+            let (expected, found) = (self.vertex_count, coarse.vertex_count());
+            return Err(FitError::Length { what: "coarse mesh vertices", expected, found });
+        }
+        let carried = Carried::new(coarse, fine, handles, embedding, self.basis.rest())?;
+        self.carried = Some(Box::new(carried));
+        Ok(self)
     }
 }

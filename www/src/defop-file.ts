@@ -38,6 +38,8 @@ export interface OperatorFile {
 }
 
 const MAGIC = "AKAPDEFO";
+/** The tag of the carried section (Rust's `defop::file`). */
+const CARRIED = "AKAPFINE";
 const HEADER = 48;
 
 /** FNV-1a, 64 bits, of `bytes`, in two 32-bit halves (high, low). */
@@ -211,8 +213,10 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   ]!;
   const expected =
     HEADER + 16 * nv + 12 * nt + 48 * n + 4 * f + 8 * k * m + 16 * phi * psi + (reduced ? 8 * phi * nv : 0) + 8;
-  // Version 3: a puppet's section follows, its length read from it.
-  if (version < 3 ? bytes.length !== expected : bytes.length < expected + 8)
+  // Version 3: a puppet's section follows, its length read from it. A rig carried to a fine
+  // mesh has its carried section next (refused below).
+  const carried = (at: number) => String.fromCharCode(...bytes.subarray(at, at + 8)) === CARRIED;
+  if (version < 3 ? bytes.length !== expected && !carried(expected - 8) : bytes.length < expected + 8)
     fail(`${bytes.length} bytes where its counts need ${expected}`);
   const [hi, lo] = fnv1a(bytes.subarray(0, bytes.length - 8));
   if (u32(bytes.length - 8) !== lo || u32(bytes.length - 4) !== hi) fail("the checksum does not match");
@@ -237,6 +241,11 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   const coefficients = f64s(2 * phi * psi);
   const reduction = reduced ? f64s(phi * nv) : undefined;
   const puppet = version === 3 ? readPuppet() : undefined;
+  if (at < bytes.length - 8 && carried(at))
+    fail(
+      "it holds a rig carried from a coarse mesh to a fine one (its AKAPFINE section), " +
+        "which this reader does not pose: read it with DefOp.fromBytes",
+    );
   if (at !== bytes.length - 8) fail(`${bytes.length} bytes where its counts need ${at + 8}`);
   /** The puppet's section (Rust's layout): parts, joints, each part, each joint. */
   function readPuppet() {
