@@ -6,6 +6,7 @@ mod arap;
 mod bones;
 mod cauchy_green;
 mod common;
+mod defop_carry;
 mod defop_coordinates;
 mod defop_eval;
 mod defop_file;

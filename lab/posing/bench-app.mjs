@@ -1,4 +1,4 @@
-/* global requestAnimationFrame, navigator, performance */
+/* global requestAnimationFrame, navigator, performance, OffscreenCanvas, Path2D, File */
 // Frame times of the posing app in headless Chromium: for each mesh size, pin a foot,
 // drag the raised hand along a quarter circle with the mouse, and collect the widget's
 // per-frame work (solver steps and drawing) from its `akap-pose` events.
@@ -11,6 +11,15 @@
 // and the rig's evaluation time. With --frames-only, the rig from the table poses without
 // training again (the frames alone: to compare builds).
 //   node lab/posing/bench-app.mjs --defop target/defop-table/manifest.json [--frames-only]
+// With --defop-large [VERTICES] (default 50000): a large shape posed by a rig trained on a
+// coarse simulation mesh and carried to the shape's mesh: the default figure meshed at
+// VERTICES (with --image, instead a 4096 x 4096 image drawn in the page, loaded as a file,
+// traced and meshed at VERTICES, its texture the image), four handles (the lowest, highest,
+// left-most and right-most triangles), a rig trained in the page with the widget's default
+// options (--samples N to change their number; no cache), then the highest handle dragged
+// along an arc: training seconds, whole-frame median and p95 and the rig's evaluation time.
+// With --profile, the page's functions that took the most time during the drag.
+//   node lab/posing/bench-app.mjs --defop-large 50000 [--image] [--samples N] [--profile]
 // With --rig [VERTICES] [--spatial K] [--samples M]: no manifest; the app's figure meshed to
 // about VERTICES (default 2000) with five handles (both feet, both hands, the head), a rig
 // trained in the page (ARAP, M samples, default 60; the widget's spatial basis, 100, or K;
@@ -179,6 +188,121 @@ function rigFrames(frames) {
     `| ${frames.length} | ${ms(stat(times, 0.5))} | ${ms(stat(times, 0.95))} | ${ms(Math.max(...times))} | ` +
       `${stat(evaluations, 0.5).toFixed(3)} | ${stat(evaluations, 0.95).toFixed(3)} |`,
   );
+}
+
+if (process.argv[2] === "--defop-large") {
+  const vertices = Number(process.argv[3]) > 0 ? Number(process.argv[3]) : 50000;
+  const image = process.argv.includes("--image");
+  const at = process.argv.indexOf("--samples");
+  const options = at > 0 ? { samples: Number(process.argv[at + 1]) } : {};
+  try {
+    const page = await browser.newPage({ viewport: { width: 1000, height: 800 } });
+    await page.goto(`http://127.0.0.1:${port}/?hud=false&vertices=${vertices}`);
+    await page.waitForFunction(() => document.body.dataset.ready === "true");
+    if (image) {
+      // A 4096 x 4096 picture: a figure of discs and bars on a transparent ground, painted
+      // with stripes and rings so that the texture has detail at every scale.
+      await page.evaluate(async (size) => {
+        const canvas = new OffscreenCanvas(size, size);
+        const ctx = canvas.getContext("2d");
+        const figure = new Path2D();
+        const s = size / 16;
+        figure.arc(8 * s, 12.5 * s, 2.2 * s, 0, 2 * Math.PI);
+        figure.roundRect(5 * s, 4 * s, 6 * s, 7.5 * s, 1.5 * s);
+        figure.roundRect(1.5 * s, 8.5 * s, 13 * s, 1.8 * s, 0.9 * s);
+        figure.roundRect(5.3 * s, 0.8 * s, 2 * s, 4 * s, 0.9 * s);
+        figure.roundRect(8.7 * s, 0.8 * s, 2 * s, 4 * s, 0.9 * s);
+        ctx.save();
+        ctx.clip(figure);
+        for (let k = 0; k < 64; k++) {
+          ctx.fillStyle = `hsl(${(k * 37) % 360} 70% ${45 + (k % 3) * 10}%)`;
+          ctx.fillRect(0, (k * size) / 64, size, size / 64);
+        }
+        for (let r = size / 2; r > 0; r -= size / 48) {
+          ctx.beginPath();
+          ctx.arc(size / 2, size / 2, r, 0, 2 * Math.PI);
+          ctx.strokeStyle = `rgba(0, 0, 0, ${0.1 + 0.2 * ((r / size) % 0.5)})`;
+          ctx.lineWidth = size / 200;
+          ctx.stroke();
+        }
+        ctx.restore();
+        const blob = await canvas.convertToBlob({ type: "image/png" });
+        await window.akapDemo.widget.loadFile(new File([blob], "large-4096.png", { type: "image/png" }));
+        await window.akapDemo.widget.whenIdle();
+      }, 4096);
+    }
+    const setup = await page.evaluate(() => {
+      const w = window.akapDemo.widget;
+      const { positions: p, triangles: t } = w.mesh;
+      const centroid = (f) =>
+        [0, 1].map((c) => (p[2 * t[3 * f] + c] + p[2 * t[3 * f + 1] + c] + p[2 * t[3 * f + 2] + c]) / 3);
+      const best = [0, 0, 0, 0];
+      for (let f = 0; f < t.length / 3; f++) {
+        const c = centroid(f);
+        if (c[1] < centroid(best[0])[1]) best[0] = f;
+        if (c[1] > centroid(best[1])[1]) best[1] = f;
+        if (c[0] < centroid(best[2])[0]) best[2] = f;
+        if (c[0] > centroid(best[3])[0]) best[3] = f;
+      }
+      w.clearHandles();
+      for (const f of best) w.addHandleAt(...centroid(f));
+      return { vertices: w.vertexCount, triangles: w.triangleCount, handles: w.handleCount, renderer: w.renderer };
+    });
+    const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+    console.log(
+      `Chromium ${browser.version()}, ${cores} cores, ${setup.renderer}; ${image ? "a 4096 x 4096 image" : "the figure"} ` +
+        `at ${setup.vertices} vertices, ${setup.triangles} triangles, ${setup.handles} handles; ` +
+        `training options ${JSON.stringify(options)} (the widget's defaults otherwise)`,
+    );
+    const trained = await page.evaluate(async (options) => {
+      const w = window.akapDemo.widget;
+      const started = performance.now();
+      await w.train({ ...options, cache: false });
+      const seconds = (performance.now() - started) / 1000;
+      w.setMethod("defop");
+      return { seconds, rig: w.rig };
+    }, options);
+    const { rig } = trained;
+    console.log(
+      `training ${trained.seconds.toFixed(1)} s on a simulation mesh of ${rig.simulation ?? "(none)"} vertices; ` +
+        `rig ${rig.state}, posing ${rig.posing}`,
+    );
+    // With --profile, the drag runs under the CPU profiler: the functions that took the
+    // most time on the page's thread, by self time.
+    const profiler = process.argv.includes("--profile") ? await page.context().newCDPSession(page) : undefined;
+    if (profiler) {
+      await profiler.send("Profiler.enable");
+      await profiler.send("Profiler.setSamplingInterval", { interval: 100 });
+      await profiler.send("Profiler.start");
+    }
+    const frames = await dragAround(page, 1);
+    if (profiler) {
+      const { profile } = await profiler.send("Profiler.stop");
+      const self = new Map();
+      const dt = new Map();
+      profile.samples.forEach((id, i) => dt.set(id, (dt.get(id) ?? 0) + (profile.timeDeltas[i] ?? 0)));
+      for (const node of profile.nodes) {
+        const { functionName, url, lineNumber } = node.callFrame;
+        const name = `${functionName || "(anonymous)"} ${url.split("/").pop()}:${lineNumber + 1}`;
+        self.set(name, (self.get(name) ?? 0) + (dt.get(node.id) ?? 0) / 1000);
+      }
+      const top = [...self].sort((a, b) => b[1] - a[1]).slice(0, 25);
+      console.log("| self ms over the drag | function |\n|---|---|");
+      for (const [name, t] of top) console.log(`| ${t.toFixed(1)} | ${name} |`);
+    }
+    const times = frames.map((f) => f.ms);
+    const evaluations = frames.map((f) => f.evaluation).filter((e) => e !== undefined);
+    console.log("| frames | frame median ms | frame p95 ms | worst ms | evaluation median ms | evaluation p95 ms |");
+    console.log("|---|---|---|---|---|---|");
+    console.log(
+      `| ${frames.length} | ${ms(stat(times, 0.5))} | ${ms(stat(times, 0.95))} | ${ms(Math.max(...times))} | ` +
+        `${stat(evaluations, 0.5).toFixed(3)} | ${stat(evaluations, 0.95).toFixed(3)} |`,
+    );
+  } finally {
+    await browser.close();
+    server.kill();
+  }
+  process.exit(0);
 }
 
 if (process.argv[2] === "--rig") {

@@ -42,6 +42,15 @@
 //! | | 4 | J, joints (u32, at most N) |
 //! | | 12 + L + 4 T per part | depth (i32), T its triangles' count (u32), L its name's length in bytes (u32, at most 1024), the name (UTF-8), its triangles (u32) |
 //! | | 24 J | joints: point x, y (f64), front part, back part (u32) |
+//! | | | optional, a rig carried to a fine mesh (`carry`), in a file of any version: |
+//! | | 8 | tag `AKAPFINE` |
+//! | | 4 | N_f, the fine mesh's vertices (u32) |
+//! | | 4 | F_f, its triangles (u32) |
+//! | | 16 N_f | its vertex positions, x and y (f64) |
+//! | | 12 F_f | its triangles (u32) |
+//! | | 32 n | the handles as points of the fine mesh, as above |
+//! | | 4 N_f | per fine vertex, the triangle of the (coarse) mesh above it lies in (u32) |
+//! | | 24 N_f | per fine vertex, its barycentric coordinates there (f64; negative outside it) |
 //! | end − 8 | 8 | FNV-1a 64 of every byte before it |
 //!
 //! The handle basis, the spatial basis, canonical coordinates and fixed handles of the
@@ -54,6 +63,13 @@
 //! 48 to 80 (the body starts at 48, double precision, no puppet); version 3 is version 2
 //! with a puppet's section before the checksum; version 1 is version 2 with bytes 35 to 40
 //! zero (no canonical flag, no fixed handles).
+//!
+//! A rig carried to a fine mesh ([`Operator::carried`]) keeps the coarse mesh and its
+//! operator above and the fine mesh, the fine handles and the embedding in the carried
+//! section (after the puppet's, if any), which older readers refuse (by length) rather than
+//! pose the coarse mesh: reading gives the fine mesh and the carried operator, every part
+//! checked (`carry::Embedding`: each fine vertex where its coordinates put it; the handles
+//! where the operator's are).
 //!
 //! Evaluation: u = Bᵀ(q̂ − rest) / r_s (multiplied by 1/r_s), B and q̂ as `coordinates`
 //! defines them (B = I and q̂ = q without canonical coordinates or fixed handles; fixed
@@ -71,6 +87,7 @@
 //! altered file is an error saying which.
 
 use super::basis::{BasisKind, HandleBasis};
+use super::carry::Embedding;
 use super::coordinates::HandleCoordinates;
 use super::energy::Energy;
 use super::fit_error::FitError;
@@ -176,7 +193,11 @@ fn kind_code(kind: BasisKind) -> u8 {
     }
 }
 
-/// The operator and its mesh as an operator file (version 4, double precision).
+/// The tag of the carried section (module documentation).
+const CARRIED_TAG: [u8; 8] = *b"AKAPFINE";
+
+/// The operator and its mesh (the one it poses: a carried operator's fine mesh) as an
+/// operator file.
 pub fn write_operator(mesh: &Mesh, operator: &Operator) -> Result<Vec<u8>, FitError> {
     write_operator_in(mesh, operator, Precision::Double)
 }
@@ -189,6 +210,11 @@ pub fn write_operator_in(mesh: &Mesh, operator: &Operator, precision: Precision)
         let (expected, found) = (operator.vertex_count(), mesh.vertex_count());
         return Err(FitError::Length { what: "mesh", expected, found });
     }
+    // A carried operator's body holds the coarse mesh it was trained on.
+    let (fine, mesh) = match operator.carried() {
+        Some(carried) => (Some(mesh), carried.mesh()),
+        None => (None, mesh),
+    };
     let basis = operator.handle_basis();
     let n = operator.handles().len();
     let coordinates = basis.coordinates();
@@ -229,17 +255,8 @@ pub fn write_operator_in(mesh: &Mesh, operator: &Operator, precision: Precision)
     let f64s = |out: &mut Vec<u8>, values: &mut dyn Iterator<Item = f64>| {
         values.for_each(|x| out.extend_from_slice(&x.to_le_bytes()))
     };
-    f64s(&mut out, &mut mesh.positions().iter().flatten().copied());
-    mesh.triangles().iter().flatten().for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
-    for handle in operator.handles() {
-        let (kind, index, weights) = match *handle {
-            MeshPoint::Vertex(v) => (0u32, v, [1.0, 0.0, 0.0]),
-            MeshPoint::Inside { triangle, barycentric } => (1, triangle, barycentric),
-        };
-        out.extend_from_slice(&kind.to_le_bytes());
-        out.extend_from_slice(&index.to_le_bytes());
-        f64s(&mut out, &mut weights.into_iter());
-    }
+    write_mesh(&mut out, mesh);
+    write_handles(&mut out, operator.trained_handles());
     f64s(&mut out, &mut basis.rest().iter().copied());
     coordinates.fixed().iter().for_each(|&a| out.extend_from_slice(&(a as u32).to_le_bytes()));
     f64s(&mut out, &mut basis.scaled_centres().iter().copied());
@@ -263,6 +280,16 @@ pub fn write_operator_in(mesh: &Mesh, operator: &Operator, precision: Precision)
             joint.parts.iter().for_each(|&p| out.extend_from_slice(&(p as u32).to_le_bytes()));
         }
     }
+    if let (Some(fine), Some(carried)) = (fine, operator.carried()) {
+        out.extend_from_slice(&CARRIED_TAG);
+        out.extend_from_slice(&(fine.vertex_count() as u32).to_le_bytes());
+        out.extend_from_slice(&(fine.triangle_count() as u32).to_le_bytes());
+        write_mesh(&mut out, fine);
+        write_handles(&mut out, carried.handles());
+        let embedding = carried.embedding();
+        embedding.triangles().iter().for_each(|t| out.extend_from_slice(&t.to_le_bytes()));
+        embedding.weights().iter().flatten().for_each(|w| out.extend_from_slice(&w.to_le_bytes()));
+    }
     let checksum = fnv1a(&out);
     out.extend_from_slice(&checksum.to_le_bytes());
     Ok(out)
@@ -284,6 +311,23 @@ fn check_training(t: &Training) -> Result<(), FitError> {
         return Err(FitError::InvalidOption { name: "training radius", value: t.radius, expected });
     }
     Ok(())
+}
+
+fn write_mesh(out: &mut Vec<u8>, mesh: &Mesh) {
+    mesh.positions().iter().flatten().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
+    mesh.triangles().iter().flatten().for_each(|v| out.extend_from_slice(&v.to_le_bytes()));
+}
+
+fn write_handles(out: &mut Vec<u8>, handles: &[MeshPoint]) {
+    for handle in handles {
+        let (kind, index, weights) = match *handle {
+            MeshPoint::Vertex(v) => (0u32, v, [1.0, 0.0, 0.0]),
+            MeshPoint::Inside { triangle, barycentric } => (1, triangle, barycentric),
+        };
+        out.extend_from_slice(&kind.to_le_bytes());
+        out.extend_from_slice(&index.to_le_bytes());
+        weights.iter().for_each(|w| out.extend_from_slice(&w.to_le_bytes()));
+    }
 }
 
 /// Reads an operator file: its mesh and its operator, everything checked.
@@ -366,9 +410,11 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
         + 2 * width * phi * psi
         + if reduced { width * phi * nv } else { 0 }
         + 8;
-    // A puppet's section follows, its length read from it.
+    // A puppet's section follows, its length read from it; then the carried section if its
+    // tag is there.
     let puppet_bytes = (bytes.len() as u64).saturating_sub(expected);
-    if (!has_puppet && expected != bytes.len() as u64) || (has_puppet && puppet_bytes < 8) {
+    let carried_next = bytes.get(expected as usize - 8..).is_some_and(|b| b.starts_with(&CARRIED_TAG));
+    if (!has_puppet && expected != bytes.len() as u64 && !carried_next) || (has_puppet && puppet_bytes < 8) {
         let expected = expected + if has_puppet { 8 } else { 0 };
         return Err(OperatorFileError::Length { expected, found: bytes.len() });
     }
@@ -380,16 +426,7 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     let mut cursor = Cursor { bytes: body, at: header };
     let positions = cursor.f64s(2 * nv);
     let triangles = cursor.u32s(3 * nt);
-    let mut handles = Vec::with_capacity(n as usize);
-    for _ in 0..n {
-        let [kind, index] = [cursor.u32s(1)[0], cursor.u32s(1)[0]];
-        let w = cursor.f64s(3);
-        handles.push(match kind {
-            0 => MeshPoint::Vertex(index),
-            1 => MeshPoint::Inside { triangle: index, barycentric: [w[0], w[1], w[2]] },
-            _ => return Err(OperatorFileError::Field { what: "handle kind" }),
-        });
-    }
+    let handles = read_handles(&mut cursor, n)?;
     let rest = cursor.f64s(2 * n);
     let fixed: Vec<usize> = cursor.u32s(f).into_iter().map(|a| a as usize).collect();
     let centres = cursor.f64s(k * m);
@@ -397,6 +434,12 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     let coefficients = numbers(&mut cursor, 2 * phi * psi);
     let reduction = if reduced { numbers(&mut cursor, phi * nv) } else { Vec::new() };
     let puppet = if has_puppet { Some(read_puppet(&mut cursor, nv)?) } else { None };
+    let carried = if cursor.left() >= 8 && cursor.bytes[cursor.at..].starts_with(&CARRIED_TAG) {
+        cursor.at += 8;
+        Some(read_carried(&mut cursor, n)?)
+    } else {
+        None
+    };
     if cursor.at != body.len() {
         return Err(OperatorFileError::Length { expected: (cursor.at + 8) as u64, found: bytes.len() });
     }
@@ -411,19 +454,7 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     if let Some(puppet) = &puppet {
         check_puppet(puppet, &mesh).map_err(OperatorFileError::Invalid)?;
     }
-    for handle in &handles {
-        let fine = match *handle {
-            MeshPoint::Vertex(v) => (v as u64) < nv,
-            MeshPoint::Inside { triangle, barycentric } => {
-                (triangle as u64) < nt
-                    && barycentric.iter().all(|w| w.is_finite() && *w >= -1e-12)
-                    && (barycentric.iter().sum::<f64>() - 1.0).abs() <= 1e-9
-            }
-        };
-        if !fine {
-            return Err(OperatorFileError::Invalid(format!("handle {handle:?} is not a point of the mesh")));
-        }
-    }
+    check_handles(&handles, &mesh)?;
     if !reduced && phi != nv {
         return Err(OperatorFileError::Field { what: "spatial basis size" });
     }
@@ -434,7 +465,16 @@ pub fn read_operator(bytes: &[u8]) -> Result<(Mesh, Operator), OperatorFileError
     let basis = HandleBasis::from_parts(kind, coordinates, scale, centres).map_err(|e| invalid(&e))?;
     let operator = Operator::from_parts(handles, basis, solver, phi as usize, nv as usize, coefficients, reduction)
         .map_err(|e| invalid(&e))?;
-    Ok((mesh, operator.with_puppet(puppet).with_training(training)))
+    let operator = operator.with_puppet(puppet).with_training(training);
+    match carried {
+        None => Ok((mesh, operator)),
+        Some((fine, handles, triangles, weights)) => {
+            check_handles(&handles, &fine)?;
+            let embedding = Embedding::from_parts(&mesh, &fine, triangles, weights).map_err(|e| invalid(&e))?;
+            let operator = operator.with_carried(mesh, &fine, handles, embedding).map_err(|e| invalid(&e))?;
+            Ok((fine, operator))
+        }
+    }
 }
 
 /// A version-4 header's training (bytes 50 to 80), `None` when not known; every code and
@@ -463,6 +503,76 @@ fn read_training(header: &[u8]) -> Result<Option<Training>, OperatorFileError> {
         return Err(OperatorFileError::Invalid(format!("the training's radius is {radius}, not a positive length")));
     }
     Ok(Some(Training { energy, sampling, samples, radius, seed }))
+}
+
+/// `n` handles (kind, index, 3 barycentric coordinates each; lengths checked beforehand).
+fn read_handles(cursor: &mut Cursor<'_>, n: u64) -> Result<Vec<MeshPoint>, OperatorFileError> {
+    let mut handles = Vec::with_capacity(n as usize);
+    for _ in 0..n {
+        let [kind, index] = [cursor.u32s(1)[0], cursor.u32s(1)[0]];
+        let w = cursor.f64s(3);
+        handles.push(match kind {
+            0 => MeshPoint::Vertex(index),
+            1 => MeshPoint::Inside { triangle: index, barycentric: [w[0], w[1], w[2]] },
+            _ => return Err(OperatorFileError::Field { what: "handle kind" }),
+        });
+    }
+    Ok(handles)
+}
+
+/// Refuses handles that are not points of `mesh`.
+fn check_handles(handles: &[MeshPoint], mesh: &Mesh) -> Result<(), OperatorFileError> {
+    let (nv, nt) = (mesh.vertex_count(), mesh.triangle_count());
+    for handle in handles {
+        let fine = match *handle {
+            MeshPoint::Vertex(v) => (v as usize) < nv,
+            MeshPoint::Inside { triangle, barycentric } => {
+                (triangle as usize) < nt
+                    && barycentric.iter().all(|w| w.is_finite() && *w >= -1e-12)
+                    && (barycentric.iter().sum::<f64>() - 1.0).abs() <= 1e-9
+            }
+        };
+        if !fine {
+            return Err(OperatorFileError::Invalid(format!("handle {handle:?} is not a point of the mesh")));
+        }
+    }
+    Ok(())
+}
+
+/// The carried section after its tag (module documentation): the fine mesh, the fine
+/// handles (`n`), each fine vertex's coarse triangle and barycentric coordinates; every
+/// count checked against the limits and against what is left before the checksum.
+#[allow(clippy::type_complexity)]
+fn read_carried(
+    cursor: &mut Cursor<'_>,
+    n: u64,
+) -> Result<(Mesh, Vec<MeshPoint>, Vec<u32>, Vec<[f64; 3]>), OperatorFileError> {
+    if cursor.left() < 8 {
+        return Err(OperatorFileError::Invalid("the carried section ends before its counts".into()));
+    }
+    let [nv, nt] = [0, 1].map(|_| u64::from(cursor.u32s(1)[0]));
+    let max_vertices = DEFAULT_MAX_VERTICES as u64;
+    for (what, value, high) in [("fine vertex count", nv, max_vertices), ("fine triangle count", nt, 2 * max_vertices)]
+    {
+        if !(1..=high).contains(&value) {
+            return Err(OperatorFileError::Count { what, value });
+        }
+    }
+    let needed = 16 * nv + 12 * nt + 32 * n + 28 * nv;
+    if (cursor.left() as u64) < needed {
+        let found = cursor.bytes.len() + 8;
+        return Err(OperatorFileError::Length { expected: (cursor.at as u64) + needed + 8, found });
+    }
+    let positions = cursor.f64s(2 * nv);
+    let triangles = cursor.u32s(3 * nt);
+    let handles = read_handles(cursor, n)?;
+    let coarse_triangles = cursor.u32s(nv);
+    let weights: Vec<[f64; 3]> = cursor.f64s(3 * nv).chunks_exact(3).map(|w| [w[0], w[1], w[2]]).collect();
+    if !positions.iter().all(|x| x.is_finite()) {
+        return Err(OperatorFileError::Invalid("a number is not finite".into()));
+    }
+    let mesh = Mesh::from_flat(&positions, &triangles).map_err(|e| OperatorFileError::Invalid(e.to_string()))?;
+    Ok((mesh, handles, coarse_triangles, weights))
 }
 
 /// Checks a puppet against its mesh as a deformer does, and its sizes as the file's

@@ -93,6 +93,12 @@ pub enum FitError {
     Factor(FactorError),
     /// The eigenproblem of a reduced spatial basis failed.
     Eigen(crate::sparse::eigen::EigenError),
+    /// An operator cannot be carried to a fine mesh, or a carried one is not consistent
+    /// (`carry`): why.
+    Carry {
+        /// Why.
+        reason: String,
+    },
 }
 
 impl fmt::Display for FitError {
@@ -128,6 +134,7 @@ impl fmt::Display for FitError {
             }
             Self::Factor(e) => e.fmt(f),
             Self::Eigen(e) => write!(f, "the reduced basis could not be computed: {e}"),
+            Self::Carry { reason } => write!(f, "the rig cannot be carried to the fine mesh: {reason}"),
         }
     }
 }

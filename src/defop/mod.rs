@@ -22,12 +22,15 @@
 //!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy;
 //!   [`gpu`](mod@gpu): its evaluation on the GPU (the basis texture once per rig, a short
 //!   vector per frame);
+//! - [`carry`]: an operator trained on a coarse simulation mesh carried to a fine mesh
+//!   (large shapes), evaluated as the coarse pose interpolated;
 //! - [`file`](mod@file): operator files (the operator with its mesh, versioned, checksummed);
 //! - [`training`]: what an operator keeps of its training ([`Training`]);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
 
 pub mod basis;
+pub mod carry;
 pub mod coordinates;
 pub mod energy;
 mod error;
@@ -48,6 +51,7 @@ pub mod train;
 pub mod training;
 
 pub use basis::{BasisKind, HandleBasis};
+pub use carry::{handles_on, simulation_mesh, Carried, Embedding};
 pub use coordinates::{HandleCoordinates, Rigid};
 pub use energy::{Energy, RestTriangle, SignedSvd};
 pub use file::{read_operator, write_operator, write_operator_in, OperatorFileError, Precision};

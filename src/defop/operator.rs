@@ -6,6 +6,7 @@
 use nalgebra::DMatrix;
 
 use super::basis::HandleBasis;
+use super::carry::{carry_error, Carried, Embedding};
 use super::fit_error::{check_finite, check_length, FitError};
 use super::kernels;
 use super::sampling::{regions, Region, Sampling, SamplingError};
@@ -48,6 +49,9 @@ pub struct Operator {
     puppet: Option<Puppet>,
     /// Its training's settings, when known (trained here, or read from a version-4 file).
     training: Option<Training>,
+    /// For an operator trained on a coarse mesh and carried to a fine one: what carries it
+    /// (`carry`); `None` for an operator of the mesh it was trained on.
+    carried: Option<Box<Carried>>,
 }
 
 impl Operator {
@@ -83,7 +87,7 @@ impl Operator {
         let nodal = if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * spatial_len] };
         let psi = vec![0.0; basis.len()];
         let canonical = canonical_scratch(&basis);
-        let (puppet, training) = (None, None);
+        let (puppet, training, carried) = (None, None, None);
         Self {
             handles,
             basis,
@@ -97,6 +101,7 @@ impl Operator {
             canonical,
             puppet,
             training,
+            carried,
         }
     }
 
@@ -183,9 +188,21 @@ impl Operator {
         regions(&rest, [lo, hi], radius, sampling)
     }
 
-    /// The handles' rest positions, as given to the fit.
+    /// The handles, as points of the mesh it poses: the fine mesh's for a carried operator
+    /// ([`Self::carried`]), else those given to the fit.
     pub fn handles(&self) -> &[MeshPoint] {
+        self.carried.as_ref().map_or(&self.handles, |c| c.handles())
+    }
+
+    /// The handles as points of the mesh it was trained on, as given to the fit.
+    pub fn trained_handles(&self) -> &[MeshPoint] {
         &self.handles
+    }
+
+    /// For an operator trained on a coarse mesh and carried to a fine one
+    /// ([`Self::carried_to`]): the coarse mesh, the fine handles and the embedding.
+    pub fn carried(&self) -> Option<&Carried> {
+        self.carried.as_deref()
     }
 
     /// The handle basis Ψ (kind, rest handles, scale, TPS centres).
@@ -203,8 +220,13 @@ impl Operator {
         self.spatial_len
     }
 
-    /// The number of mesh vertices N.
+    /// The number of vertices of the mesh it poses: the fine mesh's for a carried operator.
     pub fn vertex_count(&self) -> usize {
+        self.carried.as_ref().map_or(self.vertex_count, |c| c.embedding().len())
+    }
+
+    /// The number of vertices N of the mesh it was trained on (the coarse one, carried).
+    pub fn trained_vertex_count(&self) -> usize {
         self.vertex_count
     }
 
@@ -247,7 +269,7 @@ impl Operator {
     /// canonical coordinates, D(v, Q) = R*(D̂(v, Q̂) − c_P) + c_Q (see `coordinates`).
     pub fn evaluate_into(&mut self, targets: &[f64], out: &mut [f64]) -> Result<(), FitError> {
         self.check(targets, out.len())?;
-        self.evaluate_rigidly(targets, |v, x, y| {
+        self.evaluate_posed(targets, |v, x, y| {
             out[2 * v] = x;
             out[2 * v + 1] = y;
         });
@@ -258,7 +280,7 @@ impl Operator {
     /// computed in double precision.
     pub fn evaluate_into_f32(&mut self, targets: &[f64], out: &mut [f32]) -> Result<(), FitError> {
         self.check(targets, out.len())?;
-        self.evaluate_rigidly(targets, |v, x, y| {
+        self.evaluate_posed(targets, |v, x, y| {
             out[2 * v] = x as f32;
             out[2 * v + 1] = y as f32;
         });
@@ -267,7 +289,7 @@ impl Operator {
 
     /// The vertex positions for the handle targets Q, in a new vector (2N numbers).
     pub fn evaluate(&mut self, targets: &[f64]) -> Result<Vec<f64>, FitError> {
-        let mut out = vec![0.0; 2 * self.vertex_count];
+        let mut out = vec![0.0; 2 * self.vertex_count()];
         self.evaluate_into(targets, &mut out)?;
         Ok(out)
     }
@@ -275,10 +297,26 @@ impl Operator {
     fn check(&self, targets: &[f64], out_len: usize) -> Result<(), FitError> {
         check_length("targets", targets, 2 * self.handles.len())?;
         check_finite("targets", targets)?;
-        if out_len != 2 * self.vertex_count {
-            return Err(FitError::Length { what: "output", expected: 2 * self.vertex_count, found: out_len });
+        let expected = 2 * self.vertex_count();
+        if out_len != expected {
+            return Err(FitError::Length { what: "output", expected, found: out_len });
         }
         Ok(())
+    }
+
+    /// The pose of the mesh it poses: [`Self::evaluate_rigidly`]'s, or for a carried
+    /// operator the coarse pose into its scratch, then interpolated per fine vertex.
+    fn evaluate_posed(&mut self, targets: &[f64], write: impl FnMut(usize, f64, f64)) {
+        let Some(mut pose) = self.carried.as_mut().map(|c| std::mem::take(&mut c.pose)) else {
+            return self.evaluate_rigidly(targets, write);
+        };
+        self.evaluate_rigidly(targets, |v, x, y| {
+            pose[2 * v] = x;
+            pose[2 * v + 1] = y;
+        });
+        let carried = self.carried.as_mut().expect("carried");
+        carried.embedding().interpolate(|v| [pose[2 * v], pose[2 * v + 1]], write);
+        carried.pose = pose;
     }
 
     /// [`Operator::evaluate_with`] at the canonical targets Q̂, each position moved back by
@@ -307,5 +345,49 @@ pub(super) fn canonical_scratch(basis: &HandleBasis) -> Vec<f64> {
         vec![0.0; basis.rest().len()]
     } else {
         Vec::new()
+    }
+}
+
+impl Operator {
+    /// This operator, trained on `coarse` with its handles at [`super::handles_on`]`(coarse,
+    /// fine, handles)`, carried to `fine`: an operator of `fine`'s vertices and of
+    /// `handles` (points of `fine`), evaluated as the coarse pose interpolated (`carry`).
+    /// Refuses an operator already carried or trained on a puppet, a `coarse` of another
+    /// vertex count, handles of another count or not where the operator's are on `coarse`.
+    pub fn carried_to(self, coarse: &Mesh, fine: &Mesh, handles: &[MeshPoint]) -> Result<Self, FitError> {
+        let embedding = Embedding::new(coarse, fine)?;
+        self.with_carried(coarse.clone(), fine, handles.to_vec(), embedding)
+    }
+
+    /// The operator as trained, of the coarse mesh ([`Carried::mesh`]) and its handles,
+    /// without the carrying (a copy; for an operator not carried, a plain copy).
+    pub fn uncarried(&self) -> Self {
+        let mut copy = self.clone();
+        copy.carried = None;
+        copy
+    }
+
+    /// [`Self::carried_to`] with the embedding given (an operator file's, checked already
+    /// against both meshes).
+    pub(crate) fn with_carried(
+        mut self,
+        coarse: Mesh,
+        fine: &Mesh,
+        handles: Vec<MeshPoint>,
+        embedding: Embedding,
+    ) -> Result<Self, FitError> {
+        if self.carried.is_some() {
+            return Err(carry_error("the operator is carried to a fine mesh already"));
+        }
+        if self.puppet.is_some() {
+            return Err(carry_error("an operator of a puppet is not carried to another mesh"));
+        }
+        if coarse.vertex_count() != self.vertex_count {
+            let (expected, found) = (self.vertex_count, coarse.vertex_count());
+            return Err(FitError::Length { what: "coarse mesh vertices", expected, found });
+        }
+        let carried = Carried::new(coarse, fine, handles, embedding, self.basis.rest())?;
+        self.carried = Some(Box::new(carried));
+        Ok(self)
     }
 }

@@ -80,6 +80,25 @@ pub fn triangle_distortion(sigma1: f64, sigma2: f64) -> (f64, f64) {
     (product + 1.0 / product, sigma1 / sigma2 + sigma2 / sigma1)
 }
 
+/// `(E_area, E_angle, det)` of a triangle's map `F`, as [`triangle_distortion`] of its
+/// singular values but without them (no square root: this runs per triangle per frame, and
+/// a 50,000-vertex pose has 100,000): `sigma1 sigma2 = |det F|` and `sigma1^2 + sigma2^2 =
+/// |F|^2` (Frobenius), so `E_area = |det| + 1 / |det|` and `E_angle = |F|^2 / |det|`, the
+/// latter, which scaling `F` leaves alone, on `F` scaled by a power of two outside the
+/// comfortable range. `+inf` for both when collapsed (`det = 0`, as `sigma2 = 0`).
+fn map_distortion(f: [[f64; 2]; 2]) -> (f64, f64, f64) {
+    let [[a, b], [c, d]] = f;
+    let det = a * d - b * c;
+    if det == 0.0 {
+        return (f64::INFINITY, f64::INFINITY, det);
+    }
+    let largest = a.abs().max(b.abs()).max(c.abs()).max(d.abs());
+    let k = if largest.is_finite() && !in_comfortable_range(largest) { -binary_exponent(largest) } else { 0 };
+    let [a, b, c, d] = [a, b, c, d].map(|x| scale_by_power_of_two(x, k));
+    let angle = (a * a + b * b + c * c + d * d) / (a * d - b * c).abs();
+    (det.abs() + 1.0 / det.abs(), angle, det)
+}
+
 /// Distortion of `current` against `rest` over the given triangles.
 pub fn metrics(rest: &[Point], current: &[Point], triangles: &[[u32; 3]]) -> Metrics {
     let corners = |pts: &[Point], t: &[u32; 3]| [pts[t[0] as usize], pts[t[1] as usize], pts[t[2] as usize]];
@@ -91,19 +110,61 @@ pub fn metrics(rest: &[Point], current: &[Point], triangles: &[[u32; 3]]) -> Met
     let mut total_area = 0.0;
     let (mut area, mut angle, mut flipped) = (0.0, 0.0, 0);
     for t in triangles {
-        let r = corners(rest, t);
-        let rest_area = scaled_area(r, unit);
-        let f = deformation_gradient(r, corners(current, t));
-        let (s1, s2, det) = singular_values(f[0][0], f[0][1], f[1][0], f[1][1]);
+        let (r, p) = (corners(rest, t), corners(current, t));
+        let (rest_area, e_area, e_angle, det) = match edge_distortion(r, p) {
+            // Edges of ordinary sizes: from the edges' products, the map never formed.
+            Some((rest_det, distortion)) => {
+                let (e_area, e_angle, det) = distortion;
+                (0.5 * (rest_det * unit) * unit, e_area, e_angle, det)
+            }
+            None => {
+                let (e_area, e_angle, det) = map_distortion(deformation_gradient(r, p));
+                (scaled_area(r, unit), e_area, e_angle, det)
+            }
+        };
         if det <= 0.0 {
             flipped += 1;
         }
         total_area += rest_area;
-        let (e_area, e_angle) = triangle_distortion(s1, s2);
         area += rest_area * e_area;
         angle += rest_area * e_angle;
     }
     Metrics { area_distortion: area / total_area, angle_distortion: angle / total_area, flipped }
+}
+
+/// The fast path of [`metrics`] for a triangle whose rest and current edges both have
+/// their largest component within `[2^-120, 2^120]` (`None` otherwise): with rest edges
+/// `E = [e1 e2]`, current edges `C = [f1 f2]` and `G = C adj(E)`, the map is `F = G / det E`,
+/// so `det F = det C / det E`, `E_area = |det F| + 1 / |det F|` and `E_angle = |F|^2 /
+/// |det F| = |G|^2 / (|det E| |det C|)`, products of at most four edge components, far
+/// from overflow and underflow in that range. Returns `det E` (twice the rest area) and
+/// `(E_area, E_angle, det F)` as [`map_distortion`] gives them.
+#[inline]
+fn edge_distortion(r: [Point; 3], p: [Point; 3]) -> Option<(f64, (f64, f64, f64))> {
+    let (e1, e2) = ([r[1][0] - r[0][0], r[1][1] - r[0][1]], [r[2][0] - r[0][0], r[2][1] - r[0][1]]);
+    let (f1, f2) = ([p[1][0] - p[0][0], p[1][1] - p[0][1]], [p[2][0] - p[0][0], p[2][1] - p[0][1]]);
+    let ordinary = |v: [f64; 4]| {
+        let m = v.iter().fold(0.0, |m: f64, x| if x.abs() > m { x.abs() } else { m });
+        (f64::from_bits((1023 - 120) << 52)..=f64::from_bits((1023 + 120) << 52)).contains(&m)
+    };
+    if !(ordinary([e1[0], e1[1], e2[0], e2[1]]) && ordinary([f1[0], f1[1], f2[0], f2[1]])) {
+        return None;
+    }
+    let rest_det = e1[0] * e2[1] - e2[0] * e1[1];
+    let det_c = f1[0] * f2[1] - f2[0] * f1[1];
+    if det_c == 0.0 {
+        return Some((rest_det, (f64::INFINITY, f64::INFINITY, 0.0)));
+    }
+    // G = C adj(E), adj(E) = [[e2y, -e2x], [-e1y, e1x]].
+    let g = [
+        f1[0] * e2[1] - f2[0] * e1[1],
+        f2[0] * e1[0] - f1[0] * e2[0],
+        f1[1] * e2[1] - f2[1] * e1[1],
+        f2[1] * e1[0] - f1[1] * e2[0],
+    ];
+    let det = det_c / rest_det;
+    let angle = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2] + g[3] * g[3]) / (rest_det.abs() * det_c.abs());
+    Some((rest_det, (det.abs() + 1.0 / det.abs(), angle, det)))
 }
 
 /// The area of a triangle scaled by `factor`.
@@ -126,6 +187,43 @@ mod tests {
         assert!((s1 - 2.0).abs() < 1e-15 && (s2 - 2.0).abs() < 1e-15);
         // A reflection: determinant -1.
         assert_eq!(singular_values(1.0, 0.0, 0.0, -1.0), (1.0, 1.0, -1.0));
+    }
+
+    #[test]
+    fn distortion_without_singular_values_is_distortion_with_them() {
+        let maps = [[2.0, 0.3, -0.4, 0.7], [1.0, 0.0, 0.0, 1.0], [0.1, 5.0, -3.0, 0.2], [1e-150, 3e-151, 0.0, 2e-150]];
+        for [a, b, c, d] in maps {
+            let (s1, s2, det) = singular_values(a, b, c, d);
+            let (area, angle) = triangle_distortion(s1, s2);
+            let (area2, angle2, det2) = map_distortion([[a, b], [c, d]]);
+            assert_eq!(det2, det);
+            assert!((area2 - area).abs() <= 1e-13 * area && (angle2 - angle).abs() <= 1e-13 * angle, "{a} {b} {c} {d}");
+        }
+        // Scaled tiny maps keep the angle term: a similarity shrunk 2^-300 (whose entries'
+        // squares, 2^-600, are out of the comfortable range) scores 2.
+        let f = scale_by_power_of_two(1.0, -300);
+        assert_eq!(map_distortion([[f, 0.0], [0.0, f]]).1, 2.0);
+        assert_eq!(map_distortion([[1.0, 2.0], [2.0, 4.0]]), (f64::INFINITY, f64::INFINITY, 0.0));
+    }
+
+    #[test]
+    fn the_fast_path_agrees_with_the_map() {
+        let r = [[0.1, 0.2], [1.3, -0.1], [0.4, 0.9]];
+        for p in [
+            [[2.0, 1.0], [2.5, 3.0], [0.0, 1.5]],
+            [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]],
+            [[0.0, 0.0], [-1.0, 0.2], [0.3, 1.0]],
+        ] {
+            let (rest_det, (area, angle, det)) = edge_distortion(r, p).unwrap();
+            let (area2, angle2, det2) = map_distortion(deformation_gradient(r, p));
+            assert!((rest_det - 2.0 * scaled_area(r, 1.0)).abs() <= 1e-15);
+            assert_eq!(det <= 0.0, det2 <= 0.0, "{p:?}");
+            for (x, y) in [(area, area2), (angle, angle2), (det, det2)] {
+                assert!(x == y || (x - y).abs() <= 1e-13 * y.abs(), "{p:?}: {x} against {y}");
+            }
+        }
+        // Edges beyond 2^120 take the scaled path.
+        assert!(edge_distortion([[0.0, 0.0], [1e40, 0.0], [0.0, 1e40]], r).is_none());
     }
 
     #[test]

@@ -31,17 +31,8 @@ impl PointMapper {
     /// m triangles and n points. Refuses a point with a coordinate that is not finite
     /// ([`ImportError::NonFinite`]).
     pub fn new(rest: &Mesh, points: &[Point]) -> Result<Self, ImportError> {
-        if let Some(index) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
-            return Err(ImportError::NonFinite { what: "point", index });
-        }
-        // Located on the mesh and points scaled by the power of two that brings the mesh's
-        // largest coordinate into [1, 2) (exact; barycentric weights do not change), so
-        // products of its coordinates neither overflow nor underflow.
-        let k = normalising_exponent(rest.positions().iter().copied());
-        let scale = |p: &Point| p.map(|x| scale_by_power_of_two(x, k));
-        let positions: Vec<Point> = rest.positions().iter().map(scale).collect();
-        let tree = Tree::new(&positions, rest.triangles());
-        let locations = points.iter().map(|p| tree.locate(&positions, rest.triangles(), *p, k)).collect();
+        let triangles = rest.triangles();
+        let locations = locate(rest, points)?.into_iter().map(|(t, w)| (triangles[t as usize], w)).collect();
         Ok(Self { vertex_count: rest.vertex_count(), locations })
     }
 
@@ -91,6 +82,25 @@ impl PointMapper {
             })
             .collect()
     }
+}
+
+/// Where each of `points` sits in `rest`: its triangle (the one containing it, or the
+/// nearest for a point outside; of equally near ones the smallest index) and its
+/// barycentric coordinates there, extrapolated outside (negative ones then), the location
+/// [`PointMapper`] and DefOp's carried rigs (`defop::carry`) share. O((m + n) log m).
+/// Refuses a point with a coordinate that is not finite ([`ImportError::NonFinite`]).
+pub(crate) fn locate(rest: &Mesh, points: &[Point]) -> Result<Vec<(u32, [f64; 3])>, ImportError> {
+    if let Some(index) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+        return Err(ImportError::NonFinite { what: "point", index });
+    }
+    // Located on the mesh and points scaled by the power of two that brings the mesh's
+    // largest coordinate into [1, 2) (exact; barycentric weights do not change), so
+    // products of its coordinates neither overflow nor underflow.
+    let k = normalising_exponent(rest.positions().iter().copied());
+    let scale = |p: &Point| p.map(|x| scale_by_power_of_two(x, k));
+    let positions: Vec<Point> = rest.positions().iter().map(scale).collect();
+    let tree = Tree::new(&positions, rest.triangles());
+    Ok(points.iter().map(|p| tree.locate(&positions, rest.triangles(), *p, k)).collect())
 }
 
 /// Maps `points` from `rest` to `deformed` in one go (see [`PointMapper`]).
@@ -233,7 +243,7 @@ impl Tree {
 
     /// The triangle of `point` (as given; `k` scales it like `positions`) and its
     /// barycentric coordinates there.
-    fn locate(&self, positions: &[Point], triangles: &[[u32; 3]], point: Point, k: i32) -> ([u32; 3], [f64; 3]) {
+    fn locate(&self, positions: &[Point], triangles: &[[u32; 3]], point: Point, k: i32) -> (u32, [f64; 3]) {
         let p = point.map(|x| scale_by_power_of_two(x, k));
         // A point more than 2^900 times the mesh's size away is looked for along its
         // direction at 2^900 (there the mesh is a dot: every triangle is as near as rounding
@@ -245,10 +255,10 @@ impl Tree {
         } else {
             p
         };
-        let tri = triangles[self.nearest(positions, triangles, probe)];
-        let [a, b, c] = tri.map(|i| positions[i as usize]);
+        let t = self.nearest(positions, triangles, probe);
+        let [a, b, c] = triangles[t].map(|i| positions[i as usize]);
         let whole = orient(a, b, c);
-        (tri, [orient(b, c, p) / whole, orient(c, a, p) / whole, orient(a, b, p) / whole])
+        (t as u32, [orient(b, c, p) / whole, orient(c, a, p) / whole, orient(a, b, p) / whole])
     }
 }
 

@@ -12,8 +12,8 @@ use super::read::{self, Options};
 use super::{flat, limits, object, pairs};
 use crate::defop::sampling::{Region, Sampling};
 use crate::defop::{
-    read_operator, write_operator_in, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
-    Precision, Progress, SinglePrecision, Start, TrainError, TrainOptions, Trainer,
+    handles_on, read_operator, simulation_mesh, write_operator_in, BasisKind, Energy, GroundTruth, GroundTruthOptions,
+    Handles, MeshPoint, Operator, Precision, Progress, SinglePrecision, Start, TrainError, TrainOptions, Trainer,
 };
 use crate::deform::Puppet;
 use crate::mesh::Mesh;
@@ -527,6 +527,51 @@ impl JsDefOp {
         self.operator.vertex_count()
     }
 
+    /// The vertices of the coarse mesh it was trained on, for a rig carried to a fine mesh
+    /// (`carryTo`); undefined otherwise.
+    #[wasm_bindgen(getter, js_name = trainedVertexCount)]
+    pub fn trained_vertex_count(&self) -> Option<usize> {
+        self.operator.carried().map(|_| self.operator.trained_vertex_count())
+    }
+
+    /// For a rig carried to a fine mesh: the operator as trained, a `DefOp` of the coarse
+    /// mesh and its handles (to solve a ground truth there); undefined otherwise.
+    pub fn trained(&self) -> Option<JsDefOp> {
+        let carried = self.operator.carried()?;
+        Some(Self::new(carried.mesh().clone(), self.operator.uncarried()))
+    }
+
+    /// For a rig carried to a fine mesh: a pose of the coarse mesh (`Float64Array`, 2 per
+    /// coarse vertex) carried to the fine mesh as the rig's poses are.
+    #[wasm_bindgen(js_name = carryPose)]
+    pub fn carry_pose(&self, coarse: JsValue) -> Result<Vec<f64>, BindingError> {
+        let carried = self
+            .operator
+            .carried()
+            .ok_or_else(|| BindingError::argument("this DefOp is not carried to a fine mesh"))?;
+        let coarse = read::float64s(&coarse, "coarse", 2 * limits().max_vertices)?;
+        Ok(carried.carry_pose(&coarse).map_err(TrainError::from)?)
+    }
+
+    /// This operator, trained on its (coarse) mesh with its handles where `defopSimulation`
+    /// put the fine handles, carried to the fine mesh (`Float64Array` positions,
+    /// `Uint32Array` triangles) with the handles at those points of it (`Uint32Array`
+    /// triangles, `Float64Array` barycentric coordinates, 3 each): a new `DefOp` of the fine
+    /// mesh, evaluated as the coarse pose interpolated. This one is left as it is.
+    #[wasm_bindgen(js_name = carryTo)]
+    pub fn carry_to(
+        &self,
+        positions: JsValue,
+        triangles: JsValue,
+        handle_triangles: JsValue,
+        barycentric: JsValue,
+    ) -> Result<JsDefOp, BindingError> {
+        let fine = read_mesh(&positions, &triangles)?;
+        let handles = point_handles(&handle_triangles, &barycentric)?;
+        let operator = self.operator.clone().carried_to(&self.mesh, &fine, &handles).map_err(TrainError::from)?;
+        Ok(Self::new(fine, operator))
+    }
+
     /// The parts of the puppet the operator was trained on (`[{ name, triangles, depth }]`),
     /// or undefined for one shape.
     #[wasm_bindgen(getter)]
@@ -546,6 +591,41 @@ impl JsDefOp {
             None => Ok(JsValue::UNDEFINED),
         }
     }
+}
+
+/// The coarse simulation mesh of a fine mesh (`Float64Array` positions, `Uint32Array`
+/// triangles) with about `vertices` vertices, and the fine mesh's handles (points in its
+/// triangles: `Uint32Array` triangles, `Float64Array` barycentric coordinates) placed on it:
+/// `{ positions, triangles, handleTriangles, barycentric }`, what to train on before
+/// `DefOp.carryTo` carries the rig back to the fine mesh.
+#[wasm_bindgen(js_name = defopSimulation)]
+pub fn simulation(
+    positions: JsValue,
+    triangles: JsValue,
+    handle_triangles: JsValue,
+    barycentric: JsValue,
+    vertices: JsValue,
+) -> Result<JsValue, BindingError> {
+    let fine = read_mesh(&positions, &triangles)?;
+    let handles = point_handles(&handle_triangles, &barycentric)?;
+    let vertices = read::count(&vertices, "vertices", limits().max_vertices)?;
+    let options = crate::TriangulationOptions::default();
+    let coarse = simulation_mesh(&fine, vertices, &options).map_err(TrainError::from)?;
+    let placed = handles_on(&coarse, &fine, &handles).map_err(TrainError::from)?;
+    let (mut handle_triangles, mut weights) = (Vec::with_capacity(placed.len()), Vec::with_capacity(3 * placed.len()));
+    for point in placed {
+        if let MeshPoint::Inside { triangle, barycentric } = point {
+            handle_triangles.push(triangle);
+            weights.extend_from_slice(&barycentric);
+        }
+    }
+    Ok(object(&[
+        ("positions", flat(coarse.positions()).into()),
+        ("triangles", js_sys::Uint32Array::from(coarse.triangles().as_flattened()).into()),
+        ("handleTriangles", js_sys::Uint32Array::from(handle_triangles.as_slice()).into()),
+        ("barycentric", js_sys::Float64Array::from(weights.as_slice()).into()),
+    ])?
+    .into())
 }
 
 /// A ground-truth solver for a worker of a `DefOpTrainer`: made from the same mesh, handles

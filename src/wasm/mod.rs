@@ -27,7 +27,7 @@ mod read;
 mod session;
 
 pub use animation::{animation_from_json, animation_to_json, sprite_sheet_table, zip_files, JsAnimationEncoder};
-pub use defop::{ground_truth, JsDefOp, JsDefOpSolver, JsDefOpTrainer};
+pub use defop::{ground_truth, simulation, JsDefOp, JsDefOpSolver, JsDefOpTrainer};
 pub use deformer::{check_stiffness, deformer_orders, JsDeformer};
 pub use error::BindingError;
 pub use import::{

@@ -14,6 +14,7 @@ import {
   DefOpSolver,
   DefOpTrainer,
   defaultShape,
+  defopSimulation,
   groundTruth,
   importPuppet,
   init,
@@ -217,6 +218,49 @@ describe("DefOp", () => {
       /joints were given without parts/,
     );
     [op, again].forEach((o) => o.free());
+  });
+
+  it("carries a rig trained on a simulation mesh to the fine mesh, whose file keeps it", () => {
+    const fine = triangulate(defaultShape(), { targetEdgeLength: 0.025 });
+    // Three handles in fine triangles: the first, the middle and the last.
+    const triangles = [0, Math.floor(fine.triangleCount / 2), fine.triangleCount - 1];
+    const handles = { triangles, barycentric: triangles.flatMap(() => [0.2, 0.3, 0.5]) };
+    const sim = defopSimulation(fine, handles, 300);
+    const coarseCount = sim.positions.length / 2;
+    expect(coarseCount).toBeLessThan(fine.vertexCount / 3);
+    expect(sim.handles.triangles.length).toBe(3);
+    const trainer = new DefOpTrainer(sim.positions, sim.triangles, sim.handles, { energy: "arap", samples: 8 });
+    while (trainer.advance(50).stage !== "done");
+    const coarse = trainer.finish();
+    const carried = coarse.carryTo(fine, handles);
+    expect([carried.vertexCount, carried.handleCount, carried.trainedVertexCount]).toEqual([
+      fine.vertexCount,
+      3,
+      coarseCount,
+    ]);
+    expect(coarse.trainedVertexCount).toBeUndefined();
+    // Its pose is the coarse pose carried to the fine mesh, through the file too.
+    const rest = [...sim.handles.triangles].flatMap((t, h) =>
+      [0, 1].map((c) =>
+        [0, 1, 2].reduce(
+          (sum, k) => sum + sim.handles.barycentric[3 * h + k]! * sim.positions[2 * sim.triangles[3 * t + k]! + c]!,
+          0,
+        ),
+      ),
+    );
+    const moved = Float64Array.from(rest, (x, i) => x + (i === 0 ? 0.1 : 0));
+    const pose = carried.evaluate(moved);
+    expect(pose).toEqual(carried.carryPose(coarse.evaluate(moved)));
+    const trained = carried.trained()!;
+    expect(trained.vertexCount).toBe(coarseCount);
+    expect(trained.evaluate(moved)).toEqual(coarse.evaluate(moved));
+    const bytes = carried.toBytes();
+    const read = DefOp.fromBytes(bytes);
+    expect(read.mesh().positions).toEqual(fine.positions);
+    expect(read.evaluate(moved)).toEqual(pose);
+    expect(() => readOperatorFile(bytes)).toThrow(/carried from a coarse mesh/);
+    expect(() => coarse.carryTo(fine, { triangles: [1, 2, 3], barycentric: handles.barycentric })).toThrow(/handle 0/);
+    for (const op of [coarse, carried, trained, read]) op.free();
   });
 
   it("reads a version-1 operator file, with and without wasm", () => {

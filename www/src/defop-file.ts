@@ -59,6 +59,8 @@ const MAGIC = "AKAPDEFO";
 /** The header of versions 1 to 3, and of version 4. */
 const HEADER_BEFORE_4 = 48;
 const HEADER = 80;
+/** The tag of the carried section (Rust's `defop::file`). */
+const CARRIED = "AKAPFINE";
 
 /** FNV-1a, 64 bits, of `bytes`, in two 32-bit halves (high, low). */
 function fnv1a(bytes: Uint8Array): [number, number] {
@@ -255,8 +257,10 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
     2 * width * phi * psi +
     (reduced ? width * phi * nv : 0) +
     8;
-  // A puppet's section follows, its length read from it.
-  if (hasPuppet ? bytes.length < expected + 8 : bytes.length !== expected)
+  // A puppet's section follows, its length read from it. A rig carried to a fine mesh has
+  // its carried section next (refused below).
+  const carried = (at: number) => String.fromCharCode(...bytes.subarray(at, at + 8)) === CARRIED;
+  if (hasPuppet ? bytes.length < expected + 8 : bytes.length !== expected && !carried(expected - 8))
     fail(`${bytes.length} bytes where its counts need ${expected}`);
   const [hi, lo] = fnv1a(bytes.subarray(0, bytes.length - 8));
   if (u32(bytes.length - 8) !== lo || u32(bytes.length - 4) !== hi) fail("the checksum does not match");
@@ -288,6 +292,11 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   const coefficients = numbers(2 * phi * psi);
   const reduction = reduced ? numbers(phi * nv) : undefined;
   const puppet = hasPuppet ? readPuppet() : undefined;
+  if (at < bytes.length - 8 && carried(at))
+    fail(
+      "it holds a rig carried from a coarse mesh to a fine one (its AKAPFINE section), " +
+        "which this reader does not pose: read it with DefOp.fromBytes",
+    );
   if (at !== bytes.length - 8) fail(`${bytes.length} bytes where its counts need ${at + 8}`);
   /** The puppet's section (Rust's layout): parts, joints, each part, each joint. */
   function readPuppet() {

@@ -366,6 +366,43 @@ export class DefOp {
     return this.#raw.vertexCount;
   }
 
+  /** For a rig carried to a fine mesh ({@link carryTo}): the vertices of the coarse mesh
+   * it was trained on; `undefined` otherwise. */
+  get trainedVertexCount(): number | undefined {
+    return this.#raw.trainedVertexCount;
+  }
+
+  /** For a rig carried to a fine mesh: the operator as trained, of the coarse mesh and its
+   * handles (a new DefOp to free); `undefined` otherwise. */
+  trained(): DefOp | undefined {
+    const inner = this.#raw.trained();
+    if (!inner) return undefined;
+    adopting = inner;
+    return new DefOp();
+  }
+
+  /** For a rig carried to a fine mesh: a pose of the coarse mesh (2 per coarse vertex)
+   * carried to the fine mesh as the rig's poses are. */
+  carryPose(coarse: Coordinates): Float64Array {
+    return this.#raw.carryPose(toFloat64(coarse, "coarse"));
+  }
+
+  /**
+   * This operator, trained on a coarse mesh (its own) with the handles {@link defopSimulation}
+   * placed there, carried to the fine mesh `mesh` with the handles at `handles` (points in
+   * its triangles, as given to `defopSimulation`): a new DefOp of the fine mesh, posing it
+   * as the coarse pose interpolated (its file keeps both meshes). This one is unchanged.
+   */
+  carryTo(mesh: MeshData, handles: { triangles: Indices; barycentric: Coordinates }): DefOp {
+    adopting = this.#raw.carryTo(
+      mesh.positions,
+      mesh.triangles,
+      toUint32(handles.triangles, "handles.triangles"),
+      toFloat64(handles.barycentric, "handles.barycentric"),
+    );
+    return new DefOp();
+  }
+
   /** The parts of the puppet it was trained on (its file records them), or `undefined`
    * for one shape. */
   get parts(): PuppetSheet[] | undefined {
@@ -430,6 +467,40 @@ export class DefOpSolver {
     this.#inner?.free();
     this.#inner = undefined;
   }
+}
+
+/** A coarse simulation mesh, with the fine mesh's handles placed on it ({@link defopSimulation}). */
+export interface DefOpSimulation {
+  positions: Float64Array;
+  triangles: Uint32Array;
+  /** The handles as points of the coarse mesh, in the order given. */
+  handles: { triangles: Uint32Array; barycentric: Float64Array };
+}
+
+/**
+ * The coarse mesh to train a large shape's rig on: `mesh`'s outline simplified (to an
+ * eighth of the coarse edge length) and meshed to about `vertices` vertices, with the
+ * handles (points in `mesh`'s triangles) placed on it. Train there, then carry the rig
+ * back with {@link DefOp.carryTo}: training time no longer grows with the fine mesh.
+ */
+export function defopSimulation(
+  mesh: MeshData,
+  handles: { triangles: Indices; barycentric: Coordinates },
+  vertices: number,
+): DefOpSimulation {
+  assertLoaded();
+  const out = raw.defopSimulation(
+    mesh.positions,
+    mesh.triangles,
+    toUint32(handles.triangles, "handles.triangles"),
+    toFloat64(handles.barycentric, "handles.barycentric"),
+    vertices,
+  ) as { positions: Float64Array; triangles: Uint32Array; handleTriangles: Uint32Array; barycentric: Float64Array };
+  return {
+    positions: out.positions,
+    triangles: out.triangles,
+    handles: { triangles: out.handleTriangles, barycentric: out.barycentric },
+  };
 }
 
 /**

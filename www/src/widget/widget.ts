@@ -912,6 +912,7 @@ export class Widget {
     this.#stage.render(this.#posing, this.#settings, {
       field: this.#frames.lastField,
       ghost: this.#rigs.comparison?.positions,
+      flipped: this.#frames.metrics.flipped,
       brushAt: this.#pointer.at,
       boneDraft: this.#pointer.boneDraft,
       jointDraft: this.#pointer.jointDraft,

@@ -10,6 +10,21 @@ import type { MeshData, PuppetJoint } from "../../core.js";
 import { pointPosition, type MeshPoint } from "./picking.js";
 import type { Shape } from "./shape.js";
 
+/**
+ * Shapes of more vertices than this are trained on a coarse simulation mesh of
+ * {@link SIMULATION_VERTICES} (`defopSimulation`) and the rig carried to their own mesh
+ * (`DefOp.carryTo`), so that training time does not grow with the shape's mesh. Puppets
+ * are trained on their own mesh whatever its size.
+ */
+export const LARGE_SHAPE_VERTICES = 4000;
+/** The simulation mesh's size, about, for a shape of more than {@link LARGE_SHAPE_VERTICES}. */
+export const SIMULATION_VERTICES = 2000;
+
+/** The simulation mesh's size a rig for `shape` is trained on, or undefined: its own mesh. */
+export function simulationVertices(shape: Shape): number | undefined {
+  return !shape.puppet && shape.mesh.vertexCount > LARGE_SHAPE_VERTICES ? SIMULATION_VERTICES : undefined;
+}
+
 /** Training options a widget takes: the trainer's, without the ones for other tools. */
 export type RigTrainOptions = Pick<
   DefOpTrainerOptions,
@@ -161,22 +176,28 @@ function sameMesh(a: MeshData, b: MeshData): boolean {
 }
 
 /**
- * The cache key of a training: SHA-256 of the rest mesh, the handle points and the
- * options, as hex; undefined where the browser has no `crypto.subtle` (pages not served
- * securely), and then nothing is cached.
+ * The cache key of a training: SHA-256 of the rest mesh, the handle points, the options,
+ * a puppet's joints and the size of the simulation mesh it is trained on (if not its own),
+ * as hex; undefined where the browser has no `crypto.subtle` (pages not served securely),
+ * and then nothing is cached.
  */
 export async function rigKey(
   mesh: MeshData,
   points: readonly MeshPoint[],
   options: RigTrainOptions,
   joints?: readonly PuppetJoint[],
+  simulation?: number,
 ): Promise<string | undefined> {
   const subtle = globalThis.crypto?.subtle;
   if (!subtle) return undefined;
   const handles = new Float64Array(points.flatMap((p) => [p.triangle, ...p.barycentric]));
   const keys = Object.keys(options).sort() as (keyof RigTrainOptions)[];
   const settings = new TextEncoder().encode(
-    JSON.stringify([...keys.map((k): unknown[] => [k, options[k]]), ...(joints ? [["joints", joints]] : [])]),
+    JSON.stringify([
+      ...keys.map((k): unknown[] => [k, options[k]]),
+      ...(joints ? [["joints", joints]] : []),
+      ...(simulation === undefined ? [] : [["simulation", simulation]]),
+    ]),
   );
   const parts = [mesh.positions, mesh.triangles, handles, settings];
   const length = parts.reduce((sum, p) => sum + p.byteLength + 8, 0);

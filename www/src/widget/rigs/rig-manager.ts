@@ -9,7 +9,8 @@ import { solveGroundTruth, trainDefOp, type TrainProgress } from "../../defop-po
 import { coded } from "../../internal/arrays.js";
 import { newHandle, type Posing } from "../model/posing.js";
 import { shapeFromMesh } from "../model/shape.js";
-import { Rig, rigKey, spatialFor, type RigTrainOptions } from "../model/rig.js";
+import { Rig, rigKey, simulationVertices, spatialFor, type RigTrainOptions } from "../model/rig.js";
+import { defopSimulation, type DefOp } from "../../defop.js";
 import { RigCache } from "./rig-cache.js";
 import { fetchFile } from "../shapes/shape-files.js";
 import type { BusyIndicator } from "../view/busy-indicator.js";
@@ -42,6 +43,9 @@ export interface RigInfo {
   sampling: "disc" | "voronoi" | "mixed" | undefined;
   /** Largest vertex distance between the rig's pose and the ground truth, as a fraction of the shape's size, once compared. */
   comparison: number | undefined;
+  /** For a large shape's rig, trained on a coarse simulation mesh and carried to the
+   * shape's mesh: that mesh's vertices; undefined for a rig trained on the shape's mesh. */
+  simulation: number | undefined;
 }
 
 /** What the rig manager tells the widget. */
@@ -144,8 +148,10 @@ export class RigManager {
     if (signal?.aborted) abort();
     this.#training = controller;
     const cancel = () => controller.abort(new DOMException("training was cancelled; nothing changed", "AbortError"));
+    // A large shape trains on a coarse simulation mesh, and the rig is carried to its mesh.
+    const simulation = simulationVertices(shape);
     try {
-      const key = await rigKey(shape.mesh, points, training, puppet?.joints).catch(() => undefined);
+      const key = await rigKey(shape.mesh, points, training, puppet?.joints, simulation).catch(() => undefined);
       controller.signal.throwIfAborted();
       const cached = key && cache ? await this.#cache.load(key, shape.mesh, points).catch(() => undefined) : undefined;
       if (cached) {
@@ -153,10 +159,12 @@ export class RigManager {
         return cached;
       }
       indicator.update({ label: "Training the rig…", progress: 0, cancel });
+      const handles = { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) };
+      const coarse = simulation === undefined ? undefined : defopSimulation(shape.mesh, handles, simulation);
       const trained = await trainDefOp(
-        shape.mesh.positions,
-        shape.mesh.triangles,
-        { triangles: points.map((p) => p.triangle), barycentric: points.flatMap((p) => p.barycentric) },
+        coarse?.positions ?? shape.mesh.positions,
+        coarse?.triangles ?? shape.mesh.triangles,
+        coarse?.handles ?? handles,
         { ...training, ...puppet },
         {
           workers,
@@ -168,7 +176,15 @@ export class RigManager {
           },
         },
       );
-      const rig = new Rig(trained.operator, shape.mesh, points, {
+      let operator = trained.operator;
+      if (coarse) {
+        try {
+          operator = operator.carryTo(shape.mesh, handles);
+        } finally {
+          trained.operator.free();
+        }
+      }
+      const rig = new Rig(operator, shape.mesh, points, {
         radius: trained.radius,
         options: training,
         source: "trained",
@@ -199,7 +215,8 @@ export class RigManager {
     const { shape, handles } = this.#host.posing;
     if (handles.length === 0) return false;
     const points = handles.map((h) => h.point);
-    const key = await rigKey(shape.mesh, points, options, shape.puppet ? this.#host.posing.joints : undefined);
+    const joints = shape.puppet ? this.#host.posing.joints : undefined;
+    const key = await rigKey(shape.mesh, points, options, joints, simulationVertices(shape));
     const rig = key ? await this.#cache.load(key, shape.mesh, points) : undefined;
     if (rig) this.adopt(rig);
     return rig !== undefined;
@@ -223,16 +240,23 @@ export class RigManager {
     this.#comparing = controller;
     const targets = posing.targets();
     const pose = posing.deformer.positions();
+    // A rig carried from a simulation mesh is compared there: the ground truth solved on
+    // the coarse mesh and carried to the shape's mesh as the rig's poses are.
+    let trained: DefOp | undefined;
     try {
-      const truth = await solveGroundTruth(
-        rig.mesh.positions,
-        rig.mesh.triangles,
-        { triangles: rig.points.map((p) => p.triangle), barycentric: rig.points.flatMap((p) => p.barycentric) },
-        targets,
-        // The rig's own energy (its file keeps it), not the default.
-        { energy: rig.energy, signal: controller.signal },
-      );
+      trained = rig.operator.trained();
+      const mesh = trained?.mesh() ?? rig.mesh;
+      const handles = trained?.handlePoints() ?? {
+        triangles: rig.points.map((p) => p.triangle),
+        barycentric: rig.points.flatMap((p) => p.barycentric),
+      };
+      // The rig's own energy (its file keeps it), not the default.
+      const truth = await solveGroundTruth(mesh.positions, mesh.triangles, handles, targets, {
+        energy: rig.energy,
+        signal: controller.signal,
+      });
       if (controller.signal.aborted) return;
+      if (trained) truth.positions = rig.operator.carryPose(truth.positions);
       let far = 0;
       for (let v = 0; v < pose.length; v += 2) {
         far = Math.max(far, Math.hypot(pose[v]! - truth.positions[v]!, pose[v + 1]! - truth.positions[v + 1]!));
@@ -243,6 +267,7 @@ export class RigManager {
       this.comparison = undefined;
       this.#host.info(`The ground truth could not be solved for this pose: ${(error as Error).message}`);
     } finally {
+      trained?.free();
       if (this.#comparing === controller) this.#comparing = undefined;
     }
     this.#host.changed();
@@ -262,6 +287,7 @@ export class RigManager {
       energy: rig?.energy,
       sampling: rig ? (rig.training?.sampling ?? "disc") : undefined,
       comparison: this.comparison?.distance,
+      simulation: rig?.operator.trainedVertexCount,
     };
   }
 
@@ -281,10 +307,12 @@ export class RigManager {
     const what = known
       ? `${samples === undefined ? "" : `${samples} samples, `}${rig.energy === "arap" ? "ARAP" : "S-ARAP"}${sampling}`
       : "from a file";
+    const coarse = rig.operator.trainedVertexCount;
+    const carried = coarse === undefined ? "" : `, trained on ${coarse} vertices`;
     const compare = this.comparison
       ? `; ground truth ${(100 * this.comparison.distance).toFixed(2)}% of the size away`
       : "";
-    return `rig: ${what}${rig.source === "cache" ? " (cached)" : ""}${compare}`;
+    return `rig: ${what}${carried}${rig.source === "cache" ? " (cached)" : ""}${compare}`;
   }
 
   destroy(): void {

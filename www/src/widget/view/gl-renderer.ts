@@ -289,7 +289,10 @@ export class GlRenderer implements MeshRenderer {
       return;
     }
     const scratch = this.#positions;
-    for (let i = 0; i < scratch.length; i++) scratch[i] = positions[i]!;
+    // A typed array converts natively (a JavaScript loop over 100,000 numbers costs about
+    // a millisecond at 50,000 vertices).
+    if (positions instanceof Float64Array && positions.length === scratch.length) scratch.set(positions);
+    else for (let i = 0; i < scratch.length; i++) scratch[i] = positions[i]!;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.#positionBuffer);
     gl.bufferSubData(gl.ARRAY_BUFFER, 0, scratch);
   }

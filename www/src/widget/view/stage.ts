@@ -43,6 +43,9 @@ export interface Extras {
   touch?: boolean;
   /** A joint being moved with the joint tool: its index and where the pointer has it (shape units). */
   jointDraft?: { index: number; at: [number, number] } | undefined;
+  /** Triangles flipped in the pose, as its metrics counted them: with 0 the overlay does not
+   * look for them (at 50,000 vertices the look costs a millisecond a frame). */
+  flipped?: number;
 }
 
 /**
@@ -360,7 +363,7 @@ export class Stage {
       boundaryEdges: shape.mesh.boundaryEdges,
       handles,
       field: withHandles && settings.field ? extras.field : undefined,
-      showFlipped: settings.flipped && !watched,
+      showFlipped: settings.flipped && !watched && (extras.flipped ?? 1) > 0,
       regions,
       ghost: rig && settings.compare ? extras.ghost : undefined,
       cage,
