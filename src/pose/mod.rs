@@ -771,13 +771,18 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Poses the rig on the GPU (`on`) or on the CPU: on the GPU each frame computes the
     /// rig's frame ([`Self::rig_gpu`]) and the deformer's positions wait for
-    /// [`Self::settle`]. Returns whether the rig is on the GPU now (never without a rig; a
-    /// new rig starts on the CPU).
+    /// [`Self::settle`]. Returns whether the rig is on the GPU now (never without a rig, nor
+    /// for a rig carried from a coarse mesh; a new rig starts on the CPU).
     pub fn set_rig_on_gpu(&mut self, on: bool) -> Result<bool, DeformError> {
         if !on {
             self.settle()?;
         }
         let Some(rig) = &mut self.rig else { return Ok(false) };
+        // A rig carried from a coarse mesh poses the fine one by interpolation, which the
+        // vertex shader does not do: it stays on the CPU.
+        if on && rig.operator.carried().is_some() {
+            return Ok(false);
+        }
         match (on, rig.gpu.is_some()) {
             (true, false) => {
                 rig.gpu = Some(GpuRig::new(&rig.operator));
