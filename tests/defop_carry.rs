@@ -292,3 +292,43 @@ fn carrying_refuses_what_does_not_fit() {
     let carried = operator.carried_to(&coarse, &fine, &handles).unwrap();
     assert!(matches!(carried.carried_to(&coarse, &fine, &handles), Err(FitError::Carry { .. })));
 }
+
+/// `simulation` snaps handles onto vertices of the simulation mesh: each handle that is a
+/// vertex sits exactly at the fine handle's rest position, no two handles share a vertex,
+/// every coarse triangle stays counter-clockwise, and a rig trained there carries back to
+/// the fine mesh with the fine handles.
+#[test]
+fn simulation_snaps_handles_onto_its_vertices() {
+    let (fine, _, handles) = meshes();
+    let (coarse, placed) = akap::defop::simulation(&fine, &handles, 400, &TriangulationOptions::default()).unwrap();
+    assert_eq!(placed.len(), handles.len());
+    let at = |mesh: &Mesh, h: &MeshPoint| match *h {
+        MeshPoint::Vertex(v) => mesh.positions()[v as usize],
+        MeshPoint::Inside { triangle, barycentric } => {
+            let c = mesh.triangles()[triangle as usize].map(|v| mesh.positions()[v as usize]);
+            [0, 1].map(|k| barycentric[0] * c[0][k] + barycentric[1] * c[1][k] + barycentric[2] * c[2][k])
+        }
+    };
+    let vertices: Vec<u32> =
+        placed.iter().filter_map(|h| if let MeshPoint::Vertex(v) = h { Some(*v) } else { None }).collect();
+    assert!(vertices.len() >= 2, "most handles snap: {placed:?}");
+    let mut unique = vertices.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    assert_eq!(unique.len(), vertices.len(), "no vertex holds two handles");
+    for (h, p) in handles.iter().zip(&placed) {
+        if matches!(p, MeshPoint::Vertex(_)) {
+            assert_eq!(at(&coarse, p), at(&fine, h), "a snapped handle is exactly at its fine position");
+        } else {
+            assert!(dist(at(&coarse, p), at(&fine, h)) < 1e-9 * diagonal(&fine));
+        }
+    }
+    for t in coarse.triangles() {
+        assert!(coarse.signed_triangle_area(t) > 0.0);
+    }
+    // A rig trained there carries to the fine mesh with the fine handles (the carried
+    // operator's checks: the handles where the coarse operator's are).
+    let (operator, _) = coarse_operator(&coarse, &placed, false);
+    let carried = operator.carried_to(&coarse, &fine, &handles).unwrap();
+    assert_eq!((carried.vertex_count(), carried.trained_vertex_count()), (fine.vertex_count(), coarse.vertex_count()));
+}

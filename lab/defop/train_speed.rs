@@ -13,8 +13,11 @@
 //!
 //! ```sh
 //! cargo run --release --example train_speed -- [--vertices N] [--samples M] [--spatial K]
-//!     [--energy sarap|arap] [--tolerance T] [--no-cold]
+//!     [--energy sarap|arap] [--tolerance T] [--simulation S] [--no-cold]
 //! ```
+//! `--simulation S` trains on a simulation mesh of about S vertices with the handles
+//! snapped to its vertices (`defop::carry::simulation`), carried to the figure's mesh for
+//! the held-out error (as the widget trains a shape larger than its simulation size);
 //! `--tolerance` sets the training's ground-truth tolerance (default: the trainer's);
 //! `--no-cold` skips the cold baseline.
 
@@ -24,7 +27,7 @@ mod models;
 
 use std::time::Instant;
 
-use akap::defop::{Energy, Start, TrainOptions, Trainer};
+use akap::defop::{carry, Energy, MeshPoint, Start, TrainOptions, Trainer};
 use akap::geometry::Point;
 use akap::shapes;
 
@@ -59,7 +62,16 @@ fn main() {
     if let Some(t) = value("--tolerance") {
         options.ground_truth.tolerance = t.parse().expect("a tolerance");
     }
-    let (mesh, handles) = models::mesh_with_handles(&shapes::gingerbread(), vertices, &SPOTS);
+    let (fine, fine_handles) = models::mesh_with_handles(&shapes::gingerbread(), vertices, &SPOTS);
+    // With --simulation S: trained on a simulation mesh of about S vertices, the handles
+    // snapped to it, the operator carried to the figure's mesh (as the widget trains).
+    let simulation = number("--simulation", 0.0) as usize;
+    let (mesh, handles) = if simulation > 0 {
+        options.radius = Some(0.15 * models::diagonal(&fine));
+        carry::simulation(&fine, &fine_handles, simulation, &Default::default()).expect("the simulation mesh")
+    } else {
+        (fine.clone(), fine_handles.clone())
+    };
     let model = models::Model {
         name: "figure",
         mesh,
@@ -69,6 +81,15 @@ fn main() {
         hat_tps: false,
         note: "",
     };
+    if simulation > 0 {
+        let snapped = model.handles.iter().filter(|h| matches!(h, MeshPoint::Vertex(_))).count();
+        println!(
+            "simulation mesh: {} vertices, {} of {} handles on its vertices",
+            model.mesh.vertex_count(),
+            snapped,
+            model.handles.len()
+        );
+    }
     println!(
         "figure: {} vertices, {} triangles, {} handles; {:?}, {} samples, spatial {}, tolerance {:e}",
         model.mesh.vertex_count(),
@@ -104,7 +125,12 @@ fn main() {
     );
     // Full accuracy from here on: the cold baseline and the held-out truths.
     let full = TrainOptions { ground_truth: Default::default(), ..options.clone() };
-    trained.solver = Trainer::solver_for(&model.mesh, &model.handles, &full).expect("the solver");
+    trained.solver = Trainer::solver_for(&fine, &fine_handles, &full).expect("the solver");
+    let mut operator = trained.operator.clone();
+    if simulation > 0 {
+        operator = operator.carried_to(&model.mesh, &fine, &fine_handles).expect("carried to the figure's mesh");
+    }
+    let model = models::Model { mesh: fine, handles: fine_handles, ..model };
     if !args.iter().any(|a| a == "--no-cold") {
         let (start, mut iterations, mut failed) = (Instant::now(), 0, 0);
         for t in &trained.targets {
@@ -125,7 +151,7 @@ fn main() {
         );
     }
     let held = models::held_out(&model, &mut trained, 100);
-    let (rms, max) = models::error(&model, &mut trained.operator, &held);
+    let (rms, max) = models::error(&model, &mut operator, &held);
     println!(
         "held-out (100 targets, {} redrawn): RMS {:.3}%, max {:.3}% of the diagonal",
         held.redrawn,

@@ -11,6 +11,9 @@
 // and the rig's evaluation time. With --frames-only, the rig from the table poses without
 // training again (the frames alone: to compare builds).
 //   node lab/posing/bench-app.mjs --defop target/defop-table/manifest.json [--frames-only]
+// With --train: the app's default figure with nine handles, the widget's default training,
+// timed in the page on one worker and on one per core (the issue-36 training target).
+//   node lab/posing/bench-app.mjs --train
 // With --defop-large [VERTICES] (default 50000): a large shape posed by a rig trained on a
 // coarse simulation mesh and carried to the shape's mesh: the default figure meshed at
 // VERTICES (with --image, instead a 4096 x 4096 image drawn in the page, loaded as a file,
@@ -298,6 +301,61 @@ if (process.argv[2] === "--defop-large") {
       `| ${frames.length} | ${ms(stat(times, 0.5))} | ${ms(stat(times, 0.95))} | ${ms(Math.max(...times))} | ` +
         `${stat(evaluations, 0.5).toFixed(3)} | ${stat(evaluations, 0.95).toFixed(3)} |`,
     );
+  } finally {
+    await browser.close();
+    server.kill();
+  }
+  process.exit(0);
+}
+
+if (process.argv[2] === "--train") {
+  // The app's default figure and training options, nine handles spread over it (those of
+  // lab/defop/bench-defop.mjs and train_speed.rs), trained in the page with no cache on one
+  // worker and on one per core.
+  try {
+    const page = await browser.newPage({ viewport: { width: 1000, height: 800 } });
+    await page.goto(`http://127.0.0.1:${port}/?hud=false`);
+    await page.waitForFunction(() => document.body.dataset.ready === "true");
+    const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+    const model = await page.evaluate(() => {
+      const w = window.akapDemo.widget;
+      const spots = [
+        [-0.48, 1.2],
+        [0.45, 0.95],
+        [0, 1.25],
+        [0, 0.7],
+        [-0.2, 0.05],
+        [0.2, 0.05],
+        [-0.3, 0.6],
+        [0.3, 0.6],
+        [0, 0.4],
+      ];
+      // On the vertex nearest each spot (some spots are in the eyes or buttons).
+      const p = w.mesh.positions;
+      for (const [x, y] of spots) {
+        let [best, at] = [Infinity, 0];
+        for (let v = 0; v < p.length / 2; v++) {
+          const d = Math.hypot(p[2 * v] - x, p[2 * v + 1] - y);
+          if (d < best) [best, at] = [d, v];
+        }
+        w.addHandleAt(p[2 * at], p[2 * at + 1]);
+      }
+      return { vertices: w.vertexCount, handles: w.handleCount };
+    });
+    console.log(
+      `Chromium ${browser.version()}, ${cores} cores; the app's figure, ${model.vertices} vertices, ` +
+        `${model.handles} handles, the widget's default training`,
+    );
+    console.log("| workers | training s | simulation vertices |");
+    console.log("|---|---|---|");
+    for (const workers of [...new Set([1, cores])]) {
+      const result = await page.evaluate(async (workers) => {
+        const started = performance.now();
+        await window.akapDemo.widget.train({ workers, cache: false });
+        return { seconds: (performance.now() - started) / 1000, rig: window.akapDemo.widget.rig };
+      }, workers);
+      console.log(`| ${workers} | ${result.seconds.toFixed(1)} | ${result.rig?.simulation ?? "-"} |`);
+    }
   } finally {
     await browser.close();
     server.kill();

@@ -114,6 +114,57 @@ pub fn handles_on(coarse: &Mesh, fine: &Mesh, handles: &[MeshPoint]) -> Result<V
         .collect())
 }
 
+/// The least fraction of its area a coarse triangle keeps when [`simulation`] moves one of
+/// its corners onto a handle.
+const SNAP_AREA: f64 = 0.25;
+
+/// The simulation mesh of `fine` ([`simulation_mesh`]) with each handle on a vertex of it:
+/// the nearest coarse vertex not already a handle's moved onto the handle's rest position,
+/// unless that leaves one of its triangles with less than [`SNAP_AREA`] of its area (then
+/// the handle is a point of the mesh, as [`handles_on`] places it). A handle on a vertex is
+/// pinned by the ground truth, its unknowns eliminated; a handle inside a triangle costs
+/// two more sparse solves per Newton iteration (the range-space step), so on the figure
+/// with nine handles training on a snapped mesh takes about half the time.
+pub fn simulation(
+    fine: &Mesh,
+    handles: &[MeshPoint],
+    vertices: usize,
+    options: &TriangulationOptions,
+) -> Result<(Mesh, Vec<MeshPoint>), FitError> {
+    let coarse = simulation_mesh(fine, vertices, options)?;
+    let points = handle_positions(fine, handles)?;
+    let mut positions = coarse.positions().to_vec();
+    let mut around = vec![Vec::new(); positions.len()];
+    for (t, tri) in coarse.triangles().iter().enumerate() {
+        tri.iter().for_each(|&v| around[v as usize].push(t));
+    }
+    let area = |positions: &[Point], t: usize| {
+        let [a, b, c] = coarse.triangles()[t].map(|v| positions[v as usize]);
+        (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
+    };
+    let mut taken = vec![false; positions.len()];
+    let mut snapped = vec![None; points.len()];
+    for (k, &p) in points.iter().enumerate() {
+        let nearest = (0..positions.len())
+            .filter(|&v| !taken[v])
+            .min_by(|&a, &b| distance(positions[a], p).total_cmp(&distance(positions[b], p)));
+        let Some(v) = nearest else { continue };
+        let before: Vec<f64> = around[v].iter().map(|&t| area(&positions, t)).collect();
+        let old = std::mem::replace(&mut positions[v], p);
+        if around[v].iter().zip(&before).all(|(&t, &b)| area(&positions, t) >= SNAP_AREA * b) {
+            taken[v] = true;
+            snapped[k] = Some(v as u32);
+        } else {
+            positions[v] = old;
+        }
+    }
+    let coarse = Mesh::new(positions, coarse.triangles().to_vec())
+        .map_err(|e| carry_error(format!("the snapped simulation mesh is invalid: {e}")))?;
+    let placed = handles_on(&coarse, fine, handles)?;
+    let handles = snapped.iter().zip(placed).map(|(s, point)| s.map_or(point, MeshPoint::Vertex)).collect();
+    Ok((coarse, handles))
+}
+
 /// Where each vertex of a fine mesh sits in a coarse one: a coarse triangle and barycentric
 /// coordinates (extrapolated outside it; module documentation).
 #[derive(Debug, Clone, PartialEq)]

@@ -229,7 +229,7 @@ impl SignedSvd {
     pub fn new(j: &Jacobian) -> Self {
         let [[a, b], [c, d]] = *j;
         let (e, f, g, h) = ((a + d) / 2.0, (a - d) / 2.0, (c + b) / 2.0, (c - b) / 2.0);
-        let (q, r) = (libm::hypot(e, h), libm::hypot(f, g));
+        let (q, r) = (hypot(e, h), hypot(f, g));
         let sigma_1 = q + r;
         let det = a * d - b * c;
         let sigma_2 = if sigma_1 > 0.0 { (det / sigma_1).clamp(-sigma_1, sigma_1) } else { 0.0 };
@@ -244,6 +244,19 @@ impl SignedSvd {
     /// The angle of `V` in `J = U diag(Σ, σ) V^T`.
     pub fn v_angle(&self) -> f64 {
         (libm::atan2(self.g, self.f) - libm::atan2(self.h, self.e)) / 2.0
+    }
+}
+
+/// `√(x² + y²)` by the square root of IEEE 754, which is exactly rounded on every platform
+/// (so the same bits natively and in wasm, where `libm::hypot` is a software routine that
+/// cost the ground truth's Newton iterations a large share of their time), when `x² + y²`
+/// is a normal number; else (zero, subnormal or overflowed) `libm::hypot`.
+fn hypot(x: f64, y: f64) -> f64 {
+    let s = x * x + y * y;
+    if s.is_normal() {
+        s.sqrt()
+    } else {
+        libm::hypot(x, y)
     }
 }
 

@@ -51,7 +51,7 @@ pub mod train;
 pub mod training;
 
 pub use basis::{BasisKind, HandleBasis};
-pub use carry::{handles_on, simulation_mesh, Carried, Embedding};
+pub use carry::{handles_on, simulation, simulation_mesh, Carried, Embedding};
 pub use coordinates::{HandleCoordinates, Rigid};
 pub use energy::{Energy, RestTriangle, SignedSvd};
 pub use file::{read_operator, write_operator, write_operator_in, OperatorFileError, Precision};

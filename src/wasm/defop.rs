@@ -12,8 +12,8 @@ use super::read::{self, Options};
 use super::{flat, limits, object, pairs};
 use crate::defop::sampling::{Region, Sampling};
 use crate::defop::{
-    handles_on, read_operator, simulation_mesh, write_operator_in, BasisKind, Energy, GroundTruth, GroundTruthOptions,
-    Handles, MeshPoint, Operator, Precision, Progress, SinglePrecision, Start, TrainError, TrainOptions, Trainer,
+    read_operator, write_operator_in, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
+    Precision, Progress, SinglePrecision, Start, TrainError, TrainOptions, Trainer,
 };
 use crate::deform::Puppet;
 use crate::mesh::Mesh;
@@ -610,14 +610,20 @@ pub fn simulation(
     let handles = point_handles(&handle_triangles, &barycentric)?;
     let vertices = read::count(&vertices, "vertices", limits().max_vertices)?;
     let options = crate::TriangulationOptions::default();
-    let coarse = simulation_mesh(&fine, vertices, &options).map_err(TrainError::from)?;
-    let placed = handles_on(&coarse, &fine, &handles).map_err(TrainError::from)?;
+    let (coarse, placed) = crate::defop::simulation(&fine, &handles, vertices, &options).map_err(TrainError::from)?;
     let (mut handle_triangles, mut weights) = (Vec::with_capacity(placed.len()), Vec::with_capacity(3 * placed.len()));
     for point in placed {
-        if let MeshPoint::Inside { triangle, barycentric } = point {
-            handle_triangles.push(triangle);
-            weights.extend_from_slice(&barycentric);
-        }
+        let (triangle, barycentric) = match point {
+            MeshPoint::Inside { triangle, barycentric } => (triangle, barycentric),
+            // A handle on a vertex: a triangle using it, weight 1 at that corner.
+            MeshPoint::Vertex(v) => {
+                let (t, corners) =
+                    coarse.triangles().iter().enumerate().find(|(_, t)| t.contains(&v)).expect("every vertex is used");
+                (t as u32, corners.map(|c| if c == v { 1.0 } else { 0.0 }))
+            }
+        };
+        handle_triangles.push(triangle);
+        weights.extend_from_slice(&barycentric);
     }
     Ok(object(&[
         ("positions", flat(coarse.positions()).into()),
