@@ -213,7 +213,8 @@ fn a_rig_poses_with_the_operators_evaluation_once_per_new_set_of_targets() {
     assert_eq!(bits_of(&posed), bits_of(&expected));
     assert_eq!(poser.advance().unwrap().steps, 0, "the same targets: nothing to evaluate");
     let session = poser.stop_recording().unwrap();
-    assert!(matches!(session.events.last(), Some(Event::Positions(p)) if bits_of(p) == bits_of(&expected)));
+    // Recorded as the targets the pose is for (the rig named before; `pose_rig.rs`).
+    assert!(matches!(session.events.last(), Some(Event::RigPose(t)) if bits_of(t) == bits_of(targets.as_flattened())));
     // A rig of other counts is refused.
     poser.set_handle_vertices(&[0]).unwrap();
     assert!(!poser.has_rig(), "a new handle set drops the rig");

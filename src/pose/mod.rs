@@ -22,8 +22,16 @@
 //! Each plain step taken is recorded, when a recording runs, as it was taken (a guarded
 //! step's pieces each as its own `step` or `turn` event), so that a replay repeats it to
 //! the bit; so are the handles, poses, options, stiffness and bones set through the poser.
+//!
+//! With a trained rig ([`Poser::set_rig`]) a frame is the rig's pose for the targets; with
+//! [`Tracking::no_foldovers`] the targets are pulled back along the way from the last pose's
+//! until no triangle turns over that was not turned over at rest (`rig.rs`), the frame
+//! reported clamped as a stopped step is. The rig is recorded by the checksum of its file
+//! ([`session_rig`]) and each frame by the targets its pose is for, so that a replay given
+//! the rig ([`replay_with_rigs`]) evaluates it again to the same bits.
 
 mod replay;
+mod rig;
 
 use std::borrow::BorrowMut;
 
@@ -37,7 +45,8 @@ use crate::session::{
     Event, MeshCounts, RecordedOptions, Session, SessionJoint, SessionMesh, SessionPuppet, ShapeSpec,
 };
 
-pub use replay::{replay, replay_to_targets, Replay};
+pub use replay::{replay, replay_to_targets, replay_with_rigs, Replay};
+pub use rig::session_rig;
 
 /// The largest turn of a handle in one step, radians.
 pub const MAX_TURN_STEP: f64 = 0.1;
@@ -124,14 +133,30 @@ struct HandleState {
     pending: Point,
 }
 
-/// A trained rig posing the shape: the operator, and the targets it was last evaluated at.
+/// A trained rig posing the shape (`rig.rs`): the operator, the targets it was asked for and
+/// those its pose is for, and what its no-foldover guard keeps. Targets are x and y
+/// interleaved, one pair per handle.
 #[derive(Debug, Clone)]
 struct Rig {
     operator: Operator,
-    /// The targets of the last evaluation, x and y interleaved (empty: none yet).
-    evaluated: Vec<f64>,
-    /// The targets to evaluate at, x and y interleaved (scratch).
+    /// The targets of the last frame that evaluated (empty: none yet): a frame with the same
+    /// targets does nothing.
+    asked: Vec<f64>,
+    /// The targets the pose is the rig's for, where a guard left them (empty: the pose is
+    /// not the rig's).
+    posed: Vec<f64>,
+    /// The targets to evaluate at (scratch).
     targets: Vec<f64>,
+    // The guard's: the targets and the pose of a trial, which triangles are positive in the
+    // rig's rest pose, which it keeps positive, and which a trial has positive.
+    way: Vec<f64>,
+    trial: Vec<Point>,
+    at_rest: Vec<bool>,
+    watched: Vec<bool>,
+    positive: Vec<bool>,
+    /// Whether the recording has named the rig (a `rig` event): its frames are then recorded
+    /// as `rigPose` events, else as poses.
+    announced: bool,
 }
 
 /// A deformer posed toward targets: see the module's description. It owns its deformer
@@ -217,11 +242,15 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.tracking
     }
 
-    /// Changes the tracking policy (checked; unchanged on error).
+    /// Changes the tracking policy (checked; unchanged on error). A rig evaluates again at
+    /// the next frame, under the new policy.
     pub fn set_tracking(&mut self, tracking: Tracking) -> Result<(), DeformError> {
         tracking.check()?;
         self.stepper.set_guard(tracking.guard)?;
         self.tracking = tracking;
+        if let Some(rig) = &mut self.rig {
+            rig.asked.clear();
+        }
         Ok(())
     }
 
@@ -251,7 +280,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             buffer.resize(n, 0.0);
         }
         if let Some(rig) = &mut self.rig {
-            rig.evaluated.clear();
+            rig.forget_pose();
         }
     }
 
@@ -349,6 +378,17 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// of an animation shown): no motion pending from it in the paper's mode, no turn left
     /// to make. All checked before any is set.
     pub fn set_targets(&mut self, targets: &[Point]) -> Result<(), DeformError> {
+        self.check_targets(targets)?;
+        for (h, &target) in self.handles.iter_mut().zip(targets) {
+            h.target = target;
+            h.pending = [0.0; 2];
+            h.turn = h.turned;
+        }
+        Ok(())
+    }
+
+    /// One finite target per handle.
+    fn check_targets(&self, targets: &[Point]) -> Result<(), DeformError> {
         if targets.len() != self.handles.len() {
             return Err(DeformError::Length {
                 what: "targets",
@@ -360,11 +400,6 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         }
         for (index, target) in targets.iter().enumerate() {
             check_target(index, target)?;
-        }
-        for (h, &target) in self.handles.iter_mut().zip(targets) {
-            h.target = target;
-            h.pending = [0.0; 2];
-            h.turn = h.turned;
         }
         Ok(())
     }
@@ -382,20 +417,29 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     }
 
     /// Every handle's target where it is now, no motion pending: the handles stay where
-    /// they are.
+    /// they are (with a rig, where its pose is for).
     pub fn pin_handles(&mut self) {
-        let at = self.deformer.borrow().handle_positions();
+        let at = self.handle_places();
         for (h, p) in self.handles.iter_mut().zip(at) {
             h.target = p;
             h.pending = [0.0; 2];
         }
     }
 
+    /// Where each handle is: its point of the pose, or with a rig posing, the target the
+    /// rig's pose is for (the point of the pose is only near it).
+    fn handle_places(&self) -> Vec<Point> {
+        match &self.rig {
+            Some(rig) if !rig.posed.is_empty() => rig.posed.as_chunks::<2>().0.to_vec(),
+            _ => self.deformer.borrow().handle_positions(),
+        }
+    }
+
     /// A pointer takes handle `index`: it is held, its target where it is now (no motion
-    /// pending from it). Returns where it is.
+    /// pending from it; with a rig, where the rig's pose is for). Returns where it is.
     pub fn grab(&mut self, index: usize) -> Result<Point, DeformError> {
         self.check_handle(index)?;
-        let at = self.deformer.borrow().handle_positions()[index];
+        let at = self.handle_places()[index];
         let h = &mut self.handles[index];
         h.held = true;
         h.target = at;
@@ -610,6 +654,9 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// made, recorded.
     fn stepped(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>, fraction: f64) {
         self.at_rest = false;
+        if let Some(rig) = &mut self.rig {
+            rig.forget_pose();
+        }
         // The stepper's own products: `step` with these repeats the piece to the bit.
         let times = |x: f64| if fraction == 1.0 { x } else { x * fraction };
         if let Some(turns) = turns {
@@ -710,10 +757,13 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// ([`DeformError::InvalidParts`]) for a rig trained on another puppet than the
     /// deformer's (other parts or joints, or one for a puppet and the other not); the
     /// caller is to check it was trained for this mesh and these handle points. `None`
-    /// poses with the deformer again; so does any new handle set.
+    /// poses with the deformer again; so does any new handle set. Recorded (a `rig` event
+    /// naming the rig by [`session_rig`]).
     pub fn set_rig(&mut self, operator: Option<Operator>) -> Result<(), DeformError> {
         let Some(operator) = operator else {
-            self.rig = None;
+            if self.rig.take().is_some() {
+                self.record(|| Event::Rig(None));
+            }
             return Ok(());
         };
         let (rig, deformer) = (
@@ -730,9 +780,30 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
                     .into(),
             });
         }
-        let n = self.handles.len();
-        self.rig = Some(Rig { operator, evaluated: Vec::new(), targets: vec![0.0; 2 * n] });
+        self.rig = Some(Rig::new(operator, self.handles.len()));
+        self.announce_rig();
         Ok(())
+    }
+
+    /// Names the rig in the recording, if one runs (a `rig` event): its frames are then
+    /// recorded as the targets they are for. A rig that cannot be named (it cannot be
+    /// written with this mesh) is recorded by its poses.
+    fn announce_rig(&mut self) {
+        let Some(rig) = &mut self.rig else { return };
+        rig.announced = false;
+        if let (Some(session), false) = (&mut self.recording, self.paused) {
+            if let Ok(named) = session_rig(self.deformer.borrow().mesh(), &rig.operator) {
+                session.events.push(Event::Rig(Some(named)));
+                rig.announced = true;
+            }
+        }
+    }
+
+    /// The targets the rig's pose is for (x and y per handle; `None` without a rig or
+    /// before its first pose): where a no-foldover guard left them, the handles' targets
+    /// otherwise.
+    pub fn rig_targets(&self) -> Option<&[f64]> {
+        self.rig.as_ref().map(|rig| rig.posed.as_slice()).filter(|posed| !posed.is_empty())
     }
 
     /// Whether a rig poses the shape ([`Self::set_rig`]).
@@ -745,29 +816,66 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.rig.as_ref().map(|rig| rig.operator.handles())
     }
 
-    /// The rig's pose for the handles' targets, straight into the deformer's positions,
-    /// recorded as a pose; nothing when the targets are those of the last evaluation.
+    /// The rig's pose for the handles' targets, straight into the deformer's positions;
+    /// nothing when the targets are those of the last evaluation. With no foldovers, pulled
+    /// back along the way from the targets of the last pose until no triangle turns over
+    /// that was not at rest (`rig.rs`): then reported clamped, and the handles not held stay
+    /// where the pose is for, as after a step stopped short. Recorded as the targets the pose
+    /// is for (or as the pose, for a rig the recording does not name).
     fn evaluate_rig(&mut self) -> Result<Advance, DeformError> {
         let rig = self.rig.as_mut().expect("a rig poses");
         for (t, h) in rig.targets.chunks_exact_mut(2).zip(&self.handles) {
             t.copy_from_slice(&h.target);
         }
-        if rig.evaluated == rig.targets {
+        if rig.asked == rig.targets {
             return Ok(Advance::default());
         }
         let clock = self.deformer.borrow().clock();
         let started = clock();
-        let Rig { operator, targets, .. } = rig;
-        self.deformer
-            .borrow_mut()
-            .set_positions_with(|out| operator.evaluate_into(targets, out).map_err(|_| DeformError::NonFiniteResult))?;
+        let (moved, clamped) = match self.tracking.no_foldovers {
+            true => rig.pose_without_foldovers(self.deformer.borrow_mut(), self.tracking.guard.clamp_trials)?,
+            false => rig.pose(self.deformer.borrow_mut()).map(|()| (true, false))?,
+        };
         let evaluation = clock() - started;
-        rig.evaluated.clone_from(&rig.targets);
+        if clamped {
+            for (h, p) in self.handles.iter_mut().zip(rig.posed.as_chunks::<2>().0) {
+                if !h.held {
+                    h.target = *p;
+                }
+            }
+            for (t, h) in rig.targets.chunks_exact_mut(2).zip(&self.handles) {
+                t.copy_from_slice(&h.target);
+            }
+        }
+        rig.asked.clone_from(&rig.targets);
+        if moved {
+            self.at_rest = false;
+            record(&mut self.recording, self.paused, || match rig.announced {
+                true => Event::RigPose(rig.posed.clone()),
+                false => Event::Positions(self.deformer.borrow().positions().as_flattened().to_vec()),
+            });
+        }
+        Ok(Advance { steps: 1, clamped, evaluation, ..Advance::default() })
+    }
+
+    /// Poses with the rig at these targets (one per handle), as given: no guard (a replay's
+    /// recorded `rigPose`, whose targets are where the recording's guard left them). The
+    /// handles' targets become these. Refused ([`DeformError::NoRig`]) without a rig, and
+    /// for targets of another count or not finite, changing nothing. Recorded.
+    pub fn pose_with_rig(&mut self, targets: &[Point]) -> Result<(), DeformError> {
+        self.check_targets(targets)?;
+        let rig = self.rig.as_mut().ok_or(DeformError::NoRig)?;
+        rig.targets.copy_from_slice(targets.as_flattened());
+        rig.pose(self.deformer.borrow_mut())?;
+        rig.asked.clone_from(&rig.targets);
+        self.set_targets(targets)?;
         self.at_rest = false;
-        record(&mut self.recording, self.paused, || {
-            Event::Positions(self.deformer.borrow().positions().as_flattened().to_vec())
+        let rig = self.rig.as_ref().expect("checked above");
+        record(&mut self.recording, self.paused, || match rig.announced {
+            true => Event::RigPose(rig.posed.clone()),
+            false => Event::Positions(self.deformer.borrow().positions().as_flattened().to_vec()),
         });
-        Ok(Advance { steps: 1, evaluation, ..Advance::default() })
+        Ok(())
     }
 
     // ------------------------------------------------------------------ state set through the poser
@@ -778,7 +886,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.deformer.borrow_mut().set_positions(positions)?;
         self.at_rest = false;
         if let Some(rig) = &mut self.rig {
-            rig.evaluated.clear();
+            rig.forget_pose();
         }
         self.record(|| Event::Positions(positions.as_flattened().to_vec()));
         Ok(())
@@ -790,7 +898,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.deformer.borrow_mut().reset();
         self.at_rest = true;
         if let Some(rig) = &mut self.rig {
-            rig.evaluated.clear();
+            rig.forget_pose();
         }
         self.record(|| Event::Reset(true));
         self.pin_handles();
@@ -844,7 +952,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// recording: a header with the mesh (named by `shape` when the mesh is that built-in
     /// shape triangulated, else carried inline) and the current options, then the events
     /// that put a deformer in the current state (the pose or a reset, the handles, the
-    /// stiffness and bones).
+    /// stiffness and bones, the rig).
     pub fn start_recording(&mut self, shape: Option<ShapeSpec>) {
         let deformer = self.deformer.borrow();
         let mesh = deformer.mesh();
@@ -871,12 +979,15 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             session.events.push(Event::Bones { triangles, barycentric: barycentric.as_flattened().to_vec() });
         }
         self.recording = Some(session);
+        self.announce_rig();
     }
 
     /// Records from now on into `session`, its header and events so far the caller's (a
-    /// script that writes its own header), replacing any recording.
+    /// script that writes its own header), replacing any recording; a rig posing is named
+    /// in it.
     pub fn resume_recording(&mut self, session: Session) {
         self.recording = Some(session);
+        self.announce_rig();
     }
 
     /// Whether a recording runs.
@@ -891,6 +1002,9 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Ends the recording and returns it (`None` if none ran).
     pub fn stop_recording(&mut self) -> Option<Session> {
+        if let Some(rig) = &mut self.rig {
+            rig.announced = false;
+        }
         self.recording.take()
     }
 

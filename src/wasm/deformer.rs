@@ -510,6 +510,22 @@ impl JsDeformer {
         self.inner.has_rig()
     }
 
+    /// How a session names `rig` posing this deformer's mesh (`crate::pose::session_rig`):
+    /// the checksum of its operator file, 16 hexadecimal digits, as a `rig` event has it.
+    #[wasm_bindgen(js_name = rigChecksum)]
+    pub fn rig_checksum(&self, rig: &JsDefOp) -> Result<String, BindingError> {
+        let named = crate::pose::session_rig(self.inner.deformer().mesh(), rig.operator());
+        Ok(named.map_err(crate::defop::TrainError::from)?.to_string())
+    }
+
+    /// Poses with the rig at these targets (`Float64Array`, x and y per handle), as given:
+    /// no guard (a session's recorded `rigPose`). The handles' targets become these.
+    #[wasm_bindgen(js_name = poseWithRig)]
+    pub fn pose_with_rig(&mut self, targets: JsValue) -> Result<(), BindingError> {
+        let targets = read::float64s(&targets, "targets", 2 * max_handles())?;
+        Ok(self.inner.pose_with_rig(&pairs(&targets, "targets")?)?)
+    }
+
     // ------------------------------------------------------------------ recording
 
     /// Starts recording a session of everything done through this deformer from now on,
