@@ -658,9 +658,13 @@ export class Deformer {
   /**
    * Poses with a trained rig (a `DefOp`, copied into the deformer) instead of stepping:
    * each {@link advance} gives the rig's pose for the handles' targets, computed in
-   * WebAssembly straight into the positions. `undefined` steps again; so does a new handle
-   * set. Throws (code `invalid-argument`) for a rig of other handle or vertex counts; the
-   * caller checks that it was trained for this mesh and these handle points.
+   * WebAssembly straight into the positions. With `noFoldovers` ({@link setTracking}, on
+   * by default) targets whose pose would turn over a triangle not turned over at rest are
+   * pulled back along the way from the last pose's, the frame reported `clamped`. `undefined`
+   * steps again; so does a new handle set. Throws (code `invalid-argument`) for a rig of
+   * other handle or vertex counts; the caller checks that it was trained for this mesh and
+   * these handle points. A recording names the rig ({@link rigChecksum}) and records its
+   * frames as their targets.
    */
   setRig(rig: RigOperator | undefined): void {
     if (rig === undefined) {
@@ -675,6 +679,25 @@ export class Deformer {
   /** Whether a rig poses the shape ({@link setRig}). */
   get hasRig(): boolean {
     return this.#raw.hasRig;
+  }
+
+  /**
+   * How a session names `rig` posing this deformer's mesh: the checksum of its operator
+   * file (16 hexadecimal digits), as a recorded `rig` event has it.
+   */
+  rigChecksum(rig: RigOperator): string {
+    const inner = bindingOf(rig) as rawTypes.DefOp | undefined;
+    if (!inner) throw coded(new TypeError("the rig must be a DefOp that is not freed"), "invalid-argument");
+    return this.#raw.rigChecksum(inner);
+  }
+
+  /**
+   * Poses with the rig ({@link setRig}) at these targets (x and y per handle), as given,
+   * without the foldover guard: a session's recorded `rigPose`. The handles' targets become
+   * these. Throws without a rig.
+   */
+  poseWithRig(targets: Coordinates): void {
+    this.#raw.poseWithRig(toFloat64(targets, "targets"));
   }
 
   /**
