@@ -47,6 +47,7 @@ use crate::session::{
 
 pub use replay::{replay, replay_to_targets, replay_with_rigs, Replay};
 pub use rig::session_rig;
+use rig::Rig;
 
 /// The largest turn of a handle in one step, radians.
 pub const MAX_TURN_STEP: f64 = 0.1;
@@ -131,32 +132,6 @@ struct HandleState {
     held: bool,
     /// The paper's mode: motion of the target not yet turned into steps.
     pending: Point,
-}
-
-/// A trained rig posing the shape (`rig.rs`): the operator, the targets it was asked for and
-/// those its pose is for, and what its no-foldover guard keeps. Targets are x and y
-/// interleaved, one pair per handle.
-#[derive(Debug, Clone)]
-struct Rig {
-    operator: Operator,
-    /// The targets of the last frame that evaluated (empty: none yet): a frame with the same
-    /// targets does nothing.
-    asked: Vec<f64>,
-    /// The targets the pose is the rig's for, where a guard left them (empty: the pose is
-    /// not the rig's).
-    posed: Vec<f64>,
-    /// The targets to evaluate at (scratch).
-    targets: Vec<f64>,
-    // The guard's: the targets and the pose of a trial, which triangles are positive in the
-    // rig's rest pose, which it keeps positive, and which a trial has positive.
-    way: Vec<f64>,
-    trial: Vec<Point>,
-    at_rest: Vec<bool>,
-    watched: Vec<bool>,
-    positive: Vec<bool>,
-    /// Whether the recording has named the rig (a `rig` event): its frames are then recorded
-    /// as `rigPose` events, else as poses.
-    announced: bool,
 }
 
 /// A deformer posed toward targets: see the module's description. It owns its deformer

@@ -7,9 +7,11 @@
 //! (its pose for the handles' rest places) and in the pose the way starts from. A frame
 //! evaluates the rig at the new targets; if a watched triangle is not positive there, it
 //! bisects the fraction `t` of the way from the targets the pose is for (the last accepted)
-//! to the new ones, `start + t (new - start)`, [`crate::deform::FoldoverGuard::clamp_trials`]
-//! times (as the step guard bisects its clamp), and poses at the largest `t` found whose pose
-//! turns no watched triangle over: possibly 0, the pose it had. Orientation is the step
+//! to the new ones, `start + t (new - start)`, to `2^-k` of the way, `k` the step guard's
+//! [`crate::deform::FoldoverGuard::clamp_trials`] (as it bisects its clamp; `2^-k` itself is
+//! tried first, so that a drag held on past a fold costs two evaluations a frame), and poses
+//! at the largest `t` found whose pose turns no watched triangle over: possibly 0, the pose
+//! it had. Orientation is the step
 //! guard's ([`positive_triangles`]: exact on the pose scaled by a power of two), so a
 //! triangle the rig's rest pose has flipped or degenerate never blocks, nor one already
 //! turned over where the way starts. When the pose is not the rig's (the rig just set, the
@@ -19,11 +21,11 @@
 //! A session names the rig by the checksum of its operator file ([`session_rig`]) and records
 //! each frame as the targets the pose is for, which the rig evaluates again to the same bits.
 
-use super::Rig;
 use crate::defop::file::write_operator;
 use crate::defop::{FitError, Operator};
 use crate::deform::foldover::positive_triangles;
 use crate::deform::{DeformError, Deformer};
+use crate::geometry::{self, Point};
 use crate::mesh::Mesh;
 use crate::session::SessionRig;
 
@@ -34,6 +36,32 @@ pub fn session_rig(mesh: &Mesh, operator: &Operator) -> Result<SessionRig, FitEr
     let bytes = write_operator(mesh, operator)?;
     let tail = bytes.last_chunk::<8>().expect("an operator file ends with its checksum");
     Ok(SessionRig { checksum: u64::from_le_bytes(*tail) })
+}
+
+/// A trained rig posing the shape: the operator, the targets it was asked for and
+/// those its pose is for, and what its no-foldover guard keeps. Targets are x and y
+/// interleaved, one pair per handle.
+#[derive(Debug, Clone)]
+pub(super) struct Rig {
+    pub(super) operator: Operator,
+    /// The targets of the last frame that evaluated (empty: none yet): a frame with the same
+    /// targets does nothing.
+    pub(super) asked: Vec<f64>,
+    /// The targets the pose is the rig's for, where a guard left them (empty: the pose is
+    /// not the rig's).
+    pub(super) posed: Vec<f64>,
+    /// The targets to evaluate at (scratch).
+    pub(super) targets: Vec<f64>,
+    // The guard's: the targets and the pose of a trial, which triangles are positive in the
+    // rig's rest pose, which it keeps positive, and which a trial has positive.
+    way: Vec<f64>,
+    trial: Vec<Point>,
+    at_rest: Vec<bool>,
+    watched: Vec<bool>,
+    positive: Vec<bool>,
+    /// Whether the recording has named the rig (a `rig` event): its frames are then recorded
+    /// as `rigPose` events, else as poses.
+    pub(super) announced: bool,
 }
 
 impl Rig {
@@ -71,7 +99,7 @@ impl Rig {
     }
 
     /// The rig's pose for `targets`, or pulled back along the way to them until no watched
-    /// triangle turns over (see the module's description), in at most `trials` bisections.
+    /// triangle turns over (see the module's description), to `2^-trials` of the way.
     /// Returns whether the pose changed and whether it stopped short. On error the deformer
     /// is unchanged and the rig forgets its pose.
     pub(super) fn pose_without_foldovers(
@@ -109,8 +137,16 @@ impl Rig {
             self.accept(deformer)?;
             return Ok((true, false));
         }
+        // The bisection to `least` = 2^-trials of the way, its smallest fraction tried first:
+        // a drag held on past a fold stops there frame after frame, each frame then two
+        // evaluations, not a whole bisection.
+        let least = geometry::power_of_two(-(trials as i32));
         let (mut good, mut bad, mut at_good) = (0.0, 1.0, false);
-        for _ in 0..trials {
+        if trials > 0 {
+            at_good = self.try_at(least, triangles)?;
+            (good, bad) = if at_good { (least, bad) } else { (good, least) };
+        }
+        while bad - good > least {
             let t = 0.5 * (good + bad);
             at_good = self.try_at(t, triangles)?;
             (good, bad) = if at_good { (t, bad) } else { (good, t) };
