@@ -250,11 +250,12 @@ fn a_rig_trained_on_a_puppet_reproduces_held_out_ground_truths_and_its_file_reco
     let (read_mesh, read) = read_operator(&bytes).unwrap();
     assert_eq!(read_mesh, mesh);
     assert_eq!(read.puppet(), Some(&puppet));
-    // Version 3: the version-2 file of the same operator, its puppet before the checksum.
+    // The puppet flag set (byte 49), and the file of the same operator without a puppet
+    // with the puppet's section before the checksum.
     let plain = write_operator(&mesh, &operator.clone().with_puppet(None)).unwrap();
-    assert_eq!((bytes[8], plain[8]), (3, 2));
+    assert_eq!((bytes[8], plain[8], bytes[49], plain[49]), (4, 4, 1, 0));
     let body = plain.len() - 8;
-    assert_eq!(bytes[12..body], plain[12..body]);
+    assert_eq!((&bytes[12..49], &bytes[50..body]), (&plain[12..49], &plain[50..body]));
     let section = &bytes[body..bytes.len() - 8];
     let name_bytes: usize = puppet.parts.iter().map(|p| p.name.len()).sum();
     assert_eq!(section.len(), 8 + 12 * 4 + name_bytes + 4 * mesh.triangle_count() + 24 * 2);

@@ -10,6 +10,7 @@ mod defop_coordinates;
 mod defop_eval;
 mod defop_file;
 mod defop_fit;
+mod defop_gpu;
 mod defop_ground_truth;
 mod defop_puppet;
 mod defop_train;

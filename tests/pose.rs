@@ -8,6 +8,7 @@
 //! and as wasm.
 
 use akap::defop::file::read_operator;
+use akap::defop::Operator;
 use akap::deform::{AkapOptions, ArapOptions, DeformError, Deformer, MethodOptions, MlsOptions, MlsVariant};
 use akap::geometry::Point;
 use akap::pose::{replay, Poser, Tracking, MAX_TURN_STEP};
@@ -184,9 +185,9 @@ fn a_step_that_fails_even_smaller_returns_its_error_and_drops_the_turns() {
     assert_eq!(poser.advance().unwrap().steps, 0, "nothing is left to turn");
 }
 
-#[test]
-fn a_rig_poses_with_the_operators_evaluation_once_per_new_set_of_targets() {
-    let (mesh, mut operator) = read_operator(include_bytes!("fixtures/defop-v1-linear.defop")).unwrap();
+/// A poser of the linear rig fixture's mesh with the rig's handles (not yet given the rig).
+fn rig_poser() -> (Poser, Operator) {
+    let (mesh, operator) = read_operator(include_bytes!("fixtures/defop-v1-linear.defop")).unwrap();
     let points = operator.handles().to_vec();
     let mut deformer = Deformer::new(mesh, AkapOptions::default()).unwrap();
     let (triangles, barycentric): (Vec<u32>, Vec<[f64; 3]>) = points
@@ -201,7 +202,12 @@ fn a_rig_poses_with_the_operators_evaluation_once_per_new_set_of_targets() {
         })
         .unzip();
     deformer.set_handle_points(&triangles, &barycentric).unwrap();
-    let mut poser = Poser::new(deformer);
+    (Poser::new(deformer), operator)
+}
+
+#[test]
+fn a_rig_poses_with_the_operators_evaluation_once_per_new_set_of_targets() {
+    let (mut poser, mut operator) = rig_poser();
     poser.set_rig(Some(operator.clone())).unwrap();
     poser.start_recording(None);
     let targets: Vec<Point> = poser.targets().enumerate().map(|(i, t)| [t[0] + 0.01 * i as f64, t[1] - 0.02]).collect();
@@ -219,6 +225,74 @@ fn a_rig_poses_with_the_operators_evaluation_once_per_new_set_of_targets() {
     poser.set_handle_vertices(&[0]).unwrap();
     assert!(!poser.has_rig(), "a new handle set drops the rig");
     assert!(matches!(poser.set_rig(Some(operator)), Err(DeformError::RigMismatch { .. })));
+}
+
+#[test]
+fn a_rig_on_the_gpu_leaves_the_pose_behind_until_it_is_read_and_records_every_frame_as_on_the_cpu() {
+    let (mut poser, mut operator) = rig_poser();
+    // Without the foldover guard, which needs the pose on the CPU (`pose_rig.rs`).
+    poser.set_tracking(Tracking { no_foldovers: false, ..Tracking::default() }).unwrap();
+    let rest = bits(poser.deformer().positions());
+    assert!(!poser.set_rig_on_gpu(true).unwrap(), "no rig, nothing on the GPU");
+    poser.set_rig(Some(operator.clone())).unwrap();
+    assert!(poser.set_rig_on_gpu(true).unwrap());
+    let layout = poser.rig_gpu().unwrap().layout();
+    assert_eq!(poser.rig_gpu_texture().unwrap().len(), 4 * layout.basis_texels());
+    let moved = |poser: &Poser, k: f64| -> Vec<Point> {
+        poser.targets().enumerate().map(|(i, t)| [t[0] + 0.01 * k * i as f64, t[1] - 0.02 * k]).collect()
+    };
+    // A frame computes the GPU's frame only: the positions stay where they were.
+    let targets = moved(&poser, 1.0);
+    poser.set_targets(&targets).unwrap();
+    let before = poser.rig_gpu().unwrap().frame_values().to_vec();
+    assert_eq!(poser.advance().unwrap().steps, 1);
+    assert_ne!(poser.rig_gpu().unwrap().frame_values(), &before[..], "a new frame");
+    assert!(poser.is_stale());
+    assert_eq!(bits(poser.deformer().positions()), rest);
+    assert_eq!(poser.advance().unwrap().steps, 0, "the same targets: nothing to compute");
+    // Read, it is the operator's pose to the bit.
+    poser.settle().unwrap();
+    assert!(!poser.is_stale());
+    let expected = operator.evaluate(targets.as_flattened()).unwrap();
+    assert_eq!(bits_of(poser.deformer().positions().as_flattened()), bits_of(&expected));
+    // What builds on the pose settles first: a grab takes the handle where the pose has it.
+    let targets = moved(&poser, 2.0);
+    poser.set_targets(&targets).unwrap();
+    poser.advance().unwrap();
+    assert!(poser.is_stale());
+    let at = poser.grab(1).unwrap();
+    let expected = operator.evaluate(targets.as_flattened()).unwrap();
+    assert_eq!(bits_of(poser.deformer().positions().as_flattened()), bits_of(&expected));
+    assert_eq!(at, poser.deformer().handle_positions()[1]);
+    poser.release(1).unwrap();
+    // While a recording runs, each frame is recorded as on the CPU (as its targets: the pose
+    // stays behind on the GPU without the guard, which evaluates each frame on the CPU):
+    // the same session as a poser on the CPU records.
+    let record = |on_gpu: bool, no_foldovers: bool| {
+        let (mut poser, operator) = rig_poser();
+        poser.set_tracking(Tracking { no_foldovers, ..Tracking::default() }).unwrap();
+        poser.set_rig(Some(operator)).unwrap();
+        poser.set_rig_on_gpu(on_gpu).unwrap();
+        poser.start_recording(None);
+        for k in 1..4 {
+            let targets = moved(&poser, k as f64);
+            poser.set_targets(&targets).unwrap();
+            poser.advance().unwrap();
+            assert_eq!(poser.is_stale(), on_gpu && !no_foldovers);
+        }
+        poser.stop_recording().unwrap().to_json()
+    };
+    for guard in [true, false] {
+        assert_eq!(record(true, guard), record(false, guard));
+    }
+    // Back on the CPU, the pose is current again.
+    let targets = moved(&poser, 3.0);
+    poser.set_targets(&targets).unwrap();
+    poser.advance().unwrap();
+    assert!(!poser.set_rig_on_gpu(false).unwrap());
+    assert!(!poser.is_stale() && poser.rig_gpu().is_none());
+    let expected = operator.evaluate(targets.as_flattened()).unwrap();
+    assert_eq!(bits_of(poser.deformer().positions().as_flattened()), bits_of(&expected));
 }
 
 fn bits_of(values: &[f64]) -> Vec<u64> {

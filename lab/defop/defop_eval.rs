@@ -6,7 +6,9 @@
 //! comparison) and for the reduced basis of 100 functions (1, x, y and the bilaplacian's
 //! lowest eigenfunctions; structured solver), and how far the single-precision output is
 //! from the double one; the same for the operator's single-precision copy
-//! (`Operator::single_precision`). With `--write DIR` it also writes the operator files
+//! (`Operator::single_precision`); and the operator file's size in double and single
+//! precision (`write_operator_in`) with how far the single-precision file, read back,
+//! poses from the operator. With `--write DIR` it also writes the operator files
 //! `DIR/hat.defop` and `DIR/reduced.defop` (operator and mesh, `defop::write_operator`), which
 //! `lab/defop/bench-defop-eval.mjs` times in wasm without training. Prints only; asserts
 //! nothing.
@@ -21,7 +23,10 @@ fn main() {
     use std::hint::black_box;
     use std::time::Instant;
 
-    use akap::defop::{fit, reduced_basis, write_operator, FitOptions, MeshPoint, Sample, SpatialBasis};
+    use akap::defop::{
+        fit, read_operator, reduced_basis, write_operator, write_operator_in, FitOptions, MeshPoint, Precision, Sample,
+        SpatialBasis,
+    };
 
     let args: Vec<String> = std::env::args().collect();
     let write_dir =
@@ -186,6 +191,22 @@ fn main() {
             1e6 * per_call_single,
             1.0 / per_call_single,
             single_error / diagonal
+        );
+        let double_file = write_operator(&mesh, &operator).unwrap();
+        let single_file = write_operator_in(&mesh, &operator, Precision::Single).unwrap();
+        let (_, mut from_single) = read_operator(&single_file).unwrap();
+        let file_error = queries
+            .iter()
+            .map(|q| {
+                let (a, b) = (operator.evaluate(q).unwrap(), from_single.evaluate(q).unwrap());
+                a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "{name:>7}: operator file {:.2} MB, {:.2} MB in single precision; read back, it poses {:.1e} of the diagonal from f64",
+            double_file.len() as f64 / 1e6,
+            single_file.len() as f64 / 1e6,
+            file_error / diagonal
         );
         println!(
             "{name:>7}: |Φ| = {:4}, |Ψ| = {}, solver {:?}: fit {:.2} s; evaluate {:.1} µs/call ({:.0}/s), \

@@ -19,9 +19,11 @@
 //! - [`fit`](mod@fit): the structured least-squares fit of eq. (8), with `fit_error`'s
 //!   [`FitError`];
 //! - [`operator`]: the trained operator and its allocation-free evaluation, on the dot
-//!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy
-//!   for a GPU upload;
+//!   product blocks of `kernels` (simd128 in wasm); [`single`]: its single-precision copy;
+//!   [`gpu`](mod@gpu): its evaluation on the GPU (the basis texture once per rig, a short
+//!   vector per frame);
 //! - [`file`](mod@file): operator files (the operator with its mesh, versioned, checksummed);
+//! - [`training`]: what an operator keeps of its training ([`Training`]);
 //! - [`train`]: the bootstrapped training (samples, warm starts from the current operator,
 //!   refits), resumable in time slices or spread over workers as jobs.
 
@@ -32,6 +34,7 @@ mod error;
 pub mod file;
 pub mod fit;
 pub mod fit_error;
+pub mod gpu;
 pub mod ground_truth;
 mod kernels;
 mod linear;
@@ -42,16 +45,19 @@ pub mod sampling;
 pub mod single;
 pub mod spatial;
 pub mod train;
+pub mod training;
 
 pub use basis::{BasisKind, HandleBasis};
 pub use coordinates::{HandleCoordinates, Rigid};
 pub use energy::{Energy, RestTriangle, SignedSvd};
-pub use file::{read_operator, write_operator, OperatorFileError};
+pub use file::{read_operator, write_operator, write_operator_in, OperatorFileError, Precision};
 pub use fit::{fit, FitOptions, Sample};
 pub use fit_error::FitError;
+pub use gpu::{GpuLayout, GpuRig};
 pub use ground_truth::{DefOpError, GroundTruth, GroundTruthOptions, Handles, SolveReport, Start};
 pub use operator::Operator;
 pub use reduced::reduced_basis;
 pub use single::SinglePrecision;
 pub use spatial::{MeshPoint, SpatialBasis};
 pub use train::{Job, Progress, TrainError, TrainOptions, TrainStats, Trainer};
+pub use training::Training;

@@ -8,8 +8,12 @@ use nalgebra::DMatrix;
 use super::basis::HandleBasis;
 use super::fit_error::{check_finite, check_length, FitError};
 use super::kernels;
+use super::sampling::{regions, Region, Sampling, SamplingError};
 use super::spatial::MeshPoint;
+use super::training::Training;
 use crate::deform::Puppet;
+use crate::geometry::bounding_box;
+use crate::mesh::Mesh;
 
 /// How a fit solved its least-squares problem.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -42,6 +46,8 @@ pub struct Operator {
     canonical: Vec<f64>,
     /// The puppet (parts and joints) of the mesh it was trained on, if it was one.
     puppet: Option<Puppet>,
+    /// Its training's settings, when known (trained here, or read from a version-4 file).
+    training: Option<Training>,
 }
 
 impl Operator {
@@ -77,7 +83,7 @@ impl Operator {
         let nodal = if reduction.is_empty() { Vec::new() } else { vec![0.0; 2 * spatial_len] };
         let psi = vec![0.0; basis.len()];
         let canonical = canonical_scratch(&basis);
-        let puppet = None;
+        let (puppet, training) = (None, None);
         Self {
             handles,
             basis,
@@ -90,6 +96,7 @@ impl Operator {
             nodal,
             canonical,
             puppet,
+            training,
         }
     }
 
@@ -145,6 +152,35 @@ impl Operator {
     pub fn with_puppet(mut self, puppet: Option<Puppet>) -> Self {
         self.puppet = puppet;
         self
+    }
+
+    /// The settings it was trained with, or `None` when they are not known (an operator
+    /// fitted directly, or read from a file older than version 4).
+    pub fn training(&self) -> Option<&Training> {
+        self.training.as_ref()
+    }
+
+    /// The operator with its training's settings (what [`super::Trainer::finish`] and the
+    /// operator file's reader set).
+    pub fn with_training(mut self, training: Option<Training>) -> Self {
+        self.training = training;
+        self
+    }
+
+    /// Its training's sampling and radius, or, when the training is not known, discs of
+    /// radius the handle coordinates' scale (which a trainer sets to its radius).
+    pub fn sampling(&self) -> (Sampling, f64) {
+        self.training.map_or((Sampling::Disc, self.basis.scale()), |t| (t.sampling, t.radius))
+    }
+
+    /// Each handle's region its training drew targets from ([`regions`]), for `mesh`, the
+    /// mesh it was trained on (whose bounding box the Voronoi cells are clipped to), for
+    /// [`Operator::sampling`].
+    pub fn sampling_regions(&self, mesh: &Mesh) -> Result<Vec<Region>, SamplingError> {
+        let (sampling, radius) = self.sampling();
+        let rest: Vec<[f64; 2]> = self.basis.rest().chunks_exact(2).map(|c| [c[0], c[1]]).collect();
+        let (lo, hi) = bounding_box(mesh.positions().iter().copied()).ok_or(SamplingError::NotFinite)?;
+        regions(&rest, [lo, hi], radius, sampling)
     }
 
     /// The handles' rest positions, as given to the fit.

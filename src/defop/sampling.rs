@@ -8,6 +8,9 @@
 //! - [`Sampling::Mixed`]: each sample, all its targets from discs or all from cells, with
 //!   probability one half each (Fig. 1).
 //!
+//! [`regions`] gives each handle's region (disc, cell or both), the one definition the
+//! sampler draws from and the widget's Region view draws.
+//!
 //! The rest pose `Q = P` is not drawn: training always adds it as its first sample (its
 //! ground truth is the rest mesh, exactly).
 
@@ -67,14 +70,86 @@ impl std::fmt::Display for SamplingError {
 
 impl std::error::Error for SamplingError {}
 
+/// Where a sampling draws one handle's targets: the disc of radius `r` about its rest
+/// position ([`Sampling::Disc`]), its Voronoi cell ([`Sampling::Voronoi`]), or either
+/// ([`Sampling::Mixed`]). The one definition the [`Sampler`] draws from and a view draws.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// The handle's rest position, the disc's centre.
+    pub centre: Point,
+    /// The disc's radius, for disc and mixed sampling.
+    pub radius: Option<f64>,
+    /// The Voronoi cell among the rest positions, clipped to the shape's bounding box grown
+    /// by the radius (grown further to hold every handle), as a convex polygon
+    /// counter-clockwise, for Voronoi and mixed sampling.
+    pub cell: Option<Vec<Point>>,
+}
+
+impl Region {
+    /// Whether the sampling may draw target `q` (in the disc or the cell, boundaries
+    /// included).
+    pub fn contains(&self, q: Point) -> bool {
+        let in_disc = self.radius.is_some_and(|r| (q[0] - self.centre[0]).hypot(q[1] - self.centre[1]) <= r);
+        let in_cell = self.cell.as_ref().is_some_and(|cell| {
+            (0..cell.len()).all(|k| {
+                let (a, b) = (cell[k], cell[(k + 1) % cell.len()]);
+                (b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]) >= 0.0
+            })
+        });
+        in_disc || in_cell
+    }
+}
+
+/// The region of each handle at `rest` in a shape whose bounding box is `bbox` (min, max)
+/// for `sampling` with radius `radius`; refuses what [`Sampler::new`] refuses.
+pub fn regions(
+    rest: &[Point],
+    bbox: [Point; 2],
+    radius: f64,
+    sampling: Sampling,
+) -> Result<Vec<Region>, SamplingError> {
+    if rest.is_empty() {
+        return Err(SamplingError::NoHandles);
+    }
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(SamplingError::Radius(radius));
+    }
+    let finite = |p: &Point| p[0].is_finite() && p[1].is_finite();
+    if !rest.iter().chain(&bbox).all(finite) {
+        return Err(SamplingError::NotFinite);
+    }
+    for (i, p) in rest.iter().enumerate() {
+        if let Some(j) = rest[..i].iter().position(|q| q == p) {
+            return Err(SamplingError::CoincidentHandles { first: j, second: i });
+        }
+    }
+    let lo = [bbox[0][0].min(bbox[1][0]) - radius, bbox[0][1].min(bbox[1][1]) - radius];
+    let hi = [bbox[0][0].max(bbox[1][0]) + radius, bbox[0][1].max(bbox[1][1]) + radius];
+    // The box must hold every handle for each cell to be non-empty.
+    let lo = rest.iter().fold(lo, |l, p| [l[0].min(p[0]), l[1].min(p[1])]);
+    let hi = rest.iter().fold(hi, |h, p| [h[0].max(p[0]), h[1].max(p[1])]);
+    let (discs, cells) = match sampling {
+        Sampling::Disc => (true, false),
+        Sampling::Voronoi => (false, true),
+        Sampling::Mixed => (true, true),
+    };
+    Ok((0..rest.len())
+        .map(|i| Region {
+            centre: rest[i],
+            radius: discs.then_some(radius),
+            cell: cells.then(|| voronoi_cell(rest, i, lo, hi)),
+        })
+        .collect())
+}
+
 /// Draws handle targets around rest positions.
 #[derive(Debug, Clone)]
 pub struct Sampler {
     rest: Vec<Point>,
     radius: f64,
     sampling: Sampling,
-    /// Each handle's Voronoi cell clipped to the grown box, as a fan of triangles with
-    /// cumulative areas (for [`Sampling::Voronoi`] and [`Sampling::Mixed`]).
+    /// Each handle's Voronoi cell ([`regions`]) as a fan of triangles with cumulative
+    /// areas (for [`Sampling::Voronoi`] and [`Sampling::Mixed`]; else empty).
     cells: Vec<Fan>,
     rng: Rng,
     seed: u64,
@@ -82,7 +157,8 @@ pub struct Sampler {
 
 impl Sampler {
     /// A sampler for handles at `rest` in a shape whose bounding box is `bbox` (min, max),
-    /// drawing targets within `radius` (discs) or in the cells of the box grown by `radius`.
+    /// drawing each handle's targets uniformly (by area) from its [`regions`]: within
+    /// `radius` (discs) or in the cells of the box grown by `radius`.
     pub fn new(
         rest: &[Point],
         bbox: [Point; 2],
@@ -90,31 +166,10 @@ impl Sampler {
         sampling: Sampling,
         seed: u64,
     ) -> Result<Self, SamplingError> {
-        if rest.is_empty() {
-            return Err(SamplingError::NoHandles);
-        }
-        if !(radius.is_finite() && radius > 0.0) {
-            return Err(SamplingError::Radius(radius));
-        }
-        let finite = |p: &Point| p[0].is_finite() && p[1].is_finite();
-        if !rest.iter().chain(&bbox).all(finite) {
-            return Err(SamplingError::NotFinite);
-        }
-        for (i, p) in rest.iter().enumerate() {
-            if let Some(j) = rest[..i].iter().position(|q| q == p) {
-                return Err(SamplingError::CoincidentHandles { first: j, second: i });
-            }
-        }
-        let cells = if sampling == Sampling::Disc {
-            Vec::new()
-        } else {
-            let lo = [bbox[0][0].min(bbox[1][0]) - radius, bbox[0][1].min(bbox[1][1]) - radius];
-            let hi = [bbox[0][0].max(bbox[1][0]) + radius, bbox[0][1].max(bbox[1][1]) + radius];
-            // The box must hold every handle for each cell to be non-empty.
-            let lo = rest.iter().fold(lo, |l, p| [l[0].min(p[0]), l[1].min(p[1])]);
-            let hi = rest.iter().fold(hi, |h, p| [h[0].max(p[0]), h[1].max(p[1])]);
-            (0..rest.len()).map(|i| Fan::of(&voronoi_cell(rest, i, lo, hi))).collect()
-        };
+        let cells = regions(rest, bbox, radius, sampling)?
+            .iter()
+            .filter_map(|region| region.cell.as_deref().map(Fan::of))
+            .collect();
         Ok(Self { rest: rest.to_vec(), radius, sampling, cells, rng: Rng::new(seed), seed })
     }
 
@@ -313,6 +368,48 @@ mod tests {
         let expected = area(&strip) / area(&cell);
         let share = left_half as f64 / n as f64;
         assert!((share - expected).abs() < 0.015, "{share} vs {expected}");
+    }
+
+    #[test]
+    fn regions_are_the_discs_and_the_cells_the_samples_come_from() {
+        // Cell 0 within the box grown by 0.25, [-0.75, 1.75]^2: x <= 0.5 (the bisector with
+        // handle 1) and 0.3 x + 0.8 y <= 0.365 (with handle 2), as in the test above.
+        let bisector = |x: f64| (0.365 - 0.3 * x) / 0.8;
+        let voronoi = regions(&REST, BOX, 0.25, Sampling::Voronoi).unwrap();
+        assert_eq!(voronoi.len(), 3);
+        assert_eq!((voronoi[0].centre, voronoi[0].radius), (REST[0], None));
+        let cell = voronoi[0].cell.as_ref().unwrap();
+        let expected = [[-0.75, -0.75], [0.5, -0.75], [0.5, bisector(0.5)], [-0.75, bisector(-0.75)]];
+        assert_eq!(cell.len(), 4, "{cell:?}");
+        for corner in expected {
+            assert!(cell.iter().any(|c| (c[0] - corner[0]).hypot(c[1] - corner[1]) < 1e-12), "{corner:?} in {cell:?}");
+        }
+        // Inside a cell: in the grown box and nearest its handle (a grid over a larger box).
+        for i in 0..=40 {
+            for j in 0..=40 {
+                let q = [-1.0 + 3.0 * f64::from(i) / 40.0 + 1e-3, -1.0 + 3.0 * f64::from(j) / 40.0 + 1e-3];
+                let boxed = (-0.75..=1.75).contains(&q[0]) && (-0.75..=1.75).contains(&q[1]);
+                let dist = |p: &Point| (q[0] - p[0]).hypot(q[1] - p[1]);
+                for (l, region) in voronoi.iter().enumerate() {
+                    let nearest = REST.iter().all(|p| dist(&REST[l]) <= dist(p));
+                    assert_eq!(region.contains(q), boxed && nearest, "{q:?}, cell {l}");
+                }
+            }
+        }
+        // Discs: no cells; mixed: both, a point in either is in.
+        let discs = regions(&REST, BOX, 0.25, Sampling::Disc).unwrap();
+        assert!(discs.iter().all(|r| r.cell.is_none() && r.radius == Some(0.25)));
+        assert!(discs[0].contains([0.0, 0.249]) && !discs[0].contains([0.0, 0.251]));
+        let mixed = regions(&REST, BOX, 0.25, Sampling::Mixed).unwrap();
+        assert_eq!(mixed[0].cell, voronoi[0].cell);
+        assert_eq!(mixed[0].radius, Some(0.25));
+        assert!(mixed[0].contains([-0.7, -0.7]) && !discs[0].contains([-0.7, -0.7]));
+        // (0.45, 0) is within 0.6 of handle 1 but nearer handle 0: in disc 1, in cell 0.
+        let [mixed, voronoi] = [Sampling::Mixed, Sampling::Voronoi].map(|s| regions(&REST, BOX, 0.6, s).unwrap());
+        assert!(
+            mixed[1].contains([0.45, 0.0]) && !voronoi[1].contains([0.45, 0.0]) && voronoi[0].contains([0.45, 0.0])
+        );
+        assert_eq!(regions(&REST, BOX, -1.0, Sampling::Disc).unwrap_err(), SamplingError::Radius(-1.0));
     }
 
     #[test]

@@ -12,6 +12,7 @@
 //! 0.073 ms for the reduced operator, 0.41 ms against 1.77 ms for the hat one.
 
 use super::basis::HandleBasis;
+use super::coordinates::Rigid;
 use super::fit_error::{check_finite, check_length, FitError};
 use super::kernels;
 use super::operator::{canonical_scratch, Operator};
@@ -75,14 +76,7 @@ impl SinglePrecision {
         if out.len() != 2 * self.vertex_count {
             return Err(FitError::Length { what: "output", expected: 2 * self.vertex_count, found: out.len() });
         }
-        // As the double evaluation: canonical coordinates pose the canonical targets and
-        // move each position back by the targets' rigid motion (in double, then rounded).
-        let rigid = self.basis.coordinates().canonicalise(targets, &mut self.canonical);
-        let at = if rigid.is_some() { &self.canonical } else { targets };
-        self.basis.evaluate_unchecked(at, &mut self.psi);
-        for (single, &double) in self.psi32.iter_mut().zip(&self.psi) {
-            *single = double as f32;
-        }
+        let rigid = rounded_psi(&self.basis, targets, &mut self.canonical, &mut self.psi, &mut self.psi32);
         let write = |v: usize, x: f32, y: f32| {
             let [x, y] = match &rigid {
                 Some(rigid) => rigid.apply([f64::from(x), f64::from(y)]).map(|c| c as f32),
@@ -94,4 +88,26 @@ impl SinglePrecision {
         kernels::positions(&self.coefficients, &self.psi32, &self.reduction, &mut self.nodal, write);
         Ok(())
     }
+}
+
+/// Ψ(Q) in double, rounded into `psi32` (`psi`: its double scratch), at the targets or, for
+/// canonical coordinates, at the canonical targets (into `canonical`), as the double
+/// evaluation poses them; returns the targets' rigid motion that moves each position back
+/// (`None` without canonical coordinates). The first step of every single-precision
+/// evaluation, on the CPU ([`SinglePrecision`]) or the GPU (`super::gpu`). The targets are
+/// the caller's to check.
+pub(super) fn rounded_psi(
+    basis: &HandleBasis,
+    targets: &[f64],
+    canonical: &mut [f64],
+    psi: &mut [f64],
+    psi32: &mut [f32],
+) -> Option<Rigid> {
+    let rigid = basis.coordinates().canonicalise(targets, canonical);
+    let at = if rigid.is_some() { &*canonical } else { targets };
+    basis.evaluate_unchecked(at, psi);
+    for (single, &double) in psi32.iter_mut().zip(psi.iter()) {
+        *single = double as f32;
+    }
+    rigid
 }

@@ -24,6 +24,7 @@ use super::reduced::reduced_basis;
 pub use super::sampling::MAX_SAMPLES;
 use super::sampling::{Sampler, Sampling, SamplingError, DEFAULT_RADIUS_FRACTION};
 use super::spatial::{MeshPoint, SpatialBasis};
+use super::training::Training;
 use crate::deform::Puppet;
 use crate::error_code::ErrorCode;
 use crate::geometry::{bounding_box, Point};
@@ -532,10 +533,15 @@ impl Trainer {
         Ok(self.progress())
     }
 
-    /// The trained operator, once [`Progress::done`] equals [`Progress::total`].
+    /// The trained operator, once [`Progress::done`] equals [`Progress::total`], recording
+    /// its training's settings ([`Operator::training`]).
     pub fn finish(self) -> Result<Operator, TrainError> {
         let progress = self.progress();
-        self.result.ok_or(TrainError::NotDone { done: progress.done, total: progress.total })
+        let o = &self.options;
+        let training =
+            Training { energy: o.energy, sampling: o.sampling, samples: o.samples, radius: self.radius, seed: o.seed };
+        let operator = self.result.ok_or(TrainError::NotDone { done: progress.done, total: progress.total })?;
+        Ok(operator.with_training(Some(training)))
     }
 
     /// The samples so far (the rest pose is added by the fit).

@@ -29,13 +29,23 @@
 //! reported clamped as a stopped step is. The rig is recorded by the checksum of its file
 //! ([`session_rig`]) and each frame by the targets its pose is for, so that a replay given
 //! the rig ([`replay_with_rigs`]) evaluates it again to the same bits.
+//!
+//! A rig may pose on the GPU ([`Poser::set_rig_on_gpu`]): a frame then computes only the
+//! rig's short frame vector ([`crate::defop::GpuRig`]) for the renderer, and the deformer's
+//! positions fall behind until something reads them: [`Poser::settle`] evaluates the
+//! operator at the last frame's targets into them (the same double-precision pose a frame
+//! on the CPU writes). Every method of the poser that reads or builds on the pose settles
+//! first; readers of [`Poser::deformer`] call [`Poser::settle`] first (the bindings do). The
+//! no-foldover guard needs the pose (it checks its triangles), so with it a frame is
+//! evaluated on the CPU too and the GPU draws the targets it accepted; so does a recording
+//! that cannot name its rig (it records the poses).
 
 mod replay;
 mod rig;
 
 use std::borrow::BorrowMut;
 
-use crate::defop::Operator;
+use crate::defop::{gpu, FitError, GpuRig, Operator};
 use crate::deform::{
     DeformError, Deformer, FoldoverGuard, FoldoverStepper, GuardedStep, Joint, MethodOptions, Timings,
 };
@@ -196,13 +206,15 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         poser
     }
 
-    /// The deformer posed (read it for the pose, fields, metrics, timings).
+    /// The deformer posed (read it for the pose, fields, metrics, timings). With a rig on
+    /// the GPU its positions may be behind the last frame: [`Self::settle`] first.
     pub fn deformer(&self) -> &Deformer {
         self.deformer.borrow()
     }
 
-    /// The deformer, taken back.
-    pub fn into_deformer(self) -> D {
+    /// The deformer, taken back (settled: see [`Self::settle`]).
+    pub fn into_deformer(mut self) -> D {
+        let _ = self.settle();
         self.deformer
     }
 
@@ -264,6 +276,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Recorded. A rig posing the shape is dropped (the caller checks whether it fits the
     /// new handles and gives it again).
     pub fn set_handle_points(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_handle_points(triangles, barycentric)?;
         self.reset_handle_states();
         self.rig = None;
@@ -273,6 +286,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// One handle on each of these vertices, replacing any (as [`Self::set_handle_points`]).
     pub fn set_handle_vertices(&mut self, vertices: &[u32]) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_handle_vertices(vertices)?;
         self.reset_handle_states();
         self.rig = None;
@@ -283,6 +297,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// One more handle at a point of the mesh, last, with its target where it is; the other
     /// handles keep their targets and turns. Recorded.
     pub fn add_handle(&mut self, triangle: u32, barycentric: [f64; 3]) -> Result<usize, DeformError> {
+        self.settle()?;
         let (mut triangles, mut weights) = self.deformer.borrow().handle_points();
         triangles.push(triangle);
         weights.push(barycentric);
@@ -298,6 +313,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Removes handle `index`; the others keep their targets and turns. Recorded.
     pub fn remove_handle(&mut self, index: usize) -> Result<(), DeformError> {
         self.check_handle(index)?;
+        self.settle()?;
         let (mut triangles, mut weights) = self.deformer.borrow().handle_points();
         triangles.remove(index);
         weights.remove(index);
@@ -394,6 +410,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Every handle's target where it is now, no motion pending: the handles stay where
     /// they are (with a rig, where its pose is for).
     pub fn pin_handles(&mut self) {
+        let _ = self.settle();
         let at = self.handle_places();
         for (h, p) in self.handles.iter_mut().zip(at) {
             h.target = p;
@@ -414,7 +431,8 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// pending from it; with a rig, where the rig's pose is for). Returns where it is.
     pub fn grab(&mut self, index: usize) -> Result<Point, DeformError> {
         self.check_handle(index)?;
-        let at = self.handle_places()[index];
+        self.settle()?;
+        let at = self.deformer.borrow().handle_positions()[index];
         let h = &mut self.handles[index];
         h.held = true;
         h.target = at;
@@ -661,6 +679,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// A plain step asked for by hand: the turns it made count as asked.
     fn step_by_hand(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>) -> Result<(), DeformError> {
+        self.settle()?;
         let before = self.turned_before(turns);
         self.take(velocities, turns, None)?;
         self.turns_asked_as_made(&before);
@@ -678,6 +697,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         guard: FoldoverGuard,
     ) -> Result<GuardedStep, DeformError> {
         guard.check()?;
+        self.settle()?;
         let before = self.turned_before(turns);
         let (_, clamped) = self.take(velocities, turns, Some(guard))?;
         self.turns_asked_as_made(&before);
@@ -716,6 +736,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// targets stay. `remaining` 1 takes the whole way, as a replay driving another method
     /// to recorded targets does. Recorded.
     pub fn step_toward(&mut self, remaining: f64, turns: Option<&[f64]>) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow().handle_positions_into(&mut self.current);
         toward(&self.handles, &self.current, remaining, &mut self.velocities);
         let velocities = std::mem::take(&mut self.velocities);
@@ -735,6 +756,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// poses with the deformer again; so does any new handle set. Recorded (a `rig` event
     /// naming the rig by [`session_rig`]).
     pub fn set_rig(&mut self, operator: Option<Operator>) -> Result<(), DeformError> {
+        self.settle()?;
         let Some(operator) = operator else {
             if self.rig.take().is_some() {
                 self.record(|| Event::Rig(None));
@@ -791,12 +813,79 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.rig.as_ref().map(|rig| rig.operator.handles())
     }
 
+    /// Poses the rig on the GPU (`on`) or on the CPU: on the GPU each frame computes the
+    /// rig's frame ([`Self::rig_gpu`]) and the deformer's positions wait for
+    /// [`Self::settle`]. Returns whether the rig is on the GPU now (never without a rig; a
+    /// new rig starts on the CPU).
+    pub fn set_rig_on_gpu(&mut self, on: bool) -> Result<bool, DeformError> {
+        if !on {
+            self.settle()?;
+        }
+        let Some(rig) = &mut self.rig else { return Ok(false) };
+        match (on, rig.gpu.is_some()) {
+            (true, false) => {
+                rig.gpu = Some(GpuRig::new(&rig.operator));
+                // The first frame on the GPU computes its frame even at the same targets.
+                rig.asked.clear();
+            }
+            (false, true) => rig.gpu = None,
+            _ => {}
+        }
+        Ok(on)
+    }
+
+    /// The rig's CPU side on the GPU (its layout, the last frame, the watched vertices'
+    /// positions), if a rig poses on the GPU.
+    pub fn rig_gpu(&self) -> Option<&GpuRig> {
+        self.rig.as_ref().and_then(|rig| rig.gpu.as_ref())
+    }
+
+    /// The basis texture of the rig on the GPU ([`gpu::basis_texture`]), once per rig.
+    pub fn rig_gpu_texture(&self) -> Option<Vec<f32>> {
+        self.rig.as_ref().filter(|rig| rig.gpu.is_some()).map(|rig| gpu::basis_texture(&rig.operator))
+    }
+
+    /// Watches these vertices of the rig on the GPU ([`GpuRig::watch`]): each frame gives
+    /// their positions. Returns whether a rig is on the GPU (nothing is watched without one).
+    pub fn watch_rig_vertices(&mut self, vertices: &[u32]) -> Result<bool, FitError> {
+        let Some(Rig { operator, gpu: Some(gpu), asked, .. }) = &mut self.rig else { return Ok(false) };
+        gpu.watch(operator, vertices)?;
+        asked.clear(); // the next frame gives their positions
+        Ok(true)
+    }
+
+    /// Whether the deformer's positions are behind the rig's last frame on the GPU.
+    pub fn is_stale(&self) -> bool {
+        self.rig.as_ref().is_some_and(|rig| rig.stale)
+    }
+
+    /// Whether the rig on the GPU has the frame of the pose shown: its last frame, stale
+    /// positions or not (with the foldover guard a frame is evaluated on the CPU as well, and
+    /// the GPU draws the same targets). Not after a pose set otherwise (undo, a reset).
+    pub fn rig_frame_current(&self) -> bool {
+        self.rig.as_ref().is_some_and(|rig| rig.gpu.is_some() && !rig.posed.is_empty())
+    }
+
+    /// With a rig on the GPU, puts the rig's pose at the last frame's targets into the
+    /// deformer's positions if they are behind (nothing otherwise): what every reader of the
+    /// pose calls first. Not recorded (a recording records each rig frame as it is taken).
+    /// On error (a pose beyond the coordinate limits) the positions stay as they were.
+    pub fn settle(&mut self) -> Result<(), DeformError> {
+        let Some(rig) = self.rig.as_mut().filter(|rig| rig.stale) else { return Ok(()) };
+        rig.stale = false;
+        let Rig { operator, posed, .. } = rig;
+        self.deformer
+            .borrow_mut()
+            .set_positions_with(|out| operator.evaluate_into(posed, out).map_err(|_| DeformError::NonFiniteResult))
+    }
+
     /// The rig's pose for the handles' targets, straight into the deformer's positions;
     /// nothing when the targets are those of the last evaluation. With no foldovers, pulled
     /// back along the way from the targets of the last pose until no triangle turns over
     /// that was not at rest (`rig.rs`): then reported clamped, and the handles not held stay
     /// where the pose is for, as after a step stopped short. Recorded as the targets the pose
-    /// is for (or as the pose, for a rig the recording does not name).
+    /// is for (or as the pose, for a rig the recording does not name). On the GPU without
+    /// the guard, the rig's frame only, the positions left behind (see [`Self::settle`]).
     fn evaluate_rig(&mut self) -> Result<Advance, DeformError> {
         let rig = self.rig.as_mut().expect("a rig poses");
         for (t, h) in rig.targets.chunks_exact_mut(2).zip(&self.handles) {
@@ -807,9 +896,20 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         }
         let clock = self.deformer.borrow().clock();
         let started = clock();
-        let (moved, clamped) = match self.tracking.no_foldovers {
-            true => rig.pose_without_foldovers(self.deformer.borrow_mut(), self.tracking.guard.clamp_trials)?,
-            false => rig.pose(self.deformer.borrow_mut()).map(|()| (true, false))?,
+        // On the GPU a frame computes the rig's frame only; the guard needs the pose (it checks
+        // its triangles), and so does a recording that cannot name the rig (it records poses).
+        let recording_poses = self.recording.is_some() && !self.paused && !rig.announced;
+        let gpu_only = rig.gpu.is_some() && !self.tracking.no_foldovers && !recording_poses;
+        if !gpu_only && rig.stale {
+            self.settle()?;
+        }
+        let rig = self.rig.as_mut().expect("a rig poses");
+        let (moved, clamped) = match (gpu_only, self.tracking.no_foldovers) {
+            (true, _) => rig.frame_on_gpu().map(|()| (true, false))?,
+            (false, true) => {
+                rig.pose_without_foldovers(self.deformer.borrow_mut(), self.tracking.guard.clamp_trials)?
+            }
+            (false, false) => rig.pose(self.deformer.borrow_mut()).map(|()| (true, false))?,
         };
         let evaluation = clock() - started;
         if clamped {
@@ -883,6 +983,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// method, keeping pose and handles). Recorded.
     pub fn set_options(&mut self, options: impl Into<MethodOptions>) -> Result<(), DeformError> {
         let options = options.into();
+        self.settle()?;
         self.deformer.borrow_mut().set_options(options)?;
         self.record(|| Event::Options(RecordedOptions::of(options)));
         Ok(())
@@ -891,6 +992,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Replaces a puppet's joints ([`Deformer::set_joints`]). Recorded.
     pub fn set_joints(&mut self, joints: Vec<Joint>) -> Result<(), DeformError> {
         let recorded = SessionJoint::all(&joints);
+        self.settle()?;
         self.deformer.borrow_mut().set_joints(joints)?;
         self.record(|| Event::Joints(recorded));
         Ok(())
@@ -899,6 +1001,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Sets each triangle's stiffness ([`Deformer::set_stiffness`]). Recorded (methods
     /// without stiffness take only `None`).
     pub fn set_stiffness(&mut self, stiffness: Option<&[f64]>) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_stiffness(stiffness)?;
         if self.deformer.borrow().has_stiffness() {
             self.record(|| Event::Stiffness(stiffness.map(<[f64]>::to_vec)));
@@ -908,6 +1011,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Sets the bones ([`Deformer::set_bones`]). Recorded.
     pub fn set_bones(&mut self, triangles: &[u32], barycentric: &[[f64; 3]]) -> Result<(), DeformError> {
+        self.settle()?;
         self.deformer.borrow_mut().set_bones(triangles, barycentric)?;
         if self.deformer.borrow().has_bones() {
             let barycentric = barycentric.as_flattened().to_vec();
@@ -929,6 +1033,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// that put a deformer in the current state (the pose or a reset, the handles, the
     /// stiffness and bones, the rig).
     pub fn start_recording(&mut self, shape: Option<ShapeSpec>) {
+        let _ = self.settle();
         let deformer = self.deformer.borrow();
         let mesh = deformer.mesh();
         let mut session = Session::with_mesh(mesh, deformer.options());

@@ -22,7 +22,7 @@
 //! each frame as the targets the pose is for, which the rig evaluates again to the same bits.
 
 use crate::defop::file::write_operator;
-use crate::defop::{FitError, Operator};
+use crate::defop::{FitError, GpuRig, Operator};
 use crate::deform::foldover::positive_triangles;
 use crate::deform::{DeformError, Deformer};
 use crate::geometry::{self, Point};
@@ -62,6 +62,10 @@ pub(super) struct Rig {
     /// Whether the recording has named the rig (a `rig` event): its frames are then recorded
     /// as `rigPose` events, else as poses.
     pub(super) announced: bool,
+    /// The rig on the GPU (`Poser::set_rig_on_gpu`): each pose also computes its frame.
+    pub(super) gpu: Option<GpuRig>,
+    /// Whether the deformer's positions are behind `posed` (a frame on the GPU only since).
+    pub(super) stale: bool,
 }
 
 impl Rig {
@@ -77,6 +81,8 @@ impl Rig {
             watched: Vec::new(),
             positive: Vec::new(),
             announced: false,
+            gpu: None,
+            stale: false,
         }
     }
 
@@ -86,6 +92,7 @@ impl Rig {
         self.asked.clear();
         self.posed.clear();
         self.watched.clear();
+        self.stale = false;
     }
 
     /// The rig's pose for `targets`, straight into the deformer's positions (no guard).
@@ -95,7 +102,28 @@ impl Rig {
             .set_positions_with(|out| operator.evaluate_into(targets, out).map_err(|_| DeformError::NonFiniteResult))?;
         self.posed.clone_from(&self.targets);
         self.watched.clear();
+        self.frame()
+    }
+
+    /// On the GPU: the rig's frame for `targets` only, the deformer's positions left behind
+    /// (`stale`) until `Poser::settle`.
+    pub(super) fn frame_on_gpu(&mut self) -> Result<(), DeformError> {
+        let gpu = self.gpu.as_mut().expect("a rig on the GPU");
+        gpu.frame(&self.targets).map_err(|_| DeformError::NonFiniteResult)?;
+        self.posed.clone_from(&self.targets);
+        self.watched.clear();
+        self.stale = true;
         Ok(())
+    }
+
+    /// After the deformer's positions became the rig's pose for `posed`: the frame on the
+    /// GPU for the same targets, if the rig is there.
+    fn frame(&mut self) -> Result<(), DeformError> {
+        self.stale = false;
+        match &mut self.gpu {
+            Some(gpu) => gpu.frame(&self.posed).map(drop).map_err(|_| DeformError::NonFiniteResult),
+            None => Ok(()),
+        }
     }
 
     /// The rig's pose for `targets`, or pulled back along the way to them until no watched
@@ -185,6 +213,6 @@ impl Rig {
         self.posed.clone_from(&self.way);
         self.watched.clear();
         self.watched.extend(self.at_rest.iter().zip(&self.positive).map(|(&r, &p)| r && p));
-        Ok(())
+        self.frame()
     }
 }

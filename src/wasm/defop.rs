@@ -10,10 +10,10 @@ use super::mesh::{read_mesh, JsMesh};
 use super::puppet::{joints_to_js, parts_to_js, read_optional_puppet};
 use super::read::{self, Options};
 use super::{flat, limits, object, pairs};
-use crate::defop::sampling::Sampling;
+use crate::defop::sampling::{Region, Sampling};
 use crate::defop::{
-    read_operator, write_operator, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
-    Progress, Start, TrainError, TrainOptions, Trainer,
+    read_operator, write_operator_in, BasisKind, Energy, GroundTruth, GroundTruthOptions, Handles, MeshPoint, Operator,
+    Precision, Progress, SinglePrecision, Start, TrainError, TrainOptions, Trainer,
 };
 use crate::deform::Puppet;
 use crate::mesh::Mesh;
@@ -30,6 +30,12 @@ const BASES: [(&str, BasisKind); 4] = [
 ];
 const SAMPLINGS: [(&str, Sampling); 3] =
     [("disc", Sampling::Disc), ("voronoi", Sampling::Voronoi), ("mixed", Sampling::Mixed)];
+const PRECISIONS: [(&str, Precision); 2] = [("double", Precision::Double), ("single", Precision::Single)];
+
+/// The JavaScript name of `value` in `names` (every value has one).
+fn name_of<T: PartialEq + Copy>(names: &[(&'static str, T)], value: T) -> &'static str {
+    names.iter().find(|(_, v)| *v == value).map_or("", |(name, _)| name)
+}
 
 /// Reads `{ energy?, basis?, samples?, radius?, sampling?, spatial?, seed?, canonical?,
 /// fixed?, parts?, joints? }` (`parts` and `joints`: a puppet's, as the `Deformer` takes
@@ -295,6 +301,10 @@ pub struct JsDefOp {
     scratch: Vec<f64>,
     /// The same in single precision.
     scratch32: Vec<f32>,
+    /// The operator's single-precision copy, made at the first `evaluateIntoF32`.
+    single: Option<SinglePrecision>,
+    /// Its training's sampling regions, once asked for.
+    regions: std::cell::OnceCell<Vec<Region>>,
 }
 
 impl JsDefOp {
@@ -305,7 +315,20 @@ impl JsDefOp {
 
     fn new(mesh: Mesh, operator: Operator) -> Self {
         let n = 2 * operator.vertex_count();
-        Self { mesh, operator, scratch: vec![0.0; n], scratch32: vec![0.0; n] }
+        let regions = std::cell::OnceCell::new();
+        Self { mesh, operator, scratch: vec![0.0; n], scratch32: vec![0.0; n], single: None, regions }
+    }
+
+    /// Its training's regions for its own mesh (computed once: neither changes).
+    fn sampling_regions(&self) -> Result<&[Region], BindingError> {
+        if self.regions.get().is_none() {
+            let regions = self
+                .operator
+                .sampling_regions(&self.mesh)
+                .map_err(|e| BindingError::argument(format!("the operator's sampling regions: {e}")))?;
+            let _ = self.regions.set(regions);
+        }
+        Ok(self.regions.get().map_or(&[], Vec::as_slice))
     }
 
     /// Refuses an output array of the wrong length.
@@ -335,10 +358,83 @@ impl JsDefOp {
         Ok(Self::new(mesh, operator))
     }
 
-    /// The operator file: the operator and its mesh (`Uint8Array`).
+    /// The operator file: the operator and its mesh (`Uint8Array`). `options`: `{
+    /// precision?: "double" | "single" }` (single: the coefficients as f32, half the size).
     #[wasm_bindgen(js_name = toBytes)]
-    pub fn to_bytes(&self) -> Result<Vec<u8>, BindingError> {
-        Ok(write_operator(&self.mesh, &self.operator).map_err(TrainError::from)?)
+    pub fn to_bytes(&self, options: JsValue) -> Result<Vec<u8>, BindingError> {
+        let given = Options::read(&options, "operator file", &["precision"])?;
+        let precision = given.choice("precision", &PRECISIONS)?.unwrap_or_default();
+        Ok(write_operator_in(&self.mesh, &self.operator, precision).map_err(TrainError::from)?)
+    }
+
+    /// The settings it was trained with, `{ energy, basis, spatial, samples, sampling,
+    /// radius, seed, canonical, fixed }` (the trainer's option names and values; `radius`
+    /// resolved, `fixed` a `Uint32Array`), or undefined when they are not known (a file
+    /// older than version 4).
+    #[wasm_bindgen(getter)]
+    pub fn training(&self) -> Result<JsValue, BindingError> {
+        let Some(t) = self.operator.training() else { return Ok(JsValue::UNDEFINED) };
+        let basis = self.operator.handle_basis();
+        let spatial = if !self.operator.reduction().is_empty() { self.operator.spatial_len() } else { 0 };
+        let fixed: Vec<u32> = basis.coordinates().fixed().iter().map(|&a| a as u32).collect();
+        Ok(object(&[
+            ("energy", JsValue::from_str(name_of(&ENERGIES, t.energy))),
+            ("basis", JsValue::from_str(name_of(&BASES, basis.kind()))),
+            ("spatial", (spatial as f64).into()),
+            ("samples", (t.samples as f64).into()),
+            ("sampling", JsValue::from_str(name_of(&SAMPLINGS, t.sampling))),
+            ("radius", t.radius.into()),
+            ("seed", (t.seed as f64).into()),
+            ("canonical", basis.coordinates().is_canonical().into()),
+            ("fixed", js_sys::Uint32Array::from(fixed.as_slice()).into()),
+        ])?
+        .into())
+    }
+
+    /// Where its training drew each handle's targets (Rust's `sampling::regions`, the one
+    /// definition the sampler draws from): `{ sampling, radius, centres: Float64Array (the
+    /// rest handles, 2 each), discs: boolean, cells: Float64Array[] | undefined }`: discs of
+    /// `radius` about the centres (disc and mixed sampling) and each handle's Voronoi cell, a
+    /// convex polygon counter-clockwise, x and y per corner (Voronoi and mixed). For an
+    /// operator whose training is not known, the discs of radius its scale.
+    pub fn regions(&self) -> Result<JsValue, BindingError> {
+        let regions = self.sampling_regions()?;
+        let (sampling, radius) = self.operator.sampling();
+        let centres: Vec<[f64; 2]> = regions.iter().map(|r| r.centre).collect();
+        let cells = if regions.iter().all(|r| r.cell.is_some()) {
+            let list = js_sys::Array::new();
+            regions.iter().filter_map(|r| r.cell.as_deref()).for_each(|cell| {
+                list.push(&flat(cell));
+            });
+            list.into()
+        } else {
+            JsValue::UNDEFINED
+        };
+        Ok(object(&[
+            ("sampling", JsValue::from_str(name_of(&SAMPLINGS, sampling))),
+            ("radius", radius.into()),
+            ("centres", flat(&centres).into()),
+            ("discs", JsValue::from_bool(regions.iter().all(|r| r.radius.is_some()))),
+            ("cells", cells),
+        ])?
+        .into())
+    }
+
+    /// For handle targets (`Float64Array`, 2 per handle): a `Uint8Array`, 1 for each handle
+    /// whose target lies outside every region its training drew targets from (the operator
+    /// extrapolates there), else 0.
+    #[wasm_bindgen(js_name = outsideRegions)]
+    pub fn outside_regions(&self, targets: JsValue) -> Result<Vec<u8>, BindingError> {
+        let targets = pairs(&read::float64s(&targets, "targets", 2 * limits().max_vertices)?, "targets")?;
+        let regions = self.sampling_regions()?;
+        if targets.len() != regions.len() {
+            return Err(BindingError::argument(format!(
+                "targets has {} points; the operator has {} handles",
+                targets.len(),
+                regions.len()
+            )));
+        }
+        Ok(regions.iter().zip(&targets).map(|(r, &q)| u8::from(!r.contains(q))).collect())
     }
 
     /// The operator's mesh at rest.
@@ -363,13 +459,16 @@ impl JsDefOp {
         Ok(())
     }
 
-    /// [`Self::evaluate_into`] in single precision (`Float32Array` out, for a GPU buffer),
-    /// computed in double.
+    /// [`Self::evaluate_into`] in single precision (`Float32Array` out): computed by the
+    /// operator's single-precision copy (`crate::defop::SinglePrecision`, made at the first
+    /// call: 4 bytes per coefficient), within about (|Ψ| + |Φ|) ε_32 of the double pose's
+    /// terms' magnitudes.
     #[wasm_bindgen(js_name = evaluateIntoF32)]
     pub fn evaluate_into_f32(&mut self, targets: JsValue, out: &js_sys::Float32Array) -> Result<(), BindingError> {
         self.check_out(out.length())?;
         let targets = read::float64s(&targets, "targets", 2 * limits().max_vertices)?;
-        self.operator.evaluate_into_f32(&targets, &mut self.scratch32).map_err(TrainError::from)?;
+        let single = self.single.get_or_insert_with(|| self.operator.single_precision());
+        single.evaluate_into(&targets, &mut self.scratch32).map_err(TrainError::from)?;
         out.copy_from(&self.scratch32);
         Ok(())
     }

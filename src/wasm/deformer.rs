@@ -34,6 +34,14 @@ impl JsDeformer {
     fn deformer(&self) -> &Deformer {
         self.inner.deformer()
     }
+
+    /// The deformer with its pose current: a rig on the GPU leaves the positions behind
+    /// until they are read (`crate::pose::Poser::settle`; a pose that cannot be evaluated
+    /// leaves them as they were). Every reader of the pose goes through here.
+    fn posed(&mut self) -> &Deformer {
+        let _ = self.inner.settle();
+        self.inner.deformer()
+    }
 }
 
 /// The fill-reducing orders a deformer of the method in `options` needs for this mesh (the
@@ -251,8 +259,8 @@ impl JsDeformer {
     }
 
     /// A copy of the current positions, x and y interleaved.
-    pub fn positions(&self) -> Vec<f64> {
-        self.deformer().positions().iter().flatten().copied().collect()
+    pub fn positions(&mut self) -> Vec<f64> {
+        self.posed().positions().iter().flatten().copied().collect()
     }
 
     /// Where the current positions live in wasm memory: the byte offset of `2 * vertexCount`
@@ -260,8 +268,8 @@ impl JsDeformer {
     /// `memory.buffer` (no copy). The address changes with every step (the deformer swaps
     /// two buffers), and a view detaches when the memory grows: ask again each frame.
     #[wasm_bindgen(js_name = positionsPointer)]
-    pub fn positions_pointer(&self) -> usize {
-        self.deformer().positions().as_ptr() as usize
+    pub fn positions_pointer(&mut self) -> usize {
+        self.posed().positions().as_ptr() as usize
     }
 
     /// Puts the mesh into the given pose (`Float64Array`, xy-interleaved, length
@@ -310,8 +318,8 @@ impl JsDeformer {
 
     /// Current positions of the handle points, interleaved.
     #[wasm_bindgen(js_name = handlePositions)]
-    pub fn handle_positions(&self) -> Vec<f64> {
-        self.deformer().handle_positions().iter().flatten().copied().collect()
+    pub fn handle_positions(&mut self) -> Vec<f64> {
+        self.posed().handle_positions().iter().flatten().copied().collect()
     }
 
     /// Number of handles.
@@ -327,8 +335,8 @@ impl JsDeformer {
     }
 
     /// `{ areaDistortion, angleDistortion, flipped }` of the current pose.
-    pub fn metrics(&self) -> Result<Object, BindingError> {
-        let m = self.deformer().metrics();
+    pub fn metrics(&mut self) -> Result<Object, BindingError> {
+        let m = self.posed().metrics();
         object(&[
             ("areaDistortion", m.area_distortion.into()),
             ("angleDistortion", m.angle_distortion.into()),
@@ -524,6 +532,86 @@ impl JsDeformer {
     pub fn pose_with_rig(&mut self, targets: JsValue) -> Result<(), BindingError> {
         let targets = read::float64s(&targets, "targets", 2 * max_handles())?;
         Ok(self.inner.pose_with_rig(&pairs(&targets, "targets")?)?)
+    }
+
+    /// Poses the rig on the GPU (`true`) or on the CPU (`false`): on the GPU, `advance`
+    /// computes only the rig's frame (`rigFramePointer`), which a vertex shader combines
+    /// with the basis texture (`rigGpuTexture`, laid out as `rigGpuLayout` says;
+    /// `crate::defop::gpu`), and the pose is evaluated when something reads it (positions,
+    /// handle positions, metrics, a step, a recording...). Returns whether the rig is on the
+    /// GPU now (never without a rig; a new rig starts on the CPU).
+    #[wasm_bindgen(js_name = setRigOnGpu)]
+    pub fn set_rig_on_gpu(&mut self, on: bool) -> Result<bool, BindingError> {
+        Ok(self.inner.set_rig_on_gpu(on)?)
+    }
+
+    /// The layout of the rig on the GPU, `{ reduced, vertexCount, terms, stride, basisY,
+    /// frameY, frameTexels, rigidTexels }` (texels of 4 numbers; see `crate::defop::gpu`),
+    /// or `undefined` without one.
+    #[wasm_bindgen(js_name = rigGpuLayout)]
+    pub fn rig_gpu_layout(&self) -> Result<JsValue, BindingError> {
+        let Some(gpu) = self.inner.rig_gpu() else { return Ok(JsValue::UNDEFINED) };
+        let l = gpu.layout();
+        let count = |n: usize| JsValue::from_f64(n as f64);
+        Ok(object(&[
+            ("reduced", l.reduced.into()),
+            ("vertexCount", count(l.vertex_count)),
+            ("terms", count(l.terms)),
+            ("stride", count(l.stride)),
+            ("basisY", count(l.basis_y)),
+            ("frameY", count(l.frame_y)),
+            ("frameTexels", count(l.frame_texels)),
+            ("rigidTexels", count(crate::defop::gpu::RIGID_TEXELS)),
+        ])?
+        .into())
+    }
+
+    /// The basis texture of the rig on the GPU (`Float32Array`, 4 numbers per texel,
+    /// `vertexCount * stride` texels), or `undefined` without one: upload it once per rig.
+    #[wasm_bindgen(js_name = rigGpuTexture)]
+    pub fn rig_gpu_texture(&self) -> Option<Vec<f32>> {
+        self.inner.rig_gpu_texture()
+    }
+
+    /// Where the rig's last frame lives in wasm memory (the byte offset of `4 *
+    /// frameTexels` f32 numbers; 0 without a rig on the GPU): wrap it in a `Float32Array`
+    /// after each `advance` (its address stays while the rig does; a view detaches when the
+    /// memory grows).
+    #[wasm_bindgen(js_name = rigFramePointer)]
+    pub fn rig_frame_pointer(&self) -> usize {
+        self.inner.rig_gpu().map_or(0, |gpu| gpu.frame_values().as_ptr() as usize)
+    }
+
+    /// Watches these vertices (`Uint32Array`) of the rig on the GPU: each frame gives their
+    /// positions on the CPU (`rigWatchedPointer`), for what is drawn over the mesh. Returns
+    /// whether a rig is on the GPU (nothing is watched without one). A vertex out of range
+    /// is refused, changing nothing.
+    #[wasm_bindgen(js_name = watchRigVertices)]
+    pub fn watch_rig_vertices(&mut self, vertices: JsValue) -> Result<bool, BindingError> {
+        let vertices = read::uint32s(&vertices, "vertices", limits().max_vertices)?;
+        Ok(self.inner.watch_rig_vertices(&vertices).map_err(crate::defop::TrainError::from)?)
+    }
+
+    /// Where the watched vertices' positions live in wasm memory (the byte offset of `2 *
+    /// vertexCount` f64 numbers, x and y interleaved, fresh at the watched vertices as of the
+    /// last frame; 0 without a rig on the GPU).
+    #[wasm_bindgen(js_name = rigWatchedPointer)]
+    pub fn rig_watched_pointer(&self) -> usize {
+        self.inner.rig_gpu().map_or(0, |gpu| gpu.watched_positions().as_ptr() as usize)
+    }
+
+    /// Whether the positions are behind the rig's last frame on the GPU (they are evaluated
+    /// when read).
+    #[wasm_bindgen(getter, js_name = poseStale)]
+    pub fn pose_stale(&self) -> bool {
+        self.inner.is_stale()
+    }
+
+    /// Whether the rig's last frame on the GPU is that of the pose shown (stale positions
+    /// or not: with the foldover guard each frame is also evaluated on the CPU).
+    #[wasm_bindgen(getter, js_name = rigFrameCurrent)]
+    pub fn rig_frame_current(&self) -> bool {
+        self.inner.rig_frame_current()
     }
 
     // ------------------------------------------------------------------ recording

@@ -3,7 +3,9 @@
  * identity at the rest targets and puts its handles exactly on any targets; the ground
  * truth of a rigid motion of the handles is that rigid motion; a canonical operator moves
  * rigidly with its handles and a fixed handle stays at rest, in wasm and in the wasm-free
- * reader alike (which also reads version-1 files); bad input throws with a code.
+ * reader alike (which also reads files of versions 1 to 3); a file keeps its training's
+ * settings, in double or single precision; the regions training sampled hold its targets;
+ * bad input throws with a code.
  */
 import { readFileSync } from "node:fs";
 import { beforeAll, describe, expect, it } from "vitest";
@@ -24,6 +26,12 @@ beforeAll(async () => {
 });
 
 const mesh = () => triangulate(defaultShape(), { targetEdgeLength: 0.12 });
+
+/** The extent of coordinate `c` (0: x, 1: y) of flat positions. */
+function extent(positions: Float64Array, c: number): number {
+  const values = positions.filter((_, i) => i % 2 === c);
+  return Math.max(...values) - Math.min(...values);
+}
 
 /** Positions of the handle vertices, flat. */
 function at(positions: Float64Array, handles: number[]): number[] {
@@ -58,7 +66,12 @@ describe("DefOp", () => {
     expect(() => op.evaluateInto(far, new Float64Array(3))).toThrow(/out has 3 numbers/);
     const single = new Float32Array(2 * m.vertexCount);
     op.evaluateIntoF32(far, single);
-    single.forEach((x, i) => expect(x).toBe(Math.fround(out[i]!)));
+    // Computed in single precision (not the double pose rounded): within the error its
+    // documentation states, 5e-7 of the bounding box's diagonal (measured: 3.7e-7).
+    const diagonal = Math.hypot(...[0, 1].map((c) => extent(m.positions, c)));
+    const errors = [...single].map((x, i) => Math.abs(x - out[i]!));
+    expect(Math.max(...errors)).toBeLessThan(5e-7 * diagonal);
+    expect(errors.filter((e, i) => single[i] !== Math.fround(out[i]!)).length).toBeGreaterThan(0);
     expect(() => op.evaluate([1, 2])).toThrow();
     op.free();
     expect(() => op.evaluate(far)).toThrow(/freed/);
@@ -179,7 +192,8 @@ describe("DefOp", () => {
     expect(op.parts!.map(sheet)).toEqual(parts.map(sheet));
     expect(op.joints).toEqual(joints);
     const bytes = op.toBytes();
-    expect(bytes[8]).toBe(3);
+    // Version 4 with the puppet flag.
+    expect([bytes[8], bytes[49]]).toEqual([4, 1]);
     const plain = readOperatorFile(bytes);
     expect(plain.parts!.map(sheet)).toEqual(parts.map(sheet));
     expect(plain.joints).toEqual(joints);
@@ -223,6 +237,155 @@ describe("DefOp", () => {
     out.forEach((x, i) => expect(Math.abs(x - expected[i]!)).toBeLessThan(1e-12));
     op.evaluate(q).forEach((x, i) => expect(Math.abs(x - expected[i]!)).toBeLessThan(1e-12));
     op.free();
+  });
+
+  it("reads version-2 and version-3 files (written by those writers), the training not known", () => {
+    // Version 2: handles at (0, 0), (2, 2) and (2, 0), the last fixed; exactly
+    // x + (1 − x/2)(q0 − p0) + (y/2)(q1 − p1), whatever the fixed handle's target.
+    const v2 = new Uint8Array(readFileSync("tests/fixtures/defop-v2-fixed.defop"));
+    const q = [0.3, -0.2, 2.5, 1.1, 9, -9];
+    const plain = readOperatorFile(v2);
+    const op = DefOp.fromBytes(v2);
+    expect([plain.training, op.training, plain.precision, [...plain.fixed]]).toEqual([
+      undefined,
+      undefined,
+      "double",
+      [2],
+    ]);
+    const out = new Float64Array(2 * plain.vertexCount);
+    plain.evaluateInto(q, out);
+    const expected = Array.from(plain.positions, (x, i) => {
+      const [px, py] = [plain.positions[i - (i % 2)]!, plain.positions[i - (i % 2) + 1]!];
+      const nu = i % 2;
+      return x + (1 - px / 2) * q[nu]! + (py / 2) * (q[2 + nu]! - 2);
+    });
+    out.forEach((x, i) => expect(Math.abs(x - expected[i]!)).toBeLessThan(1e-12));
+    op.evaluate(q).forEach((x, i) => expect(Math.abs(x - expected[i]!)).toBeLessThan(1e-12));
+    // Version 3: two squares, each translated by its handle, joined at (0.75, 0.5).
+    const v3 = new Uint8Array(readFileSync("tests/fixtures/defop-v3-puppet.defop"));
+    const puppet = readOperatorFile(v3);
+    const rig = DefOp.fromBytes(v3);
+    expect(puppet.parts!.map((p) => [p.name, [...p.triangles], p.depth])).toEqual([
+      ["left", [0, 1], 0],
+      ["right", [2, 3], 1],
+    ]);
+    expect(puppet.joints).toEqual([{ point: [0.75, 0.5], parts: [1, 0] }]);
+    expect(rig.joints).toEqual(puppet.joints);
+    expect([puppet.training, rig.training]).toEqual([undefined, undefined]);
+    const moved = [0.3, -0.2, 1, 0.75];
+    const posed = new Float64Array(16);
+    puppet.evaluateInto(moved, posed);
+    posed.forEach((x, i) => {
+      const shift = (i < 8 ? [0.3, -0.2] : [-0.5, 0.5])[i % 2]!;
+      expect(Math.abs(x - (puppet.positions[i]! + shift))).toBeLessThan(1e-12);
+    });
+    // Written again: version 4, its puppet kept, still no training.
+    const again = readOperatorFile(rig.toBytes());
+    expect([again.parts?.length, again.training]).toEqual([2, undefined]);
+    [op, rig].forEach((o) => o.free());
+  });
+
+  it("keeps the training's settings in its file, in double or single precision, with and without wasm", () => {
+    const m = mesh();
+    const handles = [2, 40, m.vertexCount - 3];
+    const trainer = new DefOpTrainer(m.positions, m.triangles, handles, {
+      energy: "arap",
+      samples: 16,
+      sampling: "mixed",
+      spatial: 20,
+      seed: 4,
+      fixed: [1],
+      basis: "quadratic",
+    });
+    const radius = trainer.radius;
+    while (trainer.advance(50).stage !== "done");
+    const op = trainer.finish();
+    const training = {
+      energy: "arap",
+      basis: "quadratic",
+      spatial: 20,
+      samples: 16,
+      sampling: "mixed",
+      radius,
+      seed: 4,
+      canonical: false,
+      fixed: new Uint32Array([1]),
+    };
+    expect(op.training).toEqual(training);
+    const bytes = op.toBytes();
+    const single = op.toBytes({ precision: "single" });
+    // The coefficients (20 spatial functions × 2 × |Ψ|, |Ψ| = 1 + 4 + 10 in k = 4
+    // coordinates) and D (20 × N) take 4 bytes each instead of 8.
+    expect(bytes.length - single.length).toBe(4 * (20 * 2 * 15 + 20 * m.vertexCount));
+    for (const file of [bytes, single]) {
+      expect(DefOp.fromBytes(file).training).toEqual(training);
+      expect(readOperatorFile(file).training).toEqual(training);
+    }
+    expect([readOperatorFile(bytes).precision, readOperatorFile(single).precision]).toEqual(["double", "single"]);
+    // Single precision: the wasm and the wasm-free readers pose alike, near the double operator.
+    const fromSingle = DefOp.fromBytes(single);
+    const plain = readOperatorFile(single);
+    const rest = at(m.positions, handles);
+    const q = rest.map((x, i) => x + 0.1 * Math.sin(i));
+    const out = new Float64Array(2 * m.vertexCount);
+    plain.evaluateInto(q, out);
+    const [exact, rounded] = [op.evaluate(q), fromSingle.evaluate(q)];
+    out.forEach((x, i) => expect(Math.abs(x - rounded[i]!)).toBeLessThan(1e-12));
+    const off = rounded.reduce((w, x, i) => Math.max(w, Math.abs(x - exact[i]!)), 0);
+    expect(off).toBeGreaterThan(0);
+    expect(off).toBeLessThan(1e-4);
+    expect(() => op.toBytes({ precision: "half" as "single" })).toThrow(
+      expect.objectContaining({ code: "invalid-option" }),
+    );
+    [op, fromSingle].forEach((o) => o.free());
+  });
+
+  it("gives the regions its training drew targets from, and which targets lie outside them", () => {
+    const m = mesh();
+    const handles = [2, m.vertexCount - 3];
+    const rest = at(m.positions, handles);
+    const xs = Array.from(m.positions).filter((_, i) => i % 2 === 0);
+    const ys = Array.from(m.positions).filter((_, i) => i % 2 === 1);
+    for (const sampling of ["disc", "voronoi", "mixed"] as const) {
+      const trainer = new DefOpTrainer(m.positions, m.triangles, handles, { energy: "arap", samples: 6, sampling });
+      const radius = trainer.radius;
+      while (trainer.advance(50).stage !== "done");
+      const op = trainer.finish();
+      const regions = op.regions();
+      expect([regions.sampling, regions.radius, [...regions.centres]]).toEqual([sampling, radius, rest]);
+      expect(regions.discs).toBe(sampling !== "voronoi");
+      expect(regions.cells?.length).toBe(sampling === "disc" ? undefined : 2);
+      // Two handles: each cell is its half of the box grown by the radius, cut by the
+      // perpendicular bisector of the two rest handles. Every corner is on the box or the
+      // bisector, and nearer its own handle (or as near).
+      const box = [
+        Math.min(...xs) - radius,
+        Math.min(...ys) - radius,
+        Math.max(...xs) + radius,
+        Math.max(...ys) + radius,
+      ];
+      regions.cells?.forEach((cell, l) => {
+        for (let k = 0; k < cell.length; k += 2) {
+          const [x, y] = [cell[k]!, cell[k + 1]!];
+          const d = (h: number) => Math.hypot(x - rest[2 * h]!, y - rest[2 * h + 1]!);
+          const onBox = [x - box[0]!, y - box[1]!, box[2]! - x, box[3]! - y].some((e) => Math.abs(e) < 1e-9);
+          expect(onBox || Math.abs(d(0) - d(1)) < 1e-9).toBe(true);
+          expect(d(l)).toBeLessThanOrEqual(d(1 - l) + 1e-9);
+        }
+      });
+      // At rest inside; a step of 1.05 radius from handle 0 away from handle 1 is outside
+      // its disc but (within the box) inside its cell; far beyond the box, outside both.
+      expect([...op.outsideRegions(rest)]).toEqual([0, 0]);
+      const away = [rest[0]! - rest[2]!, rest[1]! - rest[3]!];
+      const length = Math.hypot(away[0]!, away[1]!);
+      const step = [rest[0]! + (1.05 * radius * away[0]!) / length, rest[1]! + (1.05 * radius * away[1]!) / length];
+      const inBox = step[0]! >= box[0]! && step[0]! <= box[2]! && step[1]! >= box[1]! && step[1]! <= box[3]!;
+      expect(inBox).toBe(true);
+      expect([...op.outsideRegions([...step, rest[2]!, rest[3]!])]).toEqual([sampling === "disc" ? 1 : 0, 0]);
+      expect([...op.outsideRegions([box[0]! - 1, rest[1]!, ...rest.slice(2)])]).toEqual([1, 0]);
+      expect(() => op.outsideRegions([0, 0])).toThrow(/2 handles/);
+      op.free();
+    }
   });
 
   it("trains the same operator with jobs solved by workers' solvers, in any order", () => {

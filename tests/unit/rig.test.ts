@@ -1,8 +1,9 @@
 /**
  * The widget's rigs in Node: a rig fits only its own rest mesh (by content) and its handle
  * points in order; its cache key changes with the mesh, a handle or an option and with
- * nothing else; a rig file read back poses as the operator it was written from, and a
- * damaged file is refused with code `import`.
+ * nothing else (the sampling among the options); a rig file read back poses as the
+ * operator it was written from and keeps its training's energy, and a damaged file is
+ * refused with code `import`.
  */
 import { beforeAll, describe, expect, it } from "vitest";
 import { defaultShape, init, trainDefOp, triangulate } from "../../www/src/index.js";
@@ -41,6 +42,7 @@ describe("Rig", () => {
     expect(key).toMatch(/^[0-9a-f]{64}$/);
     expect(await rigKey(mesh, points, { energy: "arap", samples: 4 })).toBe(key);
     expect(await rigKey(mesh, points, { samples: 5, energy: "arap" })).not.toBe(key);
+    expect(await rigKey(mesh, points, { samples: 4, energy: "arap", sampling: "voronoi" })).not.toBe(key);
     expect(await rigKey(mesh, points.slice().reverse(), { samples: 4, energy: "arap" })).not.toBe(key);
     expect(await rigKey({ ...mesh, positions: moved }, points, { samples: 4, energy: "arap" })).not.toBe(key);
 
@@ -50,6 +52,9 @@ describe("Rig", () => {
     expect(back.source).toBe("file");
     expect(back.radius).toBe(radius);
     expect(back.options).toBeUndefined();
+    // The file keeps the training's settings: Compare solves with its energy, ARAP.
+    expect(back.training).toMatchObject({ energy: "arap", samples: 4, sampling: "disc", radius });
+    expect(back.energy).toBe("arap");
     expect(back.points).toEqual(points);
     expect(back.fits(copy, handles)).toBe(true);
     const targets = handles.flatMap((_, i) => [0.1 * i, -0.2 + 0.3 * i]);

@@ -66,6 +66,9 @@ function optionsFromUrl(params: URLSearchParams): { options: WidgetOptions; prob
   const hud = params.get("hud");
   if (hud === "false") options.hud = false;
   else if (hud !== null && hud !== "true") problems.push(`?hud=${hud} is not true or false`);
+  const gpu = params.get("gpu");
+  if (gpu === "false") options.gpuRigs = false;
+  else if (gpu !== null && gpu !== "true") problems.push(`?gpu=${gpu} is not true or false`);
   const src = params.get("src");
   if (src) options.src = src;
   return { options, problems };

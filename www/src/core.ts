@@ -293,6 +293,32 @@ export interface Advance {
 }
 
 /**
+ * How a rig posed on the GPU ({@link Deformer.setRigOnGpu}) lays out its basis texture and
+ * its frames, in texels of 4 numbers (RGBA32F; the one definition is Rust's
+ * `crate::defop::gpu`). Vertex v's position is `x = Σ_{t < terms} B[v stride + t] ·
+ * F[rigidTexels + t]`, `y = Σ_t B[v stride + basisY + t] · F[rigidTexels + frameY + t]`
+ * (dot products of texels), then the rigid motion of the frame's head: with `F[0] = (cos,
+ * sin, fromX, fromY)`, `F[1] = (toX, toY, 0, 0)`, `R (p − from) + to`.
+ */
+export interface RigGpuLayout {
+  /** A reduced spatial basis (the frame is `X Ψ`, the texture D), or the hat basis (`Ψ`, X). */
+  reduced: boolean;
+  vertexCount: number;
+  /** Texels of one coordinate's sum. */
+  terms: number;
+  /** Texels per vertex in the basis texture. */
+  stride: number;
+  /** Where a vertex's y row starts among its texels. */
+  basisY: number;
+  /** Where the y vector starts in the frame, after its head. */
+  frameY: number;
+  /** Texels of a frame. */
+  frameTexels: number;
+  /** Texels of the frame's head (the rigid motion). */
+  rigidTexels: number;
+}
+
+/**
  * A trained rig a {@link Deformer} can pose with: a `DefOp` (see {@link Deformer.setRig}).
  */
 export interface RigOperator {
@@ -333,6 +359,8 @@ export function deformerOrders(
 export class Deformer {
   #inner: rawTypes.Deformer | undefined;
   #view: Float64Array | undefined;
+  #frameView: Float32Array | undefined;
+  #watchedView: Float64Array | undefined;
 
   /**
    * @param positions xy-interleaved vertex positions (length 2n)
@@ -698,6 +726,88 @@ export class Deformer {
    */
   poseWithRig(targets: Coordinates): void {
     this.#raw.poseWithRig(toFloat64(targets, "targets"));
+  }
+
+  /**
+   * Poses the rig on the GPU (`true`) or on the CPU (`false`). On the GPU, {@link advance}
+   * computes only the rig's frame ({@link rigFrame}: `X Ψ(Q)` for a reduced spatial basis,
+   * `Ψ(Q)` for the hat basis, and a rigid motion), which a vertex shader combines with the
+   * basis texture ({@link rigGpuTexture}) into the positions; the pose on the CPU is the
+   * operator's, evaluated when something reads it ({@link positions},
+   * {@link positionsView}, {@link handlePositions}, {@link metrics}, a step, a recording,
+   * ...). With `noFoldovers` (its guard needs the pose) or a recording that cannot name
+   * the rig, each frame is evaluated on the CPU too. Returns whether the rig is on the GPU
+   * now (never without a rig; a new rig starts on the CPU).
+   */
+  setRigOnGpu(on: boolean): boolean {
+    return this.#raw.setRigOnGpu(on);
+  }
+
+  /** The layout of the rig on the GPU, or `undefined` without one. */
+  rigGpuLayout(): RigGpuLayout | undefined {
+    return this.#raw.rigGpuLayout() as RigGpuLayout | undefined;
+  }
+
+  /**
+   * The basis texture of the rig on the GPU (`vertexCount * stride` texels of 4 numbers,
+   * rounded to single precision), or `undefined` without one: upload it once per rig.
+   */
+  rigGpuTexture(): Float32Array | undefined {
+    return this.#raw.rigGpuTexture();
+  }
+
+  /**
+   * The rig's last frame on the GPU (`4 * frameTexels` numbers), a view of WebAssembly
+   * memory (no copy): read it right away after {@link advance}. `undefined` without a rig
+   * on the GPU.
+   */
+  rigFrame(): Float32Array | undefined {
+    const pointer = this.#raw.rigFramePointer();
+    if (pointer === 0) return undefined;
+    const buffer = wasmMemory().buffer;
+    if (this.#frameView?.buffer !== buffer || this.#frameView.byteOffset !== pointer) {
+      const layout = this.rigGpuLayout()!;
+      this.#frameView = new Float32Array(buffer, pointer, 4 * layout.frameTexels);
+    }
+    return this.#frameView;
+  }
+
+  /**
+   * Watches these vertices of the rig on the GPU: each frame also gives their positions on
+   * the CPU ({@link rigWatchedPositions}), in single precision, for what is drawn over the
+   * mesh. Returns whether a rig is on the GPU. Throws for a vertex out of range.
+   */
+  watchRigVertices(vertices: Indices): boolean {
+    return this.#raw.watchRigVertices(toUint32(vertices, "vertices"));
+  }
+
+  /**
+   * Positions (2 per vertex) fresh at the watched vertices as of the last frame on the GPU
+   * (the others hold older values), a view of WebAssembly memory; `undefined` without a
+   * rig on the GPU.
+   */
+  rigWatchedPositions(): Float64Array | undefined {
+    const pointer = this.#raw.rigWatchedPointer();
+    if (pointer === 0) return undefined;
+    const buffer = wasmMemory().buffer;
+    if (this.#watchedView?.buffer !== buffer || this.#watchedView.byteOffset !== pointer) {
+      this.#watchedView = new Float64Array(buffer, pointer, 2 * this.#raw.vertexCount);
+    }
+    return this.#watchedView;
+  }
+
+  /** Whether the pose on the CPU is behind the rig's last frame on the GPU (it is evaluated when read). */
+  get poseStale(): boolean {
+    return this.#raw.poseStale;
+  }
+
+  /**
+   * Whether the rig's last frame on the GPU ({@link rigFrame}) is that of the pose shown,
+   * the pose on the CPU behind it or not (with `noFoldovers` each frame is evaluated on
+   * the CPU as well); false after a pose set otherwise (undo, reset).
+   */
+  get rigFrameCurrent(): boolean {
+    return this.#raw.rigFrameCurrent;
   }
 
   /**

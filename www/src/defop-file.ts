@@ -28,17 +28,37 @@ export interface OperatorFile {
   readonly canonical: boolean;
   /** Handles held at rest (ascending): their targets are ignored. */
   readonly fixed: Uint32Array;
-  /** The parts of the puppet the operator was trained on (a version-3 file), else
+  /** The parts of the puppet the operator was trained on (a file of version 3, or 4 with the puppet flag), else
    * `undefined`: `triangles` are indices of the mesh's triangles, larger `depth` in front. */
   readonly parts?: { name: string; triangles: Uint32Array; depth: number }[];
-  /** The puppet's joints (a version-3 file), `parts` `[front, back]`, else `undefined`. */
+  /** The puppet's joints (with its parts), `parts` `[front, back]`, else `undefined`. */
   readonly joints?: { point: [number, number]; parts: [number, number] }[];
+  /**
+   * The settings it was trained with (a version-4 file that knows them; as `DefOp.training`
+   * gives them), else `undefined`.
+   */
+  readonly training?: {
+    energy: "sarap" | "arap";
+    basis: "linear" | "quadratic" | "cubic" | "tps";
+    /** 0: the hat functions; else the size of the reduced spatial basis. */
+    spatial: number;
+    samples: number;
+    sampling: "disc" | "voronoi" | "mixed";
+    radius: number;
+    seed: number;
+    canonical: boolean;
+    fixed: Uint32Array;
+  };
+  /** How the file stores the coefficients: `"single"` (32-bit floats, read back exactly as those) or `"double"`. */
+  readonly precision: "double" | "single";
   /** Writes the vertex positions (2 per vertex) for handle targets (2 per handle) to `out`. */
   evaluateInto(targets: ArrayLike<number>, out: Float64Array): void;
 }
 
 const MAGIC = "AKAPDEFO";
-const HEADER = 48;
+/** The header of versions 1 to 3, and of version 4. */
+const HEADER_BEFORE_4 = 48;
+const HEADER = 80;
 
 /** FNV-1a, 64 bits, of `bytes`, in two 32-bit halves (high, low). */
 function fnv1a(bytes: Uint8Array): [number, number] {
@@ -192,35 +212,66 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   const fail = (why: string): never => {
     throw new Error(`not a usable operator file: ${why}`);
   };
-  if (bytes.length < HEADER + 8 || String.fromCharCode(...bytes.subarray(0, 8)) !== MAGIC) fail("no AKAPDEFO header");
+  if (bytes.length < HEADER_BEFORE_4 + 8 || String.fromCharCode(...bytes.subarray(0, 8)) !== MAGIC)
+    fail("no AKAPDEFO header");
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   const u32 = (at: number) => view.getUint32(at, true);
   const version = u32(8);
-  if (version < 1 || version > 3) fail(`version ${version} (only 1 to 3 are read)`);
+  if (version < 1 || version > 4) fail(`version ${version} (only 1 to 4 are read)`);
+  const header = version >= 4 ? HEADER : HEADER_BEFORE_4;
+  if (bytes.length < header + 8) fail(`${bytes.length} bytes, fewer than its header`);
   const [nv, nt, n, m, phi] = [12, 16, 20, 24, 28].map(u32) as [number, number, number, number, number];
   // Version 1 holds zeros where version 2 holds the canonical flag and the fixed count.
   const [kind, reduced, canonical, f] = [bytes[32]!, bytes[33]!, bytes[35]!, u32(36)];
   if (kind > 3 || reduced > 1 || canonical > 1 || n === 0 || nv < 3 || f > n || (canonical && f > 0))
     fail("a field holds a value no writer writes");
   if (version === 1 && (canonical || f)) fail("a version-1 file with version-2 fields");
+  // Version 4: precision, puppet and training flags, and the training (Rust's layout).
+  const [single, hasPuppet, known] =
+    version >= 4 ? [bytes[48]!, bytes[49]!, bytes[50]!] : [0, version === 3 ? 1 : 0, 0];
+  if (single > 1 || hasPuppet > 1 || known > 1) fail("a flag holds a value no writer writes");
+  const reserved = (from: number, to: number) => bytes.subarray(from, to).some((b) => b !== 0);
+  if (version >= 4 && (known ? reserved(53, 56) || reserved(60, 64) : reserved(51, HEADER)))
+    fail("a reserved byte is not zero");
+  const energy = (["sarap", "arap"] as const)[bytes[51]!];
+  const sampling = (["disc", "voronoi", "mixed"] as const)[bytes[52]!];
+  const [samples, seed, radius] = [u32(56), Number(view.getBigUint64(64, true)), view.getFloat64(72, true)];
+  if (known && (!energy || !sampling || samples < 1 || samples > 100_000 || !(radius > 0 && radius < Infinity)))
+    fail("the training's fields hold values no writer writes");
   const d = 2 * n;
   // k, the handle coordinates: 2(n − f), or 2n − 3 canonical (0 for one handle).
   const k = 2 * (n - f) - (canonical ? (n >= 2 ? 3 : 2) : 0);
   const psi = [k + 1, 1 + k + (k * (k + 1)) / 2, 1 + k + (k * (k + 1)) / 2 + (k * (k + 1) * (k + 2)) / 6, k + 1 + m][
     kind
   ]!;
+  const width = single ? 4 : 8;
   const expected =
-    HEADER + 16 * nv + 12 * nt + 48 * n + 4 * f + 8 * k * m + 16 * phi * psi + (reduced ? 8 * phi * nv : 0) + 8;
-  // Version 3: a puppet's section follows, its length read from it.
-  if (version < 3 ? bytes.length !== expected : bytes.length < expected + 8)
+    header +
+    16 * nv +
+    12 * nt +
+    48 * n +
+    4 * f +
+    8 * k * m +
+    2 * width * phi * psi +
+    (reduced ? width * phi * nv : 0) +
+    8;
+  // A puppet's section follows, its length read from it.
+  if (hasPuppet ? bytes.length < expected + 8 : bytes.length !== expected)
     fail(`${bytes.length} bytes where its counts need ${expected}`);
   const [hi, lo] = fnv1a(bytes.subarray(0, bytes.length - 8));
   if (u32(bytes.length - 8) !== lo || u32(bytes.length - 4) !== hi) fail("the checksum does not match");
 
-  let at = HEADER;
+  let at = header;
   const f64s = (count: number) => {
     const out = new Float64Array(count);
     for (let k = 0; k < count; k++, at += 8) out[k] = view.getFloat64(at, true);
+    return out;
+  };
+  /** The operator's numbers, in the file's precision. */
+  const numbers = (count: number) => {
+    if (!single) return f64s(count);
+    const out = new Float64Array(count);
+    for (let k = 0; k < count; k++, at += 4) out[k] = view.getFloat32(at, true);
     return out;
   };
   const scale = view.getFloat64(40, true);
@@ -234,9 +285,9 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
   const centres = f64s(k * m);
   const coordinates = new Coordinates(rest, canonical === 1, fixed);
   const hat = new Float64Array(d);
-  const coefficients = f64s(2 * phi * psi);
-  const reduction = reduced ? f64s(phi * nv) : undefined;
-  const puppet = version === 3 ? readPuppet() : undefined;
+  const coefficients = numbers(2 * phi * psi);
+  const reduction = reduced ? numbers(phi * nv) : undefined;
+  const puppet = hasPuppet ? readPuppet() : undefined;
   if (at !== bytes.length - 8) fail(`${bytes.length} bytes where its counts need ${at + 8}`);
   /** The puppet's section (Rust's layout): parts, joints, each part, each joint. */
   function readPuppet() {
@@ -285,6 +336,22 @@ export function readOperatorFile(bytes: Uint8Array): OperatorFile {
     canonical: canonical === 1,
     fixed,
     ...(puppet ?? {}),
+    ...(known
+      ? {
+          training: {
+            energy: energy!,
+            basis: (["linear", "quadratic", "cubic", "tps"] as const)[kind]!,
+            spatial: reduced ? phi : 0,
+            samples,
+            sampling: sampling!,
+            radius,
+            seed,
+            canonical: canonical === 1,
+            fixed: fixed.slice(),
+          },
+        }
+      : {}),
+    precision: single ? "single" : "double",
     evaluateInto(targets: ArrayLike<number>, out: Float64Array): void {
       if (targets.length !== d) throw new Error(`targets has ${targets.length} numbers; ${n} handles need ${d}`);
       if (out.length !== 2 * nv) throw new Error(`out has ${out.length} numbers; ${nv} vertices need ${2 * nv}`);

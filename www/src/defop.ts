@@ -214,6 +214,41 @@ export class DefOpTrainer {
   }
 }
 
+/**
+ * The settings a {@link DefOp} was trained with, as {@link DefOpTrainerOptions} names them
+ * (`radius` the one used, given or by default): what its file keeps (version 4).
+ */
+export interface DefOpTraining {
+  energy: "sarap" | "arap";
+  basis: "linear" | "quadratic" | "cubic" | "tps";
+  /** 0: the hat functions; else the size of the reduced spatial basis. */
+  spatial: number;
+  samples: number;
+  sampling: "disc" | "voronoi" | "mixed";
+  radius: number;
+  seed: number;
+  canonical: boolean;
+  fixed: Uint32Array;
+}
+
+/**
+ * Where a {@link DefOp}'s training drew each handle's targets (Rust's
+ * `akap::defop::sampling::regions`, the one definition its sampler draws from): discs of
+ * `radius` about the rest handles (`"disc"` and `"mixed"` sampling) and each handle's
+ * Voronoi cell among the rest handles, clipped to the shape's bounding box grown by
+ * `radius` (`"voronoi"` and `"mixed"`).
+ */
+export interface DefOpRegions {
+  sampling: "disc" | "voronoi" | "mixed";
+  radius: number;
+  /** The handles' rest positions, 2 each: the discs' centres. */
+  centres: Float64Array;
+  /** Whether the discs are regions. */
+  discs: boolean;
+  /** Each handle's cell, a convex polygon counter-clockwise (x and y per corner), or undefined. */
+  cells: Float64Array[] | undefined;
+}
+
 /** A trained deformation operator: handle targets in, vertex positions out. */
 export class DefOp {
   #inner: rawTypes.DefOp | undefined;
@@ -241,9 +276,37 @@ export class DefOp {
     return new DefOp();
   }
 
-  /** The operator file: the operator and its mesh, to save and load with {@link fromBytes}. */
-  toBytes(): Uint8Array {
-    return this.#raw.toBytes();
+  /**
+   * The operator file: the operator, its mesh and its training's settings, to save and load
+   * with {@link fromBytes}. `precision: "single"` stores the coefficients (and a reduced
+   * basis) as 32-bit floats, each the nearest to its double: about half the size.
+   */
+  toBytes(options: { precision?: "double" | "single" } = {}): Uint8Array {
+    return this.#raw.toBytes(options);
+  }
+
+  /**
+   * The settings it was trained with (its file keeps them), or `undefined` when they are
+   * not known (a file written before version 4).
+   */
+  get training(): DefOpTraining | undefined {
+    return this.#raw.training as DefOpTraining | undefined;
+  }
+
+  /**
+   * Where its training drew each handle's targets: the disc, the Voronoi cell or both (for
+   * an operator whose training is not known, discs of radius {@link radius}).
+   */
+  regions(): DefOpRegions {
+    return this.#raw.regions() as DefOpRegions;
+  }
+
+  /**
+   * For handle targets (2 per handle), 1 for each handle whose target lies outside every
+   * region of {@link regions} (the operator extrapolates there), else 0.
+   */
+  outsideRegions(targets: Coordinates): Uint8Array {
+    return this.#raw.outsideRegions(toFloat64(targets, "targets"));
   }
 
   /** The mesh at rest (the mesh it was trained for). */
@@ -266,7 +329,15 @@ export class DefOp {
     this.#raw.evaluateInto(toFloat64(targets, "targets"), out);
   }
 
-  /** {@link evaluateInto} in single precision, for a GPU buffer (computed in double). */
+  /**
+   * {@link evaluateInto} in single precision: computed by the operator's single-precision
+   * copy (made at the first call, 4 bytes per coefficient; Ψ(Q) in double, then `X Ψ` and
+   * `Dᵀ (X Ψ)` in `f32`), about twice as fast as the double evaluation. Each position is
+   * within `2 (|Ψ| + |Φ| + 6) ε₃₂` of the sum of the magnitudes of its terms
+   * `Σ_i |D_iv| Σ_j |X_ij ψ_j|` from the double pose (ε₃₂ = 2⁻²³; `tests/defop_eval.rs`):
+   * on the test figure within 3.7e-7 of the bounding box's diagonal, which
+   * `tests/unit/defop.test.ts` checks (below 5e-7).
+   */
   evaluateIntoF32(targets: Coordinates, out: Float32Array): void {
     this.#raw.evaluateIntoF32(toFloat64(targets, "targets"), out);
   }

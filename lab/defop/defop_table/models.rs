@@ -65,7 +65,7 @@ impl Mode {
 
 /// The mesh of `outline` with about `vertices` vertices, and handles on the vertices
 /// nearest to `spots`.
-fn mesh_with_handles(outline: &Outline, vertices: usize, spots: &[Point]) -> (Mesh, Vec<MeshPoint>) {
+pub(crate) fn mesh_with_handles(outline: &Outline, vertices: usize, spots: &[Point]) -> (Mesh, Vec<MeshPoint>) {
     let (mesh, _) = triangulate_to_about(outline, vertices, &TriangulationOptions::default())
         .unwrap_or_else(|e| panic!("the model triangulates: {e}"));
     let handles = spots

@@ -6,7 +6,7 @@
 import { limits, type Metrics, type Outline, type Timings, type WasmSource } from "../core.js";
 import { METHODS, type MethodPreset } from "./model/methods.js";
 import { coded } from "../internal/arrays.js";
-import type { RigTrainOptions } from "./model/rig.js";
+import { DEFAULT_RIG_SPATIAL, type RigTrainOptions } from "./model/rig.js";
 import { DEFAULT_FPS, checkFps } from "./animation/timeline.js";
 import { BRUSH_SIZE_RANGE, DEFAULT_BRUSH, type BrushSettings } from "./model/stiffness.js";
 
@@ -47,7 +47,13 @@ export interface WidgetOptions {
   operator?: string | Uint8Array | ArrayBuffer;
   /** How the toolbar's Train (and {@link Widget.train} by default) trains a rig. */
   training?: RigTrainOptions;
-  /** Show a trained rig's training discs, and mark handles dragged outside them. */
+  /**
+   * Pose a trained rig on the GPU where the widget draws with WebGL2 (default true): a
+   * frame computes only the rig's short frame vector on the CPU and the vertex shader forms
+   * the pose; false evaluates the whole pose on the CPU each frame.
+   */
+  gpuRigs?: boolean;
+  /** Show the regions a trained rig's training drew targets from (discs, Voronoi cells), and mark handles dragged outside them. */
   region?: boolean;
   /** Draw the ground truth's outline (ARAP or S-ARAP, solved in a worker) beside a rig's pose. */
   compare?: boolean;
@@ -102,7 +108,7 @@ export const TOOLS: readonly WidgetTool[] = ["pose", "stiffness", "bone", "joint
 export type WidgetSettings = Required<
   Omit<
     WidgetOptions,
-    "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm" | "operator" | "brush"
+    "shape" | "outline" | "texture" | "src" | "gallery" | "storageKey" | "wasm" | "operator" | "brush" | "gpuRigs"
   >
 > & { brush: BrushSettings };
 
@@ -151,6 +157,7 @@ export const WIDGET_OPTIONS = [
   "lambda",
   "operator",
   "training",
+  "gpuRigs",
   "region",
   "compare",
   "paperMode",
@@ -189,7 +196,7 @@ export function widgetSettings(options: WidgetOptions): WidgetSettings {
     minAngle: options.minAngle ?? DEFAULTS.minAngle,
     method: options.method ?? DEFAULTS.method,
     lambda: options.lambda ?? DEFAULTS.lambda,
-    training: { ...options.training },
+    training: { spatial: DEFAULT_RIG_SPATIAL, ...options.training },
     region: options.region ?? false,
     compare: options.compare ?? false,
     paperMode: options.paperMode ?? false,

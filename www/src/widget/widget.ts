@@ -45,7 +45,7 @@ import { PointerState } from "./input/pointer-state.js";
 import { WidgetInput } from "./input/widget-input.js";
 import { METHODS, type MethodPreset } from "./model/methods.js";
 import { Posing } from "./model/posing.js";
-import type { PuppetJoint } from "../core.js";
+import type { PuppetJoint, RigGpuLayout } from "../core.js";
 import { meshOutline, type Shape } from "./model/shape.js";
 import type { BrushSettings } from "./model/stiffness.js";
 import { widgetSettings, type WidgetOptions, type WidgetSettings, type WidgetTool } from "./options.js";
@@ -129,6 +129,7 @@ export class Widget {
     ({ host: this.#host, root: this.#root } = widgetShell(document));
 
     this.#stage = new Stage(document);
+    this.#posing.rigsOnGpu = (options.gpuRigs ?? true) && this.#stage.renderer.kind === "webgl2";
     this.#help = new HelpPanel(document, () => this.#toggleHelp(false));
     this.#stage.element.append(this.#help.element);
     // The widget's parts as its actions and managers see them: read when used (some are set below).
@@ -523,9 +524,25 @@ export class Widget {
     return this.#rigs.info();
   }
 
-  /** The rig's operator file (operator and mesh), as "Save rig" downloads it. */
-  rigFile(): Uint8Array {
-    return this.#perform(rig.rigFile, undefined);
+  /**
+   * For tests and diagnostics: the pose of a rig on the GPU as its vertex shader forms it
+   * from the rig's last frame (read back by transform feedback, single precision), with
+   * what the shader read (the layout, the basis texture, the frame) and whether the last
+   * picture was drawn from that frame; `undefined` when no rig poses on the GPU.
+   */
+  rigGpuReadback():
+    | { positions: Float32Array; layout: RigGpuLayout; texture: Float32Array; frame: Float32Array; drawn: boolean }
+    | undefined {
+    return this.#stage.rigGpuReadback(this.#posing);
+  }
+
+  /**
+   * The rig's operator file (operator, mesh and the training's settings), as "Save rig"
+   * downloads it; `precision: "single"` stores the coefficients as 32-bit floats (about
+   * half the size).
+   */
+  rigFile(options: { precision?: "double" | "single" } = {}): Uint8Array {
+    return this.#perform(rig.rigFile, options);
   }
 
   /**

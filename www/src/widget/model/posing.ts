@@ -9,8 +9,9 @@
  * move, and each frame {@link Posing.advance} is one call that takes the handles toward
  * them (substeps no longer than `maxStep` of the shape's size, guarded steps, retries) or,
  * with the "defop" method and a trained {@link Rig} that fits the shape and handles, poses
- * with the rig in WebAssembly. The deformer records every change made through it while a
- * recording runs.
+ * with the rig in WebAssembly, or, with {@link Posing.rigsOnGpu}, leaves the pose to the
+ * renderer's vertex shader (the deformer computes the rig's frame; its pose is evaluated
+ * when read). The deformer records every change made through it while a recording runs.
  */
 import {
   Deformer,
@@ -116,6 +117,14 @@ export class Posing {
   replaying = false;
   /** The trained rig the widget holds (it poses with the "defop" method while it fits). */
   rig: Rig | undefined;
+  /**
+   * Whether a rig that poses is evaluated on the GPU (the widget's renderer is WebGL2): each
+   * frame then computes only the rig's frame, the pose on the CPU when read
+   * (`Deformer.setRigOnGpu`).
+   */
+  rigsOnGpu = false;
+  /** Counts the rigs sent to the deformer on the GPU: a renderer uploads a rig's texture once per count. */
+  gpuRigVersion = 0;
   /** The bones drawn on the shape (see bones.ts). */
   readonly bones: Bones = new Bones(this);
   /** Whether a step of the last frame stopped short to keep triangles from folding over. */
@@ -787,6 +796,7 @@ export class Posing {
     const rig = this.posingWithRig ? this.rig : undefined;
     if (rig === this.#rigSent) return;
     this.deformer.setRig(rig?.operator);
+    if (rig && this.rigsOnGpu && this.deformer.setRigOnGpu(true)) this.gpuRigVersion++;
     this.#rigSent = rig;
   }
 
@@ -909,6 +919,7 @@ export class Posing {
       );
     }
     this.deformer.setRig(rig.operator);
+    if (this.rigsOnGpu && this.deformer.setRigOnGpu(true)) this.gpuRigVersion++;
     this.#rigSent = rig;
     if (this.settings.method !== "defop") this.showMethod("defop", this.settings.lambda);
   }

@@ -5,13 +5,31 @@
  * other handle set makes it stale. {@link rigKey} names a training by its content (rest
  * mesh, handle points, training options), which `rigs/rig-cache.ts` keeps rigs under.
  */
-import { DefOp, type DefOpTrainerOptions } from "../../defop.js";
+import { DefOp, type DefOpRegions, type DefOpTraining, type DefOpTrainerOptions } from "../../defop.js";
 import type { MeshData, PuppetJoint } from "../../core.js";
 import { pointPosition, type MeshPoint } from "./picking.js";
 import type { Shape } from "./shape.js";
 
 /** Training options a widget takes: the trainer's, without the ones for other tools. */
-export type RigTrainOptions = Pick<DefOpTrainerOptions, "energy" | "basis" | "samples" | "radius" | "spatial" | "seed">;
+export type RigTrainOptions = Pick<
+  DefOpTrainerOptions,
+  "energy" | "basis" | "samples" | "radius" | "sampling" | "spatial" | "seed"
+>;
+
+/**
+ * The widget's spatial basis for a rig: a reduced basis of 100 functions. On the paper's
+ * models it is as accurate as one function per vertex (held-out error 1.307 % against
+ * 1.291 %) and evaluates 17 times faster (`lab/defop/defop.md`), and a frame on the GPU
+ * computes 200 numbers on the CPU. A mesh of no more vertices takes one per vertex
+ * ({@link spatialFor}).
+ */
+export const DEFAULT_RIG_SPATIAL = 100;
+
+/** The spatial basis a training of `spatial` uses on a mesh of `vertexCount` vertices: one function per vertex (0) when the reduced basis would have no fewer. */
+export function spatialFor(spatial: number | undefined, vertexCount: number): number {
+  const asked = spatial ?? DEFAULT_RIG_SPATIAL;
+  return asked >= vertexCount ? 0 : asked;
+}
 
 /** Where a rig came from. */
 export type RigSource = "trained" | "cache" | "file";
@@ -21,15 +39,19 @@ export class Rig {
   /** The rest mesh it poses. */
   readonly mesh: MeshData;
   readonly points: readonly MeshPoint[];
-  /** The training's sampling radius (a file keeps it as its handle coordinates' scale). */
+  /** The training's sampling radius (a file keeps it). */
   readonly radius: number | undefined;
   /** The training options; undefined for a rig from a file. */
   readonly options: RigTrainOptions | undefined;
+  /** The settings the operator was trained with, as it (and its file, from version 4) keeps them; else undefined. */
+  readonly training: DefOpTraining | undefined;
   readonly source: RigSource;
   /** The last shape found to have this rig's rest mesh (compared by content once per shape). */
   #shape: Shape | undefined;
   /** The joints of the puppet it was trained on, as JSON (`[]` for one shape): read once. */
   #joints: string | undefined;
+  /** Where its training drew each handle's targets: read once. */
+  #regions: DefOpRegions | undefined;
 
   constructor(
     operator: DefOp,
@@ -49,6 +71,21 @@ export class Rig {
     this.radius = trained.radius;
     this.options = trained.options;
     this.source = trained.source;
+    this.training = operator.training;
+  }
+
+  /**
+   * The energy its ground truth is solved with (Compare): the operator's own training's,
+   * which its file keeps; else the options it was trained with (a rig cached before files
+   * kept it); else S-ARAP, the trainer's default.
+   */
+  get energy(): "sarap" | "arap" {
+    return this.training?.energy ?? this.options?.energy ?? "sarap";
+  }
+
+  /** Where its training drew each handle's targets (discs, Voronoi cells or both), from the operator (one definition, in Rust). */
+  regions(): DefOpRegions {
+    return (this.#regions ??= this.operator.regions());
   }
 
   /** A rig read from an operator file: its own mesh and handles. */
@@ -64,9 +101,10 @@ export class Rig {
           number,
         ],
       }));
-      // The file keeps the sampling radius (as the scale of the handle coordinates), not
-      // the other training options.
-      return new Rig(operator, operator.mesh(), points, { radius: operator.radius, options: undefined, source });
+      // The file keeps the training's settings (from version 4; older files, the sampling
+      // radius as the scale of the handle coordinates): `training`, not the widget's options.
+      const { radius } = operator.regions();
+      return new Rig(operator, operator.mesh(), points, { radius, options: undefined, source });
     } catch (error) {
       operator.free();
       throw error;
@@ -103,9 +141,9 @@ export class Rig {
     return out;
   }
 
-  /** The operator file (the operator and its mesh). */
-  toBytes(): Uint8Array {
-    return this.operator.toBytes();
+  /** The operator file (the operator, its mesh and its training's settings), in double or single precision. */
+  toBytes(options: { precision?: "double" | "single" } = {}): Uint8Array {
+    return this.operator.toBytes(options);
   }
 
   free(): void {

@@ -9,7 +9,7 @@ import { solveGroundTruth, trainDefOp, type TrainProgress } from "../../defop-po
 import { coded } from "../../internal/arrays.js";
 import { newHandle, type Posing } from "../model/posing.js";
 import { shapeFromMesh } from "../model/shape.js";
-import { Rig, rigKey, type RigTrainOptions } from "../model/rig.js";
+import { Rig, rigKey, spatialFor, type RigTrainOptions } from "../model/rig.js";
 import { RigCache } from "./rig-cache.js";
 import { fetchFile } from "../shapes/shape-files.js";
 import type { BusyIndicator } from "../view/busy-indicator.js";
@@ -36,6 +36,10 @@ export interface RigInfo {
   posing: boolean;
   /** The training's sampling radius (shape units; a rig file keeps it). */
   radius: number | undefined;
+  /** The energy Compare solves the ground truth with: the rig's own (a rig file keeps it). */
+  energy: "sarap" | "arap" | undefined;
+  /** Where its training drew the targets (a rig file keeps it; discs for files before version 4). */
+  sampling: "disc" | "voronoi" | "mixed" | undefined;
   /** Largest vertex distance between the rig's pose and the ground truth, as a fraction of the shape's size, once compared. */
   comparison: number | undefined;
 }
@@ -117,7 +121,9 @@ export class RigManager {
    * under way, the signal aborts or a worker fails.
    */
   async train(options: WidgetTrainOptions, onProgress?: (progress: TrainProgress) => void): Promise<Rig> {
-    const { signal, workers, cache = true, ...training } = options;
+    const { signal, workers, cache = true, ...asked } = options;
+    // A reduced basis needs fewer functions than the mesh has vertices.
+    const training = { ...asked, spatial: spatialFor(asked.spatial, this.#host.posing.shape.mesh.vertexCount) };
     const { posing, indicator } = this.#host;
     if (this.#training) throw coded(new Error("a rig is being trained already; cancel it first"), "invalid-argument");
     if (posing.handles.length === 0) {
@@ -223,7 +229,8 @@ export class RigManager {
         rig.mesh.triangles,
         { triangles: rig.points.map((p) => p.triangle), barycentric: rig.points.flatMap((p) => p.barycentric) },
         targets,
-        { energy: rig.options?.energy, signal: controller.signal },
+        // The rig's own energy (its file keeps it), not the default.
+        { energy: rig.energy, signal: controller.signal },
       );
       if (controller.signal.aborted) return;
       let far = 0;
@@ -252,6 +259,8 @@ export class RigManager {
       training: this.training,
       posing: posing.posingWithRig,
       radius: rig?.radius,
+      energy: rig?.energy,
+      sampling: rig ? (rig.training?.sampling ?? "disc") : undefined,
       comparison: this.comparison?.distance,
     };
   }
@@ -264,8 +273,13 @@ export class RigManager {
     if (this.#training && !posing.posingWithRig) return "training a rig; posing with AKAP meanwhile";
     if (!rig) return "no trained rig: Train to pose with one (posing with AKAP until then)";
     if (!posing.posingWithRig) return "the rig is stale (the shape or handles changed): Train again (posing with AKAP)";
-    const what = rig.options
-      ? `${rig.options.samples === undefined ? "" : `${rig.options.samples} samples, `}${rig.options.energy === "arap" ? "ARAP" : "S-ARAP"}`
+    const samples = rig.training?.samples ?? rig.options?.samples;
+    const sampling = { disc: "", voronoi: ", Voronoi cells", mixed: ", discs and cells" }[
+      rig.training?.sampling ?? rig.options?.sampling ?? "disc"
+    ];
+    const known = rig.training !== undefined || rig.options !== undefined;
+    const what = known
+      ? `${samples === undefined ? "" : `${samples} samples, `}${rig.energy === "arap" ? "ARAP" : "S-ARAP"}${sampling}`
       : "from a file";
     const compare = this.comparison
       ? `; ground truth ${(100 * this.comparison.distance).toFixed(2)}% of the size away`

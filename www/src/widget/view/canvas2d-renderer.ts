@@ -45,6 +45,13 @@ export class Canvas2dRenderer implements MeshRenderer {
     this.#texture = drawable(this.#ctx.canvas.ownerDocument, image);
   }
 
+  /** The 2D canvas poses a rig on the CPU: it takes no rig. */
+  setRig(): boolean {
+    return false;
+  }
+
+  clearRig(): void {}
+
   draw(positions: ArrayLike<number>, view: View, options: RenderOptions): void {
     const ctx = this.#ctx;
     const { width, height } = ctx.canvas;

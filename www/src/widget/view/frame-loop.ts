@@ -4,6 +4,8 @@
  * the distortion, field and a rig's comparison follow, the picture is drawn, the HUD and
  * the `akap-pose` event report the frame; the loop settles once nothing is dragged and
  * the pins have come to rest (or after {@link SETTLE_FRAMES} frames without input).
+ * Frames of a rig on the GPU leave the pose on the CPU behind: their distortion is
+ * measured when the loop settles (the HUD and the events show the last measured until then).
  */
 import type { Metrics, Timings } from "../../core.js";
 import type { PoseDetail, WidgetSettings } from "../options.js";
@@ -48,6 +50,8 @@ export class FrameLoop {
   #raf = 0;
   #idleFrames = 0;
   #idleWaiters: (() => void)[] = [];
+  /** A rig's frame on the GPU moved the pose since {@link metrics} were measured. */
+  #metricsBehind = false;
 
   constructor(host: FrameHost) {
     this.#host = host;
@@ -123,7 +127,9 @@ export class FrameLoop {
     this.#idleFrames = substeps > 0 && dragging ? 0 : this.#idleFrames + 1;
     if (substeps > 0) {
       posing.markChanged();
-      this.metrics = posing.deformer.metrics();
+      // Measuring would evaluate a rig on the GPU on the CPU: done when the loop settles.
+      this.#metricsBehind = posing.deformer.poseStale;
+      if (!this.#metricsBehind) this.metrics = posing.deformer.metrics();
       if (settings.field) this.lastField = posing.deformer.field();
       if (settings.compare && posing.posingWithRig) this.#host.rigPosed();
     }
@@ -139,6 +145,12 @@ export class FrameLoop {
     if (dragging || (substeps > 0 && this.#idleFrames < SETTLE_FRAMES)) {
       this.schedule();
     } else {
+      if (this.#metricsBehind) {
+        this.#metricsBehind = false;
+        this.metrics = posing.deformer.metrics();
+        stage.hud.showMetrics(this.metrics);
+        this.emitPose();
+      }
       this.#host.root.dataset.idle = "true";
       for (const resolve of this.#idleWaiters.splice(0)) resolve();
     }

@@ -1,9 +1,9 @@
 /**
  * The 2D overlay above the mesh: painted stiffness as a tint and the brush's outline, the
- * outline, flipped triangles, the velocity field of the
- * last frame (arrows, as in the paper's Figure 4), Cauchy-Green's cage and the handles; for
- * a trained rig, its training discs, handles outside them marked, and the ground truth's
- * outline as a ghost.
+ * outline, flipped triangles, the velocity field of the last frame (arrows, as in the
+ * paper's Figure 4), Cauchy-Green's cage and the handles; for a trained rig, the regions
+ * its training drew targets from (discs, Voronoi cells), handles outside them marked, and
+ * the ground truth's outline as a ghost.
  */
 import { doubledArea } from "../model/geometry.js";
 import type { Layering } from "../model/layers.js";
@@ -34,8 +34,8 @@ export interface OverlayScene {
   /** The last field, 2 per vertex, or undefined to draw none. */
   field: ArrayLike<number> | undefined;
   showFlipped: boolean;
-  /** A trained rig's training discs (shape units), or none. */
-  regions?: readonly { x: number; y: number; r: number }[];
+  /** Where a trained rig's training drew targets (shape units): discs, and cells (x and y per corner), or none. */
+  regions?: { discs: readonly { x: number; y: number; r: number }[]; cells: readonly ArrayLike<number>[] } | undefined;
   /** Positions (2 per vertex) whose outline is drawn dashed over the pose: the ground truth. */
   ghost?: ArrayLike<number>;
   /** Cauchy-Green's deformed cage (2 per vertex), drawn as a thin dashed polygon. */
@@ -107,17 +107,35 @@ export function drawOverlay(ctx: CanvasRenderingContext2D, scene: OverlayScene, 
   }
 
   if (scene.regions) {
-    ctx.beginPath();
-    for (const { x, y, r } of scene.regions) {
-      const [cx, cy] = toPixel(view, x, y);
-      ctx.moveTo(cx + r * view.scale, cy);
-      ctx.arc(cx, cy, r * view.scale, 0, 2 * Math.PI);
+    // Discs and cells each one path, tinted and outlined alike (mixed sampling shows both).
+    const paths: ((ctx: CanvasRenderingContext2D) => void)[] = [
+      (ctx) => {
+        for (const { x, y, r } of scene.regions!.discs) {
+          const [cx, cy] = toPixel(view, x, y);
+          ctx.moveTo(cx + r * view.scale, cy);
+          ctx.arc(cx, cy, r * view.scale, 0, 2 * Math.PI);
+        }
+      },
+      (ctx) => {
+        for (const cell of scene.regions!.cells) {
+          for (let k = 0; k + 1 < cell.length; k += 2) {
+            const [x, y] = toPixel(view, cell[k]!, cell[k + 1]!);
+            if (k === 0) ctx.moveTo(x, y);
+            else ctx.lineTo(x, y);
+          }
+          ctx.closePath();
+        }
+      },
+    ];
+    for (const path of paths) {
+      ctx.beginPath();
+      path(ctx);
+      ctx.fillStyle = "rgba(40, 120, 200, 0.08)";
+      ctx.fill();
+      ctx.strokeStyle = "rgba(40, 120, 200, 0.6)";
+      ctx.lineWidth = ratio;
+      ctx.stroke();
     }
-    ctx.fillStyle = "rgba(40, 120, 200, 0.08)";
-    ctx.fill();
-    ctx.strokeStyle = "rgba(40, 120, 200, 0.6)";
-    ctx.lineWidth = ratio;
-    ctx.stroke();
   }
 
   if (scene.cage && scene.cage.length >= 6) {

@@ -1,10 +1,17 @@
 /**
  * The widget's picture and what floats over it: the mesh canvas (WebGL2, or a 2D canvas
  * where WebGL2 is missing), the overlay canvas (outline, handles, field arrows, flipped
- * triangles, a rig's training discs and ground-truth ghost), the view ({@link Camera}), the
+ * triangles, a rig's training regions and ground-truth ghost), the view ({@link Camera}), the
  * status line, the busy indicator, the training's progress (which never blocks posing), the
  * HUD, all in the shadow root's stage element (the widget adds the help panel and the
  * tool panel).
+ *
+ * A rig posed on the GPU is drawn from its frame (the renderer's shader forms the pose);
+ * the overlay then draws from the positions of the vertices it needs (the outline, the
+ * layers' outlines, the handles' triangles), which each frame gives on the CPU
+ * (`Deformer.watchRigVertices`), so that nothing reads the whole pose. What needs the
+ * whole pose (the field, bones, joints, the painting's tint, Cauchy-Green's cage) reads
+ * it, and the frame is drawn from it.
  */
 import { boneEnds } from "../model/bones.js";
 import { Camera } from "./camera.js";
@@ -22,6 +29,7 @@ import { BusyIndicator } from "./busy-indicator.js";
 import { StatusLine } from "./status-line.js";
 import { WIDGET_CSS } from "./style.js";
 import { toPixel } from "./projection.js";
+import type { RigGpuLayout } from "../../core.js";
 
 /** What the overlay draws beside the pose: the last velocity field, the ground truth's pose. */
 export interface Extras {
@@ -80,6 +88,10 @@ export class Stage {
   ratio = 1;
   /** Where {@link picture} draws the outline (kept: animation exports draw many frames). */
   #outline: HTMLCanvasElement | undefined;
+  /** The rig on the GPU the renderer has (by deformer and version), and the vertices watched for the overlay. */
+  #gpuRig: { deformer: Posing["deformer"]; version: number; watched: string } | undefined;
+  /** Whether the last picture was drawn from a rig's frame (the overlay from the watched vertices). */
+  #drewFrame = false;
 
   constructor(document: Document) {
     this.element = document.createElement("div");
@@ -172,19 +184,114 @@ export class Stage {
   /** Draws the pose now: the mesh, then the overlay (with the last field and a rig's ghost, if any). */
   render(posing: Posing, settings: WidgetSettings, extras: Extras): void {
     this.layering(posing);
-    this.renderer.draw(posing.deformer.positionsView(), this.camera.view, {
-      wireframe: settings.wireframe,
-      pixelRatio: this.ratio,
-      background: "#f6f1e7",
-      fill: "#c8773a",
-      wire: "rgba(60, 30, 10, 0.55)",
-    });
+    const frame = this.#rigFrame(posing, settings, extras);
+    this.#drewFrame = frame !== undefined;
+    this.renderer.draw(
+      frame ? EMPTY : posing.deformer.positionsView(),
+      this.camera.view,
+      {
+        wireframe: settings.wireframe,
+        pixelRatio: this.ratio,
+        background: "#f6f1e7",
+        fill: "#c8773a",
+        wire: "rgba(60, 30, 10, 0.55)",
+        flipped: settings.flipped,
+      },
+      frame,
+    );
     this.drawOverlay(this.#overlayContext, posing, settings, extras, true);
   }
 
   /**
+   * The rig's frame to draw, when a rig on the GPU has the frame of the pose shown (its
+   * pose on the CPU left behind, or also evaluated for the foldover guard) and the overlay
+   * can be drawn from the watched vertices; the rig's texture uploaded and the vertices
+   * watched first when they changed (that frame is drawn from the pose: the watched
+   * positions come with the next frame). A rig the renderer cannot take poses on the CPU.
+   */
+  #rigFrame(posing: Posing, settings: WidgetSettings, extras: Extras): Float32Array | undefined {
+    const { deformer } = posing;
+    if (!deformer.rigFrameCurrent) return undefined;
+    const version = posing.gpuRigVersion;
+    if (this.#gpuRig?.deformer !== deformer || this.#gpuRig.version !== version) {
+      const layout = deformer.rigGpuLayout();
+      const texture = deformer.rigGpuTexture();
+      if (!layout || !texture || !this.renderer.setRig(layout, texture)) {
+        this.renderer.clearRig();
+        this.#gpuRig = undefined;
+        deformer.setRigOnGpu(false);
+        return undefined;
+      }
+      this.#gpuRig = { deformer, version, watched: "" };
+    }
+    const layers = this.layering(posing);
+    const key = `${layers?.order.join() ?? ""} ${posing.handles.map((h) => h.point.triangle).join()}`;
+    if (this.#gpuRig.watched !== key) {
+      deformer.watchRigVertices(watchedVertices(posing, layers));
+      this.#gpuRig.watched = key;
+      return undefined;
+    }
+    return this.#wholePoseNeeded(posing, settings, extras) ? undefined : deformer.rigFrame();
+  }
+
+  /** Whether the overlay draws something that needs the whole pose (not only the watched vertices). */
+  #wholePoseNeeded(posing: Posing, settings: WidgetSettings, extras: Extras): boolean {
+    const painted = posing.stiffness !== undefined && (settings.tool === "stiffness" || settings.wireframe);
+    return (
+      (settings.field && extras.field !== undefined) ||
+      posing.bones.list.length > 0 ||
+      settings.tool === "joint" ||
+      extras.boneDraft !== undefined ||
+      painted ||
+      (settings.wireframe && posing.deformer.method === "cauchy-green")
+    );
+  }
+
+  /** See `Widget.rigGpuReadback`. */
+  rigGpuReadback(
+    posing: Posing,
+  ):
+    | { positions: Float32Array; layout: RigGpuLayout; texture: Float32Array; frame: Float32Array; drawn: boolean }
+    | undefined {
+    const { deformer } = posing;
+    // The texture first: making it may grow the memory, which detaches views of it.
+    const [layout, texture] = [deformer.rigGpuLayout(), deformer.rigGpuTexture()];
+    const frame = deformer.rigFrame();
+    if (
+      !(this.renderer instanceof GlRenderer) ||
+      this.#gpuRig?.deformer !== deformer ||
+      !layout ||
+      !frame ||
+      !texture
+    ) {
+      return undefined;
+    }
+    const positions = this.renderer.shaderPositions(EMPTY, frame);
+    return { positions, layout, texture, frame: frame.slice(), drawn: this.#drewFrame };
+  }
+
+  /** Where the handles are in the picture: from the watched vertices when it was drawn from a rig's frame. */
+  #handlePositions(posing: Posing): Float64Array {
+    const watched = this.#drewFrame ? posing.deformer.rigWatchedPositions() : undefined;
+    if (!watched) return posing.deformer.handlePositions();
+    const { triangles } = posing.shape.mesh;
+    const out = new Float64Array(2 * posing.handles.length);
+    posing.handles.forEach((h, i) => {
+      const { triangle, barycentric } = h.point;
+      let [x, y] = [0, 0];
+      for (let k = 0; k < 3; k++) {
+        const v = triangles[3 * triangle + k]!;
+        x += barycentric[k]! * watched[2 * v]!;
+        y += barycentric[k]! * watched[2 * v + 1]!;
+      }
+      [out[2 * i], out[2 * i + 1]] = [x, y];
+    });
+    return out;
+  }
+
+  /**
    * The overlay on `ctx`: outline, flipped triangles, and with `withHandles` the handles,
-   * the field, a rig's discs and its ghost, and with the wireframe Cauchy-Green's cage.
+   * the field, a rig's training regions and its ghost, and with the wireframe Cauchy-Green's cage.
    */
   drawOverlay(
     ctx: CanvasRenderingContext2D,
@@ -194,15 +301,19 @@ export class Stage {
     withHandles: boolean,
   ): void {
     const { deformer, shape } = posing;
-    const positions = deformer.positionsView();
-    const at = withHandles ? deformer.handlePositions() : new Float64Array(0);
+    // Drawn from a rig's frame: the overlay from the watched vertices, the flipped triangles tinted by the renderer.
+    const watched = this.#drewFrame ? deformer.rigWatchedPositions() : undefined;
+    const positions = watched ?? deformer.positionsView();
+    const at = withHandles ? this.#handlePositions(posing) : new Float64Array(0);
     const targets = withHandles ? posing.targets() : at;
     // Cauchy-Green's cage is structure, like the triangles: shown with the wireframe.
     const cage = withHandles && settings.wireframe ? deformer.cage() : undefined;
     const paper = settings.paperMode;
     const rig = withHandles && posing.posingWithRig ? posing.rig : undefined;
-    const radius = settings.region ? rig?.radius : undefined;
-    const rest = radius !== undefined ? rig!.restHandles() : undefined;
+    // The regions its training drew targets from (discs, Voronoi cells or both, as Rust
+    // defines them) and which handles' targets lie outside them.
+    const sampled = settings.region ? rig?.regions() : undefined;
+    const outside = sampled ? rig!.operator.outsideRegions(targets) : undefined;
     // A selected handle's turning ring shows while it turns, or while the pointer is near it
     // (off the handle itself: a pointer resting on the handle it just dragged shows none),
     // or, after a finger's press, whenever it is selected and not held.
@@ -223,14 +334,16 @@ export class Stage {
           dragged: h.pointerId !== undefined,
           ring: h.selected && (h.turning !== undefined || (h.pointerId === undefined && (extras.touch || near(i)))),
           turned: h.turning ? h.turning.turn - h.turning.start : undefined,
-          outside:
-            rest !== undefined &&
-            Math.hypot(targets[2 * i]! - rest[2 * i]!, targets[2 * i + 1]! - rest[2 * i + 1]!) > radius!,
+          outside: outside?.[i] === 1,
         }))
       : [];
-    const regions = rest
-      ? Array.from({ length: rest.length / 2 }, (_, i) => ({ x: rest[2 * i]!, y: rest[2 * i + 1]!, r: radius! }))
-      : undefined;
+    const c = sampled?.centres;
+    const regions = sampled && {
+      discs: sampled.discs
+        ? Array.from({ length: c!.length / 2 }, (_, i) => ({ x: c![2 * i]!, y: c![2 * i + 1]!, r: sampled.radius }))
+        : [],
+      cells: sampled.cells ?? [],
+    };
     // Painted stiffness shows while the brush is on, and with the wireframe (structure).
     const painting = settings.tool === "stiffness";
     const stiffness = withHandles && (painting || settings.wireframe) ? this.#tint(posing) : undefined;
@@ -243,12 +356,12 @@ export class Stage {
     const scene = {
       layers: this.layering(posing),
       // Re-read: handlePositions() and cage() may have grown the memory and detached the view.
-      positions: positions.length > 0 ? positions : deformer.positionsView(),
+      positions: positions.length > 0 ? positions : (deformer.rigWatchedPositions() ?? deformer.positionsView()),
       triangles: shape.mesh.triangles,
       boundaryEdges: shape.mesh.boundaryEdges,
       handles,
       field: withHandles && settings.field ? extras.field : undefined,
-      showFlipped: settings.flipped,
+      showFlipped: settings.flipped && !watched,
       regions,
       ghost: rig && settings.compare ? extras.ghost : undefined,
       cage,
@@ -313,7 +426,7 @@ export class Stage {
     if (posing.dragging) {
       const box = hud.getBoundingClientRect();
       const canvas = this.overlay.getBoundingClientRect();
-      const p = posing.deformer.handlePositions();
+      const p = this.#handlePositions(posing);
       const margin = 24;
       under = posing.handles.some((h, i) => {
         if (h.pointerId === undefined) return false;
@@ -337,6 +450,21 @@ export class Stage {
     this.busy.done();
     this.training.done();
   }
+}
+
+/** No positions: a picture drawn from a rig's frame reads none. */
+const EMPTY = new Float64Array(0);
+
+/**
+ * The vertices the overlay reads when the picture is drawn from a rig's frame: the
+ * outline's, the layers' outlines', and the corners of the handles' triangles.
+ */
+function watchedVertices(posing: Posing, layers: Layering | undefined): Uint32Array {
+  const { boundaryEdges, triangles } = posing.shape.mesh;
+  const seen = new Set<number>(boundaryEdges);
+  for (const loops of layers?.outlines ?? []) for (const loop of loops) for (const v of loop) seen.add(v);
+  for (const h of posing.handles) for (let k = 0; k < 3; k++) seen.add(triangles[3 * h.point.triangle + k]!);
+  return Uint32Array.from(seen);
 }
 
 /** A canvas's picture encoded (`type`, e.g. "image/png"). */
