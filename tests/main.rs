@@ -32,6 +32,7 @@ mod mls;
 mod pose;
 #[cfg(not(target_arch = "wasm32"))]
 mod pose_obj;
+mod pose_rig;
 mod puppet;
 mod puppet_import;
 mod session;

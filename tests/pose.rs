@@ -219,7 +219,8 @@ fn a_rig_poses_with_the_operators_evaluation_once_per_new_set_of_targets() {
     assert_eq!(bits_of(&posed), bits_of(&expected));
     assert_eq!(poser.advance().unwrap().steps, 0, "the same targets: nothing to evaluate");
     let session = poser.stop_recording().unwrap();
-    assert!(matches!(session.events.last(), Some(Event::Positions(p)) if bits_of(p) == bits_of(&expected)));
+    // Recorded as the targets the pose is for (the rig named before; `pose_rig.rs`).
+    assert!(matches!(session.events.last(), Some(Event::RigPose(t)) if bits_of(t) == bits_of(targets.as_flattened())));
     // A rig of other counts is refused.
     poser.set_handle_vertices(&[0]).unwrap();
     assert!(!poser.has_rig(), "a new handle set drops the rig");
@@ -229,6 +230,8 @@ fn a_rig_poses_with_the_operators_evaluation_once_per_new_set_of_targets() {
 #[test]
 fn a_rig_on_the_gpu_leaves_the_pose_behind_until_it_is_read_and_records_every_frame_as_on_the_cpu() {
     let (mut poser, mut operator) = rig_poser();
+    // Without the foldover guard, which needs the pose on the CPU (`pose_rig.rs`).
+    poser.set_tracking(Tracking { no_foldovers: false, ..Tracking::default() }).unwrap();
     let rest = bits(poser.deformer().positions());
     assert!(!poser.set_rig_on_gpu(true).unwrap(), "no rig, nothing on the GPU");
     poser.set_rig(Some(operator.clone())).unwrap();
@@ -262,10 +265,12 @@ fn a_rig_on_the_gpu_leaves_the_pose_behind_until_it_is_read_and_records_every_fr
     assert_eq!(bits_of(poser.deformer().positions().as_flattened()), bits_of(&expected));
     assert_eq!(at, poser.deformer().handle_positions()[1]);
     poser.release(1).unwrap();
-    // While a recording runs, each frame is evaluated and recorded as on the CPU: the same
-    // session as a poser on the CPU records.
-    let record = |on_gpu: bool| {
+    // While a recording runs, each frame is recorded as on the CPU (as its targets: the pose
+    // stays behind on the GPU without the guard, which evaluates each frame on the CPU):
+    // the same session as a poser on the CPU records.
+    let record = |on_gpu: bool, no_foldovers: bool| {
         let (mut poser, operator) = rig_poser();
+        poser.set_tracking(Tracking { no_foldovers, ..Tracking::default() }).unwrap();
         poser.set_rig(Some(operator)).unwrap();
         poser.set_rig_on_gpu(on_gpu).unwrap();
         poser.start_recording(None);
@@ -273,11 +278,13 @@ fn a_rig_on_the_gpu_leaves_the_pose_behind_until_it_is_read_and_records_every_fr
             let targets = moved(&poser, k as f64);
             poser.set_targets(&targets).unwrap();
             poser.advance().unwrap();
-            assert!(!poser.is_stale());
+            assert_eq!(poser.is_stale(), on_gpu && !no_foldovers);
         }
         poser.stop_recording().unwrap().to_json()
     };
-    assert_eq!(record(true), record(false));
+    for guard in [true, false] {
+        assert_eq!(record(true, guard), record(false, guard));
+    }
     // Back on the CPU, the pose is current again.
     let targets = moved(&poser, 3.0);
     poser.set_targets(&targets).unwrap();

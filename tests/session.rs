@@ -59,11 +59,12 @@ fn json_round_trips_every_double_exactly() {
                 Event::Step(v)
                 | Event::Positions(v)
                 | Event::Handles { barycentric: v, .. }
-                | Event::Bones { barycentric: v, .. } => v.clone(),
+                | Event::Bones { barycentric: v, .. }
+                | Event::RigPose(v) => v.clone(),
                 Event::Stiffness(v) => v.clone().unwrap_or_default(),
                 Event::Turn { velocities, turns } => [&velocities[..], &turns[..]].concat(),
                 Event::Joints(joints) => joints.iter().flat_map(|j| j.point).collect(),
-                Event::Reset(_) | Event::Options(_) => Vec::new(),
+                Event::Reset(_) | Event::Options(_) | Event::Rig(_) => Vec::new(),
             })
             .map(f64::to_bits)
             .collect()
@@ -72,7 +73,7 @@ fn json_round_trips_every_double_exactly() {
     assert_eq!(bits(&back), bits(&s));
     assert_eq!(back.to_json(), text);
     // The documented layout: the fields of the format, one event per line.
-    for key in ["\"format\": \"akap-session\"", "\"version\": 2", "\"targetEdgeLength\":0.2", "\"vertexCount\""] {
+    for key in ["\"format\": \"akap-session\"", "\"version\": 3", "\"targetEdgeLength\":0.2", "\"vertexCount\""] {
         assert!(text.contains(key), "{key} in {text}");
     }
     assert!(text.contains("\n    {\"reset\":true},\n"));
@@ -118,12 +119,12 @@ fn bar_targets(rest: &[Point], phi: f64) -> Vec<Point> {
 #[test]
 fn committed_sessions_match_their_meshes_and_scripts() {
     for (name, text) in SESSIONS {
-        // Version 1 files, read as version 2 and written back so, with nothing lost.
+        // Version 1 files, read as version 3 and written back so, with nothing lost.
         assert!(text.contains("\"version\": 1,"), "{name} is a version-1 file");
         let s = Session::from_json(text).unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_eq!(s.version, 2);
+        assert_eq!(s.version, 3);
         let again = s.to_json();
-        assert!(again.contains("\"version\": 2,"));
+        assert!(again.contains("\"version\": 3,"));
         assert_eq!(Session::from_json(&again).unwrap(), s);
         let mesh = s.mesh().unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(mesh.vertex_count(), s.mesh.vertex_count);
@@ -194,8 +195,8 @@ fn bad_sessions_are_refused() {
     let edit = |from: &str, to: &str| Session::from_json(&text.replacen(from, to, 1));
     assert!(matches!(Session::from_json("{"), Err(SessionError::Json(_))));
     assert!(matches!(edit("akap-session", "other"), Err(SessionError::Format { .. })));
-    assert!(matches!(edit("\"version\": 2", "\"version\": 3"), Err(SessionError::Version { found: 3 })));
-    assert!(matches!(edit("\"version\": 2", "\"version\": 0"), Err(SessionError::Version { found: 0 })));
+    assert!(matches!(edit("\"version\": 3", "\"version\": 4"), Err(SessionError::Version { found: 4 })));
+    assert!(matches!(edit("\"version\": 3", "\"version\": 0"), Err(SessionError::Version { found: 0 })));
     assert!(matches!(edit("\"targetEdgeLength\"", "\"targetEdgeLen\""), Err(SessionError::Json(_))));
     assert!(matches!(edit("{\"reset\":true}", "{\"jump\":true}"), Err(SessionError::Json(_))));
     assert!(matches!(
@@ -258,14 +259,14 @@ fn version_1_files_are_read_but_not_with_what_only_version_2_has() {
         Session::from_json(&bar.replacen(from, to, 1))
     };
     let positions = format!("{{\"positions\":{:?}}},\n    {{\"step\"", vec![0.0; 2 * v1.mesh.vertex_count]);
-    assert!(matches!(with("{\"step\"", &positions), Err(SessionError::NotInVersion1 { .. })));
+    assert!(matches!(with("{\"step\"", &positions), Err(SessionError::NotInVersion { version: 1, .. })));
     assert!(matches!(
         with("\"options\": {", "\"options\": {\"method\":\"akap\","),
-        Err(SessionError::NotInVersion1 { .. })
+        Err(SessionError::NotInVersion { version: 1, .. })
     ));
     assert!(matches!(
         with("{\"step\"", "{\"options\":{\"lambda\":5.0}},\n    {\"step\""),
-        Err(SessionError::NotInVersion1 { .. })
+        Err(SessionError::NotInVersion { version: 1, .. })
     ));
     // The same edits are version 2.
     let v2 = bar.replacen("\"version\": 1,", "\"version\": 2,", 1);
@@ -422,10 +423,10 @@ fn stiffness_events_replay_as_the_calls_they_record() {
     );
     let mut plain_options = s.clone();
     plain_options.options = RecordedOptions::default();
-    let v1 = plain_options.to_json().replace("\"version\": 2", "\"version\": 1");
+    let v1 = plain_options.to_json().replace("\"version\": 3", "\"version\": 1");
     assert_eq!(
         Session::from_json(&v1).unwrap_err().to_string(),
-        "a version-1 session cannot have a stiffness event; version 2 sessions can"
+        "a version-1 session cannot have a stiffness event; version 3 sessions can"
     );
 }
 
@@ -561,6 +562,8 @@ fn the_apps_recording_replays_to_the_apps_pose_bit_for_bit() {
             Event::Turn { .. } => "turn",
             Event::Bones { .. } => "bones",
             Event::Joints(_) => "joints",
+            Event::Rig(_) => "rig",
+            Event::RigPose(_) => "rigPose",
         })
         .collect();
     for kind in ["handles", "step", "options", "reset"] {
@@ -610,7 +613,7 @@ mod bindings {
     #[test]
     fn session_json_and_session_mesh_read_through_the_rust_format() {
         let v2 = session_json(JsValue::from_str(super::SESSIONS[0].1)).unwrap();
-        assert!(v2.contains("\"version\": 2,") && v2.contains("\"method\":\"akap\""));
+        assert!(v2.contains("\"version\": 3,") && v2.contains("\"method\":\"akap\""));
         assert_eq!(Session::from_json(&v2).unwrap().events, super::session("bar").events);
         let mesh = session_mesh(JsValue::from_str(super::APP_RECORDED)).unwrap();
         let expected = Session::from_json(super::APP_RECORDED).unwrap().mesh().unwrap();

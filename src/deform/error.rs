@@ -225,6 +225,8 @@ pub enum DeformError {
         /// The deformer's.
         deformer: [usize; 2],
     },
+    /// A rig's pose asked for (a session's `rigPose` replayed) with no rig posing the shape.
+    NoRig,
 }
 
 impl fmt::Display for DeformError {
@@ -242,6 +244,7 @@ impl fmt::Display for DeformError {
                  train it again for these handles",
                 rig[0], rig[1], deformer[0], deformer[1]
             ),
+            Self::NoRig => f.write_str("no trained rig poses the shape: a rig's pose needs the rig set first"),
             Self::Disconnected { components } => {
                 write!(f, "the mesh has {components} separate pieces; the deformer needs one connected piece")
             }
@@ -376,7 +379,8 @@ impl DeformError {
             | Self::HandleOutOfRange { .. }
             | Self::InvalidTarget { .. }
             | Self::InvalidParts { .. }
-            | Self::RigMismatch { .. } => ErrorCode::InvalidArgument,
+            | Self::RigMismatch { .. }
+            | Self::NoRig => ErrorCode::InvalidArgument,
             Self::InvalidJoint { .. } => ErrorCode::InvalidJoint,
             Self::Factor(e) => e.code(),
             Self::NonFiniteResult => ErrorCode::Overflow,

@@ -386,6 +386,15 @@ pub fn newly_flipped(before: &[Point], after: &[Point], triangles: &[[u32; 3]]) 
     triangles.iter().filter(|t| !a.positive(t) && b.positive(t)).count()
 }
 
+/// Into `out`, whether each triangle is positive in `positions` (the orientation this
+/// module decides with): a trained rig's guard (`pose`) watches these, having no step to
+/// split.
+pub fn positive_triangles(positions: &[Point], triangles: &[[u32; 3]], out: &mut Vec<bool>) {
+    let pose = Pose::new(positions);
+    out.clear();
+    out.extend(triangles.iter().map(|t| pose.positive(t)));
+}
+
 /// Whether a step from `before` to `after` flipped a triangle (see [`newly_flipped`]).
 fn flips(before: &[Point], after: &[Point], triangles: &[[u32; 3]]) -> bool {
     // Most triangles are positive after the step: the pose before is looked at only for

@@ -23,15 +23,25 @@
 //! step's pieces each as its own `step` or `turn` event), so that a replay repeats it to
 //! the bit; so are the handles, poses, options, stiffness and bones set through the poser.
 //!
+//! With a trained rig ([`Poser::set_rig`]) a frame is the rig's pose for the targets; with
+//! [`Tracking::no_foldovers`] the targets are pulled back along the way from the last pose's
+//! until no triangle turns over that was not turned over at rest (`rig.rs`), the frame
+//! reported clamped as a stopped step is. The rig is recorded by the checksum of its file
+//! ([`session_rig`]) and each frame by the targets its pose is for, so that a replay given
+//! the rig ([`replay_with_rigs`]) evaluates it again to the same bits.
+//!
 //! A rig may pose on the GPU ([`Poser::set_rig_on_gpu`]): a frame then computes only the
 //! rig's short frame vector ([`crate::defop::GpuRig`]) for the renderer, and the deformer's
 //! positions fall behind until something reads them: [`Poser::settle`] evaluates the
 //! operator at the last frame's targets into them (the same double-precision pose a frame
 //! on the CPU writes). Every method of the poser that reads or builds on the pose settles
-//! first; readers of [`Poser::deformer`] call [`Poser::settle`] first (the bindings do). While a
-//! recording runs, each rig frame is evaluated and recorded at once, as on the CPU.
+//! first; readers of [`Poser::deformer`] call [`Poser::settle`] first (the bindings do). The
+//! no-foldover guard needs the pose (it checks its triangles), so with it a frame is
+//! evaluated on the CPU too and the GPU draws the targets it accepted; so does a recording
+//! that cannot name its rig (it records the poses).
 
 mod replay;
+mod rig;
 
 use std::borrow::BorrowMut;
 
@@ -45,7 +55,9 @@ use crate::session::{
     Event, MeshCounts, RecordedOptions, Session, SessionJoint, SessionMesh, SessionPuppet, ShapeSpec,
 };
 
-pub use replay::{replay, replay_to_targets, Replay};
+pub use replay::{replay, replay_to_targets, replay_with_rigs, Replay};
+pub use rig::session_rig;
+use rig::Rig;
 
 /// The largest turn of a handle in one step, radians.
 pub const MAX_TURN_STEP: f64 = 0.1;
@@ -130,20 +142,6 @@ struct HandleState {
     held: bool,
     /// The paper's mode: motion of the target not yet turned into steps.
     pending: Point,
-}
-
-/// A trained rig posing the shape: the operator, and the targets it was last evaluated at.
-#[derive(Debug, Clone)]
-struct Rig {
-    operator: Operator,
-    /// The targets of the last evaluation, x and y interleaved (empty: none yet).
-    evaluated: Vec<f64>,
-    /// The targets to evaluate at, x and y interleaved (scratch).
-    targets: Vec<f64>,
-    /// The rig on the GPU ([`Poser::set_rig_on_gpu`]): each frame computes its frame only.
-    gpu: Option<GpuRig>,
-    /// Whether the deformer's positions are behind `evaluated` (a frame on the GPU since).
-    stale: bool,
 }
 
 /// A deformer posed toward targets: see the module's description. It owns its deformer
@@ -231,11 +229,15 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.tracking
     }
 
-    /// Changes the tracking policy (checked; unchanged on error).
+    /// Changes the tracking policy (checked; unchanged on error). A rig evaluates again at
+    /// the next frame, under the new policy.
     pub fn set_tracking(&mut self, tracking: Tracking) -> Result<(), DeformError> {
         tracking.check()?;
         self.stepper.set_guard(tracking.guard)?;
         self.tracking = tracking;
+        if let Some(rig) = &mut self.rig {
+            rig.asked.clear();
+        }
         Ok(())
     }
 
@@ -265,7 +267,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             buffer.resize(n, 0.0);
         }
         if let Some(rig) = &mut self.rig {
-            rig.evaluated.clear();
+            rig.forget_pose();
         }
     }
 
@@ -367,6 +369,17 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// of an animation shown): no motion pending from it in the paper's mode, no turn left
     /// to make. All checked before any is set.
     pub fn set_targets(&mut self, targets: &[Point]) -> Result<(), DeformError> {
+        self.check_targets(targets)?;
+        for (h, &target) in self.handles.iter_mut().zip(targets) {
+            h.target = target;
+            h.pending = [0.0; 2];
+            h.turn = h.turned;
+        }
+        Ok(())
+    }
+
+    /// One finite target per handle.
+    fn check_targets(&self, targets: &[Point]) -> Result<(), DeformError> {
         if targets.len() != self.handles.len() {
             return Err(DeformError::Length {
                 what: "targets",
@@ -378,11 +391,6 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         }
         for (index, target) in targets.iter().enumerate() {
             check_target(index, target)?;
-        }
-        for (h, &target) in self.handles.iter_mut().zip(targets) {
-            h.target = target;
-            h.pending = [0.0; 2];
-            h.turn = h.turned;
         }
         Ok(())
     }
@@ -400,18 +408,27 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     }
 
     /// Every handle's target where it is now, no motion pending: the handles stay where
-    /// they are.
+    /// they are (with a rig, where its pose is for).
     pub fn pin_handles(&mut self) {
         let _ = self.settle();
-        let at = self.deformer.borrow().handle_positions();
+        let at = self.handle_places();
         for (h, p) in self.handles.iter_mut().zip(at) {
             h.target = p;
             h.pending = [0.0; 2];
         }
     }
 
+    /// Where each handle is: its point of the pose, or with a rig posing, the target the
+    /// rig's pose is for (the point of the pose is only near it).
+    fn handle_places(&self) -> Vec<Point> {
+        match &self.rig {
+            Some(rig) if !rig.posed.is_empty() => rig.posed.as_chunks::<2>().0.to_vec(),
+            _ => self.deformer.borrow().handle_positions(),
+        }
+    }
+
     /// A pointer takes handle `index`: it is held, its target where it is now (no motion
-    /// pending from it). Returns where it is.
+    /// pending from it; with a rig, where the rig's pose is for). Returns where it is.
     pub fn grab(&mut self, index: usize) -> Result<Point, DeformError> {
         self.check_handle(index)?;
         self.settle()?;
@@ -630,6 +647,9 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// made, recorded.
     fn stepped(&mut self, velocities: &[[f64; 2]], turns: Option<&[f64]>, fraction: f64) {
         self.at_rest = false;
+        if let Some(rig) = &mut self.rig {
+            rig.forget_pose();
+        }
         // The stepper's own products: `step` with these repeats the piece to the bit.
         let times = |x: f64| if fraction == 1.0 { x } else { x * fraction };
         if let Some(turns) = turns {
@@ -733,11 +753,14 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// ([`DeformError::InvalidParts`]) for a rig trained on another puppet than the
     /// deformer's (other parts or joints, or one for a puppet and the other not); the
     /// caller is to check it was trained for this mesh and these handle points. `None`
-    /// poses with the deformer again; so does any new handle set.
+    /// poses with the deformer again; so does any new handle set. Recorded (a `rig` event
+    /// naming the rig by [`session_rig`]).
     pub fn set_rig(&mut self, operator: Option<Operator>) -> Result<(), DeformError> {
         self.settle()?;
         let Some(operator) = operator else {
-            self.rig = None;
+            if self.rig.take().is_some() {
+                self.record(|| Event::Rig(None));
+            }
             return Ok(());
         };
         let (rig, deformer) = (
@@ -754,9 +777,30 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
                     .into(),
             });
         }
-        let n = self.handles.len();
-        self.rig = Some(Rig { operator, evaluated: Vec::new(), targets: vec![0.0; 2 * n], gpu: None, stale: false });
+        self.rig = Some(Rig::new(operator, self.handles.len()));
+        self.announce_rig();
         Ok(())
+    }
+
+    /// Names the rig in the recording, if one runs (a `rig` event): its frames are then
+    /// recorded as the targets they are for. A rig that cannot be named (it cannot be
+    /// written with this mesh) is recorded by its poses.
+    fn announce_rig(&mut self) {
+        let Some(rig) = &mut self.rig else { return };
+        rig.announced = false;
+        if let (Some(session), false) = (&mut self.recording, self.paused) {
+            if let Ok(named) = session_rig(self.deformer.borrow().mesh(), &rig.operator) {
+                session.events.push(Event::Rig(Some(named)));
+                rig.announced = true;
+            }
+        }
+    }
+
+    /// The targets the rig's pose is for (x and y per handle; `None` without a rig or
+    /// before its first pose): where a no-foldover guard left them, the handles' targets
+    /// otherwise.
+    pub fn rig_targets(&self) -> Option<&[f64]> {
+        self.rig.as_ref().map(|rig| rig.posed.as_slice()).filter(|posed| !posed.is_empty())
     }
 
     /// Whether a rig poses the shape ([`Self::set_rig`]).
@@ -787,7 +831,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             (true, false) => {
                 rig.gpu = Some(GpuRig::new(&rig.operator));
                 // The first frame on the GPU computes its frame even at the same targets.
-                rig.evaluated.clear();
+                rig.asked.clear();
             }
             (false, true) => rig.gpu = None,
             _ => {}
@@ -809,15 +853,22 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// Watches these vertices of the rig on the GPU ([`GpuRig::watch`]): each frame gives
     /// their positions. Returns whether a rig is on the GPU (nothing is watched without one).
     pub fn watch_rig_vertices(&mut self, vertices: &[u32]) -> Result<bool, FitError> {
-        let Some(Rig { operator, gpu: Some(gpu), evaluated, .. }) = &mut self.rig else { return Ok(false) };
+        let Some(Rig { operator, gpu: Some(gpu), asked, .. }) = &mut self.rig else { return Ok(false) };
         gpu.watch(operator, vertices)?;
-        evaluated.clear(); // the next frame gives their positions
+        asked.clear(); // the next frame gives their positions
         Ok(true)
     }
 
     /// Whether the deformer's positions are behind the rig's last frame on the GPU.
     pub fn is_stale(&self) -> bool {
         self.rig.as_ref().is_some_and(|rig| rig.stale)
+    }
+
+    /// Whether the rig on the GPU has the frame of the pose shown: its last frame, stale
+    /// positions or not (with the foldover guard a frame is evaluated on the CPU as well, and
+    /// the GPU draws the same targets). Not after a pose set otherwise (undo, a reset).
+    pub fn rig_frame_current(&self) -> bool {
+        self.rig.as_ref().is_some_and(|rig| rig.gpu.is_some() && !rig.posed.is_empty())
     }
 
     /// With a rig on the GPU, puts the rig's pose at the last frame's targets into the
@@ -827,45 +878,84 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     pub fn settle(&mut self) -> Result<(), DeformError> {
         let Some(rig) = self.rig.as_mut().filter(|rig| rig.stale) else { return Ok(()) };
         rig.stale = false;
-        let Rig { operator, evaluated, .. } = rig;
+        let Rig { operator, posed, .. } = rig;
         self.deformer
             .borrow_mut()
-            .set_positions_with(|out| operator.evaluate_into(evaluated, out).map_err(|_| DeformError::NonFiniteResult))
+            .set_positions_with(|out| operator.evaluate_into(posed, out).map_err(|_| DeformError::NonFiniteResult))
     }
 
-    /// The rig's pose for the handles' targets, straight into the deformer's positions,
-    /// recorded as a pose; on the GPU its frame only, the positions left behind (unless a
-    /// recording runs); nothing when the targets are those of the last evaluation.
+    /// The rig's pose for the handles' targets, straight into the deformer's positions;
+    /// nothing when the targets are those of the last evaluation. With no foldovers, pulled
+    /// back along the way from the targets of the last pose until no triangle turns over
+    /// that was not at rest (`rig.rs`): then reported clamped, and the handles not held stay
+    /// where the pose is for, as after a step stopped short. Recorded as the targets the pose
+    /// is for (or as the pose, for a rig the recording does not name). On the GPU without
+    /// the guard, the rig's frame only, the positions left behind (see [`Self::settle`]).
     fn evaluate_rig(&mut self) -> Result<Advance, DeformError> {
         let rig = self.rig.as_mut().expect("a rig poses");
         for (t, h) in rig.targets.chunks_exact_mut(2).zip(&self.handles) {
             t.copy_from_slice(&h.target);
         }
-        if rig.evaluated == rig.targets {
+        if rig.asked == rig.targets {
             return Ok(Advance::default());
         }
         let clock = self.deformer.borrow().clock();
         let started = clock();
-        let Rig { operator, targets, gpu, .. } = rig;
-        let on_gpu = gpu.is_some();
-        if let Some(gpu) = gpu {
-            gpu.frame(targets).map_err(|_| DeformError::NonFiniteResult)?;
+        // On the GPU a frame computes the rig's frame only; the guard needs the pose (it checks
+        // its triangles), and so does a recording that cannot name the rig (it records poses).
+        let recording_poses = self.recording.is_some() && !self.paused && !rig.announced;
+        let gpu_only = rig.gpu.is_some() && !self.tracking.no_foldovers && !recording_poses;
+        if !gpu_only && rig.stale {
+            self.settle()?;
         }
-        // A recording keeps every frame's pose: evaluated at once, as on the CPU.
-        let recording = self.recording.is_some() && !self.paused;
-        if !on_gpu || recording {
-            self.deformer.borrow_mut().set_positions_with(|out| {
-                operator.evaluate_into(targets, out).map_err(|_| DeformError::NonFiniteResult)
-            })?;
-        }
-        rig.stale = on_gpu && !recording;
+        let rig = self.rig.as_mut().expect("a rig poses");
+        let (moved, clamped) = match (gpu_only, self.tracking.no_foldovers) {
+            (true, _) => rig.frame_on_gpu().map(|()| (true, false))?,
+            (false, true) => {
+                rig.pose_without_foldovers(self.deformer.borrow_mut(), self.tracking.guard.clamp_trials)?
+            }
+            (false, false) => rig.pose(self.deformer.borrow_mut()).map(|()| (true, false))?,
+        };
         let evaluation = clock() - started;
-        rig.evaluated.clone_from(&rig.targets);
+        if clamped {
+            for (h, p) in self.handles.iter_mut().zip(rig.posed.as_chunks::<2>().0) {
+                if !h.held {
+                    h.target = *p;
+                }
+            }
+            for (t, h) in rig.targets.chunks_exact_mut(2).zip(&self.handles) {
+                t.copy_from_slice(&h.target);
+            }
+        }
+        rig.asked.clone_from(&rig.targets);
+        if moved {
+            self.at_rest = false;
+            record(&mut self.recording, self.paused, || match rig.announced {
+                true => Event::RigPose(rig.posed.clone()),
+                false => Event::Positions(self.deformer.borrow().positions().as_flattened().to_vec()),
+            });
+        }
+        Ok(Advance { steps: 1, clamped, evaluation, ..Advance::default() })
+    }
+
+    /// Poses with the rig at these targets (one per handle), as given: no guard (a replay's
+    /// recorded `rigPose`, whose targets are where the recording's guard left them). The
+    /// handles' targets become these. Refused ([`DeformError::NoRig`]) without a rig, and
+    /// for targets of another count or not finite, changing nothing. Recorded.
+    pub fn pose_with_rig(&mut self, targets: &[Point]) -> Result<(), DeformError> {
+        self.check_targets(targets)?;
+        let rig = self.rig.as_mut().ok_or(DeformError::NoRig)?;
+        rig.targets.copy_from_slice(targets.as_flattened());
+        rig.pose(self.deformer.borrow_mut())?;
+        rig.asked.clone_from(&rig.targets);
+        self.set_targets(targets)?;
         self.at_rest = false;
-        record(&mut self.recording, self.paused, || {
-            Event::Positions(self.deformer.borrow().positions().as_flattened().to_vec())
+        let rig = self.rig.as_ref().expect("checked above");
+        record(&mut self.recording, self.paused, || match rig.announced {
+            true => Event::RigPose(rig.posed.clone()),
+            false => Event::Positions(self.deformer.borrow().positions().as_flattened().to_vec()),
         });
-        Ok(Advance { steps: 1, evaluation, ..Advance::default() })
+        Ok(())
     }
 
     // ------------------------------------------------------------------ state set through the poser
@@ -876,8 +966,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.deformer.borrow_mut().set_positions(positions)?;
         self.at_rest = false;
         if let Some(rig) = &mut self.rig {
-            rig.evaluated.clear();
-            rig.stale = false;
+            rig.forget_pose();
         }
         self.record(|| Event::Positions(positions.as_flattened().to_vec()));
         Ok(())
@@ -889,8 +978,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
         self.deformer.borrow_mut().reset();
         self.at_rest = true;
         if let Some(rig) = &mut self.rig {
-            rig.evaluated.clear();
-            rig.stale = false;
+            rig.forget_pose();
         }
         self.record(|| Event::Reset(true));
         self.pin_handles();
@@ -948,7 +1036,7 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
     /// recording: a header with the mesh (named by `shape` when the mesh is that built-in
     /// shape triangulated, else carried inline) and the current options, then the events
     /// that put a deformer in the current state (the pose or a reset, the handles, the
-    /// stiffness and bones).
+    /// stiffness and bones, the rig).
     pub fn start_recording(&mut self, shape: Option<ShapeSpec>) {
         let _ = self.settle();
         let deformer = self.deformer.borrow();
@@ -976,12 +1064,15 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
             session.events.push(Event::Bones { triangles, barycentric: barycentric.as_flattened().to_vec() });
         }
         self.recording = Some(session);
+        self.announce_rig();
     }
 
     /// Records from now on into `session`, its header and events so far the caller's (a
-    /// script that writes its own header), replacing any recording.
+    /// script that writes its own header), replacing any recording; a rig posing is named
+    /// in it.
     pub fn resume_recording(&mut self, session: Session) {
         self.recording = Some(session);
+        self.announce_rig();
     }
 
     /// Whether a recording runs.
@@ -996,6 +1087,9 @@ impl<D: BorrowMut<Deformer>> Poser<D> {
 
     /// Ends the recording and returns it (`None` if none ran).
     pub fn stop_recording(&mut self) -> Option<Session> {
+        if let Some(rig) = &mut self.rig {
+            rig.announced = false;
+        }
         self.recording.take()
     }
 

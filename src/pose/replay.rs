@@ -1,8 +1,10 @@
 //! Replaying a session's events on a poser: as recorded ([`replay`], the recorded
-//! method, switching methods where the recording did), or driving another method to the
-//! recorded targets ([`replay_to_targets`]).
+//! method, switching methods where the recording did; [`replay_with_rigs`] with the trained
+//! rigs it names), or driving another method to the recorded targets
+//! ([`replay_to_targets`]).
 
-use super::Poser;
+use super::{session_rig, Poser};
+use crate::defop::Operator;
 use crate::deform::{DeformError, Deformer};
 use crate::geometry::Point;
 use crate::session::{Event, Session, SessionError, SessionJoint};
@@ -23,9 +25,18 @@ pub struct Replay {
 /// [`Session::recorded_deformer`]), through a [`Poser`] of it. An `options` event is put
 /// into effect by [`Poser::set_options`], as the widget does: one of another method puts a
 /// solver of that method behind the deformer, the pose and the handles carried over. With
-/// the recorded method and options this repeats the recording exactly.
+/// the recorded method and options this repeats the recording exactly. A session that
+/// names a trained rig needs [`replay_with_rigs`].
 pub fn replay(session: &Session, deformer: &mut Deformer) -> Result<Replay, SessionError> {
-    run(session, &mut Poser::new(deformer), None)
+    run(session, &mut Poser::new(deformer), None, &[])
+}
+
+/// [`replay`] with the trained rigs the session may name: a `rig` event poses with the one
+/// of `rigs` it names ([`super::session_rig`] with the deformer's mesh), each `rigPose`
+/// evaluates it at the recorded targets ([`Poser::pose_with_rig`]), to the same bits as
+/// recorded. A `rig` event naming none of them is refused ([`SessionError::MissingRig`]).
+pub fn replay_with_rigs(session: &Session, deformer: &mut Deformer, rigs: &[Operator]) -> Result<Replay, SessionError> {
+    run(session, &mut Poser::new(deformer), None, rigs)
 }
 
 /// Replays the events driving every handle to the recorded targets (see [`Replay::targets`]
@@ -34,13 +45,14 @@ pub fn replay(session: &Session, deformer: &mut Deformer) -> Result<Replay, Sess
 /// its velocity the target minus the handle's current position. `options` events are
 /// passed over: the method compared keeps its settings. `positions` events put it into the
 /// recorded pose. `stiffness` and `bones` events paint it or set them, or are passed over
-/// by a method without stiffness or bones.
+/// by a method without stiffness or bones. `rig` events are passed over, and each
+/// `rigPose` is a step toward its targets.
 pub fn replay_to_targets(
     session: &Session,
     targets: &[Vec<Point>],
     deformer: &mut Deformer,
 ) -> Result<Replay, SessionError> {
-    run(session, &mut Poser::new(deformer), Some(targets))
+    run(session, &mut Poser::new(deformer), Some(targets), &[])
 }
 
 /// Sets stiffness or bones with `set`; a compared method (`compared`) without them passes
@@ -60,8 +72,11 @@ fn run(
     session: &Session,
     poser: &mut Poser<&mut Deformer>,
     targets: Option<&[Vec<Point>]>,
+    rigs: &[Operator],
 ) -> Result<Replay, SessionError> {
     let compared = targets.is_some();
+    // How the session would name each rig given (one that cannot be named is none).
+    let named: Vec<_> = rigs.iter().map(|rig| session_rig(poser.deformer().mesh(), rig).ok()).collect();
     let mut replay = Replay::default();
     let mut last_was_step = false;
     for (index, event) in session.events.iter().enumerate() {
@@ -119,6 +134,22 @@ fn run(
                 set(poser, compared, |p| p.set_bones(triangles, ends)).map_err(refused)?;
             }
             Event::Joints(joints) => poser.set_joints(SessionJoint::joints(joints)).map_err(refused)?,
+            Event::Rig(_) if compared => {}
+            Event::Rig(None) => poser.set_rig(None).map_err(refused)?,
+            Event::Rig(Some(rig)) => {
+                let given = named.iter().position(|n| n.as_ref() == Some(rig));
+                let operator = given.map(|k| rigs[k].clone()).ok_or(SessionError::MissingRig { index, rig: *rig })?;
+                poser.set_rig(Some(operator)).map_err(refused)?;
+            }
+            Event::RigPose(flat) => {
+                let count = poser.handle_count();
+                let goal = pairs(flat, "targets", count, "handles").map_err(refused)?;
+                match compared {
+                    false => poser.pose_with_rig(goal),
+                    true => poser.set_targets(goal).and_then(|()| poser.step_toward(1.0, None)),
+                }
+                .map_err(refused)?;
+            }
             Event::Reset(true) => poser.reset(),
             Event::Reset(false) => {}
         }

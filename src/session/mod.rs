@@ -3,7 +3,7 @@
 //! `sessionJson`), replayed on a [`Deformer`] of any method by `pose::replay`.
 //!
 //! ```json
-//! { "format": "akap-session", "version": 2,
+//! { "format": "akap-session", "version": 3,
 //!   "shape": { "name": "bar", "targetEdgeLength": 0.05, "minAngle": 28 },
 //!   "mesh": { "vertexCount": 812, "triangleCount": 1400 },
 //!   "options": { "method": "akap", "lambda": 100, "dirichlet": true, "integrator": "spiral" },
@@ -14,6 +14,9 @@
 //!               { "stiffness": [1, 1, 100, 100, 1] },
 //!               { "turn": { "velocities": [0, 0, 0.01, 0], "turns": [0, 0.05] } },
 //!               { "bones": { "triangles": [7, 12], "barycentric": [1, 0, 0, 0.5, 0.5, 0] } },
+//!               { "rig": { "checksum": "8c3f0a51d2e47b69" } },
+//!               { "rigPose": [0, 0, 0.5, 0.25] },
+//!               { "rig": null },
 //!               { "reset": true } ] }
 //! ```
 //!
@@ -43,9 +46,20 @@
 //! under another method is refused on replay as the deformer refuses it, and passed over by
 //! `pose::replay_to_targets`, whose method is a comparison's).
 //!
+//! A trained rig (a DefOp operator) posing the shape is recorded by what it poses for, not
+//! by its poses: `rig` names the rig that poses from then on by [`SessionRig`] (the
+//! checksum of its operator file), or `null` when none does any more (a new handle set
+//! drops it too, as the poser does); `rigPose` is one frame of it, the handles' targets
+//! (x and y per handle) that the rig's pose is for, a no-foldover guard's pulled-back targets
+//! where it stopped short. The operator itself is not in the session: `pose::replay_with_rigs`
+//! is given the rig (its file read) and evaluates it at the recorded targets, to the same
+//! bits, and refuses a `rig` event whose rig is not given ([`SessionError::MissingRig`],
+//! saying which is needed). A `rigPose` needs a `rig` since the last `handles` event.
+//!
 //! Version 1, the first sessions (`tests/sessions/*.json`), had only a built-in shape, AKAP
-//! options and `handles`, `step` and `reset` events; it is still read (a version-1 file using
-//! more is refused), and written back as version 2.
+//! options and `handles`, `step` and `reset` events; version 2 had every event but `rig` and
+//! `rigPose`. Both are still read (a file using more than its version had is refused), and
+//! written back as version 3.
 //!
 //! Numbers are written in the shortest form that reads back to the same double, and read
 //! exactly (serde_json's `float_roundtrip`), so replaying a session repeats the recording
@@ -68,7 +82,7 @@ use crate::triangulate::{triangulate, TriangulationError, TriangulationOptions};
 /// The value of the `format` field.
 pub const FORMAT: &str = "akap-session";
 /// The format version this code writes (and the newest it reads).
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 /// The oldest version this code reads.
 pub const OLDEST_VERSION: u32 = 1;
 /// The largest session text the bindings read, in bytes (80 MB: about a million frames of
@@ -81,7 +95,7 @@ pub const MAX_BYTES: usize = 80_000_000;
 pub struct Session {
     /// Always [`FORMAT`].
     pub format: String,
-    /// [`VERSION`] once read (a version-1 file is read as version 2).
+    /// [`VERSION`] once read (an older file is read as the newest).
     pub version: u32,
     /// The built-in shape and how it was triangulated; `None` when the mesh is inline.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -198,6 +212,49 @@ impl SessionJoint {
     /// The recorded joints.
     pub fn joints(recorded: &[Self]) -> Vec<Joint> {
         recorded.iter().map(|j| Joint { point: j.point, parts: j.parts }).collect()
+    }
+}
+
+/// A trained rig as a session names it: the FNV-1a 64 checksum of its operator file as
+/// `defop::write_operator` writes it with the session's mesh (the file's last 8 bytes,
+/// little-endian), written as 16 lowercase hexadecimal digits, `{ "checksum":
+/// "8c3f0a51d2e47b69" }`. A rig trained in the app and one read back from its saved file
+/// have the same; a file of another version than this code writes may carry another
+/// checksum in its last bytes, but names the same rig here once read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(try_from = "RigName", into = "RigName")]
+pub struct SessionRig {
+    /// The checksum.
+    pub checksum: u64,
+}
+
+/// [`SessionRig`] in JSON.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RigName {
+    checksum: String,
+}
+
+impl TryFrom<RigName> for SessionRig {
+    type Error = String;
+    fn try_from(name: RigName) -> Result<Self, String> {
+        let digits = &name.checksum;
+        match (digits.len(), u64::from_str_radix(digits, 16)) {
+            (16, Ok(checksum)) if !digits.starts_with('+') => Ok(Self { checksum }),
+            _ => Err(format!("a rig's checksum is 16 hexadecimal digits, not {digits:?}")),
+        }
+    }
+}
+
+impl From<SessionRig> for RigName {
+    fn from(rig: SessionRig) -> Self {
+        Self { checksum: format!("{:016x}", rig.checksum) }
+    }
+}
+
+impl fmt::Display for SessionRig {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:016x}", self.checksum)
     }
 }
 
@@ -402,6 +459,10 @@ pub enum Event {
         /// The turn of each handle, radians counter-clockwise.
         turns: Vec<f64>,
     },
+    /// A trained rig poses the shape from now on (`null`: none does any more).
+    Rig(Option<SessionRig>),
+    /// One frame of the rig: the handles' targets (x and y per handle) its pose is for.
+    RigPose(Vec<f64>),
 }
 
 /// Why a session could not be read or replayed.
@@ -420,8 +481,10 @@ pub enum SessionError {
         /// The value found.
         found: u32,
     },
-    /// A version-1 session uses what only version 2 has.
-    NotInVersion1 {
+    /// A session uses what its version did not have.
+    NotInVersion {
+        /// Its version.
+        version: u32,
         /// What, e.g. "a positions event".
         what: &'static str,
     },
@@ -460,6 +523,13 @@ pub enum SessionError {
         /// Index of the event in `events`.
         index: usize,
     },
+    /// A `rig` event names a rig that the replay was not given.
+    MissingRig {
+        /// Index of the event in `events`.
+        index: usize,
+        /// The rig it names.
+        rig: SessionRig,
+    },
 }
 
 impl fmt::Display for SessionError {
@@ -470,8 +540,8 @@ impl fmt::Display for SessionError {
             Self::Version { found } => {
                 write!(f, "session version {found} is not supported (only {OLDEST_VERSION} to {VERSION})")
             }
-            Self::NotInVersion1 { what } => {
-                write!(f, "a version-1 session cannot have {what}; version {VERSION} sessions can")
+            Self::NotInVersion { version, what } => {
+                write!(f, "a version-{version} session cannot have {what}; version {VERSION} sessions can")
             }
             Self::MeshSource => f.write_str(
                 "the session must name a built-in shape or carry its mesh (mesh.positions and mesh.triangles), \
@@ -491,6 +561,11 @@ impl fmt::Display for SessionError {
             Self::Setup(e) => write!(f, "the session's mesh cannot be deformed: {e}"),
             Self::Event { index, error } => write!(f, "event {index}: {error}"),
             Self::MissingTargets { index } => write!(f, "event {index} is a step without targets"),
+            Self::MissingRig { index, rig } => write!(
+                f,
+                "event {index} poses with a trained rig that is not loaded (the rig whose operator file has \
+                 checksum {rig}): open that rig's .defop file, then replay"
+            ),
         }
     }
 }
@@ -519,7 +594,8 @@ impl SessionError {
             Self::Json(_)
             | Self::Format { .. }
             | Self::Version { .. }
-            | Self::NotInVersion1 { .. }
+            | Self::NotInVersion { .. }
+            | Self::MissingRig { .. }
             | Self::MeshSource
             | Self::UnknownShape { .. }
             | Self::MeshMismatch { .. } => ErrorCode::Import,
@@ -560,7 +636,7 @@ impl Session {
         }
     }
 
-    /// Reads a session (version 1 or 2; read as version 2) and checks it as far as it can
+    /// Reads a session (version 1 to 3; read as version 3) and checks it as far as it can
     /// without its mesh ([`Self::check`]).
     pub fn from_json(text: &str) -> Result<Self, SessionError> {
         let mut session: Self = serde_json::from_str(text).map_err(|e| SessionError::Json(e.to_string()))?;
@@ -570,12 +646,15 @@ impl Session {
         if !(OLDEST_VERSION..=VERSION).contains(&session.version) {
             return Err(SessionError::Version { found: session.version });
         }
-        if session.version == 1 {
-            if let Some(what) = session.beyond_version_1() {
-                return Err(SessionError::NotInVersion1 { what });
-            }
-            session.version = VERSION;
+        let beyond = match session.version {
+            1 => session.beyond_version_1(),
+            2 => session.beyond_version_2(),
+            _ => None,
+        };
+        if let Some(what) = beyond {
+            return Err(SessionError::NotInVersion { version: session.version, what });
         }
+        session.version = VERSION;
         session.check()?;
         Ok(session)
     }
@@ -594,13 +673,25 @@ impl Session {
         if self.options.beyond_version_1() {
             return Some("options naming a method or ARAP's iterations");
         }
+        self.events
+            .iter()
+            .find_map(|e| match e {
+                Event::Positions(_) => Some("a positions event"),
+                Event::Options(_) => Some("an options event"),
+                Event::Stiffness(_) => Some("a stiffness event"),
+                Event::Turn { .. } => Some("a turn event"),
+                Event::Bones { .. } => Some("a bones event"),
+                Event::Joints(_) => Some("a joints event"),
+                _ => None,
+            })
+            .or_else(|| self.beyond_version_2())
+    }
+
+    /// What of version 3 the session uses, if anything.
+    fn beyond_version_2(&self) -> Option<&'static str> {
         self.events.iter().find_map(|e| match e {
-            Event::Positions(_) => Some("a positions event"),
-            Event::Options(_) => Some("an options event"),
-            Event::Stiffness(_) => Some("a stiffness event"),
-            Event::Turn { .. } => Some("a turn event"),
-            Event::Bones { .. } => Some("a bones event"),
-            Event::Joints(_) => Some("a joints event"),
+            Event::Rig(_) => Some("a rig event"),
+            Event::RigPose(_) => Some("a rigPose event"),
             _ => None,
         })
     }
@@ -609,9 +700,10 @@ impl Session {
     /// the inline mesh's array lengths, the options of the header and of every `options`
     /// event (ranges, and options of the method in use at that point), and every event's
     /// array lengths (3 barycentric coordinates per handle, 2 velocity components per
-    /// handle of the handles in place, 2 numbers per vertex), and stiffness (one value per
-    /// triangle, each in range). Triangle indices, barycentric
-    /// coordinates and velocities are checked by the deformer on replay.
+    /// handle of the handles in place, 2 numbers per vertex), stiffness (one value per
+    /// triangle, each in range), and that a `rigPose` has a rig to pose with (a `rig`
+    /// since the last `handles`). Triangle indices, barycentric coordinates and velocities
+    /// are checked by the deformer on replay.
     pub fn check(&self) -> Result<(), SessionError> {
         let counts = self.mesh.counts();
         match (&self.shape, &self.mesh.positions, &self.mesh.triangles) {
@@ -626,6 +718,7 @@ impl Session {
         }
         let mut options = self.method_options()?;
         let mut handles = 0;
+        let mut rig = false;
         for (index, event) in self.events.iter().enumerate() {
             let length = |what, expected, found, per, items| {
                 let error = DeformError::Length { what, expected, found, per, items };
@@ -637,6 +730,12 @@ impl Session {
                         return Err(length("barycentric", 3 * triangles.len(), barycentric.len(), 3, "handles"));
                     }
                     handles = triangles.len();
+                    rig = false;
+                }
+                Event::Rig(named) => rig = named.is_some(),
+                Event::RigPose(_) if !rig => return Err(SessionError::Event { index, error: DeformError::NoRig }),
+                Event::RigPose(t) if t.len() != 2 * handles => {
+                    return Err(length("targets", 2 * handles, t.len(), 2, "handles"))
                 }
                 Event::Step(v) | Event::Turn { velocities: v, .. } if v.len() != 2 * handles => {
                     return Err(length("velocities", 2 * handles, v.len(), 2, "handles"))

@@ -518,6 +518,22 @@ impl JsDeformer {
         self.inner.has_rig()
     }
 
+    /// How a session names `rig` posing this deformer's mesh (`crate::pose::session_rig`):
+    /// the checksum of its operator file, 16 hexadecimal digits, as a `rig` event has it.
+    #[wasm_bindgen(js_name = rigChecksum)]
+    pub fn rig_checksum(&self, rig: &JsDefOp) -> Result<String, BindingError> {
+        let named = crate::pose::session_rig(self.inner.deformer().mesh(), rig.operator());
+        Ok(named.map_err(crate::defop::TrainError::from)?.to_string())
+    }
+
+    /// Poses with the rig at these targets (`Float64Array`, x and y per handle), as given:
+    /// no guard (a session's recorded `rigPose`). The handles' targets become these.
+    #[wasm_bindgen(js_name = poseWithRig)]
+    pub fn pose_with_rig(&mut self, targets: JsValue) -> Result<(), BindingError> {
+        let targets = read::float64s(&targets, "targets", 2 * max_handles())?;
+        Ok(self.inner.pose_with_rig(&pairs(&targets, "targets")?)?)
+    }
+
     /// Poses the rig on the GPU (`true`) or on the CPU (`false`): on the GPU, `advance`
     /// computes only the rig's frame (`rigFramePointer`), which a vertex shader combines
     /// with the basis texture (`rigGpuTexture`, laid out as `rigGpuLayout` says;
@@ -589,6 +605,13 @@ impl JsDeformer {
     #[wasm_bindgen(getter, js_name = poseStale)]
     pub fn pose_stale(&self) -> bool {
         self.inner.is_stale()
+    }
+
+    /// Whether the rig's last frame on the GPU is that of the pose shown (stale positions
+    /// or not: with the foldover guard each frame is also evaluated on the CPU).
+    #[wasm_bindgen(getter, js_name = rigFrameCurrent)]
+    pub fn rig_frame_current(&self) -> bool {
+        self.inner.rig_frame_current()
     }
 
     // ------------------------------------------------------------------ recording

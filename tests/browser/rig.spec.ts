@@ -3,7 +3,10 @@
  * toolbar with the progress shown to the end, the same on one worker as on several, posed by a drag exactly as `DefOp.evaluate`
  * poses in Node for the same targets, restored from the browser's cache after a reload
  * without training, saved and opened as a file, cancelled mid-way with nothing changed, a
- * failing worker reported, and the example page's shipped rig posed without training.
+ * failing worker reported, and the example page's shipped rig posed without training. A
+ * rig dragged past a fold stops short with "No foldovers" and the HUD says so; a recording
+ * of it replays to the same bits in the app, and in a fresh page once the rig is opened
+ * (Load asking for the rig before).
  */
 import { readFile } from "node:fs/promises";
 import { expect, test, type Page } from "@playwright/test";
@@ -289,4 +292,82 @@ test("where the page may not start workers, a rig trains on the page's thread in
   expect(workers.length).toBeGreaterThan(1);
   expect(new Set(workers)).toEqual(new Set([0]));
   expect(await rig(page)).toMatchObject({ state: "ready", source: "trained", training: false });
+});
+
+/** The bits of the widget's positions, 16 hex digits per coordinate. */
+const poseBits = (page: Page): Promise<string[]> =>
+  page.evaluate(() =>
+    Array.from(new BigUint64Array(Float64Array.from(window.akapDemo!.widget.positions()).buffer), (b) =>
+      b.toString(16).padStart(16, "0"),
+    ),
+  );
+
+test("a rig dragged past a fold stops short and the HUD says so; its recording replays with the rig open, and asks for it without", async ({
+  page,
+  browser,
+}) => {
+  test.setTimeout(120_000);
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await open(page, "?hud=true");
+  await barWithTwoHandles(page);
+  await page.evaluate(async () => {
+    const w = window.akapDemo!.widget as unknown as { train(o: object): Promise<void> };
+    await w.train({ samples: 8, energy: "arap" });
+  });
+  await page.getByRole("combobox", { name: "Method" }).selectOption("defop");
+  expect(await rig(page)).toMatchObject({ state: "ready", posing: true });
+  await page.evaluate(() => {
+    const w = window as unknown as { clamped: boolean };
+    w.clamped = false;
+    document.getElementById("app")!.addEventListener("akap-pose", (e) => {
+      w.clamped ||= (e as CustomEvent<{ clamped: boolean }>).detail.clamped;
+    });
+  });
+  await page.getByRole("button", { name: "Record" }).click();
+  // The right end pulled through the pinned left end and as far again beyond it.
+  const { toCss } = await mapping(page);
+  const h = await handles(page);
+  const [x, y] = toCss(h[2]!, h[3]!);
+  const [left] = toCss(h[0]!, h[1]!);
+  await dragMouse(page, [x, y], [2 * left - x, y + 20], 30);
+  expect(await page.evaluate(() => (window as unknown as { clamped: boolean }).clamped)).toBe(true);
+  await expect(page.locator(".akap-host >> .hud")).toContainText("no foldovers: stopped short");
+  expect(await page.evaluate(() => window.akapDemo!.widget.metrics.flipped)).toBe(0);
+  await page.getByRole("button", { name: "Stop" }).click();
+  const recorded = await poseBits(page);
+  let download = page.waitForEvent("download");
+  await page.getByRole("button", { name: "Save", exact: true }).click();
+  const session = await readFile((await (await download).path())!, "utf8");
+  const kinds = (JSON.parse(session) as { events: object[] }).events.map((e) => Object.keys(e)[0]);
+  expect(kinds).toContain("rig");
+  expect(kinds).toContain("rigPose");
+  // The pose at the start (the rig's, off rest by rounding) is the only one recorded.
+  expect(kinds.slice(1)).not.toContain("positions");
+
+  // The app's own replay: the same bits.
+  await page.getByRole("button", { name: "Replay" }).click();
+  await expect(page.locator(".akap-host >> .widget")).not.toHaveAttribute("data-replaying", "true");
+  await idle(page);
+  expect(await poseBits(page)).toEqual(recorded);
+
+  // A fresh page: without the rig, Load says which rig to open; with it open, the same bits.
+  download = page.waitForEvent("download");
+  await page.getByRole("button", { name: "Save rig" }).click();
+  const operator = await readFile((await (await download).path())!);
+  const context = await prepare(await browser.newContext({ viewport: { width: 1280, height: 800 } }));
+  const fresh = await context.newPage();
+  await fresh.goto("/?hud=false");
+  await expect(fresh.locator("body")).toHaveAttribute("data-ready", "true");
+  const load = () =>
+    fresh
+      .locator('input[name="session-file"]')
+      .setInputFiles({ name: "rig.json", mimeType: "application/json", buffer: Buffer.from(session) });
+  await load();
+  await expect(fresh.locator(".status")).toContainText("open that rig's .defop file");
+  await fresh.locator("input[name=rig-file]").setInputFiles({ name: "bar.defop", mimeType: "", buffer: operator });
+  await expect.poll(async () => (await rig(fresh)).state).toBe("ready");
+  await load();
+  await expect.poll(() => poseBits(fresh)).toEqual(recorded);
+  await expect(fresh.getByRole("combobox", { name: "Method" })).toHaveValue("defop");
+  await context.close();
 });

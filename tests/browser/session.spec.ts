@@ -59,7 +59,7 @@ test("a session recorded in the app replays to the recorded pose; the committed 
   const saved = await readFile((await (await download).path())!, "utf8");
   const kinds = (JSON.parse(saved) as { events: object[] }).events.map((e) => Object.keys(e)[0]);
   for (const kind of ["handles", "step", "options", "reset"]) expect(kinds).toContain(kind);
-  expect(saved).toContain('"version": 2,');
+  expect(saved).toContain('"version": 3,');
 
   // The app's own replay reaches the recorded pose.
   await page.getByRole("button", { name: "Replay" }).click();

@@ -1,7 +1,7 @@
 /**
  * Sessions between the widget and the core, in Node through the real wasm: what the
  * widget records is the core's JSON and reads back through the core's parser, replaying to
- * the same pose bit for bit; version-1 files read as version 2; malformed sessions and
+ * the same pose bit for bit; version-1 files read as version 3; malformed sessions and
  * events are refused with the core's messages, changing nothing.
  */
 import { readFileSync } from "node:fs";
@@ -73,7 +73,7 @@ describe("sessions through the core", () => {
     const kinds = session.data.events.map((e) => Object.keys(e)[0]);
     expect(kinds.slice(0, 3)).toEqual(["positions", "handles", "handles"]);
     for (const kind of ["step", "options", "reset"]) expect(kinds).toContain(kind);
-    expect(session.data.version).toBe(2);
+    expect(session.data.version).toBe(3);
     expect(session.data.shape?.name).toBe("gingerbread");
     // The core reads what the widget wrote, and writes it back the same.
     const back = parseSession(session.json);
@@ -186,11 +186,11 @@ describe("sessions through the core", () => {
     expect(session.data.mesh.positions).toEqual(Array.from(p.shape.mesh.positions));
   });
 
-  it("reads version-1 files as version 2, with every option of the method", () => {
+  it("reads version-1 files as version 3, with every option of the method", () => {
     const text = readFileSync(new URL("../sessions/gingerbread-fast.json", import.meta.url), "utf8");
     expect(text).toContain('"version": 1,');
     const session = parseSession(text);
-    expect(session.data.version).toBe(2);
+    expect(session.data.version).toBe(3);
     expect(session.data.options).toEqual({ method: "akap", lambda: 100, dirichlet: true, integrator: "spiral" });
     expect(session.data.events.length).toBe((JSON.parse(text) as { events: unknown[] }).events.length);
   });
@@ -212,7 +212,7 @@ describe("sessions through the core", () => {
     });
     expect(() => parseSession("{")).toThrow(/^not a valid session: EOF while parsing an object at line 1 column 1$/);
     expect(() => parseSession(bad({ format: "x" }))).toThrow('format is "x", expected "akap-session"');
-    expect(() => parseSession(bad({ version: 3 }))).toThrow("session version 3 is not supported (only 1 to 2)");
+    expect(() => parseSession(bad({ version: 4 }))).toThrow("session version 4 is not supported (only 1 to 3)");
     expect(() => parseSession(bad({ events: [{ jump: 1 }] }))).toThrow(/unknown variant `jump`/);
     expect(() => parseSession(bad({ events: [{ step: [1, "2"] }] }))).toThrow(/invalid type: string "2"/);
     expect(() => parseSession(bad({ events: [{ step: [1], reset: true }] }))).toThrow(/not a valid session/);

@@ -686,9 +686,13 @@ export class Deformer {
   /**
    * Poses with a trained rig (a `DefOp`, copied into the deformer) instead of stepping:
    * each {@link advance} gives the rig's pose for the handles' targets, computed in
-   * WebAssembly straight into the positions. `undefined` steps again; so does a new handle
-   * set. Throws (code `invalid-argument`) for a rig of other handle or vertex counts; the
-   * caller checks that it was trained for this mesh and these handle points.
+   * WebAssembly straight into the positions. With `noFoldovers` ({@link setTracking}, on
+   * by default) targets whose pose would turn over a triangle not turned over at rest are
+   * pulled back along the way from the last pose's, the frame reported `clamped`. `undefined`
+   * steps again; so does a new handle set. Throws (code `invalid-argument`) for a rig of
+   * other handle or vertex counts; the caller checks that it was trained for this mesh and
+   * these handle points. A recording names the rig ({@link rigChecksum}) and records its
+   * frames as their targets.
    */
   setRig(rig: RigOperator | undefined): void {
     if (rig === undefined) {
@@ -706,14 +710,34 @@ export class Deformer {
   }
 
   /**
+   * How a session names `rig` posing this deformer's mesh: the checksum of its operator
+   * file (16 hexadecimal digits), as a recorded `rig` event has it.
+   */
+  rigChecksum(rig: RigOperator): string {
+    const inner = bindingOf(rig) as rawTypes.DefOp | undefined;
+    if (!inner) throw coded(new TypeError("the rig must be a DefOp that is not freed"), "invalid-argument");
+    return this.#raw.rigChecksum(inner);
+  }
+
+  /**
+   * Poses with the rig ({@link setRig}) at these targets (x and y per handle), as given,
+   * without the foldover guard: a session's recorded `rigPose`. The handles' targets become
+   * these. Throws without a rig.
+   */
+  poseWithRig(targets: Coordinates): void {
+    this.#raw.poseWithRig(toFloat64(targets, "targets"));
+  }
+
+  /**
    * Poses the rig on the GPU (`true`) or on the CPU (`false`). On the GPU, {@link advance}
    * computes only the rig's frame ({@link rigFrame}: `X Ψ(Q)` for a reduced spatial basis,
    * `Ψ(Q)` for the hat basis, and a rigid motion), which a vertex shader combines with the
    * basis texture ({@link rigGpuTexture}) into the positions; the pose on the CPU is the
    * operator's, evaluated when something reads it ({@link positions},
    * {@link positionsView}, {@link handlePositions}, {@link metrics}, a step, a recording,
-   * ...). While a recording runs each frame is evaluated at once, as on the CPU. Returns
-   * whether the rig is on the GPU now (never without a rig; a new rig starts on the CPU).
+   * ...). With `noFoldovers` (its guard needs the pose) or a recording that cannot name
+   * the rig, each frame is evaluated on the CPU too. Returns whether the rig is on the GPU
+   * now (never without a rig; a new rig starts on the CPU).
    */
   setRigOnGpu(on: boolean): boolean {
     return this.#raw.setRigOnGpu(on);
@@ -775,6 +799,15 @@ export class Deformer {
   /** Whether the pose on the CPU is behind the rig's last frame on the GPU (it is evaluated when read). */
   get poseStale(): boolean {
     return this.#raw.poseStale;
+  }
+
+  /**
+   * Whether the rig's last frame on the GPU ({@link rigFrame}) is that of the pose shown,
+   * the pose on the CPU behind it or not (with `noFoldovers` each frame is evaluated on
+   * the CPU as well); false after a pose set otherwise (undo, reset).
+   */
+  get rigFrameCurrent(): boolean {
+    return this.#raw.rigFrameCurrent;
   }
 
   /**

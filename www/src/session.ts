@@ -3,14 +3,14 @@
  * Replaying the calls on the same mesh gives the same positions bit for bit (the wasm
  * code is deterministic, and JSON numbers round-trip doubles exactly).
  *
- * The format has one definition, in Rust (`src/session/`, version 2; version 1 files are
+ * The format has one definition, in Rust (`src/session/`, version 3; versions 1 and 2 are
  * read too): the widget records through the core's deformer (`Deformer.startRecording`), which writes the
  * JSON, and reads sessions through `sessionJson`, which checks them and writes them back
- * as version 2. The types here describe that JSON once parsed; nothing in TypeScript
+ * as version 3. The types here describe that JSON once parsed; nothing in TypeScript
  * validates it.
  *
  * ```json
- * { "format": "akap-session", "version": 2,
+ * { "format": "akap-session", "version": 3,
  *   "shape": { "name": "gingerbread", "targetEdgeLength": 0.035, "minAngle": 28 },
  *   "mesh": { "vertexCount": 812, "triangleCount": 1400 },
  *   "options": { "method": "akap", "lambda": 100, "dirichlet": true, "integrator": "spiral" },
@@ -22,13 +22,18 @@
  *               { "turn": { "velocities": [..], "turns": [.. 1 per handle ..] } },
  *               { "bones": { "triangles": [.. 2 per bone ..], "barycentric": [.. 3 per end ..] } },
  *               { "joints": [ { "point": [x, y], "parts": [front, back] } ] },
+ *               { "rig": { "checksum": "8c3f0a51d2e47b69" } },
+ *               { "rigPose": [x0, y0, x1, y1, ...] },
+ *               { "rig": null },
  *               { "reset": true } ] }
  * ```
  * `shape` names a built-in shape and how it was triangulated; a session of another shape
  * carries the mesh itself in `mesh.positions` and `mesh.triangles`. A session of a puppet
  * has a `puppet` in its header, `{ "parts": [{ "name", "triangles", "depth" }], "joints":
  * [{ "point", "parts" }] }` (its parts and its joints at the start), and `joints` events
- * (the joints replaced).
+ * (the joints replaced). A trained rig posing is named by `rig` (the checksum of its
+ * operator file, `Deformer.rigChecksum`; `null` when it stops) and each of its frames
+ * recorded as the targets its pose is for (`rigPose`): replaying needs that rig loaded.
  */
 import type { DeformerOptions, MeshData, PuppetJoint } from "./core.js";
 import type { Indices, Coordinates } from "./internal/arrays.js";
@@ -68,6 +73,8 @@ export type SessionEvent =
   | { turn: { velocities: Coordinates; turns: Coordinates } }
   | { bones: { triangles: Indices; barycentric: Coordinates } }
   | { joints: PuppetJoint[] }
+  | { rig: { checksum: string } | null }
+  | { rigPose: Coordinates }
   | { reset: true };
 
 /** A puppet's parts and joints at the start of a session (see `Deformer`'s `parts` and `joints`). */
@@ -80,7 +87,7 @@ export interface SessionPuppet {
 /** A session's JSON, parsed. */
 export interface SessionData {
   format: "akap-session";
-  version: 2;
+  version: 3;
   shape?: SessionShape;
   mesh: SessionMesh;
   options: DeformerOptions;
@@ -89,7 +96,7 @@ export interface SessionData {
   events: SessionEvent[];
 }
 
-/** A session read and checked by the core: its JSON (version 2, as the core writes it) and that JSON parsed. */
+/** A session read and checked by the core: its JSON (version 3, as the core writes it) and that JSON parsed. */
 export class Session {
   /** The JSON text, what Save writes. */
   readonly json: string;
@@ -108,7 +115,7 @@ export class Session {
 }
 
 /**
- * Reads and checks a session file (version 1 or 2) in the core. Throws an `Error` saying
+ * Reads and checks a session file (versions 1 to 3) in the core. Throws an `Error` saying
  * what is wrong and where (`not a valid session: ... at line 3 column 12`, `event 12: ...`);
  * the mesh is checked when the session is replayed.
  */

@@ -845,7 +845,7 @@ export class Posing {
       let steps = 0;
       for (const event of session.data.events) {
         this.apply(event);
-        if (("step" in event || "turn" in event) && !(await paused(++steps))) return;
+        if (("step" in event || "turn" in event || "rigPose" in event) && !(await paused(++steps))) return;
       }
     } catch (error) {
       this.restore(before);
@@ -858,7 +858,11 @@ export class Posing {
     this.history.push(before);
   }
 
-  /** Carries out one recorded event. */
+  /**
+   * Carries out one recorded event. A `rig` event poses with the widget's rig (the
+   * "defop" method shown) when it is the rig the session names, and throws, saying so,
+   * when it is not; `rigPose` poses with it at the recorded targets.
+   */
   apply(event: SessionEvent): void {
     if ("handles" in event) {
       const { triangles, barycentric } = event.handles;
@@ -891,9 +895,33 @@ export class Posing {
       this.deformer.setStiffness(values);
       this.stiffness = values === undefined ? undefined : Float64Array.from(values);
       this.#stiffnessPending = false;
+    } else if ("rig" in event) {
+      this.#applyRig(event.rig?.checksum);
+    } else if ("rigPose" in event) {
+      this.deformer.poseWithRig(event.rigPose);
     } else {
       this.deformer.reset();
     }
+  }
+
+  /** A recorded `rig` event: the rig named by `checksum` poses (the widget's, if it is that rig), or none (undefined). */
+  #applyRig(checksum: string | undefined): void {
+    if (checksum === undefined) {
+      this.deformer.setRig(undefined);
+      this.#rigSent = undefined;
+      return;
+    }
+    const rig = this.rig;
+    if (rig === undefined || this.deformer.rigChecksum(rig.operator) !== checksum) {
+      throw new Error(
+        `the session poses with a trained rig that is not loaded (the rig whose operator file has checksum ${checksum}): ` +
+          'open that rig\'s .defop file ("Open rig…"), then replay',
+      );
+    }
+    this.deformer.setRig(rig.operator);
+    if (this.rigsOnGpu && this.deformer.setRigOnGpu(true)) this.gpuRigVersion++;
+    this.#rigSent = rig;
+    if (this.settings.method !== "defop") this.showMethod("defop", this.settings.lambda);
   }
 }
 

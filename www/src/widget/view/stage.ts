@@ -206,14 +206,15 @@ export class Stage {
   }
 
   /**
-   * The rig's frame to draw, when a rig on the GPU left the pose behind and the overlay
+   * The rig's frame to draw, when a rig on the GPU has the frame of the pose shown (its
+   * pose on the CPU left behind, or also evaluated for the foldover guard) and the overlay
    * can be drawn from the watched vertices; the rig's texture uploaded and the vertices
    * watched first when they changed (that frame is drawn from the pose: the watched
    * positions come with the next frame). A rig the renderer cannot take poses on the CPU.
    */
   #rigFrame(posing: Posing, settings: WidgetSettings, extras: Extras): Float32Array | undefined {
     const { deformer } = posing;
-    if (!deformer.poseStale) return undefined;
+    if (!deformer.rigFrameCurrent) return undefined;
     const version = posing.gpuRigVersion;
     if (this.#gpuRig?.deformer !== deformer || this.#gpuRig.version !== version) {
       const layout = deformer.rigGpuLayout();
