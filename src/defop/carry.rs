@@ -120,7 +120,7 @@ const SNAP_AREA: f64 = 0.25;
 
 /// The simulation mesh of `fine` ([`simulation_mesh`]) with each handle on a vertex of it:
 /// the nearest coarse vertex not already a handle's moved onto the handle's rest position,
-/// unless that leaves one of its triangles with less than [`SNAP_AREA`] of its area (then
+/// unless that leaves one of its triangles with less than a quarter of its area (then
 /// the handle is a point of the mesh, as [`handles_on`] places it). A handle on a vertex is
 /// pinned by the ground truth, its unknowns eliminated; a handle inside a triangle costs
 /// two more sparse solves per Newton iteration (the range-space step), so on the figure

@@ -91,16 +91,20 @@ export const train = action({
         const sampling = kit.select(
           [
             { value: "disc", label: "discs" },
-            { value: "voronoi", label: "Voronoi cells" },
-            { value: "mixed", label: "both" },
+            { value: "voronoi", label: "cells" },
+            { value: "mixed", label: "mixed" },
           ],
           s.training.sampling ?? "disc",
         );
         sampling.name = "rig-sampling";
         sampling.title =
-          "Where training draws each handle's targets: in a disc about it, in its Voronoi cell among the handles " +
-          "(reaching further, within the shape's box grown by the radius), or each sample from one or the other";
-        kit.labelled(group, "Sampling ", sampling);
+          "Sampling: where training draws each handle's targets. discs: in a disc about it; cells: in its " +
+          "Voronoi cell among the handles (reaching further, within the shape's box grown by the radius); " +
+          "mixed: each sample from one or the other";
+        // No visible label and short options (the title explains them), so that the panel
+        // keeps to its rows in a small widget.
+        sampling.setAttribute("aria-label", "Sampling");
+        group.append(sampling);
         const radius = kit.number(15, 0.1, 1000, "any");
         radius.name = "rig-radius";
         radius.value = "";
